@@ -1,0 +1,11 @@
+# Warning flags for lsdem's own targets; dependencies are included as system headers.
+function(lsdem_target_warnings target)
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local)
+    if(LSDEM_WERROR)
+        target_compile_options(${target} PRIVATE -Werror)
+    endif()
+    if(LSDEM_SANITIZE)
+        target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer)
+        target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+    endif()
+endfunction()

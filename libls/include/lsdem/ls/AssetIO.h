@@ -1,0 +1,36 @@
+/// @file AssetIO.h
+/// @brief Read and write grain assets: one .vdb file holding the level set ("phi", a FloatGrid
+///        of class level set, with the asset's metadata) and the surface nodes ("nodes", an
+///        OpenVDB points grid with attributes). Any OpenVDB tool (vdb_print) can open it.
+#pragma once
+
+#include "lsdem/ls/GrainAsset.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace lsdem {
+
+/// Write @a asset to @a path atomically (temporary file in the same folder, then rename).
+/// @throw Error if the folder is not writable.
+void saveAsset(const GrainAsset& asset, const std::string& path);
+
+/// Read an asset written by saveAsset.
+/// @throw Error naming the file if it is missing, not a .vdb, corrupt, or not an lsdem asset.
+std::shared_ptr<const GrainAsset> loadAsset(const std::string& path);
+
+/// Loads each asset file once and hands out shared, read-only copies: many grains, one asset.
+class AssetLibrary
+{
+public:
+    std::shared_ptr<const GrainAsset> get(const std::string& path);
+    size_t size() const;
+
+private:
+    mutable std::mutex mMutex;
+    std::map<std::string, std::shared_ptr<const GrainAsset>> mAssets;
+};
+
+} // namespace lsdem

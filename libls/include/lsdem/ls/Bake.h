@@ -1,0 +1,47 @@
+/// @file Bake.h
+/// @brief Turn a mesh file or an analytic shape into a grain asset: validate, move to the
+///        principal frame, sample the signed distance on a sparse grid, place surface nodes.
+#pragma once
+
+#include "lsdem/ls/AnalyticShape.h"
+#include "lsdem/ls/GrainAsset.h"
+
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+enum class NodePlacement {
+    Spacing,       ///< isotropic remeshing to nodeSpacing
+    Count,         ///< isotropic remeshing to about nodeCount nodes
+    MeshVertices,  ///< the input mesh's own vertices
+};
+
+struct BakeOptions
+{
+    double voxelSize = 0.0;          ///< VDP, > 0, in the mesh's length unit
+    NodePlacement nodePlacement = NodePlacement::Spacing;
+    double nodeSpacing = 0.0;        ///< SDP for NodePlacement::Spacing
+    int nodeCount = 0;               ///< for NodePlacement::Count
+    AreaRule areaRule = AreaRule::Mesh;
+    int exteriorBandVoxels = 3;      ///< exterior narrow band width, voxels (interior is filled)
+    double memoryBudgetBytes = 4.0 * 1024 * 1024 * 1024;  ///< refuse grids estimated larger
+    std::string optionsText;         ///< the options as the user gave them (provenance)
+};
+
+/// Bake the closed mesh in @a meshPath. Messages that do not stop the bake (repairs made, a
+/// node spacing much finer than the voxels) are appended to @a warnings.
+/// @throw Error for bad input (see MeshValidation.h and checkBakeOptions).
+GrainAsset bakeMeshFile(const std::string& meshPath, const BakeOptions& options,
+                        std::vector<std::string>& warnings);
+
+/// Bake an already loaded mesh; @a sourceName names it in messages and provenance.
+GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const BakeOptions& options,
+                    std::vector<std::string>& warnings);
+
+/// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
+/// surface. NodePlacement::MeshVertices is refused (there is no input mesh).
+GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
+                        std::vector<std::string>& warnings);
+
+} // namespace lsdem

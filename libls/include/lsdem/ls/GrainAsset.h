@@ -1,0 +1,49 @@
+/// @file GrainAsset.h
+/// @brief A baked grain shape: level set, surface nodes, mass properties and provenance. One
+///        asset is loaded once and shared, read-only, by every grain made from it.
+#pragma once
+
+#include "lsdem/ls/MassProperties.h"
+#include "lsdem/ls/SurfaceNodes.h"
+
+#include <memory>
+#include <string>
+
+namespace lsdem {
+
+/// The OpenVDB signed-distance grid of an asset. Opaque here so that this header stays light;
+/// include "lsdem/ls/LevelSetGrid.h" (which pulls in OpenVDB) to use it.
+struct LevelSetGrid;
+
+/// Where an asset came from, kept in the file so results can be traced to their inputs.
+struct AssetProvenance
+{
+    std::string source;        ///< input mesh path, or an analytic description ("sphere R=5")
+    std::string sourceSha256;  ///< SHA-256 of the input file's bytes ("" for analytic shapes)
+    std::string options;       ///< the bake options, as given
+    std::string lsdemVersion;  ///< version of lsdem that baked it
+};
+
+struct GrainAsset
+{
+    /// Signed distance, negative inside, in the asset (principal) frame; never modified after
+    /// baking or loading, so any number of threads may sample it (one accessor each).
+    std::shared_ptr<const LevelSetGrid> levelSet;
+    double voxelSize = 0.0;              ///< VDP, length
+    int exteriorBandVoxels = 0;          ///< width of the exterior band; the interior is filled
+
+    SurfaceNodes nodes;                  ///< in the asset frame, stored in Morton order
+    AreaRule areaRule = AreaRule::Mesh;
+    NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)
+
+    /// Unit-density mass properties in the asset frame: centroid at the origin, inertia
+    /// diagonal (principal moments ascending).
+    MassProperties mass;
+    /// How the input maps to the asset frame: x_asset = rotation * (x_input - centroid).
+    PrincipalFrame inputFrame;
+
+    double boundingRadius = 0.0;         ///< max |node|, length: a sphere holding the surface
+    AssetProvenance provenance;
+};
+
+} // namespace lsdem

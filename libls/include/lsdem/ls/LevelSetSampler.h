@@ -1,0 +1,76 @@
+/// @file LevelSetSampler.h
+/// @brief Samples a grain's signed distance φ and the gradient ∇φ of its trilinear interpolant
+///        from one 8-voxel fetch. One sampler per thread: it owns a cached OpenVDB accessor,
+///        which is not thread-safe, over a grid that is never modified.
+#pragma once
+
+#include "lsdem/ls/LevelSetGrid.h"
+
+namespace lsdem {
+
+struct LevelSetSample
+{
+    double phi = 0.0;              ///< signed distance, negative inside (length)
+    Vec3 gradient = Vec3::Zero();  ///< gradient of the trilinear interpolant (about unit length)
+};
+
+class LevelSetSampler
+{
+public:
+    explicit LevelSetSampler(const LevelSetGrid& levelSet)
+        : mAccessor(levelSet.grid->getConstAccessor()), mOrigin(levelSet.origin),
+          mInvVoxel(1.0 / levelSet.voxelSize)
+    {
+    }
+
+    /// φ and ∇φ at @a p (asset frame). Outside the band φ is the background (+band width) and
+    /// the gradient is zero.
+    LevelSetSample sample(const Vec3& p)
+    {
+        double value[8];
+        double fx, fy, fz;
+        fetch(p, value, fx, fy, fz);
+        // Trilinear interpolation along x, then y, then z; corners indexed as (z<<2)|(y<<1)|x.
+        const double c00 = value[0] + fx * (value[1] - value[0]);
+        const double c10 = value[2] + fx * (value[3] - value[2]);
+        const double c01 = value[4] + fx * (value[5] - value[4]);
+        const double c11 = value[6] + fx * (value[7] - value[6]);
+        const double c0 = c00 + fy * (c10 - c00);
+        const double c1 = c01 + fy * (c11 - c01);
+        LevelSetSample s;
+        s.phi = c0 + fz * (c1 - c0);
+        // Exact partial derivatives of the same trilinear polynomial.
+        const double dx00 = value[1] - value[0], dx10 = value[3] - value[2];
+        const double dx01 = value[5] - value[4], dx11 = value[7] - value[6];
+        const double dx0 = dx00 + fy * (dx10 - dx00), dx1 = dx01 + fy * (dx11 - dx01);
+        const double dy0 = c10 - c00, dy1 = c11 - c01;
+        s.gradient = Vec3(dx0 + fz * (dx1 - dx0), dy0 + fz * (dy1 - dy0), c1 - c0) * mInvVoxel;
+        return s;
+    }
+
+    /// φ alone (same interpolant as sample()).
+    double phi(const Vec3& p) { return sample(p).phi; }
+
+private:
+    void fetch(const Vec3& p, double value[8], double& fx, double& fy, double& fz)
+    {
+        const Vec3 index = (p - mOrigin) * mInvVoxel;
+        const double bx = std::floor(index.x()), by = std::floor(index.y()),
+                     bz = std::floor(index.z());
+        fx = index.x() - bx;
+        fy = index.y() - by;
+        fz = index.z() - bz;
+        const openvdb::Coord base(static_cast<int>(bx), static_cast<int>(by),
+                                  static_cast<int>(bz));
+        for (int corner = 0; corner < 8; ++corner) {
+            const openvdb::Coord c = base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
+            value[corner] = mAccessor.getValue(c);
+        }
+    }
+
+    openvdb::FloatGrid::ConstAccessor mAccessor;
+    Vec3 mOrigin;
+    double mInvVoxel;
+};
+
+} // namespace lsdem

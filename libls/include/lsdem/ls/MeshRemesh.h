@@ -1,0 +1,26 @@
+/// @file MeshRemesh.h
+/// @brief Isotropic remeshing of a closed triangle mesh to a target edge length (CGAL
+///        Polygon_mesh_processing), keeping sharp feature edges (box edges, block edges).
+#pragma once
+
+#include "lsdem/ls/TriangleMesh.h"
+
+namespace lsdem {
+
+struct RemeshOptions
+{
+    double targetEdgeLength = 0.0;  ///< wanted mean edge length (the SDP), > 0
+    double featureAngleDeg = 30.0;  ///< dihedral angle above which an edge is a sharp feature
+    int iterations = 5;             ///< CGAL remeshing iterations
+};
+
+/// Remesh @a input (closed, consistently oriented) so its edges are about
+/// options.targetEdgeLength long. Sharp edges stay sharp, corners stay put.
+/// @throw Error if CGAL rejects the mesh or the result is not a closed mesh.
+TriangleMesh remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options);
+
+/// The edge length that gives about @a nodeCount vertices on a surface of area @a area with
+/// near-equilateral triangles (each vertex owns two triangles of area sqrt(3)/4 h^2).
+double edgeLengthForNodeCount(double area, int nodeCount);
+
+} // namespace lsdem

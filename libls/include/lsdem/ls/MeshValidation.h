@@ -1,0 +1,31 @@
+/// @file MeshValidation.h
+/// @brief Checks that a triangle mesh bounds a solid (closed, manifold, consistently and
+///        outward oriented, no degenerate or non-finite data) and repairs what is safe to repair.
+#pragma once
+
+#include "lsdem/ls/TriangleMesh.h"
+
+#include <string>
+
+namespace lsdem {
+
+/// What validateSolidMesh found and did.
+struct MeshValidationReport
+{
+    int removedDegenerateTriangles = 0;  ///< zero-area triangles dropped (their edges collapse)
+    bool flippedToOutward = false;       ///< whole mesh was inside-out and was reversed
+    int reorientedTriangles = 0;         ///< triangles flipped to agree with their neighbours
+};
+
+/// Validate @a mesh as the boundary of a solid and repair it in place where that is safe:
+/// - non-finite coordinates, an empty mesh, out-of-range indices: refuse;
+/// - degenerate triangles (area below a tiny fraction of the mean): drop them;
+/// - open surface (edges with one triangle): refuse, saying how many boundary edges;
+/// - non-manifold edges (three or more triangles): refuse, saying how many;
+/// - inconsistent orientation inside a connected component: make it consistent;
+/// - negative enclosed volume (inside-out): reverse every triangle.
+/// @param source names the mesh in messages (usually its file path).
+/// @throw Error with the file, the problem and the fix.
+MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& source);
+
+} // namespace lsdem

@@ -1,0 +1,57 @@
+#include "lsdem/ls/AtomicFile.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace lsdem {
+
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(const std::string& tmpPath)>& writeTo)
+{
+    const fs::path target(path);
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw Error(path, "the output folder '" + folder.string() + "' does not exist",
+                    "create it first or choose another output path");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw Error(path, "the output folder '" + folder.string() + "' is not writable",
+                    "choose a folder you can write to");
+    if (fs::is_directory(target, ec))
+        throw Error(path, "the output path is a folder", "give a file name");
+
+    // A unique temporary beside the target, so the final rename never crosses file systems.
+    static std::atomic<unsigned> counter{0};
+    const fs::path tmp = folder / ("." + target.filename().string() + ".tmp-" +
+                                   std::to_string(::getpid()) + "-" +
+                                   std::to_string(counter++));
+    try {
+        writeTo(tmp.string());
+        fs::rename(tmp, target);
+    } catch (const fs::filesystem_error& e) {
+        fs::remove(tmp, ec);
+        throw Error(path, std::string("could not write the file: ") + e.what());
+    } catch (...) {
+        fs::remove(tmp, ec);
+        throw;
+    }
+}
+
+void writeTextFileAtomically(const std::string& path, const std::string& contents)
+{
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << contents;
+        out.close();
+        if (!out) throw Error(path, "could not write the file (disk full?)");
+    });
+}
+
+} // namespace lsdem

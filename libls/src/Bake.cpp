@@ -1,0 +1,258 @@
+#include "lsdem/ls/Bake.h"
+
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/LevelSetGrid.h"
+#include "lsdem/ls/MeshIO.h"
+#include "lsdem/ls/MeshRemesh.h"
+#include "lsdem/ls/MeshValidation.h"
+#include "lsdem/ls/Sha256.h"
+
+#include <openvdb/tools/Dense.h>
+#include <openvdb/tools/MeshToVolume.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+std::string formatBytes(double bytes)
+{
+    std::ostringstream out;
+    out.precision(3);
+    if (bytes >= 1024.0 * 1024 * 1024) out << bytes / (1024.0 * 1024 * 1024) << " GiB";
+    else out << bytes / (1024.0 * 1024) << " MiB";
+    return out.str();
+}
+
+void checkOptions(const BakeOptions& o, const std::string& source)
+{
+    if (!(o.voxelSize > 0.0) || !std::isfinite(o.voxelSize))
+        throw Error(source, "the voxel size (VDP) must be a positive finite length",
+                    "pass e.g. --voxel 0.05 in the mesh's length unit");
+    if (o.nodePlacement == NodePlacement::Spacing &&
+        (!(o.nodeSpacing > 0.0) || !std::isfinite(o.nodeSpacing)))
+        throw Error(source, "the node spacing (SDP) must be a positive finite length",
+                    "pass e.g. --node-spacing 0.1, or --nodes N, or --mesh-nodes");
+    if (o.nodePlacement == NodePlacement::Count && o.nodeCount < 4)
+        throw Error(source, "the node count must be at least 4",
+                    "pass e.g. --nodes 2000");
+    if (o.exteriorBandVoxels < 1 || o.exteriorBandVoxels > 64)
+        throw Error(source, "the exterior band must be 1 to 64 voxels wide");
+}
+
+/// Refuse voxels too coarse for the shape, or grids that would not fit the memory budget.
+void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& source)
+{
+    const double thinnest = extent.minCoeff();
+    if (o.voxelSize * 4.0 > thinnest) {
+        std::ostringstream msg;
+        msg << "the voxel size " << o.voxelSize << " is too coarse for a shape whose thinnest "
+            << "extent is " << thinnest << " (fewer than 4 voxels across)";
+        throw Error(source, msg.str(),
+                    "use --voxel " + std::to_string(thinnest / 20.0) +
+                        " or smaller (check the mesh's length unit)");
+    }
+    // Peak memory is about one float and one index per voxel of the padded bounding box.
+    double voxels = 1.0;
+    for (int k = 0; k < 3; ++k)
+        voxels *= extent[k] / o.voxelSize + 2.0 * (o.exteriorBandVoxels + 2);
+    const double bytes = voxels * 8.0;
+    if (bytes > o.memoryBudgetBytes) {
+        std::ostringstream msg;
+        msg << "a level set at voxel size " << o.voxelSize << " would need about "
+            << formatBytes(bytes) << " (" << voxels << " voxels), over the memory budget of "
+            << formatBytes(o.memoryBudgetBytes);
+        throw Error(source, msg.str(),
+                    "use a larger --voxel, or raise --memory-budget-gb if the machine has room");
+    }
+}
+
+TriangleMesh nodeMesh(const TriangleMesh& surface, const BakeOptions& o)
+{
+    RemeshOptions remesh;
+    if (o.nodePlacement == NodePlacement::Spacing) {
+        remesh.targetEdgeLength = o.nodeSpacing;
+        return remeshIsotropic(surface, remesh);
+    }
+    // For a node count: the remesher's result moves in steps with the target length, so
+    // correct the length by the square root of the count ratio (count ∝ 1/h²) a few times and
+    // keep the closest result.
+    const int wanted = o.nodeCount;
+    remesh.targetEdgeLength = edgeLengthForNodeCount(surfaceArea(surface), wanted);
+    TriangleMesh best;
+    for (int attempt = 0; attempt < 6; ++attempt) {
+        TriangleMesh candidate = remeshIsotropic(surface, remesh);
+        const double count = double(candidate.vertices.size());
+        if (best.vertices.empty() ||
+            std::abs(count - wanted) < std::abs(double(best.vertices.size()) - wanted))
+            best = std::move(candidate);
+        if (std::abs(count - wanted) <= 0.03 * wanted) break;
+        remesh.targetEdgeLength *= std::sqrt(count / wanted);
+    }
+    return best;
+}
+
+/// Shared by both bake paths once nodes and the level set exist.
+void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::string>& warnings)
+{
+    sortNodesSpatially(asset.nodes, 8.0 * o.voxelSize);  // one OpenVDB leaf is 8 voxels wide
+    asset.areaRule = o.areaRule;
+    asset.spacing = nodeSpacing(asset.nodes);
+    asset.voxelSize = o.voxelSize;
+    asset.exteriorBandVoxels = o.exteriorBandVoxels;
+    for (const Vec3& p : asset.nodes.positions)
+        asset.boundingRadius = std::max(asset.boundingRadius, p.norm());
+    asset.provenance.options = o.optionsText;
+    asset.provenance.lsdemVersion = LSDEM_VERSION;
+    if (asset.spacing.mean < 0.5 * o.voxelSize) {
+        std::ostringstream msg;
+        msg << "the node spacing (mean " << asset.spacing.mean << ") is less than half the "
+            << "voxel size " << o.voxelSize << ": the level set cannot resolve what the nodes "
+            << "sample; a voxel about 0.4x the node spacing is the converged ratio";
+        warnings.push_back(msg.str());
+    }
+}
+
+} // namespace
+
+GrainAsset bakeMeshFile(const std::string& meshPath, const BakeOptions& options,
+                        std::vector<std::string>& warnings)
+{
+    checkOptions(options, meshPath);
+    TriangleMesh mesh = readMesh(meshPath);
+    GrainAsset asset = bakeMesh(std::move(mesh), meshPath, options, warnings);
+    asset.provenance.sourceSha256 = sha256OfFile(meshPath);
+    return asset;
+}
+
+GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const BakeOptions& options,
+                    std::vector<std::string>& warnings)
+{
+    checkOptions(options, sourceName);
+    const MeshValidationReport report = validateSolidMesh(mesh, sourceName);
+    if (report.removedDegenerateTriangles > 0)
+        warnings.push_back(sourceName + ": dropped " +
+                           std::to_string(report.removedDegenerateTriangles) +
+                           " degenerate (zero-area) triangles");
+    if (report.reorientedTriangles > 0)
+        warnings.push_back(sourceName + ": flipped " + std::to_string(report.reorientedTriangles) +
+                           " triangles to agree with their neighbours");
+    if (report.flippedToOutward)
+        warnings.push_back(sourceName + ": the mesh was inside-out; reversed it to face outward");
+
+    // Move the mesh to its principal frame: centroid at the origin, principal axes along x,y,z.
+    const MassProperties inputProps = computeMassProperties(mesh);
+    GrainAsset asset;
+    asset.inputFrame = principalFrame(inputProps, mesh);
+    transformMesh(mesh, asset.inputFrame.rotation,
+                  -(asset.inputFrame.rotation * asset.inputFrame.centroid));
+    const auto bounds = meshBounds(mesh);
+    checkGridSize(bounds[1] - bounds[0], options, sourceName);
+
+    asset.mass.volume = inputProps.volume;
+    asset.mass.inertia = asset.inputFrame.moments.asDiagonal();
+    asset.provenance.source = sourceName;
+
+    // Level set of the input surface (the geometric truth), interior filled.
+    initializeOpenVdb();
+    const double vox = options.voxelSize;
+    const double pad = (options.exteriorBandVoxels + 2) * vox;
+    Vec3 origin;
+    for (int k = 0; k < 3; ++k) origin[k] = vox * std::floor((bounds[0][k] - pad) / vox);
+    const auto xform = makeGridTransform(vox, origin);
+    std::vector<openvdb::Vec3s> points;
+    std::vector<openvdb::Vec3I> triangles;
+    for (const Vec3& v : mesh.vertices) points.emplace_back(float(v.x()), float(v.y()), float(v.z()));
+    for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
+        *xform, points, triangles, {}, float(options.exteriorBandVoxels),
+        std::numeric_limits<float>::max());
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    auto levelSet = std::make_shared<LevelSetGrid>();
+    levelSet->grid = grid;
+    levelSet->origin = origin;
+    levelSet->voxelSize = vox;
+    asset.levelSet = levelSet;
+
+    const TriangleMesh surface =
+        options.nodePlacement == NodePlacement::MeshVertices ? mesh : nodeMesh(mesh, options);
+    asset.nodes = nodesFromMesh(surface, options.areaRule);
+    finishAsset(asset, options, warnings);
+    for (const Vec3& v : mesh.vertices)
+        asset.boundingRadius = std::max(asset.boundingRadius, v.norm());
+    return asset;
+}
+
+GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
+                        std::vector<std::string>& warnings)
+{
+    const std::string source = shape.describe();
+    checkOptions(options, source);
+    if (options.nodePlacement == NodePlacement::MeshVertices)
+        throw Error(source, "--mesh-nodes needs an input mesh, and an analytic shape has none",
+                    "use --node-spacing SDP or --nodes N");
+    const Vec3 half = shape.halfExtents();
+    checkGridSize(2.0 * half, options, source);
+
+    GrainAsset asset;
+    asset.mass = shape.massProperties();
+    asset.inputFrame.moments = asset.mass.inertia.diagonal();
+    asset.provenance.source = source;
+
+    // Exact signed distance at every voxel of the padded box; values beyond the exterior band
+    // equal the background and are left inactive.
+    initializeOpenVdb();
+    const double vox = options.voxelSize;
+    const float background = float(options.exteriorBandVoxels * vox);
+    Eigen::Vector3i count;
+    for (int k = 0; k < 3; ++k)
+        count[k] = int(std::ceil(half[k] / vox)) + options.exteriorBandVoxels + 1;
+    const Vec3 origin = -vox * count.cast<double>();
+    const openvdb::CoordBBox box(openvdb::Coord(0), openvdb::Coord(2 * count.x(), 2 * count.y(),
+                                                                  2 * count.z()));
+    openvdb::tools::Dense<float, openvdb::tools::LayoutZYX> dense(box);
+    tbb::parallel_for(0, 2 * count.x() + 1, [&](int i) {
+        for (int j = 0; j <= 2 * count.y(); ++j)
+            for (int k = 0; k <= 2 * count.z(); ++k) {
+                const Vec3 p = origin + vox * Vec3(i, j, k);
+                const double d = shape.signedDistance(p);
+                dense.setValue(i, j, k, d >= background ? background : float(d));
+            }
+    });
+    auto grid = openvdb::FloatGrid::create(background);
+    openvdb::tools::copyFromDense(dense, *grid, /*tolerance=*/0.0f);
+    grid->setTransform(makeGridTransform(vox, origin));
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    auto levelSet = std::make_shared<LevelSetGrid>();
+    levelSet->grid = grid;
+    levelSet->origin = origin;
+    levelSet->voxelSize = vox;
+    asset.levelSet = levelSet;
+
+    // Nodes: a box keeps its structured face grids (edges and corners exact); curved shapes
+    // are remeshed isotropically and projected back onto the exact surface.
+    TriangleMesh surface;
+    if (shape.kind == AnalyticShape::Kind::Box) {
+        const double h = options.nodePlacement == NodePlacement::Count
+                             ? std::sqrt(shape.surfaceArea() / options.nodeCount)
+                             : options.nodeSpacing;
+        surface = shape.surfaceMesh(h);
+    } else {
+        const double h = options.nodePlacement == NodePlacement::Count
+                             ? edgeLengthForNodeCount(shape.surfaceArea(), options.nodeCount)
+                             : options.nodeSpacing;
+        surface = nodeMesh(shape.surfaceMesh(0.5 * h), options);  // fine seed
+        for (Vec3& v : surface.vertices) v = shape.closestSurfacePoint(v);
+    }
+    asset.nodes = nodesFromMesh(surface, options.areaRule);
+    for (size_t i = 0; i < asset.nodes.size(); ++i)
+        asset.nodes.normals[i] = shape.outwardNormal(asset.nodes.positions[i]);
+    finishAsset(asset, options, warnings);
+    return asset;
+}
+
+} // namespace lsdem

@@ -1,0 +1,231 @@
+#include "lsdem/ls/MeshIO.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <map>
+#include <ostream>
+
+#include <Eigen/Geometry>
+
+namespace fs = std::filesystem;
+
+namespace lsdem {
+
+namespace {
+
+using Position = std::array<double, 3>;
+
+const char* const kNoTriangles = "the file holds no triangles (only points, lines or nothing)";
+const char* const kNoTrianglesFix = "export the surface of the solid as triangles or polygons";
+
+/// Whether any mesh of @a scene has a face with three or more corners.
+bool hasPolygons(const aiScene& scene)
+{
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m)
+        for (unsigned f = 0; f < scene.mMeshes[m]->mNumFaces; ++f)
+            if (scene.mMeshes[m]->mFaces[f].mNumIndices >= 3) return true;
+    return false;
+}
+
+/// Index of @a p in @a mesh, adding it if no vertex has exactly this position yet. Non-finite
+/// positions are never merged: they cannot be ordered, and validation reports them by index.
+int weldVertex(TriangleMesh& mesh, std::map<Position, int>& index, const Position& p)
+{
+    const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+    if (finite) {
+        const auto found = index.find(p);
+        if (found != index.end()) return found->second;
+    }
+    const int id = static_cast<int>(mesh.vertices.size());
+    mesh.vertices.emplace_back(p[0], p[1], p[2]);
+    if (finite) index.emplace(p, id);
+    return id;
+}
+
+/// Append the triangles of @a src to @a mesh; points and lines are skipped. Vertices are added
+/// only when a triangle uses them, so the vertices of skipped primitives do not linger.
+void appendTriangles(TriangleMesh& mesh, std::map<Position, int>& index, const aiMesh& src,
+                     const std::string& path)
+{
+    std::vector<int> globalId(src.mNumVertices, -1);
+    for (unsigned f = 0; f < src.mNumFaces; ++f) {
+        const aiFace& face = src.mFaces[f];
+        if (face.mNumIndices != 3) continue;
+        std::array<int, 3> tri{};
+        for (int k = 0; k < 3; ++k) {
+            const unsigned local = face.mIndices[k];
+            if (local >= src.mNumVertices)
+                throw Error(path, "the file is corrupt: a face refers to a missing vertex",
+                            "export the mesh again");
+            if (globalId[local] < 0) {
+                const aiVector3D& v = src.mVertices[local];
+                globalId[local] = weldVertex(mesh, index, {double(v.x), double(v.y), double(v.z)});
+            }
+            tri[k] = globalId[local];
+        }
+        mesh.triangles.push_back(tri);
+    }
+}
+
+std::string lowerCaseExtension(const std::string& path)
+{
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+Vec3 facetNormal(const TriangleMesh& mesh, const std::array<int, 3>& tri)
+{
+    const Vec3& a = mesh.vertices[tri[0]];
+    const Vec3 n = (mesh.vertices[tri[1]] - a).cross(mesh.vertices[tri[2]] - a);
+    const double length = n.norm();
+    return length > 0.0 ? Vec3(n / length) : Vec3::Zero();
+}
+
+void writeObj(const TriangleMesh& mesh, std::ostream& out)
+{
+    out << "# written by lsdem\n";
+    for (const Vec3& v : mesh.vertices)
+        out << "v " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    // OBJ indices start at 1.
+    for (const auto& t : mesh.triangles)
+        out << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+}
+
+void writeStl(const TriangleMesh& mesh, std::ostream& out)
+{
+    out << "solid lsdem\n";
+    for (const auto& t : mesh.triangles) {
+        const Vec3 n = facetNormal(mesh, t);
+        out << "  facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\n    outer loop\n";
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& v = mesh.vertices[t[k]];
+            out << "      vertex " << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+        }
+        out << "    endloop\n  endfacet\n";
+    }
+    out << "endsolid lsdem\n";
+}
+
+void writePly(const TriangleMesh& mesh, std::ostream& out)
+{
+    out << "ply\nformat ascii 1.0\ncomment written by lsdem\n"
+        << "element vertex " << mesh.vertices.size() << '\n'
+        << "property double x\nproperty double y\nproperty double z\n"
+        << "element face " << mesh.triangles.size() << '\n'
+        << "property list uchar int vertex_indices\nend_header\n";
+    for (const Vec3& v : mesh.vertices) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+}
+
+/// Write with @a writer to a temporary beside @a path, then rename it over @a path, so readers
+/// never see a half-written file; on any failure the temporary is removed.
+void writeAtomically(const std::string& path, const std::function<void(std::ostream&)>& writer)
+{
+    const fs::path target(path);
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw Error(path, "cannot write the mesh: the folder '" + folder.string() +
+                              "' does not exist",
+                    "create the folder first or choose another output path");
+
+    // pid + counter keeps concurrent writers (threads or processes) off each other's temporary.
+    static std::atomic<unsigned> counter{0};
+    const std::string tmp =
+        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    try {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path, "cannot write the mesh: the file cannot be created",
+                              "check that the folder is writable");
+        out << std::setprecision(17);  // enough digits to read back every double exactly
+        writer(out);
+        out.close();
+        if (!out) throw Error(path, "cannot write the mesh: writing failed (disk full?)");
+        fs::rename(tmp, target);
+    } catch (const fs::filesystem_error& e) {
+        fs::remove(tmp, ec);
+        throw Error(path, std::string("cannot write the mesh: ") + e.code().message(),
+                    "check that the path is not a folder and the disk is writable");
+    } catch (...) {
+        fs::remove(tmp, ec);
+        throw;
+    }
+}
+
+} // namespace
+
+TriangleMesh readMesh(const std::string& path)
+{
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        throw Error(path, "no such file", "check the path and the working folder");
+    if (fs::is_directory(path, ec))
+        throw Error(path, "this is a folder, not a mesh file", "give the path of the mesh file");
+    if (!std::ifstream(path, std::ios::binary))
+        throw Error(path, "the file cannot be read", "check its permissions");
+
+    // Read first and post-process second, so a file that holds only points or lines is told
+    // apart from one assimp cannot parse (post-processing fails on meshes without faces).
+    Assimp::Importer importer;
+    if (importer.ReadFile(path, 0) == nullptr)
+        throw Error(path,
+                    std::string("cannot read the mesh (unknown or invalid format): ") +
+                        importer.GetErrorString(),
+                    "export it as OBJ, STL or PLY");
+    if (!hasPolygons(*importer.GetScene()))
+        throw Error(path, kNoTriangles, kNoTrianglesFix);
+    // PreTransformVertices applies node transforms; nothing here reorders or reorients faces,
+    // because the orientation is how we tell inside from outside.
+    const aiScene* scene = importer.ApplyPostProcessing(aiProcess_Triangulate |
+                                                        aiProcess_JoinIdenticalVertices |
+                                                        aiProcess_PreTransformVertices);
+    if (scene == nullptr)
+        throw Error(path, std::string("cannot process the mesh: ") + importer.GetErrorString(),
+                    "export it again as OBJ, STL or PLY");
+
+    TriangleMesh mesh;
+    std::map<Position, int> index;  // welds vertices repeated across meshes and STL facets
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+        appendTriangles(mesh, index, *scene->mMeshes[m], path);
+    if (mesh.triangles.empty()) throw Error(path, kNoTriangles, kNoTrianglesFix);
+    return mesh;
+}
+
+void writeMesh(const TriangleMesh& mesh, const std::string& path)
+{
+    const int vertexCount = static_cast<int>(mesh.vertices.size());
+    for (const auto& t : mesh.triangles)
+        for (int v : t)
+            if (v < 0 || v >= vertexCount)
+                throw Error(path, "cannot write the mesh: a triangle refers to vertex " +
+                                      std::to_string(v) + " of " + std::to_string(vertexCount));
+
+    const std::string ext = lowerCaseExtension(path);
+    std::function<void(const TriangleMesh&, std::ostream&)> writer;
+    if (ext == ".obj") writer = writeObj;
+    else if (ext == ".stl") writer = writeStl;
+    else if (ext == ".ply") writer = writePly;
+    else
+        throw Error(path, "cannot write a mesh with extension '" + ext + "'",
+                    "use one of .obj, .stl, .ply");
+    writeAtomically(path, [&](std::ostream& out) { writer(mesh, out); });
+}
+
+} // namespace lsdem

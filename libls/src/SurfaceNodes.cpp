@@ -1,0 +1,154 @@
+#include "lsdem/ls/SurfaceNodes.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+namespace lsdem {
+
+double SurfaceNodes::totalArea() const
+{
+    return std::accumulate(areas.begin(), areas.end(), 0.0);
+}
+
+SurfaceNodes nodesFromMesh(const TriangleMesh& mesh, AreaRule rule)
+{
+    const size_t nv = mesh.vertices.size();
+    std::vector<double> area(nv, 0.0);
+    std::vector<Vec3> normal(nv, Vec3::Zero());
+    std::vector<char> used(nv, 0);
+    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+        const auto& tri = mesh.triangles[t];
+        const double third = triangleArea(mesh, t) / 3.0;
+        const Vec3& p0 = mesh.vertices[tri[0]];
+        const Vec3 faceNormal =
+            (mesh.vertices[tri[1]] - p0).cross(mesh.vertices[tri[2]] - p0).normalized();
+        for (int k = 0; k < 3; ++k) {
+            const int v = tri[k];
+            const Vec3 e1 = (mesh.vertices[tri[(k + 1) % 3]] - mesh.vertices[v]).normalized();
+            const Vec3 e2 = (mesh.vertices[tri[(k + 2) % 3]] - mesh.vertices[v]).normalized();
+            // Angle weighting makes the vertex normal independent of how faces are split.
+            const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
+            normal[v] += angle * faceNormal;
+            area[v] += third;
+            used[v] = 1;
+        }
+    }
+    SurfaceNodes nodes;
+    for (size_t v = 0; v < nv; ++v) {
+        if (!used[v]) continue;
+        nodes.positions.push_back(mesh.vertices[v]);
+        nodes.normals.push_back(normal[v].normalized());
+        nodes.areas.push_back(area[v]);
+    }
+    if (rule == AreaRule::Uniform && !nodes.areas.empty()) {
+        const double mean = nodes.totalArea() / static_cast<double>(nodes.size());
+        std::fill(nodes.areas.begin(), nodes.areas.end(), mean);
+    }
+    return nodes;
+}
+
+namespace {
+
+/// Interleave the low 21 bits of x, y, z into a 63-bit Morton code.
+uint64_t mortonCode(uint32_t x, uint32_t y, uint32_t z)
+{
+    auto spread = [](uint64_t v) {
+        v &= 0x1fffff;
+        v = (v | v << 32) & 0x1f00000000ffffULL;
+        v = (v | v << 16) & 0x1f0000ff0000ffULL;
+        v = (v | v << 8) & 0x100f00f00f00f00fULL;
+        v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+        v = (v | v << 2) & 0x1249249249249249ULL;
+        return v;
+    };
+    return spread(x) | spread(y) << 1 | spread(z) << 2;
+}
+
+} // namespace
+
+void sortNodesSpatially(SurfaceNodes& nodes, double cellSize)
+{
+    const size_t n = nodes.size();
+    if (n == 0) return;
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    for (const Vec3& p : nodes.positions) lo = lo.cwiseMin(p);
+    std::vector<uint64_t> code(n);
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3 cell = (nodes.positions[i] - lo) / cellSize;
+        code[i] = mortonCode(static_cast<uint32_t>(cell.x()), static_cast<uint32_t>(cell.y()),
+                             static_cast<uint32_t>(cell.z()));
+    }
+    std::vector<size_t> order(n);
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return code[a] < code[b]; });
+    SurfaceNodes sorted;
+    for (size_t i : order) {
+        sorted.positions.push_back(nodes.positions[i]);
+        sorted.normals.push_back(nodes.normals[i]);
+        sorted.areas.push_back(nodes.areas[i]);
+    }
+    nodes = std::move(sorted);
+}
+
+NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
+{
+    NodeSpacing stats;
+    const size_t n = nodes.size();
+    if (n < 2) return stats;
+    // Hash grid with cells of about the mean spacing; search growing shells of cells until
+    // the shell is farther than the best distance found.
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec3& p : nodes.positions) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double cell = std::max(std::sqrt(std::max(nodes.totalArea(), 1e-300) / n),
+                                 1e-9 * (hi - lo).norm());
+    auto cellOf = [&](const Vec3& p) {
+        return Eigen::Vector3i(static_cast<int>((p.x() - lo.x()) / cell),
+                               static_cast<int>((p.y() - lo.y()) / cell),
+                               static_cast<int>((p.z() - lo.z()) / cell));
+    };
+    auto key = [](const Eigen::Vector3i& c) {
+        return (int64_t(c.x()) << 42) ^ (int64_t(c.y()) << 21) ^ int64_t(c.z());
+    };
+    std::unordered_map<int64_t, std::vector<int>> grid;
+    for (size_t i = 0; i < n; ++i) grid[key(cellOf(nodes.positions[i]))].push_back(int(i));
+    const int maxShell = static_cast<int>(((hi - lo) / cell).maxCoeff()) + 2;
+
+    double sum = 0.0;
+    stats.min = std::numeric_limits<double>::infinity();
+    stats.max = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3& p = nodes.positions[i];
+        const Eigen::Vector3i c = cellOf(p);
+        double best = std::numeric_limits<double>::infinity();
+        for (int shell = 0; shell <= maxShell; ++shell) {
+            if ((shell - 1) * cell > best) break;
+            for (int dx = -shell; dx <= shell; ++dx)
+                for (int dy = -shell; dy <= shell; ++dy)
+                    for (int dz = -shell; dz <= shell; ++dz) {
+                        if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != shell)
+                            continue;
+                        auto it = grid.find(key(c + Eigen::Vector3i(dx, dy, dz)));
+                        if (it == grid.end()) continue;
+                        for (int j : it->second)
+                            if (j != int(i)) best = std::min(best, (nodes.positions[j] - p).norm());
+                    }
+        }
+        sum += best;
+        stats.min = std::min(stats.min, best);
+        stats.max = std::max(stats.max, best);
+    }
+    stats.mean = sum / n;
+    return stats;
+}
+
+} // namespace lsdem

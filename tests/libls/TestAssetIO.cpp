@@ -1,0 +1,135 @@
+// Asset files: exact round trip of every field, sharing, and clean failures on bad files.
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/LevelSetGrid.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <openvdb/io/File.h>
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <fstream>
+
+using namespace lsdem;
+
+namespace {
+
+GrainAsset smallAsset()
+{
+    BakeOptions o;
+    o.voxelSize = 0.1;
+    o.nodePlacement = NodePlacement::Spacing;
+    o.nodeSpacing = 0.25;
+    o.optionsText = "--ellipsoid 1.5 1 0.7 --voxel 0.1 --node-spacing 0.25";
+    std::vector<std::string> warnings;
+    return bakeAnalytic(AnalyticShape::ellipsoid(1.5, 1.0, 0.7), o, warnings);
+}
+
+void expectSameAsset(const GrainAsset& a, const GrainAsset& b)
+{
+    EXPECT_EQ(a.voxelSize, b.voxelSize);
+    EXPECT_EQ(a.exteriorBandVoxels, b.exteriorBandVoxels);
+    EXPECT_EQ(a.levelSet->origin, b.levelSet->origin);
+    EXPECT_EQ(a.mass.volume, b.mass.volume);
+    EXPECT_EQ(a.mass.centroid, b.mass.centroid);
+    EXPECT_EQ(a.mass.inertia, b.mass.inertia);
+    EXPECT_EQ(a.inputFrame.rotation, b.inputFrame.rotation);
+    EXPECT_EQ(a.inputFrame.centroid, b.inputFrame.centroid);
+    EXPECT_EQ(a.inputFrame.moments, b.inputFrame.moments);
+    EXPECT_EQ(a.areaRule, b.areaRule);
+    EXPECT_EQ(a.spacing.mean, b.spacing.mean);
+    EXPECT_EQ(a.spacing.min, b.spacing.min);
+    EXPECT_EQ(a.spacing.max, b.spacing.max);
+    EXPECT_EQ(a.boundingRadius, b.boundingRadius);
+    EXPECT_EQ(a.provenance.source, b.provenance.source);
+    EXPECT_EQ(a.provenance.sourceSha256, b.provenance.sourceSha256);
+    EXPECT_EQ(a.provenance.options, b.provenance.options);
+    EXPECT_EQ(a.provenance.lsdemVersion, b.provenance.lsdemVersion);
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_EQ(a.nodes.positions[i], b.nodes.positions[i]) << i;
+        EXPECT_EQ(a.nodes.normals[i], b.nodes.normals[i]) << i;
+        EXPECT_EQ(a.nodes.areas[i], b.nodes.areas[i]) << i;
+    }
+    // Every voxel: same active state and bit-identical value.
+    const auto& ga = *a.levelSet->grid;
+    const auto& gb = *b.levelSet->grid;
+    EXPECT_EQ(ga.activeVoxelCount(), gb.activeVoxelCount());
+    EXPECT_EQ(ga.background(), gb.background());
+    auto accessor = gb.getConstAccessor();
+    for (auto it = ga.cbeginValueOn(); it; ++it) {
+        ASSERT_TRUE(accessor.isValueOn(it.getCoord()));
+        ASSERT_EQ(*it, accessor.getValue(it.getCoord()));
+    }
+}
+
+} // namespace
+
+TEST(AssetIO, RoundTripPreservesEveryField)
+{
+    test::ScratchDir dir;
+    const GrainAsset asset = smallAsset();
+    saveAsset(asset, dir.file("grain.vdb"));
+    EXPECT_EQ(dir.entryCount(), 1u);  // no temporary left behind
+    const auto loaded = loadAsset(dir.file("grain.vdb"));
+    expectSameAsset(asset, *loaded);
+}
+
+TEST(AssetIO, LibraryLoadsEachFileOnceAndShares)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("grain.vdb"));
+    AssetLibrary library;
+    const auto first = library.get(dir.file("grain.vdb"));
+    const auto second = library.get(dir.path().string() + "/./grain.vdb");
+    EXPECT_EQ(first.get(), second.get());
+    EXPECT_EQ(library.size(), 1u);
+}
+
+TEST(AssetIO, BadFilesFailCleanlyNamingTheFile)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 1000u);
+    // Truncated at several places, garbage, empty, a folder, a missing file.
+    for (double fraction : {0.0, 0.01, 0.3, 0.7, 0.99}) {
+        const std::string path = dir.file("cut.vdb");
+        std::ofstream(path, std::ios::binary) << bytes.substr(0, size_t(fraction * bytes.size()));
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << "a file cut at " << fraction << " loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+        }
+    }
+    std::ofstream(dir.file("garbage.vdb")) << "this is not an OpenVDB file at all";
+    EXPECT_THROW(loadAsset(dir.file("garbage.vdb")), Error);
+    EXPECT_THROW(loadAsset(dir.file("missing.vdb")), Error);
+    EXPECT_THROW(loadAsset(dir.path().string()), Error);
+}
+
+TEST(AssetIO, ForeignLevelSetIsNotMistakenForAnAsset)
+{
+    test::ScratchDir dir;
+    initializeOpenVdb();
+    auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(1.0f, {0, 0, 0}, 0.1f);
+    openvdb::io::File(dir.file("foreign.vdb")).write({sphere});
+    try {
+        loadAsset(dir.file("foreign.vdb"));
+        FAIL() << "a foreign level set loaded as an asset";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("foreign.vdb"), std::string::npos);
+    }
+}
+
+TEST(AssetIO, UnwritableFolderFails)
+{
+    EXPECT_THROW(saveAsset(smallAsset(), "/nonexistent-folder-lsdem/grain.vdb"), Error);
+}

@@ -1,0 +1,277 @@
+// Baking: level sets, nodes and mass properties of analytic shapes and of mesh files, checked
+// against closed forms with tolerances tied to the voxel size (VDP) and node spacing (SDP).
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/LevelSetSampler.h"
+#include "lsdem/ls/MeshIO.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <openvdb/tools/LevelSetMeasure.h>
+
+using namespace lsdem;
+using lsdem::test::kPi;
+
+namespace {
+
+BakeOptions spacingOptions(double voxel, double spacing)
+{
+    BakeOptions o;
+    o.voxelSize = voxel;
+    o.nodePlacement = NodePlacement::Spacing;
+    o.nodeSpacing = spacing;
+    return o;
+}
+
+GrainAsset bake(const AnalyticShape& shape, double voxel, double spacing)
+{
+    std::vector<std::string> warnings;
+    return bakeAnalytic(shape, spacingOptions(voxel, spacing), warnings);
+}
+
+double maxAbsPhiAtNodes(const GrainAsset& asset)
+{
+    LevelSetSampler sampler(*asset.levelSet);
+    double worst = 0.0;
+    for (const Vec3& p : asset.nodes.positions) worst = std::max(worst, std::abs(sampler.phi(p)));
+    return worst;
+}
+
+} // namespace
+
+// Node areas of an inscribed triangulation of a sphere fall short of 4πR² by O((h/R)^2): each
+// flat triangle of edge h lies within a sagitta h²/(8R) of the sphere. Halving h must cut the
+// error about four times (we accept < 0.4 of it).
+TEST(Bake, SphereNodeAreasConvergeAtSecondOrder)
+{
+    const double radius = 5.0;
+    const double exactArea = 4 * kPi * radius * radius;
+    double previousError = 0.0;
+    for (double h : {1.0, 0.5, 0.25}) {
+        const GrainAsset a = bake(AnalyticShape::sphere(radius), 0.5 * h, h);
+        const double error = std::abs(a.nodes.totalArea() / exactArea - 1.0);
+        EXPECT_LT(error, 0.5 * (h / radius) * (h / radius)) << "h = " << h;
+        if (previousError > 0.0) {
+            EXPECT_LT(error, 0.4 * previousError) << "h = " << h;
+        }
+        previousError = error;
+        // Remeshing aims at edge length h; nearest-neighbour spacing is within 30 % of it.
+        EXPECT_NEAR(a.spacing.mean, h, 0.3 * h);
+    }
+}
+
+// Trilinear interpolation of the exact distance |x| - R errs by at most (vox²/8)·Σ|∂²φ| ≤
+// 3·vox²/(8R) near the surface, plus float storage (~1e-6 here).
+TEST(Bake, SpherePhiAtNodesIsWithinTheInterpolationBound)
+{
+    const double radius = 5.0;
+    for (double vox : {0.5, 0.25, 0.1}) {
+        const GrainAsset a = bake(AnalyticShape::sphere(radius), vox, 2.5 * vox);
+        EXPECT_LT(maxAbsPhiAtNodes(a), 3 * vox * vox / (8 * radius) + 1e-5) << "vox " << vox;
+    }
+}
+
+TEST(Bake, SphereGradientIsUnitAndAlongTheNormal)
+{
+    const double radius = 5.0, vox = 0.2;
+    const GrainAsset a = bake(AnalyticShape::sphere(radius), vox, 0.5);
+    LevelSetSampler sampler(*a.levelSet);
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+        const LevelSetSample s = sampler.sample(a.nodes.positions[i]);
+        // The trilinear gradient of a smooth distance errs by O(vox/R).
+        EXPECT_NEAR(s.gradient.norm(), 1.0, vox / radius);
+        EXPECT_GT(s.gradient.normalized().dot(a.nodes.normals[i]), std::cos(vox / radius));
+        EXPECT_NEAR(a.nodes.normals[i].dot(a.nodes.positions[i].normalized()), 1.0, 1e-12);
+    }
+    // Deep inside, the filled interior still holds the true distance (penetrations of any
+    // depth), up to the interpolation bound 3·vox²/(8r) at distance r from the centre.
+    const Vec3 deep(1.0, 2.0, -1.5);
+    EXPECT_NEAR(sampler.phi(deep), deep.norm() - radius, 3 * vox * vox / (8 * deep.norm()));
+}
+
+TEST(Bake, LevelSetOwnMeasuresConvergeToTheSphere)
+{
+    const double radius = 5.0;
+    for (double vox : {0.5, 0.25}) {
+        const GrainAsset a = bake(AnalyticShape::sphere(radius), vox, 1.0);
+        openvdb::tools::LevelSetMeasure<openvdb::FloatGrid> measure(*a.levelSet->grid);
+        const double volume = 4.0 / 3.0 * kPi * radius * radius * radius;
+        // OpenVDB's measure smears the surface over about a voxel: error O(vox/R) at worst.
+        EXPECT_NEAR(measure.volume(true), volume, 0.5 * (vox / radius) * volume);
+        EXPECT_NEAR(measure.area(true), 4 * kPi * radius * radius,
+                    0.5 * (vox / radius) * 4 * kPi * radius * radius);
+    }
+}
+
+TEST(Bake, BoxNodesTileItsFacesExactly)
+{
+    const GrainAsset a = bake(AnalyticShape::box(1, 2, 3), 0.1, 0.2);
+    EXPECT_NEAR(a.nodes.totalArea(), 22.0, 1e-9);  // flat faces: the mesh area is exact
+    EXPECT_NEAR(a.mass.volume, 6.0, 1e-12);
+    LevelSetSampler sampler(*a.levelSet);
+    const Vec3 half(0.5, 1.0, 1.5);
+    for (const Vec3& p : a.nodes.positions) {
+        const double phi = sampler.phi(p);
+        // Away from edges the distance is linear across a voxel, so trilinear is exact (up to
+        // float storage); at edges the interior distance has a kink, bounded by vox/4.
+        int nearEdges = 0;
+        for (int k = 0; k < 3; ++k) nearEdges += std::abs(std::abs(p[k]) - half[k]) < 0.1 + 1e-9;
+        EXPECT_LT(std::abs(phi), nearEdges >= 2 ? 0.025 : 1e-6) << p.transpose();
+    }
+}
+
+TEST(Bake, EllipsoidNodeAreaConvergesToLegendresArea)
+{
+    const double a = 3.0, b = 2.0, c = 1.0;
+    const double phi = std::acos(c / a);
+    const double k = std::sqrt(a * a * (b * b - c * c) / (b * b * (a * a - c * c)));
+    const double area = 2 * kPi * c * c +
+                        2 * kPi * a * b / std::sin(phi) *
+                            (std::ellint_2(k, phi) * std::sin(phi) * std::sin(phi) +
+                             std::ellint_1(k, phi) * std::cos(phi) * std::cos(phi));
+    double previousError = 0.0;
+    for (double h : {0.4, 0.2}) {
+        const GrainAsset asset = bake(AnalyticShape::ellipsoid(a, b, c), h / 2, h);
+        const double error = std::abs(asset.nodes.totalArea() / area - 1.0);
+        // Curvature radius is at least c²/a = 1/3: sagitta-limited error O((h·a/c²)²).
+        EXPECT_LT(error, 0.5 * (h * a / (c * c)) * (h * a / (c * c)) / 9.0) << "h " << h;
+        if (previousError > 0) {
+            EXPECT_LT(error, 0.4 * previousError);
+        }
+        previousError = error;
+        // Trilinear error ≤ vox²/8 · Σ|∂ii φ| ≤ vox²/8 · (κ1 + κ2); the largest curvature sum
+        // is at the tip of the long axis: a/b² + a/c².
+        const double vox = h / 2;
+        EXPECT_LT(maxAbsPhiAtNodes(asset), vox * vox / 8 * (a / (b * b) + a / (c * c)) + 1e-5)
+            << "h " << h;
+    }
+}
+
+TEST(Bake, NodeCountPlacementHitsTheCount)
+{
+    std::vector<std::string> warnings;
+    BakeOptions o;
+    o.voxelSize = 0.1;
+    o.nodePlacement = NodePlacement::Count;
+    for (int n : {500, 2000}) {
+        o.nodeCount = n;
+        const GrainAsset a = bakeAnalytic(AnalyticShape::sphere(5.0), o, warnings);
+        EXPECT_NEAR(double(a.nodes.size()), n, 0.15 * n);
+        o.areaRule = AreaRule::Uniform;
+    }
+}
+
+TEST(Bake, UniformAreasAreEqualAndSumToTheMeshArea)
+{
+    BakeOptions o = spacingOptions(0.2, 0.5);
+    std::vector<std::string> warnings;
+    const GrainAsset mesh = bakeAnalytic(AnalyticShape::ellipsoid(3, 2, 1), o, warnings);
+    o.areaRule = AreaRule::Uniform;
+    const GrainAsset uniform = bakeAnalytic(AnalyticShape::ellipsoid(3, 2, 1), o, warnings);
+    ASSERT_EQ(mesh.nodes.size(), uniform.nodes.size());
+    EXPECT_NEAR(uniform.nodes.totalArea(), mesh.nodes.totalArea(), 1e-9);
+    for (double area : uniform.nodes.areas) EXPECT_DOUBLE_EQ(area, uniform.nodes.areas[0]);
+}
+
+// A sphere mesh in a file gives the analytic sphere's mass properties up to the polyhedral
+// deficit (vertices on the sphere, edges h: relative volume error about (h/R)²/4).
+TEST(Bake, SphereAndBoxMeshFilesMatchTheAnalyticShapes)
+{
+    test::ScratchDir dir;
+    const double radius = 5.0;
+    TriangleMesh sphere = AnalyticShape::sphere(radius).surfaceMesh(0.3);
+    transformMesh(sphere, Mat3::Identity(), Vec3(2, -1, 3));  // off the origin on purpose
+    writeMesh(sphere, dir.file("sphere.obj"));
+    writeMesh(AnalyticShape::box(1, 2, 3).surfaceMesh(0.5), dir.file("box.stl"));
+
+    std::vector<std::string> warnings;
+    const GrainAsset s = bakeMeshFile(dir.file("sphere.obj"), spacingOptions(0.2, 0.5), warnings);
+    const MassProperties exact = AnalyticShape::sphere(radius).massProperties();
+    const double tol = 0.25 * (0.3 / radius) * (0.3 / radius) * 4;  // 4x margin on (h/R)²/4
+    EXPECT_NEAR(s.mass.volume / exact.volume, 1.0, tol);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(s.mass.inertia(k, k) / exact.inertia(k, k), 1.0, 2 * tol);
+    EXPECT_NEAR((s.inputFrame.centroid - Vec3(2, -1, 3)).norm(), 0.0, 1e-3);
+    // The mesh's level set agrees with the exact sphere's to the polyhedral sagitta + voxel.
+    LevelSetSampler sampler(*s.levelSet);
+    EXPECT_NEAR(sampler.phi(Vec3(0, 0, 0)), -radius, 0.01);
+    EXPECT_NEAR(sampler.phi(Vec3(radius + 0.3, 0, 0)), 0.3, 0.02);
+    EXPECT_LT(maxAbsPhiAtNodes(s), 0.1 * 0.2);
+
+    const GrainAsset b = bakeMeshFile(dir.file("box.stl"), spacingOptions(0.1, 0.2), warnings);
+    EXPECT_NEAR(b.mass.volume, 6.0, 1e-9);
+    const Vec3 moments = 6.0 / 12.0 * Vec3(4 + 9, 1 + 9, 1 + 4);
+    // Ascending principal moments: about z (1+4), y (1+9), x (4+9).
+    EXPECT_NEAR(b.mass.inertia(0, 0), moments.z(), 1e-9);
+    EXPECT_NEAR(b.mass.inertia(1, 1), moments.y(), 1e-9);
+    EXPECT_NEAR(b.mass.inertia(2, 2), moments.x(), 1e-9);
+    EXPECT_NEAR(b.nodes.totalArea(), 22.0, 1e-6);  // remeshing keeps a box's faces flat
+    EXPECT_EQ(b.provenance.sourceSha256.size(), 64u);
+}
+
+// The stored rotation and centroid map the input to the asset frame; a rotated and moved copy
+// of the same input lands on the same asset (up to the box's own symmetries).
+TEST(Bake, RotatedInputComesBackInTheSamePrincipalFrame)
+{
+    test::ScratchDir dir;
+    const TriangleMesh box = AnalyticShape::box(1, 2, 3).surfaceMesh(0.5);
+    TriangleMesh moved = box;
+    const Mat3 q = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    transformMesh(moved, q, Vec3(10, 20, -5));
+    writeMesh(box, dir.file("box.ply"));
+    writeMesh(moved, dir.file("moved.ply"));
+    std::vector<std::string> warnings;
+    const GrainAsset a = bakeMeshFile(dir.file("box.ply"), spacingOptions(0.1, 0.25), warnings);
+    const GrainAsset b = bakeMeshFile(dir.file("moved.ply"), spacingOptions(0.1, 0.25), warnings);
+    // assimp reads coordinates as 32-bit floats (relative error 6e-8), so the moved copy is
+    // the same box only to about 1e-7 relative; allow 1e-5.
+    EXPECT_NEAR((a.mass.inertia - b.mass.inertia).norm() / a.mass.inertia.norm(), 0.0, 1e-5);
+    // R_b·q·R_a^T maps asset a's frame onto asset b's: a symmetry of the box (diagonal ±1).
+    const Mat3 relative = b.inputFrame.rotation * q * a.inputFrame.rotation.transpose();
+    EXPECT_NEAR((relative.cwiseAbs() - Mat3::Identity()).norm(), 0.0, 1e-5);
+    // Every moved input vertex, mapped by b's stored frame, lies on b's zero level set.
+    LevelSetSampler sampler(*b.levelSet);
+    for (const Vec3& v : moved.vertices) {
+        const Vec3 inAsset = b.inputFrame.rotation * (v - b.inputFrame.centroid);
+        EXPECT_LT(std::abs(sampler.phi(inAsset)), 0.1 * 0.1);
+    }
+}
+
+TEST(Bake, MeshVerticesPlacementKeepsTheInputVertices)
+{
+    test::ScratchDir dir;
+    const TriangleMesh sphere = AnalyticShape::sphere(2.0).surfaceMesh(0.4);
+    writeMesh(sphere, dir.file("s.obj"));
+    BakeOptions o;
+    o.voxelSize = 0.1;
+    o.nodePlacement = NodePlacement::MeshVertices;
+    std::vector<std::string> warnings;
+    const GrainAsset a = bakeMeshFile(dir.file("s.obj"), o, warnings);
+    EXPECT_EQ(a.nodes.size(), sphere.vertices.size());
+    EXPECT_NEAR(a.nodes.totalArea() / surfaceArea(sphere), 1.0, 1e-6);  // float coordinates
+}
+
+TEST(Bake, RefusesBadOptionsAndWarnsAboutOverfineNodes)
+{
+    std::vector<std::string> warnings;
+    const AnalyticShape sphere = AnalyticShape::sphere(1.0);
+    EXPECT_THROW(bakeAnalytic(sphere, spacingOptions(0.0, 0.1), warnings), Error);
+    EXPECT_THROW(bakeAnalytic(sphere, spacingOptions(-1, 0.1), warnings), Error);
+    EXPECT_THROW(bakeAnalytic(sphere, spacingOptions(0.1, std::nan("")), warnings), Error);
+    EXPECT_THROW(bakeAnalytic(sphere, spacingOptions(0.6, 0.6), warnings), Error);  // too coarse
+    try {
+        bakeAnalytic(sphere, spacingOptions(1e-4, 0.1), warnings);  // 8e12 voxels
+        FAIL() << "an enormous grid was not refused";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("memory budget"), std::string::npos) << e.what();
+    }
+    BakeOptions meshNodes = spacingOptions(0.1, 0.1);
+    meshNodes.nodePlacement = NodePlacement::MeshVertices;
+    EXPECT_THROW(bakeAnalytic(sphere, meshNodes, warnings), Error);
+    warnings.clear();
+    bakeAnalytic(sphere, spacingOptions(0.2, 0.05), warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("node spacing"), std::string::npos);
+}

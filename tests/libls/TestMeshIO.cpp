@@ -1,0 +1,434 @@
+// Tests of readMesh / writeMesh: round trips through every written format, the welding of
+// repeated vertices, and the errors for missing, broken and unsupported files.
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/MeshIO.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using lsdem::TriangleMesh;
+using lsdem::Vec3;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Axis-aligned box from @a lo to @a hi: 8 vertices, 12 outward triangles.
+TriangleMesh makeBox(const Vec3& lo, const Vec3& hi)
+{
+    TriangleMesh mesh;
+    for (int i = 0; i < 8; ++i)
+        mesh.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(),
+                                   i & 4 ? hi.z() : lo.z());
+    const Vec3 centre = 0.5 * (lo + hi);
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            // The four corners of this face in cyclic order: bits of the two other axes.
+            const int b = 1 << ((axis + 1) % 3), c = 1 << ((axis + 2) % 3), a = side << axis;
+            const std::array<int, 4> quad{a, a | b, a | b | c, a | c};
+            for (const auto& tri : {std::array<int, 3>{quad[0], quad[1], quad[2]},
+                                    std::array<int, 3>{quad[0], quad[2], quad[3]}}) {
+                const Vec3& p = mesh.vertices[tri[0]];
+                const Vec3 n = (mesh.vertices[tri[1]] - p).cross(mesh.vertices[tri[2]] - p);
+                // Outward means the normal points away from the centre.
+                if (n.dot(p - centre) > 0) mesh.triangles.push_back(tri);
+                else mesh.triangles.push_back({tri[0], tri[2], tri[1]});
+            }
+        }
+    return mesh;
+}
+
+/// Unit sphere: an icosahedron subdivided @a levels times, vertices pushed onto the sphere.
+TriangleMesh makeIcosphere(int levels)
+{
+    const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+    TriangleMesh mesh;
+    for (double s : {-1.0, 1.0})
+        for (double t : {-phi, phi}) {
+            mesh.vertices.emplace_back(s, t, 0.0);
+            mesh.vertices.emplace_back(0.0, s, t);
+            mesh.vertices.emplace_back(t, 0.0, s);
+        }
+    // The faces are the triples of mutually adjacent vertices (edge length 2), made outward.
+    auto adjacent = [&](int i, int j) {
+        return std::abs((mesh.vertices[i] - mesh.vertices[j]).squaredNorm() - 4.0) < 1e-9;
+    };
+    for (int i = 0; i < 12; ++i)
+        for (int j = i + 1; j < 12; ++j)
+            for (int k = j + 1; k < 12; ++k) {
+                if (!adjacent(i, j) || !adjacent(j, k) || !adjacent(i, k)) continue;
+                const Vec3& a = mesh.vertices[i];
+                const Vec3 n = (mesh.vertices[j] - a).cross(mesh.vertices[k] - a);
+                if (n.dot(a) > 0) mesh.triangles.push_back({i, j, k});
+                else mesh.triangles.push_back({i, k, j});
+            }
+    for (Vec3& v : mesh.vertices) v.normalize();
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<int, int>, int> midpoints;
+        auto midpoint = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            const auto found = midpoints.find(key);
+            if (found != midpoints.end()) return found->second;
+            mesh.vertices.push_back((mesh.vertices[a] + mesh.vertices[b]).normalized());
+            const int id = static_cast<int>(mesh.vertices.size()) - 1;
+            midpoints.emplace(key, id);
+            return id;
+        };
+        std::vector<std::array<int, 3>> finer;
+        for (const auto& t : mesh.triangles) {
+            const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]);
+            const int ca = midpoint(t[2], t[0]);
+            finer.push_back({t[0], ab, ca});
+            finer.push_back({t[1], bc, ab});
+            finer.push_back({t[2], ca, bc});
+            finer.push_back({ab, bc, ca});
+        }
+        mesh.triangles = finer;
+    }
+    return mesh;
+}
+
+double signedVolume(const TriangleMesh& mesh)
+{
+    double sum = 0.0;
+    for (const auto& t : mesh.triangles)
+        sum += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+    return sum / 6.0;
+}
+
+using Corner = std::array<double, 3>;
+using Face = std::array<Corner, 3>;
+
+/// The triangles as position triples, each rotated to start at its smallest corner (which
+/// keeps its orientation), sorted: equal lists mean the same oriented surface.
+std::vector<Face> orientedFaces(const TriangleMesh& mesh)
+{
+    std::vector<Face> faces;
+    for (const auto& t : mesh.triangles) {
+        Face f;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& v = mesh.vertices[t[k]];
+            f[k] = {v.x(), v.y(), v.z()};
+        }
+        std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+        faces.push_back(f);
+    }
+    std::sort(faces.begin(), faces.end());
+    return faces;
+}
+
+/// The nearest float. The volatile is needed: GCC 12.2 at -O2 drops the rounding when two
+/// neighbouring doubles are rounded this way (its SLP vectorizer folds the pair away).
+double roundToFloat(double x)
+{
+    volatile float f = static_cast<float>(x);
+    return f;
+}
+
+/// Round every coordinate to single precision: assimp (as packaged) reads floats.
+TriangleMesh snappedToFloat(TriangleMesh mesh)
+{
+    for (Vec3& v : mesh.vertices)
+        for (int axis = 0; axis < 3; ++axis) v[axis] = roundToFloat(v[axis]);
+    return mesh;
+}
+
+std::string readText(const fs::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void writeText(const fs::path& path, const std::string& text)
+{
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+std::vector<std::string> folderEntries(const fs::path& folder)
+{
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder))
+        names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// Gives each test an empty folder of its own and removes it afterwards.
+class MeshIO : public ::testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+        std::replace(name.begin(), name.end(), '/', '-');
+        dir = fs::temp_directory_path() /
+              ("lsdem-test-" + std::to_string(::getpid()) + "-" + name);
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    std::string file(const std::string& name) const { return (dir / name).string(); }
+
+    /// Run @a f, expect an lsdem::Error whose message names @a path, and return it.
+    template <class F>
+    static std::string expectErrorNaming(F&& f, const std::string& path)
+    {
+        try {
+            f();
+        } catch (const lsdem::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+            EXPECT_EQ(e.where(), path);
+            return e.what();
+        }
+        ADD_FAILURE() << "no lsdem::Error thrown for " << path;
+        return "";
+    }
+
+    fs::path dir;
+};
+
+class MeshIOFormat : public MeshIO, public ::testing::WithParamInterface<std::string>
+{
+};
+
+TEST_P(MeshIOFormat, CubeRoundTripKeepsTopologyAreaAndOrientation)
+{
+    const TriangleMesh cube = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    ASSERT_DOUBLE_EQ(signedVolume(cube), 1.0);  // the helper itself builds an outward cube
+    const std::string path = file("cube" + GetParam());
+    lsdem::writeMesh(cube, path);
+    const TriangleMesh back = lsdem::readMesh(path);
+
+    // STL repeats the corners per facet; welding must bring them back to 8.
+    EXPECT_EQ(back.vertices.size(), 8u);
+    EXPECT_EQ(back.triangles.size(), 12u);
+    // Coordinates 0 and 1 are exact in any precision, so these are exact.
+    EXPECT_NEAR(lsdem::surfaceArea(back), 6.0, 6.0 * 1e-12);
+    EXPECT_NEAR(signedVolume(back), 1.0, 1e-12);
+    EXPECT_EQ(orientedFaces(back), orientedFaces(cube));
+    EXPECT_EQ(folderEntries(dir), std::vector<std::string>{"cube" + GetParam()});
+}
+
+TEST_P(MeshIOFormat, IcosphereRoundTripIsExactForFloatCoordinates)
+{
+    // Level 2: 162 vertices, 320 triangles. Snapping to float makes the round trip exact
+    // (assimp reads single precision), so the oriented triangles must match bit for bit.
+    const TriangleMesh sphere = snappedToFloat(makeIcosphere(2));
+    ASSERT_EQ(sphere.vertices.size(), 162u);
+    ASSERT_EQ(sphere.triangles.size(), 320u);
+    const std::string path = file("sphere" + GetParam());
+    lsdem::writeMesh(sphere, path);
+    const TriangleMesh back = lsdem::readMesh(path);
+
+    EXPECT_EQ(back.vertices.size(), 162u);
+    EXPECT_EQ(back.triangles.size(), 320u);
+    const double area = lsdem::surfaceArea(sphere);
+    EXPECT_NEAR(lsdem::surfaceArea(back), area, 1e-12 * area);
+    const double volume = signedVolume(sphere);
+    // An inscribed polyhedron: below the ball's volume, and not far below it at this level.
+    EXPECT_LT(volume, 4.0 / 3.0 * kPi);
+    EXPECT_GT(volume, 0.95 * 4.0 / 3.0 * kPi);
+    EXPECT_NEAR(signedVolume(back), volume, 1e-12 * volume);
+    // (EXPECT_TRUE: printing 320 triangles on failure would drown the message.)
+    EXPECT_TRUE(orientedFaces(back) == orientedFaces(sphere)) << "oriented triangles differ";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFormats, MeshIOFormat,
+                         ::testing::Values(".obj", ".stl", ".ply", ".STL", ".Obj"),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             std::string name = param.param.substr(1);
+                             return name == "STL" || name == "Obj" ? name + "Upper" : name;
+                         });
+
+TEST_F(MeshIO, WritesFullDoublePrecision)
+{
+    // 0.1 is not a float; 17 significant digits identify the double exactly.
+    TriangleMesh mesh = makeBox(Vec3(0, 0, 0), Vec3(0.1, 1.0 / 3.0, 1));
+    for (const std::string ext : {".obj", ".stl", ".ply"}) {
+        const std::string path = file("box" + ext);
+        lsdem::writeMesh(mesh, path);
+        const std::string text = readText(path);
+        EXPECT_NE(text.find("0.10000000000000001"), std::string::npos) << ext;
+        EXPECT_NE(text.find("0.33333333333333331"), std::string::npos) << ext;
+    }
+}
+
+TEST_F(MeshIO, ReadsWithinSinglePrecision)
+{
+    // A documented limit of the packaged assimp: coordinates come back as floats. Each must
+    // be the nearest float, i.e. within half a float ulp (2^-24 relative) of the double.
+    const TriangleMesh sphere = makeIcosphere(1);
+    const std::string path = file("sphere.obj");
+    lsdem::writeMesh(sphere, path);
+    const TriangleMesh back = lsdem::readMesh(path);
+    ASSERT_EQ(back.vertices.size(), sphere.vertices.size());
+    std::vector<Corner> expected, actual;
+    for (const Vec3& v : sphere.vertices)
+        expected.push_back({roundToFloat(v.x()), roundToFloat(v.y()), roundToFloat(v.z())});
+    for (const Vec3& v : back.vertices) actual.push_back({v.x(), v.y(), v.z()});
+    std::sort(expected.begin(), expected.end());
+    std::sort(actual.begin(), actual.end());
+    EXPECT_EQ(actual, expected);
+    EXPECT_NEAR(signedVolume(back), signedVolume(sphere), 1e-6);
+}
+
+TEST_F(MeshIO, TriangulatesPolygonsAndIgnoresPointsAndLines)
+{
+    // A cube of outward quads, plus a line and a point that must not become triangles.
+    const std::string path = file("quads.obj");
+    writeText(path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                    "v 5 5 5\nv 6 6 6\n"
+                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\nf 1 5 8 4\n"
+                    "l 9 10\np 9\n");
+    const TriangleMesh mesh = lsdem::readMesh(path);
+    EXPECT_EQ(mesh.vertices.size(), 8u);
+    EXPECT_EQ(mesh.triangles.size(), 12u);
+    EXPECT_NEAR(lsdem::surfaceArea(mesh), 6.0, 1e-12);
+    EXPECT_NEAR(signedVolume(mesh), 1.0, 1e-12);
+}
+
+TEST_F(MeshIO, WeldsVerticesAcrossMeshes)
+{
+    // Two objects, each with its own copy of the shared corners: 8 distinct positions.
+    const TriangleMesh cube = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    std::ostringstream obj;
+    int written = 0;
+    for (int part = 0; part < 2; ++part) {
+        obj << "o part" << part << "\n";
+        for (int t = 6 * part; t < 6 * part + 6; ++t) {
+            for (int v : cube.triangles[t]) {
+                const Vec3& p = cube.vertices[v];
+                obj << "v " << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+            }
+            obj << "f " << written + 1 << ' ' << written + 2 << ' ' << written + 3 << '\n';
+            written += 3;
+        }
+    }
+    const std::string path = file("parts.obj");
+    writeText(path, obj.str());
+    const TriangleMesh mesh = lsdem::readMesh(path);
+    EXPECT_EQ(mesh.vertices.size(), 8u);
+    EXPECT_EQ(mesh.triangles.size(), 12u);
+    EXPECT_EQ(orientedFaces(mesh), orientedFaces(cube));
+}
+
+TEST_F(MeshIO, MissingFileIsAnError)
+{
+    const std::string path = file("missing.obj");
+    const std::string message = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+    EXPECT_NE(message.find("no such file"), std::string::npos) << message;
+}
+
+TEST_F(MeshIO, GarbageStlIsAnError)
+{
+    // 1000 pseudo-random bytes: neither ASCII STL ("solid") nor binary STL (84 + 50 n bytes).
+    std::string bytes;
+    unsigned state = 12345;
+    for (int i = 0; i < 1000; ++i) {
+        state = state * 1103515245u + 12345u;
+        bytes.push_back(static_cast<char>(state >> 24));
+    }
+    const std::string path = file("garbage.stl");
+    writeText(path, bytes);
+    expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+}
+
+TEST_F(MeshIO, UnknownFormatIsAnError)
+{
+    const std::string path = file("points.xyz");
+    writeText(path, "0 0 0\n1 0 0\n0 1 0\n");
+    expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+}
+
+TEST_F(MeshIO, FileWithoutTrianglesIsAnError)
+{
+    const std::string path = file("vertices.obj");
+    writeText(path, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    const std::string message = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+    EXPECT_NE(message.find("no triangles"), std::string::npos) << message;
+}
+
+TEST_F(MeshIO, FolderIsNotAMeshFile)
+{
+    expectErrorNaming([&] { lsdem::readMesh(dir.string()); }, dir.string());
+}
+
+TEST_F(MeshIO, UnknownWriteExtensionListsTheSupportedOnes)
+{
+    const std::string path = file("cube.xyz");
+    const std::string message = expectErrorNaming(
+        [&] { lsdem::writeMesh(makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1)), path); }, path);
+    for (const char* ext : {".obj", ".stl", ".ply"})
+        EXPECT_NE(message.find(ext), std::string::npos) << message;
+    EXPECT_TRUE(folderEntries(dir).empty());
+}
+
+TEST_F(MeshIO, WriteIntoMissingFolderFailsAndCreatesNothing)
+{
+    const std::string path = file("no/such/folder/cube.obj");
+    expectErrorNaming([&] { lsdem::writeMesh(makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1)), path); },
+                      path);
+    EXPECT_TRUE(folderEntries(dir).empty());
+}
+
+TEST_F(MeshIO, FailedRenameLeavesNoTemporary)
+{
+    // The target is an existing folder: the temporary is written, the rename fails.
+    fs::create_directory(dir / "taken.obj");
+    const std::string path = file("taken.obj");
+    expectErrorNaming([&] { lsdem::writeMesh(makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1)), path); },
+                      path);
+    EXPECT_EQ(folderEntries(dir), std::vector<std::string>{"taken.obj"});
+    EXPECT_TRUE(fs::is_directory(dir / "taken.obj"));
+}
+
+TEST_F(MeshIO, FailedWriteLeavesOldFileAndNoTemporary)
+{
+    const std::string path = file("sphere.stl");
+    const TriangleMesh cube = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    lsdem::writeMesh(cube, path);
+    const std::string before = readText(path);
+
+    // Simulate a full disk: cap the file size (writes then fail with EFBIG instead of
+    // raising SIGXFSZ) while writing a mesh far larger than the cap.
+    rlimit old{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+    auto* const oldHandler = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit capped = old;
+    capped.rlim_cur = 4096;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &capped), 0);
+    bool threw = false;
+    try {
+        lsdem::writeMesh(makeIcosphere(3), path);
+    } catch (const lsdem::Error& e) {
+        threw = std::string(e.what()).find(path) != std::string::npos;
+    }
+    ::setrlimit(RLIMIT_FSIZE, &old);
+    std::signal(SIGXFSZ, oldHandler);
+
+    EXPECT_TRUE(threw);
+    EXPECT_EQ(folderEntries(dir), std::vector<std::string>{"sphere.stl"});
+    EXPECT_EQ(readText(path), before);
+}
+
+} // namespace

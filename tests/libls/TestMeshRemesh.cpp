@@ -1,0 +1,287 @@
+// Tests of remeshIsotropic and edgeLengthForNodeCount: edge lengths, closedness, staying on
+// the input surface, keeping sharp edges, and the node count a chosen edge length gives.
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/MeshRemesh.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+using lsdem::RemeshOptions;
+using lsdem::TriangleMesh;
+using lsdem::Vec3;
+
+namespace {
+
+/// Axis-aligned box from @a lo to @a hi: 8 vertices, 12 outward triangles.
+TriangleMesh makeBox(const Vec3& lo, const Vec3& hi)
+{
+    TriangleMesh mesh;
+    for (int i = 0; i < 8; ++i)
+        mesh.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(),
+                                   i & 4 ? hi.z() : lo.z());
+    const Vec3 centre = 0.5 * (lo + hi);
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            // The four corners of this face in cyclic order: bits of the two other axes.
+            const int b = 1 << ((axis + 1) % 3), c = 1 << ((axis + 2) % 3), a = side << axis;
+            const std::array<int, 4> quad{a, a | b, a | b | c, a | c};
+            for (const auto& tri : {std::array<int, 3>{quad[0], quad[1], quad[2]},
+                                    std::array<int, 3>{quad[0], quad[2], quad[3]}}) {
+                const Vec3& p = mesh.vertices[tri[0]];
+                const Vec3 n = (mesh.vertices[tri[1]] - p).cross(mesh.vertices[tri[2]] - p);
+                // Outward means the normal points away from the centre.
+                if (n.dot(p - centre) > 0) mesh.triangles.push_back(tri);
+                else mesh.triangles.push_back({tri[0], tri[2], tri[1]});
+            }
+        }
+    return mesh;
+}
+
+/// Unit sphere: an icosahedron subdivided @a levels times, vertices pushed onto the sphere.
+TriangleMesh makeIcosphere(int levels)
+{
+    const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
+    TriangleMesh mesh;
+    for (double s : {-1.0, 1.0})
+        for (double t : {-phi, phi}) {
+            mesh.vertices.emplace_back(s, t, 0.0);
+            mesh.vertices.emplace_back(0.0, s, t);
+            mesh.vertices.emplace_back(t, 0.0, s);
+        }
+    // The faces are the triples of mutually adjacent vertices (edge length 2), made outward.
+    auto adjacent = [&](int i, int j) {
+        return std::abs((mesh.vertices[i] - mesh.vertices[j]).squaredNorm() - 4.0) < 1e-9;
+    };
+    for (int i = 0; i < 12; ++i)
+        for (int j = i + 1; j < 12; ++j)
+            for (int k = j + 1; k < 12; ++k) {
+                if (!adjacent(i, j) || !adjacent(j, k) || !adjacent(i, k)) continue;
+                const Vec3& a = mesh.vertices[i];
+                const Vec3 n = (mesh.vertices[j] - a).cross(mesh.vertices[k] - a);
+                if (n.dot(a) > 0) mesh.triangles.push_back({i, j, k});
+                else mesh.triangles.push_back({i, k, j});
+            }
+    for (Vec3& v : mesh.vertices) v.normalize();
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<int, int>, int> midpoints;
+        auto midpoint = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            const auto found = midpoints.find(key);
+            if (found != midpoints.end()) return found->second;
+            mesh.vertices.push_back((mesh.vertices[a] + mesh.vertices[b]).normalized());
+            const int id = static_cast<int>(mesh.vertices.size()) - 1;
+            midpoints.emplace(key, id);
+            return id;
+        };
+        std::vector<std::array<int, 3>> finer;
+        for (const auto& t : mesh.triangles) {
+            const int ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]);
+            const int ca = midpoint(t[2], t[0]);
+            finer.push_back({t[0], ab, ca});
+            finer.push_back({t[1], bc, ab});
+            finer.push_back({t[2], ca, bc});
+            finer.push_back({ab, bc, ca});
+        }
+        mesh.triangles = finer;
+    }
+    return mesh;
+}
+
+double signedVolume(const TriangleMesh& mesh)
+{
+    double sum = 0.0;
+    for (const auto& t : mesh.triangles)
+        sum += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+    return sum / 6.0;
+}
+
+/// Undirected edges, each once.
+std::set<std::pair<int, int>> undirectedEdges(const TriangleMesh& mesh)
+{
+    std::set<std::pair<int, int>> edges;
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
+    return edges;
+}
+
+double meanEdgeLength(const TriangleMesh& mesh)
+{
+    const auto edges = undirectedEdges(mesh);
+    double sum = 0.0;
+    for (const auto& e : edges) sum += (mesh.vertices[e.first] - mesh.vertices[e.second]).norm();
+    return sum / static_cast<double>(edges.size());
+}
+
+/// Closed, manifold and consistently oriented: every directed edge occurs once, and so does
+/// its reverse. Also every vertex is used and every index is in range.
+::testing::AssertionResult isClosedOriented(const TriangleMesh& mesh)
+{
+    std::map<std::pair<int, int>, int> directed;
+    std::vector<bool> used(mesh.vertices.size());
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            if (t[k] < 0 || t[k] >= static_cast<int>(mesh.vertices.size()))
+                return ::testing::AssertionFailure() << "index " << t[k] << " out of range";
+            used[t[k]] = true;
+            ++directed[{t[k], t[(k + 1) % 3]}];
+        }
+    for (const auto& [edge, count] : directed) {
+        const auto reverse = directed.find({edge.second, edge.first});
+        if (count != 1 || reverse == directed.end() || reverse->second != 1)
+            return ::testing::AssertionFailure()
+                   << "edge " << edge.first << "-" << edge.second << " is not closed/oriented";
+    }
+    if (std::find(used.begin(), used.end(), false) != used.end())
+        return ::testing::AssertionFailure() << "unused vertex";
+    return ::testing::AssertionSuccess();
+}
+
+/// Euler characteristic V - E + F; 2 for a closed surface of genus 0.
+long eulerCharacteristic(const TriangleMesh& mesh)
+{
+    return static_cast<long>(mesh.vertices.size()) -
+           static_cast<long>(undirectedEdges(mesh).size()) +
+           static_cast<long>(mesh.triangles.size());
+}
+
+TriangleMesh remeshed(const TriangleMesh& mesh, double target)
+{
+    RemeshOptions options;
+    options.targetEdgeLength = target;
+    return lsdem::remeshIsotropic(mesh, options);
+}
+
+TEST(MeshRemesh, SphereGetsTheTargetEdgeLengthAndStaysOnTheInputSurface)
+{
+    const TriangleMesh input = makeIcosphere(3);  // 642 vertices, edges about 0.1 to 0.13
+    const TriangleMesh out = remeshed(input, 0.1);
+
+    EXPECT_TRUE(isClosedOriented(out));
+    EXPECT_EQ(eulerCharacteristic(out), 2);
+    EXPECT_NEAR(meanEdgeLength(out), 0.1, 0.02);
+
+    // The remesher projects vertices onto the input polyhedron, not onto the sphere. The
+    // input lies between the spheres of radius 1 (its vertices; it is convex) and rMin (its
+    // closest face plane), so every output vertex must too.
+    double rMin = 1.0;
+    for (const auto& t : input.triangles) {
+        const Vec3& a = input.vertices[t[0]];
+        const Vec3 n = (input.vertices[t[1]] - a).cross(input.vertices[t[2]] - a).normalized();
+        rMin = std::min(rMin, std::abs(n.dot(a)));
+    }
+    ASSERT_GT(rMin, 0.99);  // the input itself is within 0.01 of the unit sphere
+    for (const Vec3& v : out.vertices) {
+        EXPECT_LE(v.norm(), 1.0 + 1e-12);
+        EXPECT_GE(v.norm(), rMin - 1e-12);
+    }
+    // Inscribed in the convex input, so the volume can only shrink, and by about the cap
+    // height of an edge (h^2 / 8 = 0.00125) times 3 relative at most.
+    const double inputVolume = signedVolume(input);
+    EXPECT_LE(signedVolume(out), inputVolume * (1 + 1e-12));
+    EXPECT_GE(signedVolume(out), inputVolume * (1 - 3 * 0.00125));
+}
+
+TEST(MeshRemesh, BoxKeepsItsSharpEdgesAndCorners)
+{
+    const Vec3 lo(0, 0, 0), hi(1, 2, 3);
+    const TriangleMesh out = remeshed(makeBox(lo, hi), 0.2);
+
+    EXPECT_TRUE(isClosedOriented(out));
+    EXPECT_EQ(eulerCharacteristic(out), 2);
+    // Sharp edges kept means the result is exactly the box again.
+    EXPECT_NEAR(signedVolume(out), 6.0, 6.0 * 1e-9);
+    EXPECT_NEAR(lsdem::surfaceArea(out), 22.0, 22.0 * 1e-9);
+    // Feature edges are split by halving (to between 1/2 and 1 target), the faces near the
+    // target, so the mean lies a little below the target.
+    EXPECT_NEAR(meanEdgeLength(out), 0.2, 0.2 * 0.25);
+    EXPECT_GT(out.vertices.size(), 300u);  // about 22 / (sqrt(3) / 2 * 0.2^2) = 635
+
+    // The faces of the box (0..5: -x, +x, -y, +y, -z, +z) a point lies on.
+    auto facesOf = [&](const Vec3& p) {
+        std::set<int> faces;
+        for (int axis = 0; axis < 3; ++axis) {
+            if (std::abs(p[axis] - lo[axis]) < 1e-12) faces.insert(2 * axis);
+            if (std::abs(p[axis] - hi[axis]) < 1e-12) faces.insert(2 * axis + 1);
+        }
+        return faces;
+    };
+    int corners = 0;
+    for (const Vec3& v : out.vertices) {
+        EXPECT_TRUE(((v.array() >= lo.array() - 1e-12) && (v.array() <= hi.array() + 1e-12))
+                        .all());
+        const auto faces = facesOf(v);
+        EXPECT_FALSE(faces.empty()) << "vertex off the box surface: " << v.transpose();
+        if (faces.size() == 3) ++corners;
+    }
+    EXPECT_EQ(corners, 8);
+    // No triangle cuts across an edge of the box: all its corners lie on one common face.
+    for (const auto& t : out.triangles) {
+        std::set<int> common = facesOf(out.vertices[t[0]]);
+        for (int k = 1; k < 3; ++k) {
+            const auto faces = facesOf(out.vertices[t[k]]);
+            std::set<int> both;
+            std::set_intersection(common.begin(), common.end(), faces.begin(), faces.end(),
+                                  std::inserter(both, both.begin()));
+            common = both;
+        }
+        EXPECT_FALSE(common.empty()) << "triangle across a box edge";
+    }
+}
+
+TEST(MeshRemesh, NodeCountFollowsTheChosenEdgeLength)
+{
+    const TriangleMesh input = makeIcosphere(4);  // 2562 vertices
+    const double area = lsdem::surfaceArea(input);
+    const double h = lsdem::edgeLengthForNodeCount(area, 2000);
+    const TriangleMesh out = remeshed(input, h);
+    EXPECT_TRUE(isClosedOriented(out));
+    EXPECT_NEAR(static_cast<double>(out.vertices.size()), 2000.0, 0.15 * 2000.0);
+}
+
+TEST(MeshRemesh, EdgeLengthForNodeCountInvertsTheEquilateralArea)
+{
+    // 2 n equilateral triangles of side h cover n sqrt(3) / 2 h^2.
+    for (const double h : {1e-3, 0.05, 2.0})
+        for (const int n : {1, 100, 123456}) {
+            const double area = n * std::sqrt(3.0) / 2.0 * h * h;
+            EXPECT_NEAR(lsdem::edgeLengthForNodeCount(area, n), h, 1e-14 * h);
+        }
+    EXPECT_THROW(lsdem::edgeLengthForNodeCount(1.0, 0), lsdem::Error);
+    EXPECT_THROW(lsdem::edgeLengthForNodeCount(1.0, -5), lsdem::Error);
+    EXPECT_THROW(lsdem::edgeLengthForNodeCount(0.0, 10), lsdem::Error);
+    EXPECT_THROW(lsdem::edgeLengthForNodeCount(-1.0, 10), lsdem::Error);
+    EXPECT_THROW(lsdem::edgeLengthForNodeCount(std::nan(""), 10), lsdem::Error);
+}
+
+TEST(MeshRemesh, RefusesBadTargetEdgeLengths)
+{
+    const TriangleMesh box = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    for (const double target : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
+                                std::numeric_limits<double>::infinity()})
+        EXPECT_THROW(remeshed(box, target), lsdem::Error) << target;
+}
+
+TEST(MeshRemesh, RefusesOpenOrEmptyMeshes)
+{
+    TriangleMesh open = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    open.triangles.pop_back();
+    EXPECT_THROW(remeshed(open, 0.2), lsdem::Error);
+    EXPECT_THROW(remeshed(TriangleMesh{}, 0.2), lsdem::Error);
+    // Two triangles running the same way along an edge cannot be stitched together.
+    TriangleMesh twisted = makeBox(Vec3(0, 0, 0), Vec3(1, 1, 1));
+    std::swap(twisted.triangles[0][1], twisted.triangles[0][2]);
+    EXPECT_THROW(remeshed(twisted, 0.2), lsdem::Error);
+}
+
+} // namespace

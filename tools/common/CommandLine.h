@@ -1,0 +1,60 @@
+/// @file CommandLine.h
+/// @brief A small strict command-line reader shared by the lsdem tools: every value is checked
+///        (numbers must parse completely and be finite), and mistakes become lsdem::Error with
+///        the option named.
+#pragma once
+
+#include "lsdem/ls/Error.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace lsdem::cli {
+
+class Arguments
+{
+public:
+    Arguments(int argc, char** argv) : mArgs(argv + 1, argv + argc) {}
+
+    bool done() const { return mPos >= mArgs.size(); }
+    const std::string& peek() const { return mArgs[mPos]; }
+    std::string next() { return mArgs[mPos++]; }
+
+    /// The value after option @a option, which must exist.
+    std::string value(const std::string& option)
+    {
+        if (done()) throw Error("", "option " + option + " needs a value");
+        return next();
+    }
+
+    double number(const std::string& option) { return parseNumber(value(option), option); }
+
+    long long integer(const std::string& option)
+    {
+        const std::string text = value(option);
+        char* end = nullptr;
+        const long long v = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0')
+            throw Error("", "option " + option + " wants a whole number, got '" + text + "'");
+        return v;
+    }
+
+    static double parseNumber(const std::string& text, const std::string& option)
+    {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0')
+            throw Error("", "option " + option + " wants a number, got '" + text + "'");
+        if (!std::isfinite(v))
+            throw Error("", "option " + option + " wants a finite number, got '" + text + "'");
+        return v;
+    }
+
+private:
+    std::vector<std::string> mArgs;
+    size_t mPos = 0;
+};
+
+} // namespace lsdem::cli

@@ -105,11 +105,15 @@ void writeSlicePng(const InspectionTarget& target, const SliceSpec& slice,
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) phi[size_t(y) * width + x] = sampler.phi(pointAt(x, y));
 
+    // Inside is shaded by depth relative to the deepest point shown, outside by the band
+    // width, so both halves use the whole colour range.
+    double deepest = 0.0;
+    for (double value : phi) deepest = std::min(deepest, value);
     std::vector<Rgb> pixels(phi.size());
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const size_t i = size_t(y) * width + x;
-            pixels[i] = diverging(phi[i] / scale);
+            pixels[i] = diverging(phi[i] < 0 ? phi[i] / -deepest : phi[i] / scale);
             // Zero contour: a sign change to the right or below.
             const bool right = x + 1 < width && (phi[i] < 0) != (phi[i + 1] < 0);
             const bool below = y + 1 < height && (phi[i] < 0) != (phi[i + width] < 0);

@@ -62,6 +62,26 @@ private:
         fz = index.z() - bz;
         const openvdb::Coord base(static_cast<int>(bx), static_cast<int>(by),
                                   static_cast<int>(bz));
+        // Fast path: the 2x2x2 stencil lies inside one 8^3 leaf (7 times in 8 per axis), so
+        // read the leaf's buffer directly; offsets are x*64 + y*8 + z within a leaf.
+        using Leaf = openvdb::FloatTree::LeafNodeType;
+        constexpr int kLast = Leaf::DIM - 1;
+        if ((base.x() & kLast) != kLast && (base.y() & kLast) != kLast &&
+            (base.z() & kLast) != kLast) {
+            if (const Leaf* leaf = mAccessor.probeConstLeaf(base)) {
+                const float* data = leaf->buffer().data() + Leaf::coordToOffset(base);
+                constexpr int dx = 1 << (2 * Leaf::LOG2DIM), dy = 1 << Leaf::LOG2DIM;
+                value[0] = data[0];
+                value[1] = data[dx];
+                value[2] = data[dy];
+                value[3] = data[dx + dy];
+                value[4] = data[1];
+                value[5] = data[dx + 1];
+                value[6] = data[dy + 1];
+                value[7] = data[dx + dy + 1];
+                return;
+            }
+        }
         for (int corner = 0; corner < 8; ++corner) {
             const openvdb::Coord c = base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
             value[corner] = mAccessor.getValue(c);

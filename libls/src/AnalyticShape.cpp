@@ -137,7 +137,9 @@ TriangleMesh unitIcosphere(int n)
 TriangleMesh boxSurface(const Vec3& half, double h)
 {
     int count[3];
-    for (int k = 0; k < 3; ++k) count[k] = std::max(1, static_cast<int>(std::ceil(2 * half[k] / h)));
+    // The small slack keeps exact multiples (6 / 0.1 = 60.000000000000007) from gaining a row.
+    for (int k = 0; k < 3; ++k)
+        count[k] = std::max(1, static_cast<int>(std::ceil(2 * half[k] / h - 1e-9)));
     TriangleMesh mesh;
     std::map<std::array<int, 3>, int> index;
     auto vertexAt = [&](std::array<int, 3> ijk) {

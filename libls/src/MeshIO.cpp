@@ -1,16 +1,16 @@
 #include "lsdem/ls/MeshIO.h"
 
+#include "lsdem/ls/AtomicFile.h"
+
 #include "lsdem/ls/Error.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -42,8 +42,9 @@ bool hasPolygons(const aiScene& scene)
     return false;
 }
 
-/// Index of @a p in @a mesh, adding it if no vertex has exactly this position yet. Non-finite
-/// positions are never merged: they cannot be ordered, and validation reports them by index.
+/// Index of @a p in @a mesh, adding it if no vertex has exactly this position yet (+0 and -0
+/// count as equal). Non-finite positions are never merged: they cannot be ordered, and
+/// validation reports them by index.
 int weldVertex(TriangleMesh& mesh, std::map<Position, int>& index, const Position& p)
 {
     const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
@@ -134,41 +135,6 @@ void writePly(const TriangleMesh& mesh, std::ostream& out)
     for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
 }
 
-/// Write with @a writer to a temporary beside @a path, then rename it over @a path, so readers
-/// never see a half-written file; on any failure the temporary is removed.
-void writeAtomically(const std::string& path, const std::function<void(std::ostream&)>& writer)
-{
-    const fs::path target(path);
-    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec))
-        throw Error(path, "cannot write the mesh: the folder '" + folder.string() +
-                              "' does not exist",
-                    "create the folder first or choose another output path");
-
-    // pid + counter keeps concurrent writers (threads or processes) off each other's temporary.
-    static std::atomic<unsigned> counter{0};
-    const std::string tmp =
-        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    try {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path, "cannot write the mesh: the file cannot be created",
-                              "check that the folder is writable");
-        out << std::setprecision(17);  // enough digits to read back every double exactly
-        writer(out);
-        out.close();
-        if (!out) throw Error(path, "cannot write the mesh: writing failed (disk full?)");
-        fs::rename(tmp, target);
-    } catch (const fs::filesystem_error& e) {
-        fs::remove(tmp, ec);
-        throw Error(path, std::string("cannot write the mesh: ") + e.code().message(),
-                    "check that the path is not a folder and the disk is writable");
-    } catch (...) {
-        fs::remove(tmp, ec);
-        throw;
-    }
-}
-
 } // namespace
 
 TriangleMesh readMesh(const std::string& path)
@@ -225,7 +191,15 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path)
     else
         throw Error(path, "cannot write a mesh with extension '" + ext + "'",
                     "use one of .obj, .stl, .ply");
-    writeAtomically(path, [&](std::ostream& out) { writer(mesh, out); });
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path, "cannot write the mesh: the file cannot be created",
+                              "check that the folder is writable");
+        out << std::setprecision(17);  // enough digits to read back every double exactly
+        writer(mesh, out);
+        out.close();
+        if (!out) throw Error(path, "cannot write the mesh: writing failed (disk full?)");
+    });
 }
 
 } // namespace lsdem

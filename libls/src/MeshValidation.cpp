@@ -304,6 +304,17 @@ MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& so
     measureComponents(mesh, 0.5 * (bounds[0] + bounds[1]), components);
     report.flippedToOutward = orientOutward(mesh, components);
 
+    // A flat or doubled part bounds nothing, whatever the rest of the mesh does.
+    for (const Component& comp : components) {
+        const double size = (comp.hi - comp.lo).norm();
+        if (!(std::abs(comp.volume) > 1e-12 * size * size * size))
+            throw Error(source,
+                        "a part of the surface (" +
+                            countOf(static_cast<int>(comp.triangles.size()), "triangle") +
+                            ") encloses no volume",
+                        "remove flat or doubled parts: the mesh must be the closed surface of "
+                        "a solid");
+    }
     double volume = 0.0;
     for (const Component& comp : components) volume += comp.volume;
     if (!(volume > 0.0))

@@ -2,13 +2,13 @@
 // repeated vertices, and the errors for missing, broken and unsupported files.
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/MeshIO.h"
+#include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -27,7 +27,7 @@ using lsdem::Vec3;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using lsdem::test::kPi;
 
 /// Axis-aligned box from @a lo to @a hi: 8 vertices, 12 outward triangles.
 TriangleMesh makeBox(const Vec3& lo, const Vec3& hi)
@@ -171,23 +171,11 @@ std::vector<std::string> folderEntries(const fs::path& folder)
     return names;
 }
 
-/// Gives each test an empty folder of its own and removes it afterwards.
+/// Gives each test an empty folder of its own (removed afterwards).
 class MeshIO : public ::testing::Test
 {
 protected:
-    void SetUp() override
-    {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string name = std::string(info->test_suite_name()) + "-" + info->name();
-        std::replace(name.begin(), name.end(), '/', '-');
-        dir = fs::temp_directory_path() /
-              ("lsdem-test-" + std::to_string(::getpid()) + "-" + name);
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
-    std::string file(const std::string& name) const { return (dir / name).string(); }
+    std::string file(const std::string& name) const { return scratch.file(name); }
 
     /// Run @a f, expect an lsdem::Error whose message names @a path, and return it.
     template <class F>
@@ -204,7 +192,8 @@ protected:
         return "";
     }
 
-    fs::path dir;
+    lsdem::test::ScratchDir scratch;
+    const fs::path& dir = scratch.path();
 };
 
 class MeshIOFormat : public MeshIO, public ::testing::WithParamInterface<std::string>

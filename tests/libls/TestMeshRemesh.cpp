@@ -164,12 +164,13 @@ TriangleMesh remeshed(const TriangleMesh& mesh, double target)
 
 TEST(MeshRemesh, SphereGetsTheTargetEdgeLengthAndStaysOnTheInputSurface)
 {
-    const TriangleMesh input = makeIcosphere(3);  // 642 vertices, edges about 0.1 to 0.13
+    const TriangleMesh input = makeIcosphere(3);  // 642 vertices, edges 0.14 to 0.16
     const TriangleMesh out = remeshed(input, 0.1);
 
     EXPECT_TRUE(isClosedOriented(out));
     EXPECT_EQ(eulerCharacteristic(out), 2);
-    EXPECT_NEAR(meanEdgeLength(out), 0.1, 0.02);
+    // The target is the wanted mean edge length (measured: within 1%).
+    EXPECT_NEAR(meanEdgeLength(out), 0.1, 0.1 * 0.1);
 
     // The remesher projects vertices onto the input polyhedron, not onto the sphere. The
     // input lies between the spheres of radius 1 (its vertices; it is convex) and rMin (its
@@ -185,11 +186,12 @@ TEST(MeshRemesh, SphereGetsTheTargetEdgeLengthAndStaysOnTheInputSurface)
         EXPECT_LE(v.norm(), 1.0 + 1e-12);
         EXPECT_GE(v.norm(), rMin - 1e-12);
     }
-    // Inscribed in the convex input, so the volume can only shrink, and by about the cap
-    // height of an edge (h^2 / 8 = 0.00125) times 3 relative at most.
+    // Inscribed in the convex input, so the volume can only shrink: by about 0.4 h^2 for
+    // chords of length h on a unit sphere (the input, edges 0.15, has 0.86% less than the
+    // ball), i.e. 0.4% at h = 0.1; 1% leaves room for the spread of edge lengths.
     const double inputVolume = signedVolume(input);
-    EXPECT_LE(signedVolume(out), inputVolume * (1 + 1e-12));
-    EXPECT_GE(signedVolume(out), inputVolume * (1 - 3 * 0.00125));
+    EXPECT_LT(signedVolume(out), inputVolume);
+    EXPECT_GT(signedVolume(out), inputVolume * (1 - 0.01));
 }
 
 TEST(MeshRemesh, BoxKeepsItsSharpEdgesAndCorners)
@@ -202,10 +204,9 @@ TEST(MeshRemesh, BoxKeepsItsSharpEdgesAndCorners)
     // Sharp edges kept means the result is exactly the box again.
     EXPECT_NEAR(signedVolume(out), 6.0, 6.0 * 1e-9);
     EXPECT_NEAR(lsdem::surfaceArea(out), 22.0, 22.0 * 1e-9);
-    // Feature edges are split by halving (to between 1/2 and 1 target), the faces near the
-    // target, so the mean lies a little below the target.
-    EXPECT_NEAR(meanEdgeLength(out), 0.2, 0.2 * 0.25);
-    EXPECT_GT(out.vertices.size(), 300u);  // about 22 / (sqrt(3) / 2 * 0.2^2) = 635
+    EXPECT_NEAR(meanEdgeLength(out), 0.2, 0.2 * 0.1);  // measured: within 1%
+    // Near-equilateral triangles: about 22 / (sqrt(3) / 2 * 0.2^2) = 635 vertices.
+    EXPECT_NEAR(static_cast<double>(out.vertices.size()), 635.0, 0.15 * 635.0);
 
     // The faces of the box (0..5: -x, +x, -y, +y, -z, +z) a point lies on.
     auto facesOf = [&](const Vec3& p) {
@@ -237,16 +238,33 @@ TEST(MeshRemesh, BoxKeepsItsSharpEdgesAndCorners)
         }
         EXPECT_FALSE(common.empty()) << "triangle across a box edge";
     }
+    // The box edges (total length 24) are resolved at about the target spacing too: count
+    // the mesh edges lying on them (both ends on the same two faces).
+    int onBoxEdges = 0;
+    for (const auto& [a, b] : undirectedEdges(out)) {
+        std::set<int> both;
+        const auto fa = facesOf(out.vertices[a]), fb = facesOf(out.vertices[b]);
+        std::set_intersection(fa.begin(), fa.end(), fb.begin(), fb.end(),
+                              std::inserter(both, both.begin()));
+        if (both.size() >= 2) ++onBoxEdges;
+    }
+    EXPECT_NEAR(onBoxEdges, 24 / 0.2, 0.2 * 24 / 0.2);
 }
 
-TEST(MeshRemesh, NodeCountFollowsTheChosenEdgeLength)
+TEST(MeshRemesh, NodeCountFollowsTheChosenEdgeLengthWhateverTheInput)
 {
-    const TriangleMesh input = makeIcosphere(4);  // 2562 vertices
-    const double area = lsdem::surfaceArea(input);
-    const double h = lsdem::edgeLengthForNodeCount(area, 2000);
-    const TriangleMesh out = remeshed(input, h);
-    EXPECT_TRUE(isClosedOriented(out));
-    EXPECT_NEAR(static_cast<double>(out.vertices.size()), 2000.0, 0.15 * 2000.0);
+    // Inputs coarser than, about as fine as (edges 0.069 to 0.083 against h = 0.085), and
+    // much finer than the target. CGAL alone gives 20 to 35% more nodes, and from the middle
+    // one it hardly changes the mesh; measured here: within 3%.
+    for (const int level : {2, 4, 6}) {
+        const TriangleMesh input = makeIcosphere(level);
+        const double area = lsdem::surfaceArea(input);
+        const double h = lsdem::edgeLengthForNodeCount(area, 2000);
+        const TriangleMesh out = remeshed(input, h);
+        EXPECT_TRUE(isClosedOriented(out)) << "level " << level;
+        EXPECT_NEAR(static_cast<double>(out.vertices.size()), 2000.0, 0.15 * 2000.0)
+            << "level " << level;
+    }
 }
 
 TEST(MeshRemesh, EdgeLengthForNodeCountInvertsTheEquilateralArea)

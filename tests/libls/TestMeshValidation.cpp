@@ -318,6 +318,17 @@ TEST(MeshValidation, RefusesASurfaceEnclosingNoVolume)
     EXPECT_CONTAINS(validationError(mesh), "encloses no volume");
 }
 
+TEST(MeshValidation, RefusesAFlatPartBesideASolidOne)
+{
+    // A sheet (a triangle and its reverse) next to a cube: the total volume is the cube's,
+    // but the sheet bounds nothing.
+    TriangleMesh sheet;
+    sheet.vertices = {{5, 0, 0}, {6, 0, 0}, {5, 1, 0}};
+    sheet.triangles = {{0, 1, 2}, {0, 2, 1}};
+    const std::string message = validationError(mergeWelded(kCube, sheet));
+    EXPECT_CONTAINS(message, "(2 triangles) encloses no volume");
+}
+
 TEST(MeshValidation, TurnsEachSeparatePartOutward)
 {
     // Two disjoint unit cubes, the second inside-out: only the second is reversed.

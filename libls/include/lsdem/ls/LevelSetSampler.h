@@ -24,12 +24,40 @@ public:
     }
 
     /// φ and ∇φ at @a p (asset frame). Outside the band φ is the background (+band width) and
-    /// the gradient is zero.
+    /// the gradient is zero. The trilinear gradient jumps across cell faces; a point exactly on
+    /// a face (nodes on a lattice aligned with the voxels hit this often) gets the mean of the
+    /// two one-sided derivatives, so aligned configurations are not biased to one side.
     LevelSetSample sample(const Vec3& p)
+    {
+        const Vec3 index = (p - mOrigin) * mInvVoxel;
+        LevelSetSample s = evaluate(index);
+        for (int axis = 0; axis < 3; ++axis) {
+            const double face = std::round(index[axis]);
+            if (std::abs(index[axis] - face) > kFaceTolerance) continue;
+            Vec3 before = index, after = index;
+            before[axis] = face - kFaceOffset;
+            after[axis] = face + kFaceOffset;
+            s.gradient[axis] =
+                0.5 * (evaluate(before).gradient[axis] + evaluate(after).gradient[axis]);
+        }
+        return s;
+    }
+
+    /// φ alone (same interpolant as sample()).
+    double phi(const Vec3& p) { return evaluate((p - mOrigin) * mInvVoxel).phi; }
+
+private:
+    /// Within this many voxels of a cell face a point counts as on it (lattice-aligned nodes
+    /// land there up to round-off); the one-sided derivatives are taken this far either side.
+    static constexpr double kFaceTolerance = 1e-9;
+    static constexpr double kFaceOffset = 1e-6;
+
+    /// The trilinear interpolant and its gradient at an index-space point.
+    LevelSetSample evaluate(const Vec3& index)
     {
         double value[8];
         double fx, fy, fz;
-        fetch(p, value, fx, fy, fz);
+        fetch(index, value, fx, fy, fz);
         // Trilinear interpolation along x, then y, then z; corners indexed as (z<<2)|(y<<1)|x.
         const double c00 = value[0] + fx * (value[1] - value[0]);
         const double c10 = value[2] + fx * (value[3] - value[2]);
@@ -48,13 +76,8 @@ public:
         return s;
     }
 
-    /// φ alone (same interpolant as sample()).
-    double phi(const Vec3& p) { return sample(p).phi; }
-
-private:
-    void fetch(const Vec3& p, double value[8], double& fx, double& fy, double& fz)
+    void fetch(const Vec3& index, double value[8], double& fx, double& fy, double& fz)
     {
-        const Vec3 index = (p - mOrigin) * mInvVoxel;
         const double bx = std::floor(index.x()), by = std::floor(index.y()),
                      bz = std::floor(index.z());
         fx = index.x() - bx;

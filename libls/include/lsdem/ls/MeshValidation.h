@@ -13,7 +13,7 @@ namespace lsdem {
 struct MeshValidationReport
 {
     int removedDegenerateTriangles = 0;  ///< zero-area triangles dropped (their edges collapse)
-    bool flippedToOutward = false;       ///< whole mesh was inside-out and was reversed
+    bool flippedToOutward = false;       ///< some part was inside-out and was reversed
     int reorientedTriangles = 0;         ///< triangles flipped to agree with their neighbours
 };
 
@@ -22,8 +22,10 @@ struct MeshValidationReport
 /// - degenerate triangles (area below a tiny fraction of the mean): drop them;
 /// - open surface (edges with one triangle): refuse, saying how many boundary edges;
 /// - non-manifold edges (three or more triangles): refuse, saying how many;
-/// - inconsistent orientation inside a connected component: make it consistent;
-/// - negative enclosed volume (inside-out): reverse every triangle.
+/// - inconsistent orientation inside a connected part: flip the smaller set of triangles;
+/// - a part that encloses no volume: refuse;
+/// - an inside-out part: reverse it. Parts nested inside others (cavities) keep their
+///   orientation relative to their outermost container, so hollow solids stay hollow.
 /// @param source names the mesh in messages (usually its file path).
 /// @throw Error with the file, the problem and the fix.
 MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& source);

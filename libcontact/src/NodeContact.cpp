@@ -1,0 +1,50 @@
+#include "lsdem/contact/NodeContact.h"
+
+#include "lsdem/ls/LevelSetSampler.h"
+
+namespace lsdem {
+
+void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
+                      const RigidPose& poseB, std::vector<NodeContact>& out,
+                      NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    // Whole-grain cull: bounding spheres apart means no node can be inside B.
+    const double reachB = b.boundingRadius;
+    if ((poseA.position - poseB.position).norm() > a.boundingRadius + reachB) {
+        stats.nodesCulled += count;
+        return;
+    }
+    // One rigid map from A's asset frame to B's: x_B = R x_A + t.
+    const Quat toB = poseB.orientation.conjugate() * poseA.orientation;
+    const Eigen::Matrix3d rotation = toB.toRotationMatrix();
+    const Vec3 translation = poseB.orientation.conjugate() * (poseA.position - poseB.position);
+    const Eigen::Matrix3d bToWorld = poseB.orientation.toRotationMatrix();
+    const double reach2 = reachB * reachB;
+
+    LevelSetSampler sampler(*b.levelSet);
+    for (int i = 0; i < static_cast<int>(count); ++i) {
+        const Vec3 inB = rotation * a.nodes.positions[i] + translation;
+        if (inB.squaredNorm() > reach2) {  // outside B's bounding sphere: φ_B > 0
+            ++stats.nodesCulled;
+            continue;
+        }
+        ++stats.nodesSampled;
+        const LevelSetSample s = sampler.sample(inB);
+        if (!(s.phi < 0.0)) continue;
+        const double gradientLength = s.gradient.norm();
+        if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
+        ++stats.nodesInContact;
+        NodeContact c;
+        c.node = i;
+        c.depth = -s.phi;
+        c.normal = bToWorld * (s.gradient / gradientLength);
+        const Vec3 nodeWorld = poseB.position + bToWorld * inB;
+        c.point = nodeWorld + 0.5 * c.depth * c.normal;
+        c.area = a.nodes.areas[i];
+        out.push_back(c);
+    }
+}
+
+} // namespace lsdem

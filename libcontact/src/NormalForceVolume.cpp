@@ -1,0 +1,21 @@
+#include "lsdem/contact/NormalForce.h"
+
+namespace lsdem {
+
+void normalForcesVolume(const std::vector<NodeContact>& contacts, double kv, double weight,
+                        std::vector<PointForce>& out)
+{
+    // Riemann sum of the overlap volume over A's penetrating surface: V ≈ Σ d_a·A_a.
+    double volume = 0.0;
+    Vec3 direction = Vec3::Zero(), centroid = Vec3::Zero();
+    for (const NodeContact& c : contacts) {
+        const double w = c.depth * c.area;
+        volume += w;
+        direction += w * c.normal;
+        centroid += w * c.point;
+    }
+    if (volume <= 0.0 || direction.norm() == 0.0) return;
+    out.push_back({-1, (weight * kv * volume) * direction.normalized(), centroid / volume});
+}
+
+} // namespace lsdem

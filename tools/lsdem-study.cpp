@@ -1,0 +1,196 @@
+/// lsdem-study: the paper's studies as one command each; writes CSV and PNG plots.
+
+#include "common/CommandLine.h"
+#include "studies/TwoSpheresStudy.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+namespace {
+
+const char* const kUsage = R"(usage: lsdem-study two-spheres [options]
+
+Two equal spheres pressed together along their centre line (Feldfogel et al. 2024, Fig. 1, 3):
+grain 0 fixed, grain 1 displaced by δ from 0 to --delta-max; the force P on the centre line,
+mean of random orientations, for each formulation, node count and stiffness.
+
+  --formulation F...   original, adapted, single-node, volume (default: original adapted)
+  --nodes N...         node counts (default: 500 1000 2000 4000 8000 16000)
+  --kn K...            stiffnesses for every formulation (default: the paper's, kn = 1e9 N/mm
+                       for original/single-node, kn* = 1e3 N/mm^3 for adapted/volume, and the
+                       series 0.25, 0.5, 0.75, 1 x that at the node count nearest 8000)
+  --voxel VDP          level-set voxel size, mm (default 0.05)
+  --radius R           sphere radius, mm (default 5)
+  --delta-max D        largest overlap, mm (default 0.1)
+  --steps S            overlap steps (default 10)
+  --orientations M     random orientations averaged (default 3)
+  --seed S             seed of the orientations (default 1)
+  --testing T          symmetric (default) or one-way
+  --out DIR            output folder (default results/two-spheres)
+  --no-plots           write the CSV only
+  -q, --quiet          print only the summary
+
+Units: mm, N (forces), N/mm or N/mm^3 (stiffnesses). Writes DIR/two_spheres.csv and, with
+python3-matplotlib, DIR/*.png.
+)";
+
+/// Read values after an option until the next option.
+template <typename Parse>
+void readList(lsdem::cli::Arguments& args, const std::string& option, Parse parse)
+{
+    bool any = false;
+    while (!args.done() && !(args.peek().size() > 1 && args.peek()[0] == '-' &&
+                             !std::isdigit(static_cast<unsigned char>(args.peek()[1])) &&
+                             args.peek()[1] != '.')) {
+        parse(args.next());
+        any = true;
+    }
+    if (!any) throw lsdem::Error("", "option " + option + " needs at least one value");
+}
+
+void prepareOutputDir(const std::string& dir)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw lsdem::Error(dir, "cannot create the output folder (" + ec.message() + ")",
+                           "choose another --out");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw lsdem::Error(dir, "the output folder is not writable", "choose another --out");
+}
+
+int runPlots(const std::string& script, const std::string& csv, const std::string& dir)
+{
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3"
+                                                                          : "python3";
+    const std::string command = python + " '" + script + "' '" + csv + "' '" + dir + "'";
+    return std::system(command.c_str());
+}
+
+int twoSpheres(lsdem::cli::Arguments& args)
+{
+    using namespace lsdem;
+    TwoSpheresOptions o;
+    while (!args.done()) {
+        const std::string a = args.next();
+        if (a == "-h" || a == "--help") {
+            std::cout << kUsage;
+            return 0;
+        } else if (a == "--formulation") {
+            o.formulations.clear();
+            readList(args, a, [&](const std::string& v) { o.formulations.push_back(parseFormulation(v)); });
+        } else if (a == "--nodes") {
+            o.nodeCounts.clear();
+            readList(args, a, [&](const std::string& v) {
+                const double n = cli::Arguments::parseNumber(v, a);
+                if (n != std::floor(n)) throw Error("", "--nodes wants whole numbers, got " + v);
+                if (n <= 0) throw Error("", "--nodes must be positive, got " + v);
+                o.nodeCounts.push_back(int(std::min(n, 1e9)));
+            });
+        } else if (a == "--kn") {
+            o.stiffness.clear();
+            readList(args, a, [&](const std::string& v) { o.stiffness.push_back(cli::Arguments::parseNumber(v, a)); });
+        } else if (a == "--voxel") {
+            o.voxel = args.number(a);
+        } else if (a == "--radius") {
+            o.radius = args.number(a);
+        } else if (a == "--delta-max") {
+            o.deltaMax = args.number(a);
+        } else if (a == "--steps") {
+            o.steps = int(args.integer(a));
+        } else if (a == "--orientations") {
+            o.orientations = int(args.integer(a));
+        } else if (a == "--seed") {
+            o.seed = unsigned(args.integer(a));
+        } else if (a == "--testing") {
+            o.testing = parseNodeTesting(args.value(a));
+        } else if (a == "--out") {
+            o.outDir = args.value(a);
+        } else if (a == "--no-plots") {
+            o.plots = false;
+        } else if (a == "-q" || a == "--quiet") {
+            o.quiet = true;
+        } else {
+            throw Error("", "unknown option '" + a + "'", "see lsdem-study two-spheres --help");
+        }
+    }
+    checkTwoSpheresOptions(o);
+    prepareOutputDir(o.outDir);
+
+    const auto start = std::chrono::steady_clock::now();
+    const TwoSpheresResult result = runTwoSpheres(o);
+    const std::string csv = o.outDir + "/two_spheres.csv";
+    writeTwoSpheresCsv(result, o, csv);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    // Summary: P at δ_max per formulation and N at the base stiffness, against the exact value.
+    std::printf("two-spheres: R = %g mm, voxel = %g mm, δ_max = %g mm, %d orientations, %s testing\n",
+                o.radius, o.voxel, o.deltaMax, o.orientations, nodeTestingName(o.testing).c_str());
+    std::printf("%-12s %8s %10s %14s %12s %14s\n", "formulation", "N", "k", "P(δmax) [N]",
+                "spread [N]", "vs exact adapted");
+    for (const TwoSpheresRow& r : result.rows) {
+        if (std::abs(r.delta - o.deltaMax) > 1e-12 * o.deltaMax) continue;
+        const bool base = !o.stiffness.empty() || r.stiffness == defaultStiffness(r.formulation);
+        if (!base) continue;
+        std::printf("%-12s %8.0f %10.3g %14.6g %12.3g", formulationName(r.formulation).c_str(),
+                    r.nodesActual, r.stiffness, r.forceMean, r.forceMax - r.forceMin);
+        if (r.formulation == Formulation::Adapted)
+            std::printf(" %+13.3f %%", 100.0 * (r.forceMean / r.forceExact - 1.0));
+        std::printf("\n");
+    }
+    const NodeCheckStats& s = result.stats;
+    const double contact = std::max(result.contactSeconds, 1e-9);
+    std::printf("time %.2f s (bake %.2f s, contact %.3f s)\n", seconds, result.bakeSeconds,
+                result.contactSeconds);
+    std::printf("node checks: %lld considered (%.3g /s), %lld culled by bounds, %lld sampled "
+                "(%.3g /s), %lld in contact\n",
+                s.nodesConsidered, s.nodesConsidered / contact, s.nodesCulled, s.nodesSampled,
+                s.nodesSampled / contact, s.nodesInContact);
+    std::printf("wrote %s\n", csv.c_str());
+    std::fflush(stdout);  // before the plotting process writes to the same stream
+    if (o.plots) {
+        const int rc = runPlots(LSDEM_PLOT_DIR "/two_spheres.py", csv, o.outDir);
+        if (rc != 0) {
+            std::cerr << "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
+                         "python3-matplotlib); the CSV is complete\n";
+            return 4;
+        }
+    }
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    using namespace lsdem;
+    try {
+        cli::Arguments args(argc, argv);
+        if (args.done()) {
+            std::cerr << kUsage;
+            return 2;
+        }
+        const std::string study = args.next();
+        if (study == "-h" || study == "--help") {
+            std::cout << kUsage;
+            return 0;
+        }
+        if (study == "two-spheres") return twoSpheres(args);
+        throw Error("", "unknown study '" + study + "'", "available: two-spheres");
+    } catch (const Error& e) {
+        std::cerr << "lsdem-study: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "lsdem-study: internal error: " << e.what() << "\n";
+        return 3;
+    }
+}

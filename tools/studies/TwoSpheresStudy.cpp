@@ -1,0 +1,171 @@
+#include "studies/TwoSpheresStudy.h"
+
+#include "lsdem/contact/PairContact.h"
+#include "lsdem/contact/SphereContactReference.h"
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+namespace lsdem {
+
+double defaultStiffness(Formulation f)
+{
+    return (f == Formulation::Original || f == Formulation::SingleNode) ? 1e9 : 1e3;
+}
+
+void checkTwoSpheresOptions(const TwoSpheresOptions& o)
+{
+    auto positive = [](double v, const std::string& option, const std::string& example) {
+        if (!(v > 0.0) || !std::isfinite(v))
+            throw Error("", option + " must be positive and finite", "e.g. " + option + " " + example);
+    };
+    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
+    if (o.nodeCounts.empty()) throw Error("", "--nodes needs at least one count");
+    for (int n : o.nodeCounts)
+        if (n < 20 || n > 5000000)
+            throw Error("", "--nodes " + std::to_string(n) + " is out of range",
+                        "give node counts from 20 to 5e6");
+    for (double k : o.stiffness) positive(k, "--kn", "1e3");
+    for (double f : o.stiffnessFactors) positive(f, "--k-factors", "0.5");
+    positive(o.radius, "--radius", "5");
+    positive(o.voxel, "--voxel", "0.05");
+    positive(o.deltaMax, "--delta-max", "0.1");
+    if (o.deltaMax >= o.radius)
+        throw Error("", "--delta-max must be smaller than the radius (spheres would pass through)");
+    if (o.steps < 1 || o.steps > 100000) throw Error("", "--steps must be 1 to 100000");
+    if (o.orientations < 1 || o.orientations > 1000)
+        throw Error("", "--orientations must be 1 to 1000");
+}
+
+namespace {
+
+/// A uniformly random rotation (Shoemake's method), from a seeded generator.
+Quat randomRotation(std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double u1 = u(rng), u2 = 2 * 3.14159265358979323846 * u(rng), u3 = 2 * 3.14159265358979323846 * u(rng);
+    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
+    return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3))
+        .normalized();
+}
+
+struct Series
+{
+    Formulation formulation;
+    double stiffness;
+};
+
+} // namespace
+
+TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
+{
+    checkTwoSpheresOptions(o);
+    TwoSpheresResult result;
+    // Node count used for the stiffness series: the closest to kSeriesNodes.
+    int kSeriesCount = o.nodeCounts.front();
+    for (int n : o.nodeCounts)
+        if (std::abs(n - o.kSeriesNodes) < std::abs(kSeriesCount - o.kSeriesNodes)) kSeriesCount = n;
+
+    for (int nodes : o.nodeCounts) {
+        const auto bakeStart = std::chrono::steady_clock::now();
+        BakeOptions bake;
+        bake.voxelSize = o.voxel;
+        bake.nodePlacement = NodePlacement::Count;
+        bake.nodeCount = nodes;
+        std::vector<std::string> warnings;
+        const GrainAsset sphere = bakeAnalytic(AnalyticShape::sphere(o.radius), bake, warnings);
+        const auto contactStart = std::chrono::steady_clock::now();
+        result.bakeSeconds += std::chrono::duration<double>(contactStart - bakeStart).count();
+        if (!o.quiet)
+            std::printf("  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes, sphere.nodes.size(),
+                        sphere.spacing.mean);
+
+        std::vector<Series> series;
+        for (Formulation f : o.formulations) {
+            if (!o.stiffness.empty()) {
+                for (double k : o.stiffness) series.push_back({f, k});
+            } else if (nodes == kSeriesCount) {
+                for (double factor : o.stiffnessFactors)
+                    series.push_back({f, factor * defaultStiffness(f)});
+            } else {
+                series.push_back({f, defaultStiffness(f)});
+            }
+        }
+        // P[series][step][orientation]
+        std::vector<std::vector<std::vector<double>>> force(
+            series.size(), std::vector<std::vector<double>>(o.steps + 1));
+        for (int m = 0; m < o.orientations; ++m) {
+            std::mt19937 rng(o.seed * 7919u + unsigned(m));
+            ContactGrain fixed, moved;
+            fixed.asset = moved.asset = &sphere;
+            fixed.index = 0;
+            moved.index = 1;
+            fixed.pose.orientation = randomRotation(rng);
+            moved.pose.orientation = randomRotation(rng);
+            for (int step = 0; step <= o.steps; ++step) {
+                const double delta = o.deltaMax * step / o.steps;
+                moved.pose.position = Vec3(2 * o.radius - delta, 0, 0);
+                for (size_t s = 0; s < series.size(); ++s) {
+                    ContactModel model;
+                    model.formulation = series[s].formulation;
+                    model.normalStiffness = series[s].stiffness;
+                    model.testing = o.testing;
+                    const PairForces f =
+                        computePairContact(fixed, moved, model, 0.0, nullptr, result.stats);
+                    force[s][step].push_back(f.forceOnSecond.x());  // along the centre line
+                }
+            }
+        }
+        for (size_t s = 0; s < series.size(); ++s)
+            for (int step = 0; step <= o.steps; ++step) {
+                const std::vector<double>& p = force[s][step];
+                TwoSpheresRow row;
+                row.formulation = series[s].formulation;
+                row.nodesRequested = nodes;
+                row.nodesActual = double(sphere.nodes.size());
+                row.stiffness = series[s].stiffness;
+                row.delta = o.deltaMax * step / o.steps;
+                double sum = 0, sum2 = 0;
+                row.forceMin = p.front();
+                row.forceMax = p.front();
+                for (double v : p) {
+                    sum += v;
+                    sum2 += v * v;
+                    row.forceMin = std::min(row.forceMin, v);
+                    row.forceMax = std::max(row.forceMax, v);
+                }
+                row.forceMean = sum / p.size();
+                row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
+                row.forceExact = exactSphereContactForce(o.radius, row.delta, row.stiffness);
+                result.rows.push_back(row);
+            }
+        result.contactSeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - contactStart).count();
+    }
+    return result;
+}
+
+void writeTwoSpheresCsv(const TwoSpheresResult& result, const TwoSpheresOptions& o,
+                        const std::string& path)
+{
+    std::ostringstream csv;
+    csv.precision(10);
+    csv << "# lsdem two-spheres study: R=" << o.radius << " mm, voxel=" << o.voxel
+        << " mm, testing=" << nodeTestingName(o.testing) << ", orientations=" << o.orientations
+        << "; force in N, lengths in mm; P_exact is the adapted formulation's continuum limit "
+           "for the row's stiffness\n";
+    csv << "formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact\n";
+    for (const TwoSpheresRow& r : result.rows)
+        csv << formulationName(r.formulation) << ',' << r.nodesRequested << ',' << r.nodesActual
+            << ',' << r.stiffness << ',' << o.voxel << ',' << r.delta << ',' << r.forceMean << ','
+            << r.forceStd << ',' << r.forceMin << ',' << r.forceMax << ',' << r.forceExact << '\n';
+    writeTextFileAtomically(path, csv.str());
+}
+
+} // namespace lsdem

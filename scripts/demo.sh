@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the bundled default case: install dependencies, build, then bake the bundled
 # grains (an analytic sphere and box, and the pebble mesh in assets/meshes) into results/demo/
-# and inspect them (summaries, slice pictures, isosurfaces).
+# and inspect them (summaries, slice pictures, isosurfaces); then run the two-sphere study.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -20,4 +20,7 @@ for grain in sphere box pebble; do
     "$inspect" "$out/$grain.vdb"
     "$inspect" "$out/$grain.vdb" --slice z=0 --png "$out/$grain-z0.png" --mesh "$out/$grain-surface.obj"
 done
-echo "== done: results in $out (open the .png slices; the .obj isosurfaces load in any viewer)"
+echo "== two-sphere study (Feldfogel et al. 2024, Fig. 1 and 3)"
+build/tools/lsdem-study two-spheres --out results/two-spheres
+echo "== done: assets in $out (open the .png slices; the .obj isosurfaces load in any viewer),"
+echo "   two-sphere study in results/two-spheres (two_spheres.csv and *.png)"

@@ -53,7 +53,7 @@ std::string quoteArgs(int argc, char** argv)
 int main(int argc, char** argv)
 {
     using namespace lsdem;
-    try {
+    return cli::runTool("lsdem-bake", [&]() -> int {
         cli::Arguments args(argc, argv);
         std::string meshPath, outputPath;
         std::optional<AnalyticShape> shape;
@@ -154,11 +154,5 @@ int main(int argc, char** argv)
                         asset.mass.inertia(2, 2));
         }
         return 0;
-    } catch (const Error& e) {
-        std::cerr << "lsdem-bake: error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "lsdem-bake: internal error: " << e.what() << "\n";
-        return 3;
-    }
+    });
 }

@@ -156,7 +156,7 @@ void printText(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& 
 int main(int argc, char** argv)
 {
     using namespace lsdem;
-    try {
+    return cli::runTool("lsdem-inspect", [&]() -> int {
         cli::Arguments args(argc, argv);
         std::string path, pngPath, meshPath;
         std::optional<SliceSpec> slice;
@@ -223,11 +223,5 @@ int main(int argc, char** argv)
             else printText(target, report);
         }
         return 0;
-    } catch (const Error& e) {
-        std::cerr << "lsdem-inspect: error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "lsdem-inspect: internal error: " << e.what() << "\n";
-        return 3;
-    }
+    });
 }

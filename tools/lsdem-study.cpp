@@ -173,7 +173,7 @@ int twoSpheres(lsdem::cli::Arguments& args)
 int main(int argc, char** argv)
 {
     using namespace lsdem;
-    try {
+    return cli::runTool("lsdem-study", [&]() -> int {
         cli::Arguments args(argc, argv);
         if (args.done()) {
             std::cerr << kUsage;
@@ -186,11 +186,5 @@ int main(int argc, char** argv)
         }
         if (study == "two-spheres") return twoSpheres(args);
         throw Error("", "unknown study '" + study + "'", "available: two-spheres");
-    } catch (const Error& e) {
-        std::cerr << "lsdem-study: error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "lsdem-study: internal error: " << e.what() << "\n";
-        return 3;
-    }
+    });
 }

@@ -1,6 +1,7 @@
 #include "lsdem/ls/AnalyticShape.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/GaussLegendre.h"
 
 #include <Eigen/Geometry>
 
@@ -66,32 +67,6 @@ Vec3 closestPointOnEllipsoid(const Vec3& p, const Vec3& e)
     Vec3 x;
     for (int k = 0; k < 3; ++k) x[k] = sign[k] * e2[k] * y[k] / (s + shift[k]);
     return x;
-}
-
-/// Gauss–Legendre nodes and weights on [-1, 1] (Newton on the Legendre recurrence).
-void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w)
-{
-    x.assign(n, 0.0);
-    w.assign(n, 0.0);
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-        double dp = 0.0;
-        for (int iter = 0; iter < 100; ++iter) {
-            double p0 = 1.0, p1 = 0.0;
-            for (int j = 1; j <= n; ++j) {
-                const double p2 = p1;
-                p1 = p0;
-                p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-            }
-            dp = n * (z * p0 - p1) / (z * z - 1.0);
-            const double dz = p0 / dp;
-            z -= dz;
-            if (std::abs(dz) < 1e-16) break;
-        }
-        x[i] = -z;
-        x[n - 1 - i] = z;
-        w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
-    }
 }
 
 /// A unit icosphere: the icosahedron with each face cut into n^2 triangles, projected.

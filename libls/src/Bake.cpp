@@ -96,6 +96,18 @@ TriangleMesh nodeMesh(const TriangleMesh& surface, const BakeOptions& o)
     return best;
 }
 
+/// Mark @a grid as a level set and wrap it with its index-space origin and voxel size.
+std::shared_ptr<const LevelSetGrid> wrapLevelSet(const openvdb::FloatGrid::Ptr& grid,
+                                                 const Vec3& origin, double voxelSize)
+{
+    grid->setGridClass(openvdb::GRID_LEVEL_SET);
+    auto levelSet = std::make_shared<LevelSetGrid>();
+    levelSet->grid = grid;
+    levelSet->origin = origin;
+    levelSet->voxelSize = voxelSize;
+    return levelSet;
+}
+
 /// Shared by both bake paths once nodes and the level set exist.
 void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::string>& warnings)
 {
@@ -171,12 +183,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
     auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
         *xform, points, triangles, {}, float(options.exteriorBandVoxels),
         std::numeric_limits<float>::max());
-    grid->setGridClass(openvdb::GRID_LEVEL_SET);
-    auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = grid;
-    levelSet->origin = origin;
-    levelSet->voxelSize = vox;
-    asset.levelSet = levelSet;
+    asset.levelSet = wrapLevelSet(grid, origin, vox);
 
     const TriangleMesh surface =
         options.nodePlacement == NodePlacement::MeshVertices ? mesh : nodeMesh(mesh, options);
@@ -226,12 +233,7 @@ GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
     auto grid = openvdb::FloatGrid::create(background);
     openvdb::tools::copyFromDense(dense, *grid, /*tolerance=*/0.0f);
     grid->setTransform(makeGridTransform(vox, origin));
-    grid->setGridClass(openvdb::GRID_LEVEL_SET);
-    auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = grid;
-    levelSet->origin = origin;
-    levelSet->voxelSize = vox;
-    asset.levelSet = levelSet;
+    asset.levelSet = wrapLevelSet(grid, origin, vox);
 
     // Nodes: a box keeps its structured face grids (edges and corners exact); curved shapes
     // are remeshed isotropically and projected back onto the exact surface.

@@ -2,6 +2,8 @@
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/MeshValidation.h"
 
+#include "support/TestMeshes.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -21,30 +23,9 @@ using lsdem::Vec3;
 
 namespace {
 
-/// Axis-aligned box from @a lo to @a hi: 8 vertices, 12 outward triangles.
-TriangleMesh makeBox(const Vec3& lo, const Vec3& hi)
-{
-    TriangleMesh mesh;
-    for (int i = 0; i < 8; ++i)
-        mesh.vertices.emplace_back(i & 1 ? hi.x() : lo.x(), i & 2 ? hi.y() : lo.y(),
-                                   i & 4 ? hi.z() : lo.z());
-    const Vec3 centre = 0.5 * (lo + hi);
-    for (int axis = 0; axis < 3; ++axis)
-        for (int side = 0; side < 2; ++side) {
-            // The four corners of this face in cyclic order: bits of the two other axes.
-            const int b = 1 << ((axis + 1) % 3), c = 1 << ((axis + 2) % 3), a = side << axis;
-            const std::array<int, 4> quad{a, a | b, a | b | c, a | c};
-            for (const auto& tri : {std::array<int, 3>{quad[0], quad[1], quad[2]},
-                                    std::array<int, 3>{quad[0], quad[2], quad[3]}}) {
-                const Vec3& p = mesh.vertices[tri[0]];
-                const Vec3 n = (mesh.vertices[tri[1]] - p).cross(mesh.vertices[tri[2]] - p);
-                // Outward means the normal points away from the centre.
-                if (n.dot(p - centre) > 0) mesh.triangles.push_back(tri);
-                else mesh.triangles.push_back({tri[0], tri[2], tri[1]});
-            }
-        }
-    return mesh;
-}
+using lsdem::test::makeBox;
+using lsdem::test::makeIcosphere;
+using lsdem::test::signedVolume;
 
 /// @a b appended to @a a, with vertices of equal position shared.
 TriangleMesh mergeWelded(const TriangleMesh& a, const TriangleMesh& b)
@@ -75,14 +56,6 @@ TriangleMesh reversed(TriangleMesh mesh)
 {
     for (auto& t : mesh.triangles) flip(t);
     return mesh;
-}
-
-double signedVolume(const TriangleMesh& mesh)
-{
-    double sum = 0.0;
-    for (const auto& t : mesh.triangles)
-        sum += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
-    return sum / 6.0;
 }
 
 using Corner = std::array<double, 3>;

@@ -7,6 +7,7 @@
 #include "lsdem/ls/Error.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -56,5 +57,21 @@ private:
     std::vector<std::string> mArgs;
     size_t mPos = 0;
 };
+
+/// Run a tool's @a body, turning exceptions into one clear message and the exit codes the
+/// tools document: 1 for bad input (lsdem::Error), 3 for an internal error.
+template <typename Body>
+int runTool(const char* toolName, Body body)
+{
+    try {
+        return body();
+    } catch (const Error& e) {
+        std::fprintf(stderr, "%s: error: %s\n", toolName, e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: internal error: %s\n", toolName, e.what());
+        return 3;
+    }
+}
 
 } // namespace lsdem::cli

@@ -1,0 +1,31 @@
+#include "lsdem/contact/PlaneContact.h"
+
+namespace lsdem {
+
+void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& plane,
+                       std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    if (plane.signedDistance(pose.position) > a.boundingRadius) {  // the whole grain is clear
+        stats.nodesCulled += count;
+        return;
+    }
+    const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
+    for (int i = 0; i < static_cast<int>(count); ++i) {
+        const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+        ++stats.nodesSampled;
+        const double distance = plane.signedDistance(x);
+        if (!(distance < 0.0)) continue;
+        ++stats.nodesInContact;
+        NodeContact c;
+        c.node = i;
+        c.depth = -distance;
+        c.normal = plane.normal;
+        c.point = x + 0.5 * c.depth * plane.normal;
+        c.area = a.nodes.areas[i];
+        out.push_back(c);
+    }
+}
+
+} // namespace lsdem

@@ -32,8 +32,8 @@ InspectionTarget openForInspection(const std::string& path)
     target.path = path;
     openvdb::FloatGrid::Ptr chosen;
     for (const auto& grid : *grids) {
-        if (grid->metaCount() && grid->getName() == "phi" &&
-            grid->template metaValue<std::string>("lsdem_format") == "lsdem-grain-asset") {
+        const auto format = grid->getMetadata<openvdb::StringMetadata>("lsdem_format");
+        if (grid->getName() == "phi" && format && format->value() == "lsdem-grain-asset") {
             target.asset = loadAsset(path);
             target.levelSet = target.asset->levelSet;
             target.gridName = "phi";

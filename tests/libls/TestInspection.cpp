@@ -86,11 +86,11 @@ TEST(Inspection, ForeignLevelSetIsSummarisedWithoutNodes)
     initializeOpenVdb();
     const float radius = 1.5f, vox = 0.05f;
     auto sphere = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(radius, {0.5f, 0, 0}, vox);
-    sphere->setName("surface");
+    sphere->setName("phi");  // the asset's grid name, but none of its metadata
     openvdb::io::File(dir.file("foreign.vdb")).write({sphere});
     const InspectionTarget t = openForInspection(dir.file("foreign.vdb"));
     EXPECT_FALSE(t.asset);
-    EXPECT_EQ(t.gridName, "surface");
+    EXPECT_EQ(t.gridName, "phi");
     const InspectionReport r = inspect(t);
     EXPECT_EQ(r.nodeCount, 0u);
     const double area = 4 * kPi * radius * radius;

@@ -116,8 +116,11 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
                                static_cast<int>((p.y() - lo.y()) / cell),
                                static_cast<int>((p.z() - lo.z()) / cell));
     };
+    // Pack three cell coordinates (each offset by one so the -1 neighbours of the first
+    // cell stay non-negative) into 21 bits apiece; shifting unsigned values is well defined.
     auto key = [](const Eigen::Vector3i& c) {
-        return (int64_t(c.x()) << 42) ^ (int64_t(c.y()) << 21) ^ int64_t(c.z());
+        const auto field = [](int v) { return uint64_t(int64_t(v) + 1) & 0x1FFFFFu; };
+        return int64_t((field(c.x()) << 42) | (field(c.y()) << 21) | field(c.z()));
     };
     std::unordered_map<int64_t, std::vector<int>> grid;
     for (size_t i = 0; i < n; ++i) grid[key(cellOf(nodes.positions[i]))].push_back(int(i));

@@ -1,0 +1,60 @@
+/// @file VtkSeries.h
+/// @brief A ParaView time series: one `.pvd` collection naming, per output step, a `.vtu` file
+///        of every grain's surface (its asset's zero isosurface, posed) and a `.vtu` file of
+///        the contact forces as points with force vectors. Every file is written atomically
+///        and the `.pvd` is rewritten after each frame, so an interrupted run leaves a valid
+///        series of the frames written so far.
+#pragma once
+
+#include "lsdem/contact/RigidPose.h"
+
+#include <string>
+#include <vector>
+#include <utility>
+
+namespace lsdem {
+
+/// One grain in a frame: its surface in the asset frame (shared by all grains of the asset)
+/// and where it is.
+struct VtkGrain
+{
+    const TriangleMesh* surface = nullptr;
+    RigidPose pose;
+    int id = 0;
+    Vec3 velocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+};
+
+/// One contact force, as it acts on grain @a grain (boundaries: -1 - boundary index).
+struct VtkForcePoint
+{
+    Vec3 point = Vec3::Zero();
+    Vec3 force = Vec3::Zero();
+    int grain = 0;
+};
+
+class VtkSeries
+{
+public:
+    /// Frames go to @a directory as `<baseName>_grains_<frame>.vtu` and
+    /// `<baseName>_contacts_<frame>.vtu`, listed in `<baseName>.pvd`.
+    VtkSeries(std::string directory, std::string baseName);
+
+    /// Write frame number @a frame (0, 1, 2, ...) at simulated @a time and rewrite the .pvd.
+    /// Frames numbered @a frame and above that were listed before are dropped from the .pvd
+    /// (a restart rewrites them).
+    void writeFrame(int frame, double time, const std::vector<VtkGrain>& grains,
+                    const std::vector<VtkForcePoint>& forces);
+
+    int framesWritten() const { return static_cast<int>(mTimes.size()); }
+
+    /// The times of the frames listed so far (kept in checkpoints) and, on restart, restored.
+    const std::vector<double>& frameTimes() const { return mTimes; }
+    void restoreFrameTimes(std::vector<double> times) { mTimes = std::move(times); }
+
+private:
+    std::string mDirectory, mBaseName;
+    std::vector<double> mTimes;  ///< time of each frame listed in the .pvd
+};
+
+} // namespace lsdem

@@ -1,0 +1,1 @@
+#include "lsdem/contact/SceneFile.h"

@@ -1,0 +1,2 @@
+#include "lsdem/contact/SceneFile.h"
+#include <gtest/gtest.h>

@@ -1,0 +1,2 @@
+#include "lsdem/contact/VtkSeries.h"
+#include <gtest/gtest.h>

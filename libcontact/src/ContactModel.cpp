@@ -2,6 +2,8 @@
 
 #include "lsdem/ls/Error.h"
 
+#include <cmath>
+
 namespace lsdem {
 
 std::string formulationName(Formulation f)
@@ -34,6 +36,13 @@ NodeTesting parseNodeTesting(const std::string& name)
     if (name == "one-way") return NodeTesting::OneWay;
     if (name == "symmetric") return NodeTesting::Symmetric;
     throw Error("", "unknown node testing '" + name + "'", "use one-way or symmetric");
+}
+
+double dampingRatioFromRestitution(double restitution)
+{
+    const double logE = std::log(restitution);
+    const double pi = 3.14159265358979323846;
+    return -logE / std::sqrt(pi * pi + logE * logE);
 }
 
 std::string stiffnessUnit(Formulation f)

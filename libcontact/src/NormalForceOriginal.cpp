@@ -6,7 +6,7 @@ void normalForcesOriginal(const std::vector<NodeContact>& contacts, double kn, d
                           std::vector<PointForce>& out)
 {
     for (const NodeContact& c : contacts)
-        out.push_back({c.node, (weight * kn * c.depth) * c.normal, c.point});
+        out.push_back({c.node, (weight * kn * c.depth) * c.normal, c.point, weight * kn});
 }
 
 } // namespace lsdem

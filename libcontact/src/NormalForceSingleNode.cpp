@@ -10,7 +10,7 @@ void normalForcesSingleNode(const std::vector<NodeContact>& contacts, double kn,
     for (const NodeContact& c : contacts)
         if (c.depth > deepest->depth) deepest = &c;  // first of equals: deterministic
     out.push_back({deepest->node, (weight * kn * deepest->depth) * deepest->normal,
-                   deepest->point});
+                   deepest->point, weight * kn});
 }
 
 } // namespace lsdem

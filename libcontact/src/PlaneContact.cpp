@@ -16,7 +16,7 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
         const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
         ++stats.nodesSampled;
         const double distance = plane.signedDistance(x);
-        if (!(distance < 0.0)) continue;
+        if (!(distance < 0.0) || !plane.withinPatch(x, distance)) continue;
         ++stats.nodesInContact;
         NodeContact c;
         c.node = i;

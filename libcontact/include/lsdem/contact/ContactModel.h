@@ -28,7 +28,15 @@ struct ContactModel
     double normalStiffness = 0.0;  ///< kn or kn* (see Formulation for units)
     double shearStiffness = 0.0;   ///< ks (force/length) or ks* (force/length³), per node
     double friction = 0.0;         ///< Coulomb coefficient μ
+    /// Viscous normal damping as a fraction β of critical damping (0: none). A contact of
+    /// total normal stiffness K between effective mass m gets the dashpot 2β·sqrt(m·K),
+    /// shared between its point forces in proportion to their stiffness.
+    double dampingRatio = 0.0;
 };
+
+/// β for a linear spring-dashpot whose rebound speed is @a restitution times the impact speed:
+/// β = -ln e / sqrt(π² + ln² e). @a restitution in (0, 1]; 1 gives 0.
+double dampingRatioFromRestitution(double restitution);
 
 /// "original", "adapted", "single-node", "volume".
 std::string formulationName(Formulation f);

@@ -17,6 +17,9 @@ struct PointForce
     int node = -1;
     Vec3 force = Vec3::Zero();
     Vec3 point = Vec3::Zero();
+    /// dF/dd of the normal law that made it (force/length): for contact damping, the
+    /// elastic energy ½|F|²/k and the stable time step.
+    double stiffness = 0.0;
 };
 
 /// kn·d_a·n_a at each node (original LS-DEM, Kawamoto et al. 2016).

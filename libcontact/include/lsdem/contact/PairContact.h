@@ -1,28 +1,15 @@
 /// @file PairContact.h
-/// @brief The whole contact between two grains: narrow phase in one or both directions, the
-///        normal law of the chosen formulation, per-node shear with history, and the resulting
-///        forces and torques on both grains (equal and opposite forces; torques about each
-///        grain's centroid).
+/// @brief The whole contact between two grains: narrow phase in one or both directions, then
+///        the contact law (ContactLaw.h): forces and torques on both grains (equal and
+///        opposite forces; torques about each grain's centroid).
 #pragma once
 
-#include "lsdem/contact/ContactModel.h"
-#include "lsdem/contact/NodeContact.h"
-#include "lsdem/contact/NormalForce.h"
+#include "lsdem/contact/ContactLaw.h"
 
 #include <map>
 #include <vector>
 
 namespace lsdem {
-
-/// A grain as the contact sees it.
-struct ContactGrain
-{
-    const GrainAsset* asset = nullptr;
-    RigidPose pose;
-    Vec3 velocity = Vec3::Zero();         ///< of the centroid, world
-    Vec3 angularVelocity = Vec3::Zero();  ///< world
-    int index = 0;                        ///< breaks one-way ties: the lower index tests
-};
 
 /// Shear forces carried over between steps, per node, for each direction of testing.
 /// std::map keeps iteration (and so any output) in node order.
@@ -30,13 +17,8 @@ struct PairHistory
 {
     std::map<int, Vec3> shearOnFirstNodes;   ///< nodes of the pair's first grain in the second
     std::map<int, Vec3> shearOnSecondNodes;  ///< nodes of the second grain in the first
-};
 
-struct PairForces
-{
-    Vec3 forceOnFirst = Vec3::Zero(), torqueOnFirst = Vec3::Zero();
-    Vec3 forceOnSecond = Vec3::Zero(), torqueOnSecond = Vec3::Zero();
-    int contactNodes = 0;  ///< penetrating nodes, both directions
+    bool empty() const { return shearOnFirstNodes.empty() && shearOnSecondNodes.empty(); }
 };
 
 /// Compute the contact of @a first and @a second.

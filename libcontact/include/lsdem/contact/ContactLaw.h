@@ -1,0 +1,65 @@
+/// @file ContactLaw.h
+/// @brief From penetrating nodes to forces: the normal law of the formulation, the per-node
+///        shear springs with history, and viscous normal damping, applied to one contact seen
+///        from one or two sides (one-way or symmetric node testing). Used for grain–grain and
+///        grain–boundary contacts alike.
+#pragma once
+
+#include "lsdem/contact/ContactModel.h"
+#include "lsdem/contact/NodeContact.h"
+#include "lsdem/contact/NormalForce.h"
+
+#include <map>
+#include <vector>
+
+namespace lsdem {
+
+/// A body as a contact sees it: a grain, or a boundary (asset may then be null).
+struct ContactGrain
+{
+    const GrainAsset* asset = nullptr;
+    RigidPose pose;
+    Vec3 velocity = Vec3::Zero();         ///< of the centroid (reference point), world
+    Vec3 angularVelocity = Vec3::Zero();  ///< world
+    int index = 0;                        ///< breaks one-way ties: the lower index tests
+    double mass = 0.0;                    ///< for contact damping; 0: immovable
+
+    /// Velocity of the material point at world point @a p.
+    Vec3 pointVelocity(const Vec3& p) const
+    {
+        return velocity + angularVelocity.cross(p - pose.position);
+    }
+};
+
+/// The nodes of @a tester found inside @a other, with the shear history of those nodes.
+struct ContactSide
+{
+    const ContactGrain* tester = nullptr;
+    const ContactGrain* other = nullptr;
+    std::vector<NodeContact> contacts;
+    double weight = 1.0;                 ///< 1/2 per side in symmetric testing
+    std::map<int, Vec3>* history = nullptr;  ///< per-node shear; null: no shear carried over
+};
+
+/// The result of one contact, for the two bodies it joins (first = the first side's tester).
+struct PairForces
+{
+    Vec3 forceOnFirst = Vec3::Zero(), torqueOnFirst = Vec3::Zero();
+    Vec3 forceOnSecond = Vec3::Zero(), torqueOnSecond = Vec3::Zero();
+    int contactNodes = 0;       ///< penetrating nodes, all sides
+    int pointForcesOnFirst = 0; ///< of the point forces appended, how many (leading) act on first
+    double elasticEnergy = 0.0; ///< Σ ½|F_n|²/k_n + ½|F_t|²/k_t over the point forces
+    /// Σ k·n nᵀ of the normal point forces: the translational contact stiffness that both
+    /// bodies feel (for the stability check of the time step).
+    Mat3 normalStiffness = Mat3::Zero();
+};
+
+/// Turn the sides of one contact into forces. The sides' testers must be the same two bodies
+/// (side 0: first tests second; side 1, if any: second tests first). Each side's history is
+/// replaced by the shear of the nodes now in contact. @a dt is the step over which the
+/// relative motion slipped (0: no shear update).
+/// @param allForces if not null, receives each point force as it acts on its side's tester
+PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
+                          double dt, std::vector<PointForce>* allForces);
+
+} // namespace lsdem

@@ -1,0 +1,116 @@
+#include "lsdem/contact/Boundary.h"
+
+namespace lsdem {
+
+namespace {
+
+Plane movedPlane(const Boundary& b)
+{
+    Plane p = b.plane;
+    p.point += b.displacement;
+    return p;
+}
+
+RigidPose movedPose(const Boundary& b)
+{
+    RigidPose p = b.pose;
+    p.position += b.displacement;
+    return p;
+}
+
+/// Nodes of @a a inside the sphere (centre @a c, radius @a r): depth r - |x - c|.
+void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& c, double r,
+                        std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    if ((pose.position - c).norm() > a.boundingRadius + r) {
+        stats.nodesCulled += count;
+        return;
+    }
+    const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
+    for (int i = 0; i < static_cast<int>(count); ++i) {
+        const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+        ++stats.nodesSampled;
+        const Vec3 offset = x - c;
+        const double distance = offset.norm();
+        if (!(distance < r) || distance == 0.0) continue;
+        ++stats.nodesInContact;
+        NodeContact nc;
+        nc.node = i;
+        nc.depth = r - distance;
+        nc.normal = offset / distance;
+        nc.point = x + 0.5 * nc.depth * nc.normal;
+        nc.area = a.nodes.areas[i];
+        out.push_back(nc);
+    }
+}
+
+} // namespace
+
+Vec3 Boundary::referencePoint() const
+{
+    switch (shape) {
+    case BoundaryShape::Plane: return plane.point + displacement;
+    case BoundaryShape::Sphere: return center + displacement;
+    case BoundaryShape::LevelSet: return pose.position + displacement;
+    }
+    return displacement;
+}
+
+bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
+{
+    switch (shape) {
+    case BoundaryShape::Plane: {
+        const Plane p = movedPlane(*this);
+        const double distance = p.signedDistance(grainCenter);
+        if (distance > grainRadius || distance < -grainRadius - p.thickness) return false;
+        if (!p.bounded()) return true;
+        const Vec3 offset = grainCenter - p.point;
+        return std::abs(offset.dot(p.axisU)) <= p.halfU + grainRadius &&
+               std::abs(offset.dot(p.normal.cross(p.axisU))) <= p.halfV + grainRadius;
+    }
+    case BoundaryShape::Sphere:
+        return (grainCenter - (center + displacement)).norm() <= radius + grainRadius;
+    case BoundaryShape::LevelSet:
+        return (grainCenter - (pose.position + displacement)).norm() <=
+               asset->boundingRadius + grainRadius;
+    }
+    return false;
+}
+
+Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset> asset)
+{
+    Boundary b;
+    b.name = spec.name;
+    b.shape = spec.shape;
+    b.material = spec.material;
+    b.velocity = spec.velocity;
+    b.plane.point = spec.point;
+    b.plane.normal = spec.normal.normalized();
+    b.plane.axisU = spec.axisU;
+    if (spec.extentU > 0.0) b.plane.halfU = 0.5 * spec.extentU;
+    if (spec.extentV > 0.0) b.plane.halfV = 0.5 * spec.extentV;
+    if (spec.thickness > 0.0) b.plane.thickness = spec.thickness;
+    b.center = spec.center;
+    b.radius = spec.radius;
+    b.asset = std::move(asset);
+    b.pose = spec.pose;
+    return b;
+}
+
+void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
+                          std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    switch (b.shape) {
+    case BoundaryShape::Plane: findPlaneContacts(a, pose, movedPlane(b), out, stats); return;
+    case BoundaryShape::Sphere:
+        findSphereContacts(a, pose, b.center + b.displacement, b.radius, out, stats);
+        return;
+    case BoundaryShape::LevelSet:
+        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats);
+        return;
+    }
+}
+
+} // namespace lsdem

@@ -1,0 +1,104 @@
+#include "lsdem/contact/ContactLaw.h"
+
+#include "lsdem/contact/ShearSpring.h"
+
+#include <cmath>
+
+namespace lsdem {
+
+namespace {
+
+bool hasPerNodeShear(const ContactModel& model)
+{
+    return (model.formulation == Formulation::Original ||
+            model.formulation == Formulation::Adapted) &&
+           model.friction > 0.0 && model.shearStiffness > 0.0;
+}
+
+/// The mass that the contact's dashpot acts on: the reduced mass of two free bodies, or the
+/// free one's mass against an immovable one (0 when neither can move).
+double effectiveMass(const ContactGrain& a, const ContactGrain& b)
+{
+    if (a.mass > 0.0 && b.mass > 0.0) return a.mass * b.mass / (a.mass + b.mass);
+    return std::max(a.mass, b.mass);
+}
+
+} // namespace
+
+PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
+                          double dt, std::vector<PointForce>* allForces)
+{
+    PairForces result;
+    const ContactGrain* first = sides[0].tester;
+
+    // The normal laws first, for every side, so that the dashpot sees the whole contact's
+    // stiffness K (both directions of symmetric testing together).
+    std::vector<std::vector<PointForce>> normal(sideCount);
+    double totalStiffness = 0.0;
+    for (int s = 0; s < sideCount; ++s) {
+        normalForces(model.formulation, sides[s].contacts, model.normalStiffness,
+                     sides[s].weight, normal[s]);
+        for (const PointForce& f : normal[s]) totalStiffness += f.stiffness;
+        result.contactNodes += static_cast<int>(sides[s].contacts.size());
+    }
+    // c_f = 2β·sqrt(m/K)·k_f: the dashpots add up to 2β·sqrt(m·K), shared by stiffness.
+    double dashpotPerStiffness = 0.0;
+    if (model.dampingRatio > 0.0 && totalStiffness > 0.0)
+        dashpotPerStiffness = 2.0 * model.dampingRatio *
+                              std::sqrt(effectiveMass(*sides[0].tester, *sides[0].other) /
+                                        totalStiffness);
+    const bool perNodeShear = hasPerNodeShear(model);
+
+    for (int s = 0; s < sideCount; ++s) {
+        ContactSide& side = sides[s];
+        std::vector<PointForce>& forces = normal[s];
+        std::map<int, Vec3> nextHistory;
+        for (size_t k = 0; k < forces.size(); ++k) {
+            PointForce& f = forces[k];
+            const double size = f.force.norm();
+            if (size == 0.0 || f.stiffness <= 0.0) continue;
+            const Vec3 n = f.force / size;
+            result.elasticEnergy += 0.5 * size * size / f.stiffness;
+            result.normalStiffness += f.stiffness * n * n.transpose();
+            const Vec3 relativeVelocity =
+                side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
+            Vec3 total = f.force;
+            if (dashpotPerStiffness > 0.0)
+                total -= (dashpotPerStiffness * f.stiffness * relativeVelocity.dot(n)) * n;
+            if (perNodeShear && side.history) {
+                // Per-node laws give forces[k] for contacts[k]. Nodes that left contact lose
+                // their history; nodes that entered start from zero.
+                const NodeContact& c = side.contacts[k];
+                const auto found = side.history->find(c.node);
+                const Vec3 stored = found == side.history->end() ? Vec3::Zero() : found->second;
+                const double shearStiffness =
+                    side.weight * model.shearStiffness *
+                    (model.formulation == Formulation::Adapted ? c.area : 1.0);
+                const Vec3 shear = updateShearForce(stored, c.normal, relativeVelocity * dt,
+                                                    shearStiffness, model.friction * size);
+                nextHistory.emplace(c.node, shear);
+                total += shear;
+                result.elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
+            }
+            f.force = total;
+        }
+        if (side.history) side.history->swap(nextHistory);
+
+        const bool testerIsFirst = side.tester == first;
+        Vec3& forceOnTester = testerIsFirst ? result.forceOnFirst : result.forceOnSecond;
+        Vec3& torqueOnTester = testerIsFirst ? result.torqueOnFirst : result.torqueOnSecond;
+        Vec3& forceOnOther = testerIsFirst ? result.forceOnSecond : result.forceOnFirst;
+        Vec3& torqueOnOther = testerIsFirst ? result.torqueOnSecond : result.torqueOnFirst;
+        for (const PointForce& f : forces) {
+            forceOnTester += f.force;
+            torqueOnTester += (f.point - side.tester->pose.position).cross(f.force);
+            forceOnOther -= f.force;
+            torqueOnOther -= (f.point - side.other->pose.position).cross(f.force);
+        }
+        if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
+        if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
+    }
+    return result;
+}
+
+} // namespace lsdem

@@ -1,0 +1,337 @@
+#include "lsdem/contact/Simulation.h"
+
+#include "lsdem/contact/BroadPhase.h"
+#include "lsdem/ls/Error.h"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+ContactGrain contactView(const Grain& g, int index)
+{
+    ContactGrain c;
+    c.asset = g.asset.get();
+    c.pose = g.body.pose;
+    c.velocity = g.motion == GrainMotion::Fixed ? Vec3::Zero() : g.body.velocity;
+    c.angularVelocity = g.angularVelocity();
+    c.index = index;
+    c.mass = g.isFree() ? g.body.mass : 0.0;
+    return c;
+}
+
+ContactGrain contactView(const Boundary& b)
+{
+    ContactGrain c;
+    c.asset = b.asset.get();
+    c.pose.position = b.referencePoint();
+    c.pose.orientation = b.pose.orientation;
+    c.velocity = b.velocity;
+    c.mass = 0.0;
+    return c;
+}
+
+/// One contact to evaluate: a grain pair (boundary < 0) or a grain and a boundary.
+struct ContactSlot
+{
+    int first = 0, second = -1, boundary = -1;
+    PairHistory* pairHistory = nullptr;
+    std::map<int, Vec3>* boundaryHistory = nullptr;
+    PairForces result;
+    NodeCheckStats stats;
+    std::vector<PointForce> forces;
+};
+
+/// Turn a prescribed grain by ω·dt (exact rotation about a fixed world axis).
+void rotateBy(Quat& orientation, const Vec3& omega, double dt)
+{
+    const double angle = omega.norm() * dt;
+    if (angle == 0.0) return;
+    orientation = (Quat(Eigen::AngleAxisd(angle, omega.normalized())) * orientation).normalized();
+}
+
+/// YADE's non-viscous damping: each component loses λ·|F| against the motion.
+Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
+{
+    Vec3 damped = force;
+    for (int k = 0; k < 3; ++k) {
+        const double sign = force[k] * velocity[k] > 0.0 ? 1.0 : force[k] * velocity[k] < 0.0 ? -1.0 : 0.0;
+        damped[k] = force[k] * (1.0 - lambda * sign);
+    }
+    return damped;
+}
+
+} // namespace
+
+Simulation::Simulation(World world, double dt, bool evaluateInitialForces)
+    : mWorld(std::move(world)), mDt(dt), mStabilityLimit(std::numeric_limits<double>::infinity())
+{
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error("", "the time step must be a positive number", "check time_step");
+    if (evaluateInitialForces) {
+        evaluateForces(0.0);
+        const Energies e = energies();
+        mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
+    }
+}
+
+void Simulation::step()
+{
+    const double dt = mDt;
+    const auto integrateStart = Clock::now();
+    // Work of moving boundaries and prescribed grains: trapezoid over the step.
+    double workBefore = 0.0;
+    for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
+    for (const Grain& g : mWorld.grains)
+        if (g.motion == GrainMotion::Prescribed)
+            workBefore -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+
+    for (Grain& g : mWorld.grains) {
+        switch (g.motion) {
+        case GrainMotion::Free:
+            kick(g.body, g.force, g.torque, 0.5 * dt);
+            drift(g.body, dt);
+            break;
+        case GrainMotion::Prescribed:
+            g.body.pose.position += g.body.velocity * dt;
+            rotateBy(g.body.pose.orientation, g.prescribedAngularVelocity, dt);
+            break;
+        case GrainMotion::Fixed: break;
+        }
+    }
+    for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
+    mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
+    ++mWorld.step;
+    mCounters.integrateSeconds += secondsSince(integrateStart);
+
+    evaluateForces(dt);
+
+    const auto kickStart = Clock::now();
+    for (Grain& g : mWorld.grains)
+        if (g.isFree()) kick(g.body, g.force, g.torque, 0.5 * dt);
+    double workAfter = 0.0;
+    for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
+    for (const Grain& g : mWorld.grains)
+        if (g.motion == GrainMotion::Prescribed)
+            workAfter -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
+    ++mCounters.steps;
+    checkStability();
+    mCounters.integrateSeconds += secondsSince(kickStart);
+}
+
+void Simulation::evaluateForces(double slipStep)
+{
+    World& w = mWorld;
+    const int n = static_cast<int>(w.grains.size());
+    const auto broadStart = Clock::now();
+
+    std::vector<Vec3> centers(n);
+    std::vector<double> radii(n);
+    std::vector<ContactGrain> views(n);
+    for (int i = 0; i < n; ++i) {
+        centers[i] = w.grains[i].body.pose.position;
+        radii[i] = w.grains[i].asset->boundingRadius;
+        views[i] = contactView(w.grains[i], i);
+    }
+    std::vector<ContactSlot> slots;
+    // Grain pairs: candidates whose bounding spheres overlap, unless neither can move.
+    std::map<std::pair<int, int>, PairHistory> keptPairs;
+    for (const auto& [i, j] : findCandidatePairs(centers, radii)) {
+        if (!w.grains[i].isFree() && !w.grains[j].isFree()) continue;
+        ContactSlot s;
+        s.first = i;
+        s.second = j;
+        slots.push_back(std::move(s));
+        auto old = w.pairHistory.find({i, j});
+        if (old != w.pairHistory.end()) keptPairs.emplace(old->first, std::move(old->second));
+    }
+    // History of pairs that drifted apart is dropped; std::map nodes do not move, so the
+    // slots can point into it while the threads work.
+    w.pairHistory.swap(keptPairs);
+    for (ContactSlot& s : slots) s.pairHistory = &w.pairHistory[{s.first, s.second}];
+    const size_t pairSlots = slots.size();
+    // Grains near boundaries.
+    std::map<std::pair<int, int>, std::map<int, Vec3>> keptBoundary;
+    for (int i = 0; i < n; ++i) {
+        if (!w.grains[i].isFree()) continue;
+        for (int b = 0; b < static_cast<int>(w.boundaries.size()); ++b) {
+            if (!w.boundaries[b].mayTouch(centers[i], radii[i])) continue;
+            ContactSlot s;
+            s.first = i;
+            s.boundary = b;
+            slots.push_back(std::move(s));
+            auto old = w.boundaryHistory.find({i, b});
+            if (old != w.boundaryHistory.end())
+                keptBoundary.emplace(old->first, std::move(old->second));
+        }
+    }
+    w.boundaryHistory.swap(keptBoundary);
+    for (size_t k = pairSlots; k < slots.size(); ++k)
+        slots[k].boundaryHistory = &w.boundaryHistory[{slots[k].first, slots[k].boundary}];
+    std::vector<ContactGrain> boundaryViews;
+    for (const Boundary& b : w.boundaries) boundaryViews.push_back(contactView(b));
+    mCounters.broadSeconds += secondsSince(broadStart);
+    mCounters.candidatePairs += static_cast<long long>(pairSlots);
+    mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
+
+    // Narrow phase and contact laws, one slot per task; nothing shared is written.
+    const auto narrowStart = Clock::now();
+    const bool record = mRecordForces;
+    tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
+        ContactSlot& s = slots[k];
+        std::vector<PointForce>* out = record ? &s.forces : nullptr;
+        const Grain& gi = w.grains[s.first];
+        if (s.boundary < 0) {
+            const ContactModel& m = w.model(gi.material, w.grains[s.second].material);
+            s.result = computePairContact(views[s.first], views[s.second], m, slipStep,
+                                          s.pairHistory, s.stats, out);
+        } else {
+            const Boundary& b = w.boundaries[s.boundary];
+            ContactSide side;
+            side.tester = &views[s.first];
+            side.other = &boundaryViews[s.boundary];
+            side.history = s.boundaryHistory;
+            findBoundaryContacts(*gi.asset, gi.body.pose, b, side.contacts, s.stats);
+            s.result = resolveContact(&side, 1, w.model(gi.material, b.material), slipStep, out);
+        }
+    });
+    mCounters.narrowSeconds += secondsSince(narrowStart);
+
+    // Sum in slot order: the same numbers whatever the thread count.
+    const auto reduceStart = Clock::now();
+    for (Grain& g : w.grains) {
+        g.force = Vec3::Zero();
+        g.torque = Vec3::Zero();
+    }
+    for (Boundary& b : w.boundaries) b.force = Vec3::Zero();
+    mGrainStiffness.assign(n, Mat3::Zero());
+    mForces.clear();
+    mContactNodes = 0;
+    mElastic = 0.0;
+    for (ContactSlot& s : slots) {
+        const PairForces& r = s.result;
+        mCounters.nodes += s.stats;
+        mContactNodes += r.contactNodes;
+        mElastic += r.elasticEnergy;
+        w.grains[s.first].force += r.forceOnFirst;
+        w.grains[s.first].torque += r.torqueOnFirst;
+        mGrainStiffness[s.first] += r.normalStiffness;
+        if (s.boundary < 0) {
+            w.grains[s.second].force += r.forceOnSecond;
+            w.grains[s.second].torque += r.torqueOnSecond;
+            mGrainStiffness[s.second] += r.normalStiffness;
+        } else {
+            w.boundaries[s.boundary].force += r.forceOnSecond;
+        }
+        for (size_t f = 0; f < s.forces.size(); ++f) {
+            const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
+            mForces.push_back({s.forces[f].point, s.forces[f].force,
+                               onFirst ? s.first : s.second});
+        }
+    }
+    for (Grain& g : w.grains) {
+        if (!g.isFree()) continue;
+        g.force += g.body.mass * w.gravity;
+        if (w.globalDamping > 0.0) {
+            g.force = dampComponents(g.force, g.body.velocity, w.globalDamping);
+            g.torque = dampComponents(g.torque, g.body.angularVelocity(), w.globalDamping);
+        }
+    }
+    mCounters.integrateSeconds += secondsSince(reduceStart);
+}
+
+void Simulation::checkStability()
+{
+    const World& w = mWorld;
+    for (size_t i = 0; i < w.grains.size(); ++i) {
+        const Grain& g = w.grains[i];
+        if (!g.isFree()) continue;
+        const RigidBody& b = g.body;
+        if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
+            !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite()) {
+            std::ostringstream s;
+            s << "grain '" << g.name << "' reached a non-finite state at step " << w.step
+              << " (t = " << w.time << ")";
+            throw Error("", s.str(),
+                        "lower the time step (time_step, or safety for \"auto\"); check the "
+                        "stiffnesses and masses for consistent units");
+        }
+        if (mGrainStiffness[i].isZero()) continue;
+        // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
+        // stable for dt < 2/ω.
+        Eigen::SelfAdjointEigenSolver<Mat3> solver;
+        solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
+        const double lambda = solver.eigenvalues().maxCoeff();
+        if (!(lambda > 0.0)) continue;
+        const double limit = 2.0 * std::sqrt(b.mass / lambda);
+        mStabilityLimit = std::min(mStabilityLimit, limit);
+        if (mDt > limit) {
+            std::ostringstream s;
+            s << "the time step " << mDt << " exceeds the stability limit " << limit
+              << " of the contacts of grain '" << g.name << "' at step " << w.step
+              << " (t = " << w.time << "): the run would explode";
+            std::ostringstream fix;
+            fix << "set [simulation] time_step to at most " << 0.2 * limit
+                << " (a fifth of the limit), or lower safety for \"auto\"";
+            throw Error("", s.str(), fix.str());
+        }
+    }
+}
+
+Energies Simulation::energies() const
+{
+    Energies e;
+    for (const Grain& g : mWorld.grains) {
+        if (!g.isFree()) continue;
+        e.kinetic += g.body.kineticEnergy();
+        e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+    }
+    e.elastic = mElastic;
+    e.boundaryWork = mWorld.energy.boundaryWork;
+    e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
+                                     mWorld.energy.initialTotal);
+    return e;
+}
+
+double automaticTimeStep(const World& world, double safety)
+{
+    double stiffest = 0.0;
+    double largestArea = 0.0;
+    for (const Grain& g : world.grains)
+        for (double a : g.asset->nodes.areas) largestArea = std::max(largestArea, a);
+    for (const ContactModel& m : world.models) {
+        const bool perArea =
+            m.formulation == Formulation::Adapted || m.formulation == Formulation::Volume;
+        const double normal = m.normalStiffness * (perArea ? largestArea : 1.0);
+        const double shear = m.shearStiffness * (perArea ? largestArea : 1.0);
+        stiffest = std::max({stiffest, normal, shear});
+    }
+    double lightest = std::numeric_limits<double>::infinity();
+    for (const Grain& g : world.grains) {
+        if (!g.isFree()) continue;
+        const double r = g.asset->boundingRadius;
+        lightest = std::min({lightest, g.body.mass, g.body.principalInertia.minCoeff() / (r * r)});
+    }
+    if (!(stiffest > 0.0) || !std::isfinite(lightest))
+        throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
+                    "give [simulation] time_step explicitly");
+    return safety * 2.0 * std::sqrt(lightest / stiffest);
+}
+
+} // namespace lsdem

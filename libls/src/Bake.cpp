@@ -112,6 +112,7 @@ std::shared_ptr<const LevelSetGrid> wrapLevelSet(const openvdb::FloatGrid::Ptr& 
 void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::string>& warnings)
 {
     sortNodesSpatially(asset.nodes, 8.0 * o.voxelSize);  // one OpenVDB leaf is 8 voxels wide
+    asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
     asset.areaRule = o.areaRule;
     asset.spacing = nodeSpacing(asset.nodes);
     asset.voxelSize = o.voxelSize;

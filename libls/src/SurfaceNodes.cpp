@@ -154,4 +154,46 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
     return stats;
 }
 
+std::vector<NodeBlock> groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize)
+{
+    std::vector<NodeBlock> blocks;
+    const int n = static_cast<int>(nodes.size());
+    if (n == 0) return blocks;
+    // A Z-order curve jumps now and then; a block that spans a jump would get a large sphere.
+    // So a block also ends where its bounding box would grow beyond 1.5 times the side of
+    // a patch of blockSize nodes.
+    const double patchSide = std::sqrt(std::max(nodes.totalArea(), 1e-300) * blockSize / n);
+    const double widest = 1.5 * patchSide;
+    auto close = [&](int begin, int end) {
+        NodeBlock b;
+        b.begin = begin;
+        b.end = end;
+        Vec3 lo = nodes.positions[begin], hi = lo;
+        for (int i = begin; i < end; ++i) {
+            lo = lo.cwiseMin(nodes.positions[i]);
+            hi = hi.cwiseMax(nodes.positions[i]);
+        }
+        b.center = 0.5 * (lo + hi);
+        for (int i = begin; i < end; ++i)
+            b.radius = std::max(b.radius, (nodes.positions[i] - b.center).norm());
+        blocks.push_back(b);
+    };
+    int begin = 0;
+    Vec3 lo = nodes.positions[0], hi = lo;
+    for (int i = 1; i < n; ++i) {
+        const Vec3 newLo = lo.cwiseMin(nodes.positions[i]);
+        const Vec3 newHi = hi.cwiseMax(nodes.positions[i]);
+        if (i - begin >= blockSize || (newHi - newLo).maxCoeff() > widest) {
+            close(begin, i);
+            begin = i;
+            lo = hi = nodes.positions[i];
+        } else {
+            lo = newLo;
+            hi = newHi;
+        }
+    }
+    close(begin, n);
+    return blocks;
+}
+
 } // namespace lsdem

@@ -73,3 +73,28 @@ TEST(SurfaceNodes, SpacingOfAStructuredGridIsItsStep)
     EXPECT_NEAR(s.max, 0.25, 1e-12);
     EXPECT_NEAR(s.mean, 0.25, 1e-12);
 }
+
+// The narrow phase skips whole blocks by their bounding spheres, so every node must lie in
+// exactly one block and inside its sphere; sorted nodes make the spheres small.
+TEST(SurfaceNodes, BlocksCoverEveryNodeOnceInsideTheirSpheres)
+{
+    SurfaceNodes nodes = nodesFromMesh(AnalyticShape::sphere(5.0).surfaceMesh(0.3), AreaRule::Mesh);
+    sortNodesSpatially(nodes, 0.4);
+    const std::vector<NodeBlock> blocks = groupNodesIntoBlocks(nodes, 32);
+    int next = 0;
+    double meanRadius = 0.0;
+    for (const NodeBlock& b : blocks) {
+        EXPECT_EQ(b.begin, next);
+        EXPECT_GT(b.end, b.begin);
+        EXPECT_LE(b.end - b.begin, 32);
+        for (int i = b.begin; i < b.end; ++i)
+            EXPECT_LE((nodes.positions[i] - b.center).norm(), b.radius * (1 + 1e-12));
+        next = b.end;
+        meanRadius += b.radius / blocks.size();
+    }
+    EXPECT_EQ(next, static_cast<int>(nodes.size()));
+    // 32 nodes at spacing ~0.3 cover a patch of ~2.5 mm² (side ~1.6 mm); blocks are cut
+    // where the box would exceed 1.5 times that, so the radius stays near 1 mm, far below R = 5.
+    EXPECT_LT(meanRadius, 1.5);
+    EXPECT_LT(blocks.size(), nodes.size() / 10);  // and most blocks are still well filled
+}

@@ -33,6 +33,9 @@ struct GrainAsset
     int exteriorBandVoxels = 0;          ///< width of the exterior band; the interior is filled
 
     SurfaceNodes nodes;                  ///< in the asset frame, stored in Morton order
+    /// Runs of nearby nodes with bounding spheres, derived from @a nodes when an asset is
+    /// baked or loaded (not stored in the file); empty means "one block of all nodes".
+    std::vector<NodeBlock> nodeBlocks;
     AreaRule areaRule = AreaRule::Mesh;
     NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)
 

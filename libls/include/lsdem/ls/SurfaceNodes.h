@@ -32,6 +32,18 @@ SurfaceNodes nodesFromMesh(const TriangleMesh& mesh, AreaRule rule);
 /// the array are neighbours in space and level-set lookups stay cache-friendly.
 void sortNodesSpatially(SurfaceNodes& nodes, double cellSize);
 
+/// A run of consecutive nodes (in Morton order, so close together) and a sphere holding them:
+/// the narrow phase skips a whole block when the sphere is clear of the other grain.
+struct NodeBlock
+{
+    int begin = 0, end = 0;       ///< node indices [begin, end)
+    Vec3 center = Vec3::Zero();   ///< of the block's bounding sphere, asset frame
+    double radius = 0.0;
+};
+
+/// Cut the (spatially sorted) nodes into runs of at most @a blockSize with bounding spheres.
+std::vector<NodeBlock> groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize = 32);
+
 /// Spacing statistics: for each node, the distance to its nearest other node.
 struct NodeSpacing
 {

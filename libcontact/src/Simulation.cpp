@@ -101,7 +101,9 @@ void Simulation::step()
         if (g.motion == GrainMotion::Prescribed)
             workBefore -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
 
-    for (Grain& g : mWorld.grains) {
+    // Each grain moves on its own: parallel, and still the same numbers on any thread count.
+    tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
+        Grain& g = mWorld.grains[i];
         switch (g.motion) {
         case GrainMotion::Free:
             kick(g.body, g.force, g.torque, 0.5 * dt);
@@ -113,7 +115,7 @@ void Simulation::step()
             break;
         case GrainMotion::Fixed: break;
         }
-    }
+    });
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
     mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
     ++mWorld.step;
@@ -122,8 +124,10 @@ void Simulation::step()
     evaluateForces(dt);
 
     const auto kickStart = Clock::now();
-    for (Grain& g : mWorld.grains)
+    tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
+        Grain& g = mWorld.grains[i];
         if (g.isFree()) kick(g.body, g.force, g.torque, 0.5 * dt);
+    });
     double workAfter = 0.0;
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
     for (const Grain& g : mWorld.grains)
@@ -151,39 +155,42 @@ void Simulation::evaluateForces(double slipStep)
     }
     std::vector<ContactSlot> slots;
     // Grain pairs: candidates whose bounding spheres overlap, unless neither can move.
-    std::map<std::pair<int, int>, PairHistory> keptPairs;
-    for (const auto& [i, j] : findCandidatePairs(centers, radii)) {
-        if (!w.grains[i].isFree() && !w.grains[j].isFree()) continue;
-        ContactSlot s;
-        s.first = i;
-        s.second = j;
-        slots.push_back(std::move(s));
-        auto old = w.pairHistory.find({i, j});
-        if (old != w.pairHistory.end()) keptPairs.emplace(old->first, std::move(old->second));
-    }
-    // History of pairs that drifted apart is dropped; std::map nodes do not move, so the
-    // slots can point into it while the threads work.
-    w.pairHistory.swap(keptPairs);
-    for (ContactSlot& s : slots) s.pairHistory = &w.pairHistory[{s.first, s.second}];
-    const size_t pairSlots = slots.size();
-    // Grains near boundaries.
-    std::map<std::pair<int, int>, std::map<int, Vec3>> keptBoundary;
+    std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
+    std::vector<std::pair<int, int>> boundaryPairs;  // (grain, boundary), sorted
     for (int i = 0; i < n; ++i) {
         if (!w.grains[i].isFree()) continue;
-        for (int b = 0; b < static_cast<int>(w.boundaries.size()); ++b) {
-            if (!w.boundaries[b].mayTouch(centers[i], radii[i])) continue;
-            ContactSlot s;
-            s.first = i;
-            s.boundary = b;
-            slots.push_back(std::move(s));
-            auto old = w.boundaryHistory.find({i, b});
-            if (old != w.boundaryHistory.end())
-                keptBoundary.emplace(old->first, std::move(old->second));
-        }
+        for (int b = 0; b < static_cast<int>(w.boundaries.size()); ++b)
+            if (w.boundaries[b].mayTouch(centers[i], radii[i])) boundaryPairs.emplace_back(i, b);
     }
-    w.boundaryHistory.swap(keptBoundary);
-    for (size_t k = pairSlots; k < slots.size(); ++k)
-        slots[k].boundaryHistory = &w.boundaryHistory[{slots[k].first, slots[k].boundary}];
+    slots.reserve(pairs.size() + boundaryPairs.size());
+    // Walk the sorted candidates and the sorted history together: history of pairs that
+    // drifted apart is dropped, new pairs start empty. std::map nodes do not move, so the
+    // slots can point into the maps while the threads work.
+    auto it = w.pairHistory.begin();
+    for (const auto& p : pairs) {
+        if (!w.grains[p.first].isFree() && !w.grains[p.second].isFree()) continue;
+        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
+        if (it == w.pairHistory.end() || it->first != p) it = w.pairHistory.emplace_hint(it, p, PairHistory{});
+        ContactSlot& s = slots.emplace_back();
+        s.first = p.first;
+        s.second = p.second;
+        s.pairHistory = &it->second;
+        ++it;
+    }
+    w.pairHistory.erase(it, w.pairHistory.end());
+    const size_t pairSlots = slots.size();
+    auto bit = w.boundaryHistory.begin();
+    for (const auto& p : boundaryPairs) {
+        while (bit != w.boundaryHistory.end() && bit->first < p) bit = w.boundaryHistory.erase(bit);
+        if (bit == w.boundaryHistory.end() || bit->first != p)
+            bit = w.boundaryHistory.emplace_hint(bit, p, std::map<int, Vec3>{});
+        ContactSlot& s = slots.emplace_back();
+        s.first = p.first;
+        s.boundary = p.second;
+        s.boundaryHistory = &bit->second;
+        ++bit;
+    }
+    w.boundaryHistory.erase(bit, w.boundaryHistory.end());
     std::vector<ContactGrain> boundaryViews;
     for (const Boundary& b : w.boundaries) boundaryViews.push_back(contactView(b));
     mCounters.broadSeconds += secondsSince(broadStart);

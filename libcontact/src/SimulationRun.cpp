@@ -171,11 +171,11 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
         outDir = std::filesystem::absolute(options.restartPath).parent_path().string();
     if (outDir.empty())
         throw Error("", "no output folder given", "pass --out DIR");
-    createOutputFolder(outDir);
 
     std::vector<std::string> warnings;
     World world = buildWorld(scene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
+    createOutputFolder(outDir);  // only once the scene is known to be good
     std::vector<Vec3> initialPositions;
     for (const Grain& g : world.grains) initialPositions.push_back(g.body.pose.position);
 
@@ -231,7 +231,12 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     auto lastFlush = Clock::now(), lastProgress = Clock::now();
     const auto loopStart = Clock::now();
     while (!endReached(scene, sim.world(), dt)) {
-        sim.step();
+        try {
+            sim.step();
+        } catch (const Error&) {
+            writeTextOutputs();  // the history up to the failure helps to see what went wrong
+            throw;
+        }
         const long long step = sim.world().step;
         const auto outputStart = Clock::now();
         if (step % historyEvery == 0) recordHistoryRow(sim, record);

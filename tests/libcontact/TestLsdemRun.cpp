@@ -1,0 +1,230 @@
+// lsdem-run through the real program: outputs, thread independence, bit-identical restart,
+// stopping on a signal, and bad input.
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+using namespace lsdem::test;
+
+namespace {
+
+const std::string kRun = LSDEM_RUN_EXE;
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+int countLines(const std::string& path)
+{
+    std::ifstream in(path);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) ++n;
+    return n;
+}
+
+/// Two small spheres thrown along a floor with friction and damping, so contacts, shear
+/// history and dissipation all occur within a few hundred steps.
+std::string smallScene(long long steps)
+{
+    return R"(
+[assets.ball]
+shape = "sphere"
+radius = 2.0
+voxel = 0.25
+nodes = 200
+
+[materials.steel]
+density = 7.85e-9
+[materials.floor]
+density = 0.0
+
+[[contacts]]
+materials = ["steel", "steel"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.4
+restitution = 0.6
+
+[[contacts]]
+materials = ["steel", "floor"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.4
+restitution = 0.6
+
+[[grains]]
+asset = "ball"
+material = "steel"
+position = [0, 0, 1.99]
+velocity = [60, 0, -20]
+angular_velocity = [0, 5, 0]
+
+[[grains]]
+asset = "ball"
+material = "steel"
+position = [4.05, 0.3, 1.99]
+velocity = [-40, 0, 0]
+
+[[boundaries]]
+name = "floor"
+type = "plane"
+material = "floor"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+
+[simulation]
+gravity = [0, 0, -9810]
+time_step = 1e-5
+end_steps = )" + std::to_string(steps) + R"(
+
+[output]
+history_every = 10
+vtk_period = 1e-3
+)";
+}
+
+std::string writeScene(const ScratchDir& dir, const std::string& text)
+{
+    const std::string path = dir.file("scene.toml");
+    std::ofstream(path) << text;
+    return path;
+}
+
+const char* const kOutputs[] = {"energy.csv", "boundary_floor.csv", "grains.csv", "frames.pvd",
+                                 "frames_grains_1.vtu", "frames_contacts_2.vtu"};
+
+} // namespace
+
+TEST(LsdemRun, WritesHistoriesFramesAndCheckpoint)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400));
+    const CommandResult r = runCommand(kRun + " " + scene + " --out " + dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* name : kOutputs)
+        EXPECT_TRUE(std::filesystem::exists(dir.file("out/") + name)) << name;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/checkpoint.lsdem")));
+    // Rows at steps 0, 10, ..., 400 plus the header.
+    EXPECT_EQ(countLines(dir.file("out/energy.csv")), 1 + 41);
+    EXPECT_EQ(countLines(dir.file("out/grains.csv")), 1 + 2);
+    EXPECT_NE(r.output.find("where the time went"), std::string::npos) << r.output;
+    // The floor carries the balls' weight and impacts: its force must be downward (onto it).
+    const std::string floor = readFile(dir.file("out/boundary_floor.csv"));
+    EXPECT_NE(floor.find("step,time,ux,uy,uz,fx,fy,fz"), std::string::npos);
+}
+
+TEST(LsdemRun, OneAndTwoThreadsGiveIdenticalBytes)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(300));
+    for (const char* threads : {"1", "2"}) {
+        const CommandResult r = runCommand(kRun + " " + scene + " -q --threads " + threads +
+                                           " --out " + dir.file(std::string("t") + threads));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    for (const char* name : kOutputs)
+        EXPECT_EQ(readFile(dir.file(std::string("t1/") + name)),
+                  readFile(dir.file(std::string("t2/") + name)))
+            << name;
+}
+
+TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400));
+    const CommandResult straight = runCommand(kRun + " " + scene + " -q --out " + dir.file("a"));
+    ASSERT_EQ(straight.exitCode, 0) << straight.output;
+    const CommandResult first =
+        runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b"));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    EXPECT_NE(first.output.find("--restart"), std::string::npos) << first.output;
+    const CommandResult second =
+        runCommand(kRun + " -q --restart " + dir.file("b/checkpoint.lsdem"));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    for (const char* name : kOutputs)
+        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
+                  readFile(dir.file(std::string("b/") + name)))
+            << name;
+    EXPECT_EQ(readFile(dir.file("a/frames_grains_4.vtu")), readFile(dir.file("b/frames_grains_4.vtu")));
+}
+
+TEST(LsdemRun, InterruptWritesACheckpointToContinueFrom)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(100000000));  // would run for hours
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        const std::string out = dir.file("out");
+        const std::string log = dir.file("log.txt");
+        freopen(log.c_str(), "w", stdout);
+        execl(kRun.c_str(), kRun.c_str(), scene.c_str(), "-q", "--out", out.c_str(), nullptr);
+        _exit(127);
+    }
+    // Wait until it is stepping (its first history row exists), then interrupt it.
+    for (int i = 0; i < 600 && !std::filesystem::exists(dir.file("out/frames.pvd")); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    kill(child, SIGINT);
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << readFile(dir.file("log.txt"));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/checkpoint.lsdem")));
+    EXPECT_GE(countLines(dir.file("out/energy.csv")), 2);
+    EXPECT_NE(readFile(dir.file("log.txt")).find("stopped at step"), std::string::npos);
+}
+
+TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
+{
+    ScratchDir dir;
+    struct Case
+    {
+        const char* what;
+        std::string scene;
+        const char* message;
+    };
+    std::string unstable = smallScene(400);
+    unstable.replace(unstable.find("time_step = 1e-5"), 16, "time_step = 1e-2");
+    std::string unknownKey = smallScene(400);
+    unknownKey.replace(unknownKey.find("[output]"), 8, "[output]\nvtk_every = 3");
+    const Case cases[] = {
+        {"unstable time step", unstable, "stability limit"},
+        {"unknown key", unknownKey, "vtk_every"},
+    };
+    for (const Case& c : cases) {
+        const std::string scene = writeScene(dir, c.scene);
+        const std::string out = dir.file(std::string("out-") + c.what[0]);
+        const CommandResult r = runCommand(kRun + " " + scene + " -q --out " + out);
+        EXPECT_EQ(r.exitCode, 1) << c.what << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.what << "\n" << r.output;
+        EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+    }
+    // The unknown key is caught before anything is written.
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out-u")));
+
+    const CommandResult missing = runCommand(kRun + " " + dir.file("nope.toml") + " --out " + dir.file("x"));
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.output.find("nope.toml"), std::string::npos) << missing.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
+    const CommandResult noOut = runCommand(kRun + " " + dir.file("scene.toml"));
+    EXPECT_EQ(noOut.exitCode, 1);
+    EXPECT_NE(noOut.output.find("--out"), std::string::npos) << noOut.output;
+    const CommandResult badCheckpoint = runCommand(kRun + " --restart " + dir.file("scene.toml"));
+    EXPECT_EQ(badCheckpoint.exitCode, 1);
+    EXPECT_NE(badCheckpoint.output.find("not an lsdem checkpoint"), std::string::npos)
+        << badCheckpoint.output;
+}

@@ -46,7 +46,13 @@ private:
 class Reader
 {
 public:
-    Reader(std::istream& in, std::string path) : mIn(in), mPath(std::move(path)) {}
+    Reader(std::istream& in, std::string path) : mIn(in), mPath(std::move(path))
+    {
+        const std::streampos here = mIn.tellg();
+        mIn.seekg(0, std::ios::end);
+        mEnd = mIn.tellg();
+        mIn.seekg(here);
+    }
     template <typename T> T pod()
     {
         T v{};
@@ -54,15 +60,19 @@ public:
         if (!mIn) fail();
         return v;
     }
-    uint64_t count(uint64_t limit = uint64_t(1) << 40)
+    /// A count of items stored in at least @a itemBytes each. A damaged count could ask for
+    /// terabytes (std::bad_alloc instead of an Error): it may not exceed what the rest of the
+    /// file can hold, checked before anything is allocated for it.
+    uint64_t count(uint64_t itemBytes)
     {
         const uint64_t n = pod<uint64_t>();
-        if (n > limit) fail();
+        const std::streamoff left = mEnd - mIn.tellg();
+        if (left < 0 || n > static_cast<uint64_t>(left) / itemBytes) fail();
         return n;
     }
     std::string text()
     {
-        std::string s(count(uint64_t(1) << 32), '\0');
+        std::string s(count(1), '\0');
         mIn.read(s.data(), static_cast<std::streamsize>(s.size()));
         if (!mIn) fail();
         return s;
@@ -80,14 +90,14 @@ public:
     }
     std::vector<double> doubles()
     {
-        std::vector<double> v(count(uint64_t(1) << 32));
+        std::vector<double> v(count(sizeof(double)));
         for (double& d : v) d = pod<double>();
         return v;
     }
     std::map<int, Vec3> shear()
     {
         std::map<int, Vec3> m;
-        const uint64_t n = count();
+        const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
         for (uint64_t k = 0; k < n; ++k) {
             const int node = pod<int32_t>();
             m.emplace(node, vec());
@@ -103,6 +113,7 @@ public:
 private:
     std::istream& mIn;
     std::string mPath;
+    std::streampos mEnd = 0;
 };
 
 void writeRecord(Writer& w, const RunRecord& r)
@@ -120,11 +131,12 @@ void writeRecord(Writer& w, const RunRecord& r)
 RunRecord readRecord(Reader& r)
 {
     RunRecord rec;
-    rec.energyRows.resize(r.count());
+    const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
+    rec.energyRows.resize(r.count(rowBytes));
     for (auto& row : rec.energyRows) row = r.doubles();
-    rec.boundaryRows.resize(r.count(uint64_t(1) << 24));
+    rec.boundaryRows.resize(r.count(rowBytes));
     for (auto& rows : rec.boundaryRows) {
-        rows.resize(r.count());
+        rows.resize(r.count(rowBytes));
         for (auto& row : rows) row = r.doubles();
     }
     rec.vtkFrameTimes = r.doubles();
@@ -217,7 +229,8 @@ void restoreWorldState(const std::string& path, World& world)
     w.step = r.pod<int64_t>();
     w.energy.boundaryWork = r.pod<double>();
     w.energy.initialTotal = r.pod<double>();
-    if (r.count() != w.grains.size() )
+    const uint64_t grainBytes = 19 * sizeof(double);  // position, orientation, 4 vectors
+    if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
                     "the scene's assets may have changed; start the run again");
     for (Grain& g : w.grains) {
@@ -228,12 +241,12 @@ void restoreWorldState(const std::string& path, World& world)
         g.force = r.vec();
         g.torque = r.vec();
     }
-    if (r.count() != w.boundaries.size())
+    if (r.count(6 * sizeof(double)) != w.boundaries.size())
         throw Error(path, "the checkpoint's boundary count does not match its scene",
                     "start the run again");
     for (Boundary& b : w.boundaries) b.displacement = r.vec(), b.force = r.vec();
     w.pairHistory.clear();
-    const uint64_t pairs = r.count();
+    const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
     for (uint64_t k = 0; k < pairs; ++k) {
         const int i = r.pod<int32_t>(), j = r.pod<int32_t>();
         PairHistory& h = w.pairHistory[{i, j}];
@@ -241,7 +254,7 @@ void restoreWorldState(const std::string& path, World& world)
         h.shearOnSecondNodes = r.shear();
     }
     w.boundaryHistory.clear();
-    const uint64_t boundaryContacts = r.count();
+    const uint64_t boundaryContacts = r.count(2 * sizeof(int32_t) + sizeof(uint64_t));
     for (uint64_t k = 0; k < boundaryContacts; ++k) {
         const int i = r.pod<int32_t>(), b = r.pod<int32_t>();
         w.boundaryHistory[{i, b}] = r.shear();

@@ -1,0 +1,1 @@
+// SlabPanel: being written (see tools/studies/SlabPanel.h when it lands).

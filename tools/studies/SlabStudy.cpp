@@ -1,0 +1,1 @@
+// SlabStudy: being written (see tools/studies/SlabStudy.h when it lands).

@@ -78,8 +78,10 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
 
 } // namespace
 
-Simulation::Simulation(World world, double dt, bool evaluateInitialForces)
-    : mWorld(std::move(world)), mDt(dt), mStabilityLimit(std::numeric_limits<double>::infinity())
+Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
+                       bool recordContactForces)
+    : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
+      mStabilityLimit(std::numeric_limits<double>::infinity())
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -87,6 +89,9 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces)
         evaluateForces(0.0);
         const Energies e = energies();
         mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
+        // Grains that start in contact: a step too large for that contact would throw them
+        // apart in the very first kick, before any later check could see the contact.
+        checkStability();
     }
 }
 

@@ -187,7 +187,8 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
         dt = automaticTimeStep(world, scene.timeStep.safety);
         log << "time step (auto, safety " << scene.timeStep.safety << "): " << dt << "\n";
     }
-    Simulation sim(std::move(world), dt, !restart);
+    const bool recordForces = scene.output.vtkPeriod > 0.0 && scene.output.contactForces;
+    Simulation sim(std::move(world), dt, !restart, recordForces);
     RunRecord& record = checkpoint.record;
     checkpoint.timeStep = dt;
     result.timeStep = dt;
@@ -208,7 +209,6 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     if (vtkEvery > 0) {
         frames = std::make_unique<FrameWriter>(outDir, sim.world());
         frames->series().restoreFrameTimes(record.vtkFrameTimes);
-        sim.setRecordContactForces(out.contactForces);
     }
     auto writeTextOutputs = [&] {
         writeHistoryFiles(outDir, sim.world(), record);

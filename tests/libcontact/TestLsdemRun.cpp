@@ -205,16 +205,17 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
         {"unstable time step", unstable, "stability limit"},
         {"unknown key", unknownKey, "vtk_every"},
     };
+    int index = 0;
     for (const Case& c : cases) {
         const std::string scene = writeScene(dir, c.scene);
-        const std::string out = dir.file(std::string("out-") + c.what[0]);
+        const std::string out = dir.file("out-" + std::to_string(index++));
         const CommandResult r = runCommand(kRun + " " + scene + " -q --out " + out);
         EXPECT_EQ(r.exitCode, 1) << c.what << "\n" << r.output;
         EXPECT_NE(r.output.find(c.message), std::string::npos) << c.what << "\n" << r.output;
         EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
     }
-    // The unknown key is caught before anything is written.
-    EXPECT_FALSE(std::filesystem::exists(dir.file("out-u")));
+    // The unknown key (case 1) is caught before anything is written.
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out-1")));
 
     const CommandResult missing = runCommand(kRun + " " + dir.file("nope.toml") + " --out " + dir.file("x"));
     EXPECT_EQ(missing.exitCode, 1);

@@ -42,8 +42,10 @@ class Simulation
 public:
     /// Take over @a world and step it by @a dt. If @a evaluateInitialForces, the forces at
     /// the current state are computed (a fresh start); a restart passes false because the
-    /// grains' forces come from the checkpoint.
-    Simulation(World world, double dt, bool evaluateInitialForces = true);
+    /// grains' forces come from the checkpoint. @a recordContactForces: as
+    /// setRecordContactForces, from the initial evaluation on (so a first frame has them).
+    Simulation(World world, double dt, bool evaluateInitialForces = true,
+               bool recordContactForces = false);
 
     /// Advance one step: half kick, drift, forces, half kick.
     /// @throw Error if the state becomes non-finite or a contact is stiffer than dt allows.

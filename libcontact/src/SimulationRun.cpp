@@ -85,8 +85,13 @@ class FrameWriter
 public:
     FrameWriter(const std::string& dir, const World& world) : mSeries(dir, "frames")
     {
+        // Surfaces at about the node spacing: as fine as the contact sees them, and light
+        // enough for many grains and frames (at the level set's own voxels a frame of 27
+        // spheres of 100 voxels across is 150 MB).
         for (const auto& asset : world.assets)
-            if (!mSurfaces.count(asset.get())) mSurfaces[asset.get()] = zeroIsosurface(*asset->levelSet);
+            if (!mSurfaces.count(asset.get()))
+                mSurfaces[asset.get()] =
+                    zeroIsosurface(*asset->levelSet, asset->spacing.mean);
     }
     VtkSeries& series() { return mSeries; }
 

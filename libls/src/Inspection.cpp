@@ -6,6 +6,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/tools/LevelSetMeasure.h>
+#include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <filesystem>
@@ -123,12 +124,19 @@ InspectionReport inspect(const InspectionTarget& target)
     return r;
 }
 
-TriangleMesh zeroIsosurface(const LevelSetGrid& levelSet)
+TriangleMesh zeroIsosurface(const LevelSetGrid& levelSet, double meshVoxel)
 {
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
     std::vector<openvdb::Vec4I> quads;
-    openvdb::tools::volumeToMesh(*levelSet.grid, points, triangles, quads, 0.0, 0.0);
+    if (meshVoxel > levelSet.voxelSize) {
+        const auto coarse = openvdb::math::Transform::createLinearTransform(meshVoxel);
+        const openvdb::FloatGrid::Ptr rebuilt =
+            openvdb::tools::levelSetRebuild(*levelSet.grid, 0.0f, 2.0f, coarse.get());
+        openvdb::tools::volumeToMesh(*rebuilt, points, triangles, quads, 0.0, 0.0);
+    } else {
+        openvdb::tools::volumeToMesh(*levelSet.grid, points, triangles, quads, 0.0, 0.0);
+    }
     TriangleMesh mesh;
     for (const auto& p : points) mesh.vertices.emplace_back(p.x(), p.y(), p.z());
     // OpenVDB emits faces clockwise seen from outside (for negative-inside level sets);

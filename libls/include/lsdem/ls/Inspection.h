@@ -49,6 +49,8 @@ struct InspectionReport
 InspectionReport inspect(const InspectionTarget& target);
 
 /// The zero isosurface of the level set (OpenVDB volumeToMesh), quads split into triangles.
-TriangleMesh zeroIsosurface(const LevelSetGrid& levelSet);
+/// @a meshVoxel larger than the grid's voxel meshes a copy rebuilt at that voxel size instead:
+/// a lighter surface for pictures and ParaView frames (a fine grain can have 10⁵ triangles).
+TriangleMesh zeroIsosurface(const LevelSetGrid& levelSet, double meshVoxel = 0.0);
 
 } // namespace lsdem

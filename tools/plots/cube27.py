@@ -98,13 +98,13 @@ def plot_by_stiffness(rows, formulation, out_dir, name):
     if len(ks[n]) < 2:
         return
     fig, ax = plt.subplots(figsize=(5.5, 4.2))
-    for k in sorted(ks[n]):
+    for i, k in enumerate(sorted(ks[n])):
         c = curve(rows, formulation, n, k)
-        line, = ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=2.5,
-                        label="k = %.3g" % k)
+        ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=2.5,
+                label="k = %.3g" % k)
         if formulation in ("adapted", "volume"):
-            ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], ls="--", lw=0.8,
-                    color=line.get_color())
+            ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], "k--", lw=0.8,
+                    label="continuum closed form" if i == 0 else None)
     title = "%s, N = %d: P–δ per stiffness (%s)" % (formulation, round(c[0]["nodes_actual"]),
                                                    unit(formulation))
     if formulation in ("adapted", "volume"):

@@ -1,5 +1,7 @@
 #include "lsdem/contact/NodeContact.h"
 
+#include <stdexcept>
+
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <optional>
@@ -55,6 +57,10 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         testNodes(0, static_cast<int>(count));
         return;
     }
+    // Blocks left over from other nodes would silently drop contacts: refuse them.
+    if (a.nodeBlocks.back().end != static_cast<int>(count))
+        throw std::logic_error("grain asset: node blocks do not match the nodes; call "
+                               "groupNodesIntoBlocks after changing them");
     // Whole blocks of nearby nodes whose bounding sphere misses B's are skipped unsampled.
     for (const NodeBlock& block : a.nodeBlocks) {
         const Vec3 centerInB = rotation * block.center + translation;

@@ -261,9 +261,11 @@ TEST(PairContact, MeshAreasMakeTheAdaptedForceInsensitiveToNodeDensity)
     GrainAsset uniformAreas = meshAreas;
     meshAreas.nodes = nodesFromMesh(mesh, AreaRule::Mesh);
     uniformAreas.nodes = nodesFromMesh(mesh, AreaRule::Uniform);
-    for (GrainAsset* g : {&meshAreas, &uniformAreas})
+    for (GrainAsset* g : {&meshAreas, &uniformAreas}) {
         for (size_t i = 0; i < g->nodes.size(); ++i)
             g->nodes.normals[i] = g->nodes.positions[i].normalized();
+        g->nodeBlocks = groupNodesIntoBlocks(g->nodes);  // the narrow phase culls by blocks
+    }
 
     const GrainAsset& partner = sphere(2000);  // one-way: the tested grain is the smaller
     auto force = [&](const GrainAsset& tested, const Quat& q) {

@@ -1,10 +1,9 @@
 #include "lsdem/contact/NodeContact.h"
 
-#include <stdexcept>
-
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <optional>
+#include <stdexcept>
 
 namespace lsdem {
 

@@ -23,8 +23,11 @@ for grain in sphere box pebble; do
 done
 echo "== two-sphere study (Feldfogel et al. 2024, Fig. 1 and 3)"
 build/tools/lsdem-study two-spheres --out results/two-spheres
+echo "== 27-sphere stack study (Fig. 4; about a minute)"
+build/tools/lsdem-study cube27 --out results/cube27-study
 echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cube27.toml)"
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27
 echo "== done: assets in $out (open the .png slices; the .obj isosurfaces load in any viewer),"
 echo "   two-sphere study in results/two-spheres (two_spheres.csv and *.png),"
+echo "   the stack study in results/cube27-study (cube27.csv and *.png),"
 echo "   the stack in results/cube27 (boundary_top.csv: P-δ of the top wall; frames.pvd for ParaView)"

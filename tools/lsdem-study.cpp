@@ -2,6 +2,7 @@
 
 #include "common/CommandLine.h"
 #include "studies/Cube27Study.h"
+#include "studies/SlabStudy.h"
 #include "studies/TwoSpheresStudy.h"
 
 #include "lsdem/ls/Error.h"
@@ -337,11 +338,12 @@ int main(int argc, char** argv)
         }
         const std::string study = args.next();
         if (study == "-h" || study == "--help") {
-            std::cout << kUsage << "\n" << kCube27Usage;
+            std::cout << kUsage << "\n" << kCube27Usage << "\n" << slabUsage();
             return 0;
         }
         if (study == "two-spheres") return twoSpheres(args);
         if (study == "cube27") return cube27(args);
-        throw Error("", "unknown study '" + study + "'", "available: two-spheres, cube27");
+        if (study == "slab") return runSlabCommand(args, LSDEM_PLOT_DIR);
+        throw Error("", "unknown study '" + study + "'", "available: two-spheres, cube27, slab");
     });
 }

@@ -1,1 +1,1029 @@
-// SlabStudy: being written (see tools/studies/SlabStudy.h when it lands).
+#include "studies/SlabStudy.h"
+
+#include "lsdem/contact/Simulation.h"
+#include "lsdem/contact/World.h"
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/MeshIO.h"
+
+#include <tbb/global_control.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+namespace lsdem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string show(double v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+bool perArea(Formulation f) { return f == Formulation::Adapted || f == Formulation::Volume; }
+
+double deltaMaxOf(const SlabStudyOptions& o)
+{
+    return o.deltaMax > 0.0 ? o.deltaMax : o.panel.thickness;
+}
+
+std::vector<double> snapshotDeltasOf(const SlabStudyOptions& o)
+{
+    if (!o.snapshotDeltas.empty()) {
+        std::vector<double> d = o.snapshotDeltas;
+        std::sort(d.begin(), d.end());
+        return d;
+    }
+    std::vector<double> d;
+    for (int k = 0; k <= 5; ++k) d.push_back(deltaMaxOf(o) * k / 5.0);
+    return d;
+}
+
+/// Sorted coarse to fine, duplicates dropped.
+std::vector<double> coarseToFine(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end(), std::greater<double>());
+    v.erase(std::unique(v.begin(), v.end(), [](double a, double b) {
+                return std::abs(a - b) <= 1e-12 * std::max(a, b);
+            }),
+            v.end());
+    return v;
+}
+
+/// Nodes on a block surface of area @a area remeshed at edge length @a sdp (equilateral
+/// triangles, two per vertex).
+double nodesForSpacing(double area, double sdp) { return 2.0 * area / (std::sqrt(3.0) * sdp * sdp); }
+
+double blockSurfaceArea(const SlabPanel& panel) { return surfaceArea(panel.referenceMesh()); }
+
+} // namespace
+
+void checkSlabStudyOptions(const SlabStudyOptions& o)
+{
+    checkSlabPanelOptions(o.panel);
+    auto positive = [](double v, const std::string& option, const std::string& example) {
+        if (!(v > 0.0) || !std::isfinite(v))
+            throw Error("", option + " must be positive and finite, got " + show(v),
+                        "e.g. " + option + " " + example);
+    };
+    auto nonNegative = [](double v, const std::string& option) {
+        if (!(v >= 0.0) || !std::isfinite(v))
+            throw Error("", option + " must be zero (default) or positive, got " + show(v));
+    };
+    const SlabMaterial& m = o.material;
+    positive(m.youngModulus, "--young", "7e4");
+    if (!(m.poisson >= 0.0 && m.poisson < 0.5))
+        throw Error("", "--poisson must be in [0, 0.5), got " + show(m.poisson), "e.g. --poisson 0.22");
+    positive(m.density, "--density", "2.5e-9");
+    nonNegative(m.friction, "--friction");
+    if (!(m.restitution > 0.0 && m.restitution <= 1.0))
+        throw Error("", "--restitution must be in (0, 1], got " + show(m.restitution),
+                    "1 means no contact damping");
+    if (!(m.globalDamping >= 0.0 && m.globalDamping < 1.0))
+        throw Error("", "--damping must be in [0, 1), got " + show(m.globalDamping));
+    nonNegative(m.gravity, "--gravity");
+    nonNegative(o.knStar, "--kn-star");
+    nonNegative(o.ksStar, "--ks-star");
+    nonNegative(o.knOriginal, "--kn");
+    nonNegative(o.referenceSdp, "--reference-sdp");
+    positive(o.indenterRadius, "--indenter-radius", "2.5");
+    positive(o.speed, "--speed", "200");
+    nonNegative(o.deltaMax, "--delta-max");
+    if (deltaMaxOf(o) > 3.0 * o.panel.thickness)
+        throw Error("", "--delta-max " + show(deltaMaxOf(o)) + " is more than three block thicknesses",
+                    "the central block is out long before; e.g. --delta-max " + show(o.panel.thickness));
+    if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 1.0))
+        throw Error("", "--safety must be in (0, 1], got " + show(o.timeStepSafety), "0.3 is the default");
+    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
+    if (o.sdps.empty()) throw Error("", "--sdp needs at least one node spacing");
+    const double thinnest = o.panel.thickness;
+    for (double s : o.sdps) {
+        positive(s, "--sdp", "0.5");
+        if (s > 0.5 * thinnest)
+            throw Error("", "--sdp " + show(s) + " mm leaves fewer than two node spacings across the " +
+                                show(thinnest) + " mm thickness",
+                        "use node spacings below " + show(0.5 * thinnest) + " mm");
+    }
+    auto checkVoxel = [&](double v, const std::string& option) {
+        positive(v, option, "0.15");
+        if (v * 4.0 > thinnest)
+            throw Error("", option + " " + show(v) + " mm leaves fewer than 4 voxels across the " +
+                                show(thinnest) + " mm thickness",
+                        "use voxels of at most " + show(thinnest / 4.0) + " mm");
+    };
+    checkVoxel(o.fixedVdp, "--vdp-fixed");
+    if (o.twoWay) {
+        if (o.vdps.empty()) throw Error("", "--vdp needs at least one voxel size");
+        for (double v : o.vdps) checkVoxel(v, "--vdp");
+    }
+    positive(o.tolerance, "--tolerance", "0.05");
+    for (double d : o.snapshotDeltas)
+        if (!(d >= 0.0 && d <= deltaMaxOf(o)))
+            throw Error("", "--snapshots " + show(d) + " is outside [0, δ_max = " + show(deltaMaxOf(o)) + "]",
+                        "give snapshot displacements between 0 and --delta-max");
+    if (o.samples < 10 || o.samples > 100000) throw Error("", "--samples must be 10 to 100000");
+}
+
+SlabStiffness slabStiffness(const SlabStudyOptions& o)
+{
+    SlabStiffness k;
+    // A traction p on a face shortens a block of length L by p·L/E: kn* = E/L.
+    k.knStar = o.knStar > 0.0 ? o.knStar : o.material.youngModulus / o.panel.blockSize;
+    k.ksStar = o.ksStar > 0.0 ? o.ksStar : k.knStar / (2.0 * (1.0 + o.material.poisson));
+    const double sRef = o.referenceSdp > 0.0
+                            ? o.referenceSdp
+                            : *std::max_element(o.sdps.begin(), o.sdps.end());
+    // A node's area on an equilateral mesh of edge s is (√3/2)·s².
+    k.kn = o.knOriginal > 0.0 ? o.knOriginal : k.knStar * 0.5 * std::sqrt(3.0) * sRef * sRef;
+    k.ks = k.kn * (k.ksStar / k.knStar);
+    return k;
+}
+
+ContactModel slabContactModel(const SlabStudyOptions& o, Formulation formulation)
+{
+    const SlabStiffness k = slabStiffness(o);
+    ContactModel m;
+    m.formulation = formulation;
+    m.testing = o.testing;
+    m.normalStiffness = perArea(formulation) ? k.knStar : k.kn;
+    // single-node and volume carry no shear springs (contact.md).
+    const bool shear = formulation == Formulation::Adapted || formulation == Formulation::Original;
+    m.shearStiffness = shear ? (perArea(formulation) ? k.ksStar : k.ks) : 0.0;
+    m.friction = shear ? o.material.friction : 0.0;
+    return m;
+}
+
+std::shared_ptr<const GrainAsset> bakeSlabBlock(const SlabPanel& panel, double vdp, double sdp)
+{
+    BakeOptions bake;
+    bake.voxelSize = vdp;
+    bake.nodePlacement = NodePlacement::Spacing;
+    bake.nodeSpacing = sdp;
+    bake.areaRule = AreaRule::Mesh;
+    std::ostringstream text;
+    const SlabPanelOptions& p = panel.options();
+    text << "slab block L=" << p.blockSize << " t=" << p.thickness << " angle=" << p.angleDeg
+         << " voxel " << vdp << " node_spacing " << sdp;
+    bake.optionsText = text.str();
+    std::vector<std::string> warnings;  // only "spacing finer than voxels", expected in a study
+    return std::make_shared<const GrainAsset>(
+        bakeMesh(panel.referenceMesh(), "slab block", bake, warnings));
+}
+
+double slabTimeStep(const SlabStudyOptions& o, const SlabPanel& panel, const GrainAsset& block,
+                    Formulation formulation)
+{
+    const SlabStiffness k = slabStiffness(o);
+    const double mass = o.material.density * block.mass.volume;
+    // One shared face in full contact: kn*·A (adapted: the nodes' areas add up to A; symmetric
+    // testing adds both sides at half weight), or kn per node on it (original).
+    const double meanNodeArea = block.nodes.totalArea() / double(std::max<size_t>(1, block.nodes.size()));
+    double face = 0.0;
+    switch (formulation) {
+    case Formulation::Adapted:
+    case Formulation::Volume: face = k.knStar * panel.sharedFaceArea(); break;
+    case Formulation::Original: face = k.kn * panel.sharedFaceArea() / meanNodeArea; break;
+    case Formulation::SingleNode: face = k.kn; break;
+    }
+    // A block squeezed between its two x neighbours (the stiffest direction), with its shear
+    // springs as stiff again along the faces.
+    const double stiffest = 2.0 * face * std::max(1.0, k.ksStar / k.knStar);
+    return o.timeStepSafety * 2.0 * std::sqrt(mass / stiffest);
+}
+
+Scene makeSlabScene(const SlabStudyOptions& o, Formulation formulation, const GrainAsset& block,
+                    const std::string& assetPath, double dt)
+{
+    const SlabPanel panel(o.panel);
+    Scene scene;
+    scene.path = "slab_scene.toml";
+    AssetSpec asset;
+    asset.name = "block";
+    asset.file = assetPath;
+    asset.where = "slab block";
+    scene.assets.push_back(asset);
+    scene.materials.push_back({"glass", o.material.density});
+    scene.materials.push_back({"rigid", 0.0});
+    ContactSpec contact;
+    contact.model = slabContactModel(o, formulation);
+    contact.restitution = o.material.restitution;
+    contact.materialA = contact.materialB = 0;
+    contact.where = "blocks";
+    scene.contacts.push_back(contact);
+    contact.materialB = 1;
+    contact.where = "blocks against the frame and the indenter";
+    scene.contacts.push_back(contact);
+    for (const SlabBlock& b : panel.blocks()) {
+        GrainSpec g;
+        g.name = b.name;
+        g.asset = 0;
+        g.material = 0;
+        g.pose = slabBlockPose(b, block.inputFrame);
+        g.where = b.name;
+        scene.grains.push_back(g);
+    }
+    for (const SlabBlock& b : panel.frame()) {
+        BoundarySpec f;
+        f.name = b.name;
+        f.shape = BoundaryShape::LevelSet;
+        f.material = 1;
+        f.asset = 0;
+        f.pose = slabBlockPose(b, block.inputFrame);
+        f.where = b.name;
+        scene.boundaries.push_back(f);
+    }
+    BoundarySpec indenter;
+    indenter.name = "indenter";
+    indenter.shape = BoundaryShape::Sphere;
+    indenter.material = 1;
+    const Vec3 top = panel.blocks()[panel.centralBlock()].center +
+                     Vec3(0, 0, 0.5 * o.panel.thickness);
+    indenter.center = top + Vec3(0, 0, o.indenterRadius);  // touching the central block's top
+    indenter.radius = o.indenterRadius;
+    indenter.velocity = Vec3(0, 0, -o.speed);
+    indenter.where = "indenter";
+    scene.boundaries.push_back(indenter);
+    scene.gravity = Vec3(0, 0, -o.material.gravity);
+    scene.globalDamping = o.material.globalDamping;
+    scene.timeStep.fixed = dt;
+    scene.end.boundary = static_cast<int>(scene.boundaries.size()) - 1;
+    scene.end.displacement = deltaMaxOf(o);
+    const double duration = deltaMaxOf(o) / o.speed;
+    scene.output.historyPeriod = duration / o.samples;
+    scene.output.vtkPeriod = duration / 20.0;
+    return scene;
+}
+
+std::string slabSceneToml(const Scene& scene, const SlabStudyOptions& o, const std::string& sceneDir)
+{
+    namespace fs = std::filesystem;
+    std::ostringstream t;
+    t << std::setprecision(17);
+    auto vec = [&](const Vec3& v) {
+        std::ostringstream s;
+        s << std::setprecision(17) << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+        return s.str();
+    };
+    auto quat = [&](const Quat& q) {
+        std::ostringstream s;
+        s << std::setprecision(17) << "[" << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << "]";
+        return s.str();
+    };
+    const SlabStiffness k = slabStiffness(o);
+    const ContactModel& m = scene.contacts.front().model;
+    t << "# The interlocked slab of Feldfogel et al. (2024), Fig. 5 and 6, written by\n"
+      << "# `lsdem-study slab`: " << o.panel.blocksPerSide << "x" << o.panel.blocksPerSide
+      << " blocks, L = " << o.panel.blockSize << " mm, t = " << o.panel.thickness
+      << " mm, interlocking angle " << o.panel.angleDeg << " deg (docs/slab.md).\n"
+      << "# The frame is a ring of fixed level-set blocks of the same shape; a sphere pushes the\n"
+      << "# central block down. Run with\n#   build/tools/lsdem-run slab_scene.toml --out slab-run\n"
+      << "# slab-run/boundary_indenter.csv then holds P (fz) against the indenter's displacement.\n"
+      << "# Units: mm, tonne, s, N. kn* = E/L = " << k.knStar << " N/mm^3 (E = "
+      << o.material.youngModulus << " MPa).\n\n";
+    t << "[units]\nlength = \"mm\"\nmass = \"tonne\"\ntime = \"s\"\nforce = \"N\"\n\n";
+    for (const AssetSpec& a : scene.assets) {
+        std::string path = a.file;
+        std::error_code ec;
+        const fs::path rel = fs::relative(fs::absolute(a.file), fs::absolute(sceneDir), ec);
+        if (!ec && !rel.empty() && rel.string().rfind("..", 0) != 0) path = rel.string();
+        t << "[assets." << a.name << "]\nfile = \"" << path << "\"   # baked by lsdem-study slab\n\n";
+    }
+    for (const MaterialSpec& mat : scene.materials)
+        t << "[materials." << mat.name << "]\ndensity = " << mat.density
+          << (mat.density > 0 ? "   # t/mm^3" : "   # rigid frame and indenter") << "\n\n";
+    for (const ContactSpec& c : scene.contacts) {
+        t << "[[contacts]]\nmaterials = [\"" << scene.materials[c.materialA].name << "\", \""
+          << scene.materials[c.materialB].name << "\"]\n"
+          << "formulation = \"" << formulationName(m.formulation) << "\"\n"
+          << "testing = \"" << nodeTestingName(m.testing) << "\"\n"
+          << "normal_stiffness = " << c.model.normalStiffness << "   # "
+          << stiffnessUnit(c.model.formulation) << "\n";
+        if (c.model.shearStiffness > 0) t << "shear_stiffness = " << c.model.shearStiffness << "\n";
+        if (c.model.friction > 0) t << "friction = " << c.model.friction << "\n";
+        t << "restitution = " << c.restitution << "\n\n";
+    }
+    for (const GrainSpec& g : scene.grains)
+        t << "[[grains]]\nname = \"" << g.name << "\"\nasset = \"" << scene.assets[g.asset].name
+          << "\"\nmaterial = \"" << scene.materials[g.material].name << "\"\nposition = "
+          << vec(g.pose.position) << "\norientation = " << quat(g.pose.orientation) << "\n\n";
+    for (const BoundarySpec& b : scene.boundaries) {
+        t << "[[boundaries]]\nname = \"" << b.name << "\"\n";
+        if (b.shape == BoundaryShape::LevelSet) {
+            t << "type = \"level-set\"\nasset = \"" << scene.assets[b.asset].name
+              << "\"\nmaterial = \"" << scene.materials[b.material].name << "\"\nposition = "
+              << vec(b.pose.position) << "\norientation = " << quat(b.pose.orientation) << "\n\n";
+        } else {
+            t << "type = \"sphere\"\nmaterial = \"" << scene.materials[b.material].name
+              << "\"\ncenter = " << vec(b.center) << "\nradius = " << b.radius
+              << "\nvelocity = " << vec(b.velocity) << "   # mm/s\n\n";
+        }
+    }
+    t << "[simulation]\ngravity = " << vec(scene.gravity) << "\nglobal_damping = "
+      << scene.globalDamping << "\ntime_step = " << scene.timeStep.fixed
+      << "   # safety x the stability limit of a block between two neighbours\n"
+      << "end_displacement = { boundary = \"" << scene.boundaries[scene.end.boundary].name
+      << "\", value = " << scene.end.displacement << " }\n\n";
+    t << "[output]\nhistory_period = " << scene.output.historyPeriod
+      << "\nvtk_period = " << scene.output.vtkPeriod << "\n";
+    return t.str();
+}
+
+SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
+                          std::shared_ptr<const GrainAsset> block, const std::string& assetPath,
+                          Formulation f, double sdp, double vdp,
+                          const std::function<void(double)>& progress)
+{
+    const auto start = Clock::now();
+    SlabRunResult r;
+    r.formulation = f;
+    r.sdp = sdp;
+    r.vdp = vdp;
+    r.nodes = static_cast<int>(block->nodes.size());
+    r.meanSpacing = block->spacing.mean;
+    r.stiffness = slabContactModel(o, f).normalStiffness;
+    r.dt = slabTimeStep(o, panel, *block, f);
+
+    const Scene scene = makeSlabScene(o, f, *block, assetPath, r.dt);
+    std::vector<std::string> warnings;
+    World world = buildWorld(scene, warnings);
+    Simulation sim(std::move(world), r.dt);
+    const World& w = sim.world();
+    const int indenter = static_cast<int>(w.boundaries.size()) - 1;
+    const int centre = panel.centralBlock();
+    const int count = static_cast<int>(w.grains.size());
+    std::vector<Vec3> p0(count);
+    std::vector<Quat> q0(count);
+    for (int k = 0; k < count; ++k) {
+        p0[k] = w.grains[k].body.pose.position;
+        q0[k] = w.grains[k].body.pose.orientation;
+    }
+    // The reference block's origin in the asset frame: where a block's rest centre goes.
+    const Vec3 origin = -(block->inputFrame.rotation * block->inputFrame.centroid);
+
+    const double deltaMax = deltaMaxOf(o);
+    const long long totalSteps = static_cast<long long>(std::ceil(deltaMax / (o.speed * r.dt)));
+    const long long recordEvery = std::max<long long>(1, totalSteps / o.samples);
+    const std::vector<double> targets = snapshotDeltasOf(o);
+    size_t nextSnapshot = 0;
+
+    auto sample = [&](double delta) {
+        SlabSample s;
+        s.delta = delta;
+        s.force = w.boundaries[indenter].force.z();
+        s.centralDrop = -(w.grains[centre].body.pose.position - p0[centre]).z();
+        for (int k = 0; k < count; ++k)
+            if (k != centre)
+                s.othersMax = std::max(s.othersMax, (w.grains[k].body.pose.position - p0[k]).norm());
+        for (int b = 0; b < indenter; ++b) s.frameForce -= w.boundaries[b].force.z();
+        s.kinetic = sim.energies().kinetic;
+        r.curve.push_back(s);
+    };
+    auto snapshot = [&](double delta) {
+        SlabSnapshot s;
+        s.delta = delta;
+        for (int k = 0; k < count; ++k) {
+            const RigidPose& pose = w.grains[k].body.pose;
+            s.displacement.push_back(pose.position - p0[k]);
+            const Mat3 turn = (pose.orientation * q0[k].conjugate()).toRotationMatrix();
+            s.faces.push_back(panel.faces(panel.blocks()[k], turn, pose.toWorld(origin)));
+        }
+        r.snapshots.push_back(std::move(s));
+    };
+    auto delta = [&] { return -w.boundaries[indenter].displacement.z(); };
+    auto takeSnapshots = [&](double d) {
+        while (nextSnapshot < targets.size() && d >= targets[nextSnapshot] - 1e-9 * deltaMax) {
+            snapshot(d);
+            ++nextSnapshot;
+        }
+    };
+
+    sample(0.0);
+    takeSnapshots(0.0);
+    Clock::time_point lastReport = Clock::now();
+    try {
+        while (delta() < deltaMax * (1.0 - 1e-12)) {
+            sim.step();
+            ++r.steps;
+            const double d = delta();
+            if (r.steps % recordEvery == 0 || d >= deltaMax * (1.0 - 1e-12)) sample(d);
+            takeSnapshots(d);
+            if (progress && secondsSince(lastReport) > 10.0) {
+                progress(d);
+                lastReport = Clock::now();
+            }
+        }
+    } catch (const Error& e) {
+        // Keep what was recorded; the caller reports the failure.
+        r.stopped = true;
+        r.error = e.what();
+        if (r.curve.empty() || r.curve.back().delta != delta()) sample(delta());
+    }
+    for (int k = 0; k < count; ++k) r.finalDisplacement.push_back(w.grains[k].body.pose.position - p0[k]);
+    r.nodeChecks = sim.counters().nodes.nodesConsidered;
+    r.runSeconds = secondsSince(start);
+    return r;
+}
+
+double slabCurveDifference(const std::vector<SlabSample>& a, const std::vector<SlabSample>& b)
+{
+    if (a.size() < 2 || b.empty()) return std::numeric_limits<double>::infinity();
+    double peak = 0.0, sum = 0.0;
+    int count = 0;
+    size_t k = 0;
+    for (const SlabSample& s : b) {
+        peak = std::max(peak, std::abs(s.force));
+        if (s.delta > a.back().delta) break;
+        while (k + 2 < a.size() && a[k + 1].delta < s.delta) ++k;
+        const SlabSample &u = a[k], &v = a[k + 1];
+        const double span = v.delta - u.delta;
+        const double w = span > 0 ? std::clamp((s.delta - u.delta) / span, 0.0, 1.0) : 0.0;
+        const double pa = u.force + w * (v.force - u.force);
+        sum += (pa - s.force) * (pa - s.force);
+        ++count;
+    }
+    if (count == 0 || !(peak > 0.0)) return std::numeric_limits<double>::infinity();
+    return std::sqrt(sum / count) / peak;
+}
+
+std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run)
+{
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(3);
+    const int n = panel.n(), centre = panel.centralBlock();
+    const std::vector<SlabBlock>& blocks = panel.blocks();
+    if (run.finalDisplacement.size() != blocks.size()) return "no result\n";
+    const double delta = run.curve.empty() ? 0.0 : run.curve.back().delta;
+    const double t = panel.options().thickness;
+    double neighbours = 0, ring = 0, rest = 0;
+    int moved = 0;
+    std::string movedNames;
+    for (int k = 0; k < n * n; ++k) {
+        if (k == centre) continue;
+        const double d = run.finalDisplacement[k].norm();
+        const int ring1 = std::max(std::abs(blocks[k].i - blocks[centre].i),
+                                   std::abs(blocks[k].j - blocks[centre].j));
+        const bool adjacent = std::abs(blocks[k].i - blocks[centre].i) +
+                                  std::abs(blocks[k].j - blocks[centre].j) == 1;
+        if (adjacent) neighbours = std::max(neighbours, d);
+        else if (ring1 == 1) ring = std::max(ring, d);
+        else rest = std::max(rest, d);
+        if (d > t / 3) {
+            ++moved;
+            movedNames += " " + blocks[k].name + " (" + show(std::round(d * 100) / 100) + " mm)";
+        }
+    }
+    const Vec3 c = run.finalDisplacement[centre];
+    s << formulationName(run.formulation) << ", SDP " << run.sdp << " mm, VDP " << run.vdp
+      << " mm (" << run.nodes << " nodes per block), at delta = " << delta << " mm:\n";
+    if (run.stopped) s << "  the run stopped early: " << run.error << "\n";
+    s << "  central block " << blocks[centre].name << " moved down by " << -c.z() << " mm (sideways "
+      << c.head<2>().norm() << " mm)\n"
+      << "  its 4 face neighbours moved at most " << neighbours << " mm, the 4 diagonal ones "
+      << ring << " mm";
+    if (n > 3) s << ", the other " << n * n - 9 << " blocks " << rest << " mm";
+    s << "\n";
+    const double others = std::max({neighbours, ring, rest});
+    if (-c.z() > 0.5 * delta && others < 0.25 * -c.z() && moved == 0)
+        s << "  => push-out of the central block; the rest of the panel stays largely intact\n";
+    else if (moved > 0)
+        s << "  => " << moved << " other block(s) moved more than t/3:" << movedNames << "\n";
+    else
+        s << "  => the panel deflects as a whole (no block pushed out yet)\n";
+    return s.str();
+}
+
+SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
+{
+    SlabCostEstimate e;
+    const SlabPanel panel(o.panel);
+    const double area = blockSurfaceArea(panel);
+    const double blocks = double(panel.n()) * panel.n();
+    const SlabStiffness k = slabStiffness(o);
+    const double mass = o.material.density * panel.blockVolume();
+    // Measured on this machine (2 cores, see docs/slab.md): about 45 ns of wall time per
+    // block node and step, both directions of symmetric testing and the shear history included.
+    const double secondsPerNodeStep = 45e-9;
+    auto runCost = [&](Formulation f, double sdp, double vdp) {
+        const double nodes = nodesForSpacing(area, sdp);
+        const double face = perArea(f) ? k.knStar * panel.sharedFaceArea()
+                                       : k.kn * panel.sharedFaceArea() / (area / nodes);
+        const double dt =
+            o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
+        const long long steps = static_cast<long long>(std::ceil(deltaMaxOf(o) / (o.speed * dt)));
+        ++e.runs;
+        e.steps += steps;
+        e.seconds += steps * blocks * nodes * secondsPerNodeStep;
+        e.nodesPerBlockFinest = std::max(e.nodesPerBlockFinest, nodes);
+        // Level set: the block's bounding box in voxels, 4 bytes each (the interior is filled),
+        // twice that while baking; nodes: position, normal, area; shear history per node in
+        // contact (a std::map entry, ~80 bytes) for about half the nodes of every block.
+        const double box = (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
+                           (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
+                           (o.panel.thickness + 10 * vdp);
+        const double bytes = 8.0 * box / (vdp * vdp * vdp) + nodes * 56.0 + blocks * nodes * 0.5 * 80.0;
+        e.memoryBytes = std::max(e.memoryBytes, bytes);
+    };
+    const std::vector<double> sdps = coarseToFine(o.sdps);
+    for (double s : sdps)
+        for (Formulation f : o.formulations) runCost(f, s, o.fixedVdp);
+    if (o.twoWay) {
+        // Stage 2 runs at the converged SDP, not known yet: assume the finest (the upper bound).
+        for (double v : coarseToFine(o.vdps))
+            if (std::abs(v - o.fixedVdp) > 1e-12) runCost(Formulation::Adapted, sdps.back(), v);
+        runCost(Formulation::Adapted, sdps.front(), coarseToFine(o.vdps).front());  // coarse snapshots
+    }
+    std::ostringstream t;
+    t << std::setprecision(3) << e.runs << " runs, " << e.steps << " steps in all, up to "
+      << e.nodesPerBlockFinest << " nodes per block x " << blocks << " blocks; about "
+      << e.seconds / 60.0 << " min on 2 cores (at most; stage 2 assumed at the finest SDP), "
+      << "peak memory about " << e.memoryBytes / 1048576.0 << " MiB";
+    e.text = t.str();
+    return e;
+}
+
+SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
+{
+    namespace fs = std::filesystem;
+    checkSlabStudyOptions(o);
+    const auto start = Clock::now();
+    const SlabPanel panel(o.panel);
+    SlabStudyResult result;
+    const std::string assetDir = o.outDir + "/assets";
+    fs::create_directories(assetDir);
+
+    // Baked blocks by (SDP, VDP), each saved so that the scenes (and lsdem-run) can read it.
+    std::map<std::pair<double, double>, std::pair<std::shared_ptr<const GrainAsset>, std::string>> baked;
+    auto blockFor = [&](double sdp, double vdp) {
+        const auto key = std::make_pair(sdp, vdp);
+        auto it = baked.find(key);
+        if (it != baked.end()) return it->second;
+        const auto t0 = Clock::now();
+        auto asset = bakeSlabBlock(panel, vdp, sdp);
+        std::ostringstream name;
+        name << assetDir << "/block_sdp" << sdp << "_vdp" << vdp << ".vdb";
+        saveAsset(*asset, name.str());
+        if (log)
+            *log << "  baked SDP " << sdp << " mm, VDP " << vdp << " mm: " << asset->nodes.size()
+                 << " nodes per block (mean spacing " << std::setprecision(3)
+                 << asset->spacing.mean << " mm) in " << secondsSince(t0) << " s\n"
+                 << std::flush;
+        baked.clear();  // one block in memory at a time
+        return baked[key] = {asset, name.str()};
+    };
+    auto run = [&](Formulation f, double sdp, double vdp, const std::string& stage) {
+        for (size_t k = 0; k < result.runs.size(); ++k) {
+            const SlabRunResult& r = result.runs[k];
+            if (r.formulation == f && r.sdp == sdp && r.vdp == vdp) return int(k);
+        }
+        const auto bakeStart = Clock::now();
+        const auto [asset, path] = blockFor(sdp, vdp);
+        const double bakeSeconds = secondsSince(bakeStart);
+        if (log)
+            *log << "  " << formulationName(f) << ", SDP " << sdp << ", VDP " << vdp << ": "
+                 << std::flush;
+        SlabRunResult r = runSlabCase(o, panel, asset, path, f, sdp, vdp, [&](double d) {
+            if (log) *log << "δ = " << std::setprecision(3) << d << " mm ... " << std::flush;
+        });
+        r.bakeSeconds = bakeSeconds;
+        if (log) {
+            double peak = 0;
+            for (const SlabSample& s : r.curve) peak = std::max(peak, s.force);
+            *log << r.steps << " steps of " << std::setprecision(3) << r.dt << " s in "
+                 << r.runSeconds << " s, peak P = " << peak << " N"
+                 << (r.stopped ? " (STOPPED: " + r.error + ")" : "") << "\n"
+                 << std::flush;
+        }
+        result.runs.push_back(std::move(r));
+        result.stage.push_back(stage);
+        return int(result.runs.size()) - 1;
+    };
+
+    // Stage 1: SDP refined at fixed VDP, every formulation.
+    const std::vector<double> sdps = coarseToFine(o.sdps);
+    if (log) *log << "stage 1: SDP refined at VDP = " << o.fixedVdp << " mm\n";
+    std::vector<int> adaptedBySdp;
+    for (double s : sdps)
+        for (Formulation f : o.formulations) {
+            const int k = run(f, s, o.fixedVdp, "sdp");
+            if (f == Formulation::Adapted) adaptedBySdp.push_back(k);
+        }
+
+    // The converged value of a refinement series: the coarsest run from which on every finer
+    // one is within tolerance of the finest. The finest alone proves nothing.
+    auto converged = [&](const std::vector<int>& series, bool& ok) {
+        ok = false;
+        if (series.empty()) return -1;
+        const int finest = series.back();
+        int chosen = finest;
+        for (int k = int(series.size()) - 2; k >= 0; --k) {
+            if (slabCurveDifference(result.runs[series[k]].curve, result.runs[finest].curve) >
+                o.tolerance)
+                break;
+            chosen = series[k];
+            ok = true;
+        }
+        return chosen;
+    };
+    const int sdpRun = converged(adaptedBySdp, result.sdpConverged);
+    result.convergedSdp = sdpRun >= 0 ? result.runs[sdpRun].sdp : sdps.back();
+    result.convergedVdp = o.fixedVdp;
+    result.convergedRun = sdpRun;
+
+    if (o.twoWay && sdpRun >= 0) {
+        const std::vector<double> vdps = coarseToFine(o.vdps);
+        if (log)
+            *log << "stage 2: VDP refined at SDP = " << result.convergedSdp << " mm (adapted)\n";
+        std::vector<int> byVdp;
+        for (double v : vdps) byVdp.push_back(run(Formulation::Adapted, result.convergedSdp, v, "vdp"));
+        const int vdpRun = converged(byVdp, result.vdpConverged);
+        result.convergedVdp = result.runs[vdpRun].vdp;
+        result.convergedRun = vdpRun;
+        // The coarse case of the snapshots: coarsest SDP and coarsest VDP.
+        result.coarseRun = run(Formulation::Adapted, sdps.front(), vdps.front(), "coarse");
+    } else if (!adaptedBySdp.empty()) {
+        result.coarseRun = adaptedBySdp.front();
+    }
+    result.wallSeconds = secondsSince(start);
+    return result;
+}
+
+void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
+                      const SlabPanel& panel)
+{
+    const SlabStiffness k = slabStiffness(o);
+    std::ostringstream head;
+    head << "# lsdem slab study: " << o.panel.blocksPerSide << "x" << o.panel.blocksPerSide
+         << " blocks, L=" << o.panel.blockSize << " mm, t=" << o.panel.thickness
+         << " mm, angle=" << o.panel.angleDeg << " deg, indenter R=" << o.indenterRadius
+         << " mm at " << o.speed << " mm/s; kn*=" << k.knStar << " N/mm^3, ks*=" << k.ksStar
+         << " N/mm^3, kn=" << k.kn << " N/mm, ks=" << k.ks << " N/mm, mu=" << o.material.friction
+         << ", testing=" << nodeTestingName(o.testing) << "; force in N, lengths in mm\n";
+    auto label = [](const SlabRunResult& r) {
+        std::ostringstream s;
+        s << formulationName(r.formulation) << " SDP " << r.sdp << " VDP " << r.vdp;
+        return s.str();
+    };
+
+    std::ostringstream curves;
+    curves << std::setprecision(10) << head.str()
+           << "run,formulation,sdp,vdp,nodes,delta,P,central_drop,others_max,frame_force,kinetic\n";
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const SlabRunResult& r = result.runs[i];
+        for (const SlabSample& s : r.curve)
+            curves << i << ',' << formulationName(r.formulation) << ',' << r.sdp << ',' << r.vdp
+                   << ',' << r.nodes << ',' << s.delta << ',' << s.force << ',' << s.centralDrop
+                   << ',' << s.othersMax << ',' << s.frameForce << ',' << s.kinetic << '\n';
+    }
+    writeTextFileAtomically(o.outDir + "/slab.csv", curves.str());
+
+    // Each run against the finest of its series (same formulation and stage 1, or stage 2).
+    std::ostringstream runs;
+    runs << std::setprecision(10) << head.str()
+         << "run,stage,role,formulation,sdp,vdp,vdp_over_sdp,nodes,spacing_measured,stiffness,dt,"
+            "steps,bake_s,run_s,node_checks,P_max,delta_at_P_max,central_drop,others_max,"
+            "diff_to_finest,stopped\n";
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const SlabRunResult& r = result.runs[i];
+        int finest = -1;
+        for (size_t j = 0; j < result.runs.size(); ++j) {
+            const SlabRunResult& q = result.runs[j];
+            if (q.formulation != r.formulation || result.stage[j] != result.stage[i]) continue;
+            const bool sameSeries = result.stage[i] == "sdp" ? q.vdp == r.vdp : q.sdp == r.sdp;
+            if (!sameSeries) continue;
+            const double key = result.stage[i] == "sdp" ? q.sdp : q.vdp;
+            const double best = finest < 0 ? 1e300
+                                           : (result.stage[i] == "sdp" ? result.runs[finest].sdp
+                                                                        : result.runs[finest].vdp);
+            if (key < best) finest = int(j);
+        }
+        double peak = 0, at = 0;
+        for (const SlabSample& s : r.curve)
+            if (s.force > peak) {
+                peak = s.force;
+                at = s.delta;
+            }
+        const std::string role = int(i) == result.convergedRun ? "converged"
+                                 : int(i) == result.coarseRun  ? "coarse"
+                                                               : "";
+        const double diff = finest >= 0 ? slabCurveDifference(r.curve, result.runs[finest].curve) : 0.0;
+        runs << i << ',' << result.stage[i] << ',' << role << ',' << formulationName(r.formulation)
+             << ',' << r.sdp << ',' << r.vdp << ',' << r.vdp / r.sdp << ',' << r.nodes << ','
+             << r.meanSpacing << ',' << r.stiffness << ',' << r.dt << ',' << r.steps << ','
+             << r.bakeSeconds << ',' << r.runSeconds << ',' << r.nodeChecks << ',' << peak << ','
+             << at << ',' << (r.curve.empty() ? 0.0 : r.curve.back().centralDrop) << ','
+             << (r.curve.empty() ? 0.0 : r.curve.back().othersMax) << ',' << diff << ','
+             << (r.stopped ? 1 : 0) << '\n';
+    }
+    writeTextFileAtomically(o.outDir + "/slab_runs.csv", runs.str());
+
+    // Snapshots of the coarse and the converged runs: every face of every block.
+    std::ostringstream snaps;
+    snaps << std::setprecision(8) << head.str()
+          << "run,role,label,delta,block,i,j,displacement,face,x0,y0,z0,x1,y1,z1,x2,y2,z2,x3,y3,z3\n";
+    for (int i : {result.coarseRun, result.convergedRun}) {
+        if (i < 0) continue;
+        const SlabRunResult& r = result.runs[i];
+        const std::string role = i == result.convergedRun ? "converged" : "coarse";
+        for (const SlabSnapshot& s : r.snapshots)
+            for (size_t b = 0; b < s.faces.size(); ++b)
+                for (int f = 0; f < 6; ++f) {
+                    snaps << i << ',' << role << ',' << label(r) << ',' << s.delta << ','
+                          << panel.blocks()[b].name << ',' << panel.blocks()[b].i << ','
+                          << panel.blocks()[b].j << ',' << s.displacement[b].norm() << ',' << f;
+                    for (const Vec3& c : s.faces[b][f].corners)
+                        snaps << ',' << c.x() << ',' << c.y() << ',' << c.z();
+                    snaps << '\n';
+                }
+        if (result.coarseRun == result.convergedRun) break;
+    }
+    writeTextFileAtomically(o.outDir + "/slab_snapshots.csv", snaps.str());
+
+    std::ostringstream text;
+    text << "Failure of the panel at delta_max = " << deltaMaxOf(o) << " mm, per run\n\n";
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const std::string role = int(i) == result.convergedRun ? " [converged]"
+                                 : int(i) == result.coarseRun  ? " [coarse]"
+                                                               : "";
+        text << "run " << i << " (" << result.stage[i] << ")" << role << ": "
+             << slabFailureSummary(panel, result.runs[i]) << "\n";
+    }
+    writeTextFileAtomically(o.outDir + "/slab_failure.txt", text.str());
+
+    if (o.writeScene && result.convergedRun >= 0) {
+        const SlabRunResult& r = result.runs[result.convergedRun];
+        std::ostringstream name;
+        name << o.outDir << "/assets/block_sdp" << r.sdp << "_vdp" << r.vdp << ".vdb";
+        if (std::filesystem::exists(name.str())) {
+            const auto asset = loadAsset(name.str());
+            const Scene scene = makeSlabScene(o, r.formulation, *asset, name.str(), r.dt);
+            writeTextFileAtomically(o.outDir + "/slab_scene.toml", slabSceneToml(scene, o, o.outDir));
+        }
+        writeMesh(panel.referenceMesh(), o.outDir + "/slab_block.obj");
+    }
+}
+
+SlabStudyOptions slabFullOptions()
+{
+    SlabStudyOptions o;
+    o.sdps = {1.0, 0.7, 0.5, 0.35, 0.25, 0.18};
+    o.fixedVdp = 0.075;
+    o.vdps = {0.6, 0.4, 0.25, 0.15, 0.1, 0.075};
+    return o;
+}
+
+const char* slabUsage()
+{
+    return R"(usage: lsdem-study slab [options]
+
+The interlocked slab (Feldfogel et al. 2024, Fig. 5, 6): n x n planar blocks with faces
+inclined alternately by +-angle, held by a rigid frame (a ring of fixed blocks of the same
+shape), the central block pushed down by a sphere at constant speed. P against the indenter's
+displacement delta per formulation and discretization; the two-way study refines SDP at fixed
+VDP (every formulation), then VDP at the converged SDP (adapted), and reports VDP/SDP.
+
+panel:
+  --blocks N           blocks per side, odd (default 5)
+  --block-size L       grid pitch, mm (default 8)
+  --thickness T        mm (default 3)
+  --angle A            interlocking angle, degrees (default 15)
+discretizations (mm):
+  --sdp S...           node spacings of stage 1 (default 1 0.7 0.5 0.35)
+  --vdp-fixed V        voxel of stage 1 (default 0.15)
+  --vdp V...           voxels of stage 2 (default 0.5 0.3 0.15)
+  --full               the full study: SDP 1 ... 0.18 at VDP 0.075, VDP 0.6 ... 0.075
+  --no-two-way         stage 1 only
+  --tolerance X        converged: RMS difference to the finest run <= X of its peak P
+                       (default 0.05)
+loading and material (mm, N, s, tonne):
+  --formulation F...   original, adapted, single-node, volume (default: adapted original)
+  --delta-max D        indenter travel (default: the thickness)
+  --speed V            indenter speed, mm/s (default 200)
+  --indenter-radius R  mm (default 2.5)
+  --young E            MPa (default 7e4, glass); kn* = E/L
+  --poisson NU         (default 0.22); ks* = kn*/(2(1+nu))
+  --density RHO        t/mm^3 (default 2.5e-9)
+  --friction MU        (default 0.4)
+  --restitution E      contact damping (default 0.5)
+  --damping L          global damping (default 0.3)
+  --gravity G          mm/s^2 (default 9810)
+  --kn-star K          override kn*, N/mm^3
+  --kn K               original kn, N/mm (default kn*(sqrt3/2)s_ref^2, s_ref = coarsest SDP)
+  --reference-sdp S    s_ref for the default kn
+  --testing T          symmetric (default) or one-way
+  --safety S           time step fraction of the stability limit (default 0.3)
+outputs:
+  --snapshots D...     delta of the failure snapshots (default 6 from 0 to delta-max)
+  --samples N          P-delta rows per run (default 200)
+  --threads N          worker threads (default: all cores)
+  --out DIR            output folder (default results/slab)
+  --no-plots           CSV and text only
+  --no-scene           do not write slab_scene.toml / slab_block.obj
+  --estimate           print the cost and stop
+  -q, --quiet          print only the summary
+
+Writes DIR/slab.csv (P-delta), slab_runs.csv (one row per run), slab_snapshots.csv,
+slab_failure.txt, slab_scene.toml + assets/ (the converged case, for lsdem-run) and, with
+python3-matplotlib, DIR/slab_*.png.
+)";
+}
+
+namespace {
+
+/// Values after an option, up to the next option ("-0.5" is a value, "--x" is not).
+std::vector<std::string> optionValues(cli::Arguments& args, const std::string& option)
+{
+    std::vector<std::string> values;
+    while (!args.done()) {
+        const std::string& v = args.peek();
+        const bool isOption = v.size() > 1 && v[0] == '-' &&
+                              !(std::isdigit(static_cast<unsigned char>(v[1])) || v[1] == '.');
+        if (isOption) break;
+        values.push_back(args.next());
+    }
+    if (values.empty()) throw Error("", "option " + option + " needs at least one value");
+    return values;
+}
+
+std::vector<double> numbers(cli::Arguments& args, const std::string& option)
+{
+    std::vector<double> out;
+    for (const std::string& v : optionValues(args, option))
+        out.push_back(cli::Arguments::parseNumber(v, option));
+    return out;
+}
+
+} // namespace
+
+int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
+{
+    // --full first: it sets the lists that later options may override.
+    SlabStudyOptions o;
+    for (cli::Arguments scan = args; !scan.done();)
+        if (scan.next() == "--full") o = slabFullOptions();
+    long long threads = 0;
+    bool estimateOnly = false;
+    while (!args.done()) {
+        const std::string a = args.next();
+        if (a == "-h" || a == "--help") {
+            std::cout << slabUsage();
+            return 0;
+        } else if (a == "--full") {
+        } else if (a == "--blocks") {
+            o.panel.blocksPerSide = int(args.integer(a));
+        } else if (a == "--block-size") {
+            o.panel.blockSize = args.number(a);
+        } else if (a == "--thickness") {
+            o.panel.thickness = args.number(a);
+        } else if (a == "--angle") {
+            o.panel.angleDeg = args.number(a);
+        } else if (a == "--sdp") {
+            o.sdps = numbers(args, a);
+        } else if (a == "--vdp-fixed") {
+            o.fixedVdp = args.number(a);
+        } else if (a == "--vdp") {
+            o.vdps = numbers(args, a);
+        } else if (a == "--no-two-way") {
+            o.twoWay = false;
+        } else if (a == "--tolerance") {
+            o.tolerance = args.number(a);
+        } else if (a == "--formulation") {
+            o.formulations.clear();
+            for (const std::string& v : optionValues(args, a)) o.formulations.push_back(parseFormulation(v));
+        } else if (a == "--delta-max") {
+            o.deltaMax = args.number(a);
+        } else if (a == "--speed") {
+            o.speed = args.number(a);
+        } else if (a == "--indenter-radius") {
+            o.indenterRadius = args.number(a);
+        } else if (a == "--young") {
+            o.material.youngModulus = args.number(a);
+        } else if (a == "--poisson") {
+            o.material.poisson = args.number(a);
+        } else if (a == "--density") {
+            o.material.density = args.number(a);
+        } else if (a == "--friction") {
+            o.material.friction = args.number(a);
+        } else if (a == "--restitution") {
+            o.material.restitution = args.number(a);
+        } else if (a == "--damping") {
+            o.material.globalDamping = args.number(a);
+        } else if (a == "--gravity") {
+            o.material.gravity = args.number(a);
+        } else if (a == "--kn-star") {
+            o.knStar = args.number(a);
+        } else if (a == "--kn") {
+            o.knOriginal = args.number(a);
+        } else if (a == "--reference-sdp") {
+            o.referenceSdp = args.number(a);
+        } else if (a == "--testing") {
+            o.testing = parseNodeTesting(args.value(a));
+        } else if (a == "--safety") {
+            o.timeStepSafety = args.number(a);
+        } else if (a == "--snapshots") {
+            o.snapshotDeltas = numbers(args, a);
+        } else if (a == "--samples") {
+            o.samples = int(args.integer(a));
+        } else if (a == "--threads") {
+            threads = args.integer(a);
+            if (threads < 1) throw Error("", "--threads wants a number >= 1");
+        } else if (a == "--out") {
+            o.outDir = args.value(a);
+        } else if (a == "--no-plots") {
+            o.plots = false;
+        } else if (a == "--no-scene") {
+            o.writeScene = false;
+        } else if (a == "--estimate") {
+            estimateOnly = true;
+        } else if (a == "-q" || a == "--quiet") {
+            o.quiet = true;
+        } else {
+            throw Error("", "unknown option '" + a + "'", "see lsdem-study slab --help");
+        }
+    }
+    checkSlabStudyOptions(o);
+    const SlabPanel panel(o.panel);
+    const SlabStiffness k = slabStiffness(o);
+    const SlabCostEstimate cost = estimateSlabCost(o);
+    std::printf("slab: %dx%d blocks, L = %g mm, t = %g mm, angle %g deg; indenter R = %g mm at "
+                "%g mm/s to delta = %g mm\n"
+                "      kn* = %g N/mm^3, ks* = %g N/mm^3 (adapted), kn = %g N/mm (original), mu = %g\n"
+                "cost: %s\n",
+                o.panel.blocksPerSide, o.panel.blocksPerSide, o.panel.blockSize, o.panel.thickness,
+                o.panel.angleDeg, o.indenterRadius, o.speed, deltaMaxOf(o), k.knStar, k.ksStar,
+                k.kn, o.material.friction, cost.text.c_str());
+    std::fflush(stdout);
+    if (estimateOnly) return 0;
+
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(o.outDir, ec);
+    if (ec || !fs::is_directory(o.outDir))
+        throw Error(o.outDir, "cannot create the output folder (" + ec.message() + ")",
+                    "choose another --out");
+    if (::access(o.outDir.c_str(), W_OK) != 0)
+        throw Error(o.outDir, "the output folder is not writable", "choose another --out");
+
+    std::unique_ptr<tbb::global_control> limit;
+    if (threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      static_cast<size_t>(threads));
+    const SlabStudyResult result = runSlabStudy(o, o.quiet ? nullptr : &std::cout);
+    writeSlabOutputs(result, o, panel);
+
+    std::printf("\n%-9s %-6s %6s %6s %7s %8s %10s %10s %9s\n", "stage", "formul.", "SDP", "VDP",
+                "nodes", "steps", "P_max [N]", "drop [mm]", "time [s]");
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const SlabRunResult& r = result.runs[i];
+        double peak = 0;
+        for (const SlabSample& s : r.curve) peak = std::max(peak, s.force);
+        std::printf("%-9s %-7s %6.3g %6.3g %7d %8lld %10.4g %10.3g %9.1f%s\n", result.stage[i].c_str(),
+                    formulationName(r.formulation).c_str(), r.sdp, r.vdp, r.nodes, r.steps, peak,
+                    r.curve.empty() ? 0.0 : r.curve.back().centralDrop, r.runSeconds,
+                    r.stopped ? "  stopped" : "");
+    }
+    std::printf("converged SDP %g mm%s, VDP %g mm%s: VDP/SDP = %.3g (the paper: 0.025/0.06 = 0.42)\n",
+                result.convergedSdp, result.sdpConverged ? "" : " (NOT converged: refine further)",
+                result.convergedVdp,
+                !o.twoWay ? " (fixed)" : result.vdpConverged ? "" : " (NOT converged: refine further)",
+                result.convergedVdp / result.convergedSdp);
+    if (result.convergedRun >= 0)
+        std::printf("%s", slabFailureSummary(panel, result.runs[result.convergedRun]).c_str());
+    std::printf("time %.1f s; wrote %s/slab.csv, slab_runs.csv, slab_snapshots.csv, slab_failure.txt\n",
+                result.wallSeconds, o.outDir.c_str());
+    std::fflush(stdout);
+    if (o.plots) {
+        const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+        const std::string command = python + " '" + plotDir + "/slab.py' '" + o.outDir + "'";
+        if (std::system(command.c_str()) != 0) {
+            std::cerr << "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
+                         "python3-matplotlib); the CSV files are complete\n";
+            return 4;
+        }
+    }
+    return 0;
+}
+
+} // namespace lsdem

@@ -101,3 +101,34 @@ TEST(PlaneContact, ElasticSphereReboundsWithItsImpactSpeed)
     EXPECT_NEAR(deepest / deltaMax, 1.0, 0.05);
     EXPECT_NEAR(ball.velocity.z() / impactSpeed, 1.0, 0.005);
 }
+
+// Skipping node blocks wholly in front of the plane must not lose a single contact: the same
+// nodes, in the same order, as testing every node, for tilted planes cutting the sphere at
+// several depths, and most nodes culled when the contact is small.
+TEST(PlaneContact, BlockCullingFindsExactlyTheContactsOfTheFullScan)
+{
+    const GrainAsset& withBlocks = ballAsset();
+    ASSERT_FALSE(withBlocks.nodeBlocks.empty());
+    GrainAsset everyNode = withBlocks;
+    everyNode.nodeBlocks.clear();
+    RigidPose pose;
+    pose.orientation = Quat(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+    for (double depth : {0.01, 0.3, 2.0, 6.0}) {
+        Plane plane;
+        plane.normal = Vec3(0.3, -0.2, 1.0).normalized();
+        plane.point = pose.position - (5.0 - depth) * plane.normal;
+        std::vector<NodeContact> culled, full;
+        NodeCheckStats culledStats, fullStats;
+        findPlaneContacts(withBlocks, pose, plane, culled, culledStats);
+        findPlaneContacts(everyNode, pose, plane, full, fullStats);
+        ASSERT_EQ(culled.size(), full.size()) << "depth " << depth;
+        ASSERT_GT(full.size(), 0u);
+        for (size_t k = 0; k < full.size(); ++k) {
+            EXPECT_EQ(culled[k].node, full[k].node);
+            EXPECT_EQ(culled[k].depth, full[k].depth);
+        }
+        if (depth < 0.5) {
+            EXPECT_GT(culledStats.nodesCulled, static_cast<long long>(withBlocks.nodes.size() / 2));
+        }
+    }
+}

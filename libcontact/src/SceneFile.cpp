@@ -3,6 +3,7 @@
 // never be silently ignored). Messages name the file and line of the offending key.
 #include "lsdem/contact/SceneFile.h"
 
+#include "lsdem/contact/RandomRotation.h"
 #include "lsdem/ls/Error.h"
 
 #include <toml++/toml.h>
@@ -486,15 +487,6 @@ void readMotion(TableReader& t, GrainSpec& g)
 /// distributions are not specified bit for bit, so lattices would differ between compilers.
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-/// A uniformly distributed random rotation (Shoemake's method from three uniforms).
-Quat randomRotation(std::mt19937_64& rng)
-{
-    const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
-    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-    return Quat(a * std::sin(2 * kPi * u2), a * std::cos(2 * kPi * u2), b * std::sin(2 * kPi * u3),
-                b * std::cos(2 * kPi * u3))
-        .normalized();
-}
 
 GrainSpec readGrain(TableReader& t, const Scene& scene)
 {
@@ -555,7 +547,8 @@ void readLattice(TableReader& t, Scene& scene)
                 if (jitter > 0.0)
                     for (int d = 0; d < 3; ++d)
                         g.pose.position[d] += jitter * (2.0 * uniform01(rng) - 1.0);
-                g.pose.orientation = randomOrientation ? randomRotation(rng) : orientation;
+                g.pose.orientation = randomOrientation ? randomRotation([&] { return uniform01(rng); })
+                                                       : orientation;
                 scene.grains.push_back(g);
             }
 }

@@ -1,5 +1,6 @@
 #include "studies/Cube27Study.h"
 
+#include "lsdem/contact/RandomRotation.h"
 #include "lsdem/contact/Simulation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/contact/World.h"
@@ -36,14 +37,11 @@ double baseStiffness(Formulation f)
     return (f == Formulation::Original || f == Formulation::SingleNode) ? 1e9 : 1e3;
 }
 
-/// A uniformly random rotation (Shoemake's method), from a seeded generator.
+/// A uniformly random rotation drawn from @a rng (the studies' reproducible sequence).
 Quat randomRotation(std::mt19937& rng)
 {
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    const double u1 = u(rng), u2 = 2 * kPi * u(rng), u3 = 2 * kPi * u(rng);
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3))
-        .normalized();
+    return lsdem::randomRotation([&] { return u(rng); });
 }
 
 /// Contact stiffnesses of a column at top wall travel @a delta, from the continuum laws:

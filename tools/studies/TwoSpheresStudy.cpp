@@ -1,6 +1,7 @@
 #include "studies/TwoSpheresStudy.h"
 
 #include "lsdem/contact/PairContact.h"
+#include "lsdem/contact/RandomRotation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
@@ -45,14 +46,11 @@ void checkTwoSpheresOptions(const TwoSpheresOptions& o)
 
 namespace {
 
-/// A uniformly random rotation (Shoemake's method), from a seeded generator.
+/// A uniformly random rotation drawn from @a rng (the studies' reproducible sequence).
 Quat randomRotation(std::mt19937& rng)
 {
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    const double u1 = u(rng), u2 = 2 * 3.14159265358979323846 * u(rng), u3 = 2 * 3.14159265358979323846 * u(rng);
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    return Quat(a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), b * std::cos(u3))
-        .normalized();
+    return lsdem::randomRotation([&] { return u(rng); });
 }
 
 struct Series

@@ -233,3 +233,52 @@ TEST(SlabStudy, TinyPanelRunsAndTheCentralBlockMovesMost)
     EXPECT_EQ(r.snapshots.size(), 6u);
     EXPECT_LT(slabFailureSummary(panel, r).find("central block b1_1 moved down"), std::string::npos);
 }
+
+// lsdem-study slab as a user runs it, at test size: a two-way study on a 3×3 panel with both
+// formulations prints its cost first, then the table and the converged ratio, and writes the
+// CSV files, the failure summary, the scene for lsdem-run and (with matplotlib) the plots.
+TEST(SlabStudy, ProgramWritesTheStudy)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string out = dir.file("slab");
+    const bool matplotlib = runCommand("/usr/bin/python3 -c 'import matplotlib'").exitCode == 0;
+    const auto r = runCommand(kStudy + " slab --blocks 3 --sdp 1 0.7 --vdp-fixed 0.3 --vdp 0.6 0.3 "
+                                       "--delta-max 0.3 --formulation adapted original --samples 20 "
+                                       "--threads 2 --out '" + out + "'");
+    ASSERT_EQ(r.exitCode, matplotlib ? 0 : 4) << r.output;
+    EXPECT_LT(r.output.find("cost:"), r.output.find("stage 1")) << r.output;
+    EXPECT_NE(r.output.find("VDP/SDP ="), std::string::npos) << r.output;
+    for (const char* f : {"slab.csv", "slab_runs.csv", "slab_snapshots.csv", "slab_failure.txt",
+                          "slab_scene.toml", "slab_block.obj"})
+        EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+    // Runs: 2 SDP x 2 formulations, 1 more VDP (0.6) at the chosen SDP, the coarse case.
+    std::ifstream runs(out + "/slab_runs.csv");
+    int rows = 0;
+    for (std::string line; std::getline(runs, line);) rows += !line.empty() && line[0] != '#';
+    EXPECT_EQ(rows - 1, 6);
+    // The scene reads back (assets relative to its folder).
+    const Scene scene = readSceneFile(out + "/slab_scene.toml");
+    EXPECT_EQ(scene.grains.size(), 9u);
+    if (matplotlib) {
+        for (const char* f : {"slab_sdp.png", "slab_vdp.png", "slab_convergence.png", "slab_blocks.png",
+                              "slab_snapshots_converged.png"})
+            EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+    }
+}
+
+TEST(SlabStudy, ProgramRefusesBadInputAndEstimatesWithoutRunning)
+{
+    lsdem::test::ScratchDir dir;
+    auto r = runCommand(kStudy + " slab --blocks 4 --out '" + dir.file("x") + "'");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("--blocks"), std::string::npos) << r.output;
+    r = runCommand(kStudy + " slab --vdp-fixed 1.5 --out '" + dir.file("x") + "'");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("4 voxels"), std::string::npos) << r.output;
+    r = runCommand(kStudy + " slab --frobnicate");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    r = runCommand(kStudy + " slab --full --estimate --out '" + dir.file("x") + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("min on 2 cores"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
+}

@@ -81,6 +81,17 @@ double nodesForSpacing(double area, double sdp) { return 2.0 * area / (std::sqrt
 
 double blockSurfaceArea(const SlabPanel& panel) { return surfaceArea(panel.referenceMesh()); }
 
+/// Whether stage 1 runs formulation @a f at node spacing @a sdp: the per-node formulations
+/// (original, single-node) only at o.originalSdps when given (their time step shrinks with the
+/// node count, so their finest runs cost the most).
+bool runsAt(const SlabStudyOptions& o, Formulation f, double sdp)
+{
+    if (perArea(f) || o.originalSdps.empty()) return true;
+    for (double s : o.originalSdps)
+        if (std::abs(s - sdp) <= 1e-12 * sdp) return true;
+    return false;
+}
+
 } // namespace
 
 void checkSlabStudyOptions(const SlabStudyOptions& o)
@@ -129,6 +140,7 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
                                 show(thinnest) + " mm thickness",
                         "use node spacings below " + show(0.5 * thinnest) + " mm");
     }
+    for (double s : o.originalSdps) positive(s, "--sdp-original", "0.5");
     auto checkVoxel = [&](double v, const std::string& option) {
         positive(v, option, "0.15");
         if (v * 4.0 > thinnest)
@@ -480,50 +492,89 @@ double slabCurveDifference(const std::vector<SlabSample>& a, const std::vector<S
     return wholeCurve ? rms : std::max(rms, std::abs(peakA - peakB) / peakB);
 }
 
+namespace {
+
+/// How far the blocks around the centre moved at the end of a run.
+struct BlockMotion
+{
+    double neighbours = 0, diagonal = 0, rest = 0;  ///< largest displacement per ring, mm
+    int farMoved = 0;                               ///< other blocks moved more than t/3
+    std::string farNames;
+};
+
+BlockMotion blockMotion(const SlabPanel& panel, const SlabRunResult& run)
+{
+    BlockMotion m;
+    const int centre = panel.centralBlock();
+    const std::vector<SlabBlock>& blocks = panel.blocks();
+    for (int k = 0; k < static_cast<int>(blocks.size()); ++k) {
+        if (k == centre) continue;
+        const double d = run.finalDisplacement[k].norm();
+        const int di = std::abs(blocks[k].i - blocks[centre].i), dj = std::abs(blocks[k].j - blocks[centre].j);
+        double& ring = di + dj == 1 ? m.neighbours : std::max(di, dj) == 1 ? m.diagonal : m.rest;
+        ring = std::max(ring, d);
+        if (d > panel.options().thickness / 3) {
+            ++m.farMoved;
+            m.farNames += " " + blocks[k].name + " (" + show(std::round(d * 100) / 100) + " mm)";
+        }
+    }
+    return m;
+}
+
+} // namespace
+
+SlabFailureMode slabFailureMode(const SlabPanel& panel, const SlabRunResult& run)
+{
+    if (run.finalDisplacement.size() != panel.blocks().size() || run.curve.empty())
+        return SlabFailureMode::None;
+    const BlockMotion m = blockMotion(panel, run);
+    const double drop = -run.finalDisplacement[panel.centralBlock()].z();
+    const double delta = run.curve.back().delta;
+    const double others = std::max({m.neighbours, m.diagonal, m.rest});
+    if (drop > 0.5 * delta && others < 0.25 * drop && m.farMoved == 0) return SlabFailureMode::PushOut;
+    if (m.farMoved > 0) return SlabFailureMode::BlocksDisplaced;
+    return SlabFailureMode::Deflection;
+}
+
+std::string slabFailureModeName(SlabFailureMode mode)
+{
+    switch (mode) {
+    case SlabFailureMode::PushOut: return "push-out";
+    case SlabFailureMode::BlocksDisplaced: return "blocks-displaced";
+    case SlabFailureMode::Deflection: return "deflection";
+    case SlabFailureMode::None: break;
+    }
+    return "none";
+}
+
 std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run)
 {
     std::ostringstream s;
     s << std::fixed << std::setprecision(3);
     const int n = panel.n(), centre = panel.centralBlock();
-    const std::vector<SlabBlock>& blocks = panel.blocks();
-    if (run.finalDisplacement.size() != blocks.size()) return "no result\n";
+    if (run.finalDisplacement.size() != panel.blocks().size()) return "no result\n";
     const double delta = run.curve.empty() ? 0.0 : run.curve.back().delta;
-    const double t = panel.options().thickness;
-    double neighbours = 0, ring = 0, rest = 0;
-    int moved = 0;
-    std::string movedNames;
-    for (int k = 0; k < n * n; ++k) {
-        if (k == centre) continue;
-        const double d = run.finalDisplacement[k].norm();
-        const int ring1 = std::max(std::abs(blocks[k].i - blocks[centre].i),
-                                   std::abs(blocks[k].j - blocks[centre].j));
-        const bool adjacent = std::abs(blocks[k].i - blocks[centre].i) +
-                                  std::abs(blocks[k].j - blocks[centre].j) == 1;
-        if (adjacent) neighbours = std::max(neighbours, d);
-        else if (ring1 == 1) ring = std::max(ring, d);
-        else rest = std::max(rest, d);
-        if (d > t / 3) {
-            ++moved;
-            movedNames += " " + blocks[k].name + " (" + show(std::round(d * 100) / 100) + " mm)";
-        }
-    }
+    const BlockMotion m = blockMotion(panel, run);
     const Vec3 c = run.finalDisplacement[centre];
     s << formulationName(run.formulation) << ", SDP " << run.sdp << " mm, VDP " << run.vdp
       << " mm (" << run.nodes << " nodes per block), at delta = " << delta << " mm:\n";
     if (run.stopped) s << "  the run stopped early: " << run.error << "\n";
-    s << "  central block " << blocks[centre].name << " moved down by " << -c.z() << " mm (sideways "
-      << c.head<2>().norm() << " mm)\n"
-      << "  its 4 face neighbours moved at most " << neighbours << " mm, the 4 diagonal ones "
-      << ring << " mm";
-    if (n > 3) s << ", the other " << n * n - 9 << " blocks " << rest << " mm";
+    s << "  central block " << panel.blocks()[centre].name << " moved down by " << -c.z()
+      << " mm (sideways " << c.head<2>().norm() << " mm)\n"
+      << "  its 4 face neighbours moved at most " << m.neighbours << " mm, the 4 diagonal ones "
+      << m.diagonal << " mm";
+    if (n > 3) s << ", the other " << n * n - 9 << " blocks " << m.rest << " mm";
     s << "\n";
-    const double others = std::max({neighbours, ring, rest});
-    if (-c.z() > 0.5 * delta && others < 0.25 * -c.z() && moved == 0)
+    switch (slabFailureMode(panel, run)) {
+    case SlabFailureMode::PushOut:
         s << "  => push-out of the central block; the rest of the panel stays largely intact\n";
-    else if (moved > 0)
-        s << "  => " << moved << " other block(s) moved more than t/3:" << movedNames << "\n";
-    else
-        s << "  => the panel deflects as a whole (no block pushed out yet)\n";
+        break;
+    case SlabFailureMode::BlocksDisplaced:
+        s << "  => " << m.farMoved << " other block(s) moved more than t/3 and stayed:"
+          << m.farNames << "\n";
+        break;
+    default: s << "  => the panel deflects as a whole (no block pushed out)\n";
+    }
     return s.str();
 }
 
@@ -561,7 +612,8 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     };
     const std::vector<double> sdps = coarseToFine(o.sdps);
     for (double s : sdps)
-        for (Formulation f : o.formulations) runCost(f, s, o.fixedVdp);
+        for (Formulation f : o.formulations)
+            if (runsAt(o, f, s)) runCost(f, s, o.fixedVdp);
     if (o.twoWay) {
         // Stage 2 runs at the converged SDP, not known yet: assume the finest (the upper bound).
         for (double v : coarseToFine(o.vdps))
@@ -640,20 +692,24 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
     std::vector<int> adaptedBySdp;
     for (double s : sdps)
         for (Formulation f : o.formulations) {
+            if (!runsAt(o, f, s)) continue;
             const int k = run(f, s, o.fixedVdp, "sdp");
             if (f == Formulation::Adapted) adaptedBySdp.push_back(k);
         }
 
     // The converged value of a refinement series: the coarsest run from which on every finer
-    // one is within tolerance of the finest. The finest alone proves nothing.
+    // one is within tolerance of the finest (P–δ loading branch and peak) and fails the same way
+    // (push-out or not: the paper's Sec. 3.5). The finest alone proves nothing.
     auto converged = [&](const std::vector<int>& series, bool& ok) {
         ok = false;
         if (series.empty()) return -1;
         const int finest = series.back();
+        const SlabFailureMode mode = slabFailureMode(panel, result.runs[finest]);
         int chosen = finest;
         for (int k = int(series.size()) - 2; k >= 0; --k) {
             if (slabCurveDifference(result.runs[series[k]].curve, result.runs[finest].curve) >
-                o.tolerance)
+                    o.tolerance ||
+                slabFailureMode(panel, result.runs[series[k]]) != mode)
                 break;
             chosen = series[k];
             ok = true;
@@ -717,7 +773,7 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     runs << std::setprecision(10) << head.str()
          << "run,stage,role,formulation,sdp,vdp,vdp_over_sdp,nodes,spacing_measured,stiffness,dt,"
             "steps,bake_s,run_s,node_checks,P_max,delta_at_P_max,central_drop,others_max,"
-            "diff_to_finest,diff_whole_curve,stopped\n";
+            "diff_to_finest,diff_whole_curve,failure_mode,stopped\n";
     for (size_t i = 0; i < result.runs.size(); ++i) {
         const SlabRunResult& r = result.runs[i];
         int finest = -1;
@@ -750,7 +806,8 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
              << r.bakeSeconds << ',' << r.runSeconds << ',' << r.nodeChecks << ',' << peak << ','
              << at << ',' << (r.curve.empty() ? 0.0 : r.curve.back().centralDrop) << ','
              << (r.curve.empty() ? 0.0 : r.curve.back().othersMax) << ',' << diff << ',' << whole
-             << ',' << (r.stopped ? 1 : 0) << '\n';
+             << ',' << slabFailureModeName(slabFailureMode(panel, r)) << ',' << (r.stopped ? 1 : 0)
+             << '\n';
     }
     writeTextFileAtomically(o.outDir + "/slab_runs.csv", runs.str());
 
@@ -804,8 +861,9 @@ SlabStudyOptions slabFullOptions()
 {
     SlabStudyOptions o;
     o.sdps = {1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.125};
-    o.fixedVdp = 0.05;
-    o.vdps = {0.4, 0.25, 0.15, 0.1, 0.07, 0.05};
+    o.originalSdps = {1.0, 0.7, 0.5, 0.35, 0.25};
+    o.fixedVdp = 0.035;
+    o.vdps = {0.4, 0.2, 0.1, 0.07, 0.05, 0.035};
     return o;
 }
 
@@ -825,14 +883,17 @@ panel:
   --thickness T        mm (default 3)
   --angle A            interlocking angle, degrees (default 15)
 discretizations (mm):
-  --sdp S...           node spacings of stage 1 (default 1 0.7 0.5 0.35)
-  --vdp-fixed V        voxel of stage 1 (default 0.1)
-  --vdp V...           voxels of stage 2 (default 0.4 0.2 0.1)
-  --full               the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 at VDP 0.05,
-                       then VDP 0.4 0.25 0.15 0.1 0.07 0.05 (about an hour or more)
+  --sdp S...           node spacings of stage 1 (default 1 0.7 0.5 0.35 0.25)
+  --sdp-original S...  the subset run with original (and single-node), whose time step
+                       shrinks with the node count (default 1 0.7 0.5 0.35; with --sdp
+                       alone: all of them)
+  --vdp-fixed V        voxel of stage 1 (default 0.05)
+  --vdp V...           voxels of stage 2 (default 0.4 0.2 0.1 0.05)
+  --full               the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original to
+                       0.25) at VDP 0.035, then VDP 0.4 0.2 0.1 0.07 0.05 0.035
   --no-two-way         stage 1 only
   --tolerance X        converged: the loading branch (RMS) and the peak within X of the
-                       finest run's peak P (default 0.05)
+                       finest run's peak P (default 0.05), and the same failure mode
 loading and material (mm, N, s, tonne):
   --formulation F...   original, adapted, single-node, volume (default: adapted original)
   --delta-max D        indenter travel (default: twice the thickness)
@@ -901,6 +962,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         if (scan.next() == "--full") o = slabFullOptions();
     long long threads = 0;
     bool estimateOnly = false;
+    bool originalGiven = false;
     while (!args.done()) {
         const std::string a = args.next();
         if (a == "-h" || a == "--help") {
@@ -917,6 +979,10 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
             o.panel.angleDeg = args.number(a);
         } else if (a == "--sdp") {
             o.sdps = numbers(args, a);
+            if (!originalGiven) o.originalSdps.clear();  // the same list for every formulation
+        } else if (a == "--sdp-original") {
+            o.originalSdps = numbers(args, a);
+            originalGiven = true;
         } else if (a == "--vdp-fixed") {
             o.fixedVdp = args.number(a);
         } else if (a == "--vdp") {

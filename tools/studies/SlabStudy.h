@@ -62,13 +62,17 @@ struct SlabStudyOptions
 
     std::vector<Formulation> formulations = {Formulation::Adapted, Formulation::Original};
     /// Stage 1: SDP refined (coarse to fine) at VDP = fixedVdp, every formulation.
-    std::vector<double> sdps = {1.0, 0.7, 0.5, 0.35};
-    double fixedVdp = 0.1;
+    std::vector<double> sdps = {1.0, 0.7, 0.5, 0.35, 0.25};
+    /// The SDPs at which the per-node formulations (original, single-node) run (empty: all
+    /// of sdps): their time step shrinks as 1/sqrt(N), so their finest runs cost the most.
+    std::vector<double> originalSdps = {1.0, 0.7, 0.5, 0.35};
+    double fixedVdp = 0.05;
     /// Stage 2 (adapted): VDP refined (coarse to fine) at the converged SDP of stage 1.
-    std::vector<double> vdps = {0.4, 0.2, 0.1};
+    std::vector<double> vdps = {0.4, 0.2, 0.1, 0.05};
     bool twoWay = true;            ///< false: stage 1 only
     /// A run is converged when its P(δ) differs from the finest run's by at most this
-    /// (slabCurveDifference: loading branch and peak, relative to the finest run's peak force).
+    /// (slabCurveDifference: loading branch and peak, relative to the finest run's peak force)
+    /// and it fails the same way (slabFailureMode).
     double tolerance = 0.05;
     std::vector<double> snapshotDeltas;  ///< δ of the snapshots, mm (empty: 6 from 0 to δ_max)
     int samples = 200;             ///< P–δ rows per run
@@ -169,6 +173,17 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
 /// slower to converge).
 double slabCurveDifference(const std::vector<SlabSample>& a, const std::vector<SlabSample>& b,
                            bool wholeCurve = false);
+
+/// How the panel ended up at δ_max.
+enum class SlabFailureMode {
+    None,             ///< no result
+    PushOut,          ///< the central block went down by more than δ/2 and every other block
+                      ///< moved less than a quarter of that and less than t/3 (Mirkhalaf et al.)
+    BlocksDisplaced,  ///< other blocks moved more than t/3 and stayed (blocks sticking together)
+    Deflection,       ///< the panel deflects as a whole, no block pushed out
+};
+SlabFailureMode slabFailureMode(const SlabPanel& panel, const SlabRunResult& run);
+std::string slabFailureModeName(SlabFailureMode mode);
 
 /// A text account of how the panel failed at δ_max: which blocks moved, how far.
 std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run);

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include <tbb/parallel_for.h>
+
 namespace lsdem {
 
 std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& centers,
@@ -40,7 +42,11 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
         cells[i] = cellOf(centers[i]);
         grid[key(cells[i])].push_back(i);
     }
-    for (int i = 0; i < n; ++i)
+    // Each grain's partners of higher index, found in parallel into its own list; the lists
+    // are then joined in grain order, so the result is sorted and thread-count independent.
+    std::vector<std::vector<int>> partners(static_cast<size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        std::vector<int>& mine = partners[static_cast<size_t>(i)];
         for (int dx = -1; dx <= 1; ++dx)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dz = -1; dz <= 1; ++dz) {
@@ -50,12 +56,19 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
                         if (j <= i) continue;
                         const double reach = radii[i] + radii[j] + margin;
                         if ((centers[i] - centers[j]).squaredNorm() <= reach * reach)
-                            pairs.emplace_back(i, j);
+                            mine.push_back(j);
                     }
                 }
-    std::sort(pairs.begin(), pairs.end());
-    // Keys wrap beyond 2²¹ cells per axis; a wrapped key can only repeat a pair, never lose one.
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+        std::sort(mine.begin(), mine.end());
+        // Keys wrap beyond 2²¹ cells per axis; a wrapped key can only repeat a pair, never
+        // lose one.
+        mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    });
+    size_t total = 0;
+    for (const std::vector<int>& mine : partners) total += mine.size();
+    pairs.reserve(total);
+    for (int i = 0; i < n; ++i)
+        for (int j : partners[static_cast<size_t>(i)]) pairs.emplace_back(i, j);
     return pairs;
 }
 

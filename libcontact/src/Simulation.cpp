@@ -153,20 +153,26 @@ void Simulation::evaluateForces(double slipStep)
     std::vector<Vec3> centers(n);
     std::vector<double> radii(n);
     std::vector<ContactGrain> views(n);
-    for (int i = 0; i < n; ++i) {
-        centers[i] = w.grains[i].body.pose.position;
-        radii[i] = w.grains[i].asset->boundingRadius;
-        views[i] = contactView(w.grains[i], i);
-    }
+    // Per grain, in parallel: its bounding sphere, its view for the contact laws and the
+    // boundaries it may touch (joined in grain order below, so sorted as if found serially).
+    const int boundaryCount = static_cast<int>(w.boundaries.size());
+    std::vector<std::vector<int>> nearBoundaries(static_cast<size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        const Grain& g = w.grains[i];
+        centers[i] = g.body.pose.position;
+        radii[i] = g.asset->boundingRadius;
+        views[i] = contactView(g, i);
+        if (!g.isFree()) return;
+        for (int b = 0; b < boundaryCount; ++b)
+            if (w.boundaries[b].mayTouch(centers[i], radii[i]))
+                nearBoundaries[static_cast<size_t>(i)].push_back(b);
+    });
     std::vector<ContactSlot> slots;
     // Grain pairs: candidates whose bounding spheres overlap, unless neither can move.
     std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
     std::vector<std::pair<int, int>> boundaryPairs;  // (grain, boundary), sorted
-    for (int i = 0; i < n; ++i) {
-        if (!w.grains[i].isFree()) continue;
-        for (int b = 0; b < static_cast<int>(w.boundaries.size()); ++b)
-            if (w.boundaries[b].mayTouch(centers[i], radii[i])) boundaryPairs.emplace_back(i, b);
-    }
+    for (int i = 0; i < n; ++i)
+        for (int b : nearBoundaries[static_cast<size_t>(i)]) boundaryPairs.emplace_back(i, b);
     slots.reserve(pairs.size() + boundaryPairs.size());
     // Walk the sorted candidates and the sorted history together: history of pairs that
     // drifted apart is dropped, new pairs start empty. std::map nodes do not move, so the
@@ -271,12 +277,32 @@ void Simulation::evaluateForces(double slipStep)
 void Simulation::checkStability()
 {
     const World& w = mWorld;
-    for (size_t i = 0; i < w.grains.size(); ++i) {
+    // Each free grain's stable step limit (infinite without contacts; NaN if its state is no
+    // longer finite), in parallel; then the verdict in grain order, so the message is the same
+    // on any thread count.
+    const size_t n = w.grains.size();
+    std::vector<double> limits(n, std::numeric_limits<double>::infinity());
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const Grain& g = w.grains[i];
-        if (!g.isFree()) continue;
+        if (!g.isFree()) return;
         const RigidBody& b = g.body;
         if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
             !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite()) {
+            limits[i] = std::numeric_limits<double>::quiet_NaN();
+            return;
+        }
+        if (mGrainStiffness[i].isZero()) return;
+        // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
+        // stable for dt < 2/ω.
+        Eigen::SelfAdjointEigenSolver<Mat3> solver;
+        solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
+        const double lambda = solver.eigenvalues().maxCoeff();
+        if (lambda > 0.0) limits[i] = 2.0 * std::sqrt(b.mass / lambda);
+    });
+    for (size_t i = 0; i < n; ++i) {
+        const Grain& g = w.grains[i];
+        const double limit = limits[i];
+        if (std::isnan(limit)) {
             std::ostringstream s;
             s << "grain '" << g.name << "' reached a non-finite state at step " << w.step
               << " (t = " << w.time << ")";
@@ -284,14 +310,6 @@ void Simulation::checkStability()
                         "lower the time step (time_step, or safety for \"auto\"); check the "
                         "stiffnesses and masses for consistent units");
         }
-        if (mGrainStiffness[i].isZero()) continue;
-        // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
-        // stable for dt < 2/ω.
-        Eigen::SelfAdjointEigenSolver<Mat3> solver;
-        solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
-        const double lambda = solver.eigenvalues().maxCoeff();
-        if (!(lambda > 0.0)) continue;
-        const double limit = 2.0 * std::sqrt(b.mass / lambda);
         mStabilityLimit = std::min(mStabilityLimit, limit);
         if (mDt > limit) {
             std::ostringstream s;

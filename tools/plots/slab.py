@@ -55,7 +55,7 @@ def label(run):
 
 
 def plot_sdp(runs, curves, out_dir):
-    stage = [r for r in runs if r["stage"] == "sdp"]
+    stage = [r for r in runs if r["diff_sdp_series"] != ""]
     forms = sorted({r["formulation"] for r in stage}, key=lambda f: (f != "adapted", f))
     if not forms:
         return
@@ -75,7 +75,7 @@ def plot_sdp(runs, curves, out_dir):
 
 
 def plot_vdp(runs, curves, out_dir):
-    stage = sorted([r for r in runs if r["stage"] == "vdp"], key=lambda r: -float(r["vdp"]))
+    stage = sorted([r for r in runs if r["diff_vdp_series"] != ""], key=lambda r: -float(r["vdp"]))
     if not stage:
         return
     fig, ax = plt.subplots(figsize=(5.8, 4.2))
@@ -95,7 +95,7 @@ def plot_convergence(runs, out_dir):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     ax = axes[0]
     for form, marker in (("adapted", "o"), ("original", "s"), ("volume", "^"), ("single-node", "v")):
-        mine = sorted([r for r in runs if r["stage"] == "sdp" and r["formulation"] == form],
+        mine = sorted([r for r in runs if r["diff_sdp_series"] != "" and r["formulation"] == form],
                       key=lambda r: float(r["sdp"]))
         if mine:
             ax.plot([float(r["sdp"]) for r in mine], [float(r["P_max"]) for r in mine],
@@ -108,13 +108,20 @@ def plot_convergence(runs, out_dir):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     ax = axes[1]
-    for stage, key, marker in (("sdp", "sdp", "o"), ("vdp", "vdp", "s")):
-        mine = sorted([r for r in runs if r["stage"] == stage and r["formulation"] == "adapted"],
+    for key, marker in (("sdp", "o"), ("vdp", "s")):
+        column = "diff_%s_series" % key
+        mine = sorted([r for r in runs if r[column] != "" and r["formulation"] == "adapted"],
                       key=lambda r: float(r[key]))
-        mine = [r for r in mine if float(r["diff_to_finest"]) > 0]
+        mine = [r for r in mine if float(r[column]) > 0]  # the finest is the reference
         if mine:
-            ax.plot([float(r[key]) for r in mine], [float(r["diff_to_finest"]) for r in mine],
-                    marker=marker, label="adapted, %s refined" % key.upper())
+            ax.plot([float(r[key]) for r in mine], [float(r[column]) for r in mine],
+                    marker=marker, label="adapted, %s refined (against the finest)" % key.upper())
+    converged = [r for r in runs if r["role"] == "converged"]
+    if converged:
+        c = converged[0]
+        ax.text(0.02, 0.02, "converged: SDP %s, VDP %s mm, VDP/SDP = %.2f"
+                % (c["sdp"], c["vdp"], float(c["vdp"]) / float(c["sdp"])),
+                transform=ax.transAxes, fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.invert_xaxis()

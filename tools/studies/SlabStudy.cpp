@@ -457,6 +457,7 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
     }
     for (int k = 0; k < count; ++k) r.finalDisplacement.push_back(w.grains[k].body.pose.position - p0[k]);
     r.nodeChecks = sim.counters().nodes.nodesConsidered;
+    r.stabilityLimit = sim.stabilityLimitSeen();
     r.runSeconds = secondsSince(start);
     return r;
 }
@@ -694,6 +695,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
         for (Formulation f : o.formulations) {
             if (!runsAt(o, f, s)) continue;
             const int k = run(f, s, o.fixedVdp, "sdp");
+            result.sdpSeries[f].push_back(k);
             if (f == Formulation::Adapted) adaptedBySdp.push_back(k);
         }
 
@@ -727,6 +729,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
             *log << "stage 2: VDP refined at SDP = " << result.convergedSdp << " mm (adapted)\n";
         std::vector<int> byVdp;
         for (double v : vdps) byVdp.push_back(run(Formulation::Adapted, result.convergedSdp, v, "vdp"));
+        result.vdpSeries = byVdp;
         const int vdpRun = converged(byVdp, result.vdpConverged);
         result.convergedVdp = result.runs[vdpRun].vdp;
         result.convergedRun = vdpRun;
@@ -768,26 +771,26 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     }
     writeTextFileAtomically(o.outDir + "/slab.csv", curves.str());
 
-    // Each run against the finest of its series (same formulation and stage 1, or stage 2).
+    // Each run against the finest of its refinement series (stage 1 of its formulation, and
+    // stage 2); empty where it is not a member.
     std::ostringstream runs;
     runs << std::setprecision(10) << head.str()
          << "run,stage,role,formulation,sdp,vdp,vdp_over_sdp,nodes,spacing_measured,stiffness,dt,"
-            "steps,bake_s,run_s,node_checks,P_max,delta_at_P_max,central_drop,others_max,"
-            "diff_to_finest,diff_whole_curve,failure_mode,stopped\n";
+            "stability_limit,steps,bake_s,run_s,node_checks,P_max,delta_at_P_max,central_drop,"
+            "others_max,diff_sdp_series,diff_vdp_series,diff_whole_curve,failure_mode,stopped\n";
+    auto seriesDifference = [&](const std::vector<int>& series, int i, bool whole) {
+        if (std::find(series.begin(), series.end(), i) == series.end()) return std::string();
+        return show(slabCurveDifference(result.runs[i].curve, result.runs[series.back()].curve, whole));
+    };
     for (size_t i = 0; i < result.runs.size(); ++i) {
         const SlabRunResult& r = result.runs[i];
-        int finest = -1;
-        for (size_t j = 0; j < result.runs.size(); ++j) {
-            const SlabRunResult& q = result.runs[j];
-            if (q.formulation != r.formulation || result.stage[j] != result.stage[i]) continue;
-            const bool sameSeries = result.stage[i] == "sdp" ? q.vdp == r.vdp : q.sdp == r.sdp;
-            if (!sameSeries) continue;
-            const double key = result.stage[i] == "sdp" ? q.sdp : q.vdp;
-            const double best = finest < 0 ? 1e300
-                                           : (result.stage[i] == "sdp" ? result.runs[finest].sdp
-                                                                        : result.runs[finest].vdp);
-            if (key < best) finest = int(j);
-        }
+        const auto own = result.sdpSeries.find(r.formulation);
+        const std::vector<int> none;
+        const std::vector<int>& sdpSeries = own != result.sdpSeries.end() ? own->second : none;
+        const std::string diffSdp = seriesDifference(sdpSeries, int(i), false);
+        const std::string diffVdp = seriesDifference(result.vdpSeries, int(i), false);
+        std::string whole = seriesDifference(sdpSeries, int(i), true);
+        if (whole.empty()) whole = seriesDifference(result.vdpSeries, int(i), true);
         double peak = 0, at = 0;
         for (const SlabSample& s : r.curve)
             if (s.force > peak) {
@@ -797,15 +800,14 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
         const std::string role = int(i) == result.convergedRun ? "converged"
                                  : int(i) == result.coarseRun  ? "coarse"
                                                                : "";
-        const double diff = finest >= 0 ? slabCurveDifference(r.curve, result.runs[finest].curve) : 0.0;
-        const double whole =
-            finest >= 0 ? slabCurveDifference(r.curve, result.runs[finest].curve, true) : 0.0;
         runs << i << ',' << result.stage[i] << ',' << role << ',' << formulationName(r.formulation)
              << ',' << r.sdp << ',' << r.vdp << ',' << r.vdp / r.sdp << ',' << r.nodes << ','
-             << r.meanSpacing << ',' << r.stiffness << ',' << r.dt << ',' << r.steps << ','
+             << r.meanSpacing << ',' << r.stiffness << ',' << r.dt << ',' << r.stabilityLimit << ','
+             << r.steps << ','
              << r.bakeSeconds << ',' << r.runSeconds << ',' << r.nodeChecks << ',' << peak << ','
              << at << ',' << (r.curve.empty() ? 0.0 : r.curve.back().centralDrop) << ','
-             << (r.curve.empty() ? 0.0 : r.curve.back().othersMax) << ',' << diff << ',' << whole
+             << (r.curve.empty() ? 0.0 : r.curve.back().othersMax) << ',' << diffSdp << ','
+             << diffVdp << ',' << whole
              << ',' << slabFailureModeName(slabFailureMode(panel, r)) << ',' << (r.stopped ? 1 : 0)
              << '\n';
     }
@@ -863,7 +865,7 @@ SlabStudyOptions slabFullOptions()
     o.sdps = {1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.125};
     o.originalSdps = {1.0, 0.7, 0.5, 0.35, 0.25};
     o.fixedVdp = 0.035;
-    o.vdps = {0.4, 0.2, 0.1, 0.07, 0.05, 0.035};
+    o.vdps = {0.4, 0.28, 0.2, 0.14, 0.1, 0.07, 0.05, 0.035};
     return o;
 }
 
@@ -888,9 +890,10 @@ discretizations (mm):
                        shrinks with the node count (default 1 0.7 0.5 0.35; with --sdp
                        alone: all of them)
   --vdp-fixed V        voxel of stage 1 (default 0.05)
-  --vdp V...           voxels of stage 2 (default 0.4 0.2 0.1 0.05)
+  --vdp V...           voxels of stage 2 (default 0.4 0.2 0.14 0.1 0.05)
   --full               the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original to
-                       0.25) at VDP 0.035, then VDP 0.4 0.2 0.1 0.07 0.05 0.035
+                       0.25) at VDP 0.035, then VDP 0.4 0.28 0.2 ... 0.035 (steps of
+                       sqrt 2)
   --no-two-way         stage 1 only
   --tolerance X        converged: the loading branch (RMS) and the peak within X of the
                        finest run's peak P (default 0.05), and the same failure mode

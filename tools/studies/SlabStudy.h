@@ -26,6 +26,7 @@
 #include "lsdem/ls/GrainAsset.h"
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,7 +69,7 @@ struct SlabStudyOptions
     std::vector<double> originalSdps = {1.0, 0.7, 0.5, 0.35};
     double fixedVdp = 0.05;
     /// Stage 2 (adapted): VDP refined (coarse to fine) at the converged SDP of stage 1.
-    std::vector<double> vdps = {0.4, 0.2, 0.1, 0.05};
+    std::vector<double> vdps = {0.4, 0.2, 0.14, 0.1, 0.05};
     bool twoWay = true;            ///< false: stage 1 only
     /// A run is converged when its P(δ) differs from the finest run's by at most this
     /// (slabCurveDifference: loading branch and peak, relative to the finest run's peak force)
@@ -149,6 +150,7 @@ struct SlabRunResult
     double meanSpacing = 0.0;      ///< measured mean nearest-node distance, mm
     double stiffness = 0.0;        ///< kn* or kn
     double dt = 0.0;
+    double stabilityLimit = 0.0;   ///< smallest stable step the simulation saw (its check)
     long long steps = 0;
     double bakeSeconds = 0.0, runSeconds = 0.0;
     long long nodeChecks = 0;      ///< nodes considered over the run
@@ -191,7 +193,12 @@ std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run)
 struct SlabStudyResult
 {
     std::vector<SlabRunResult> runs;
-    std::vector<std::string> stage;   ///< per run: "sdp" or "vdp"
+    std::vector<std::string> stage;   ///< per run: "sdp", "vdp" or "coarse" (where it was first run)
+    /// The refinement series, coarse to fine, as run indices: stage 1 per formulation (SDP at
+    /// the fixed VDP) and stage 2 (VDP at the converged SDP; its run at the fixed VDP is shared
+    /// with stage 1).
+    std::map<Formulation, std::vector<int>> sdpSeries;
+    std::vector<int> vdpSeries;
     double convergedSdp = 0.0, convergedVdp = 0.0;
     bool sdpConverged = false, vdpConverged = false;
     int coarseRun = -1, convergedRun = -1;   ///< runs shown in the snapshots

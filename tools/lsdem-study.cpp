@@ -1,18 +1,16 @@
 /// lsdem-study: the paper's studies as one command each; writes CSV and PNG plots.
 
 #include "common/CommandLine.h"
+#include "common/StudyOutput.h"
 #include "studies/Cube27Study.h"
 #include "studies/SlabStudy.h"
 #include "studies/TwoSpheresStudy.h"
 
 #include "lsdem/ls/Error.h"
 
-#include <unistd.h>
-
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <iostream>
 
 namespace {
@@ -27,7 +25,9 @@ mean of random orientations, for each formulation, node count and stiffness.
   --nodes N...         node counts (default: 500 1000 2000 4000 8000 16000)
   --kn K...            stiffnesses for every formulation (default: the paper's, kn = 1e9 N/mm
                        for original/single-node, kn* = 1e3 N/mm^3 for adapted/volume, and the
-                       series 0.25, 0.5, 0.75, 1 x that at the node count nearest 8000)
+                       series 0.25, 0.5, 0.75, 1 x that at the node count nearest --k-nodes)
+  --k-factors F...     the stiffness series factors (default 0.25 0.5 0.75 1)
+  --k-nodes N          node count of the stiffness series (default 8000)
   --voxel VDP          level-set voxel size, mm (default 0.05)
   --radius R           sphere radius, mm (default 5)
   --delta-max D        largest overlap, mm (default 0.1)
@@ -43,38 +43,44 @@ Units: mm, N (forces), N/mm or N/mm^3 (stiffnesses). Writes DIR/two_spheres.csv 
 python3-matplotlib, DIR/*.png.
 )";
 
-/// Read values after an option until the next option.
-template <typename Parse>
-void readList(lsdem::cli::Arguments& args, const std::string& option, Parse parse)
+/// Read the option @a a if it is one of those the sphere studies share; false otherwise.
+bool readSphereSeriesOption(lsdem::cli::Arguments& args, const std::string& a,
+                            lsdem::SphereSeriesOptions& o)
 {
-    bool any = false;
-    while (!args.done() && !(args.peek().size() > 1 && args.peek()[0] == '-' &&
-                             !std::isdigit(static_cast<unsigned char>(args.peek()[1])) &&
-                             args.peek()[1] != '.')) {
-        parse(args.next());
-        any = true;
+    using namespace lsdem;
+    if (a == "--formulation") {
+        o.formulations.clear();
+        for (const std::string& v : args.values(a)) o.formulations.push_back(parseFormulation(v));
+    } else if (a == "--nodes") {
+        o.nodeCounts = args.positiveCounts(a);
+    } else if (a == "--kn") {
+        o.stiffness = args.numbers(a);
+    } else if (a == "--k-factors") {
+        o.stiffnessFactors = args.numbers(a);
+    } else if (a == "--k-nodes") {
+        o.kSeriesNodes = int(std::clamp<long long>(args.integer(a), -1, 1000000000));
+    } else if (a == "--voxel") {
+        o.voxel = args.number(a);
+    } else if (a == "--radius") {
+        o.radius = args.number(a);
+    } else if (a == "--delta-max") {
+        o.deltaMax = args.number(a);
+    } else if (a == "--orientations") {
+        o.orientations = int(std::clamp<long long>(args.integer(a), -1, 1000000));
+    } else if (a == "--seed") {
+        o.seed = unsigned(args.integer(a));
+    } else if (a == "--testing") {
+        o.testing = parseNodeTesting(args.value(a));
+    } else if (a == "--out") {
+        o.outDir = args.value(a);
+    } else if (a == "--no-plots") {
+        o.plots = false;
+    } else if (a == "-q" || a == "--quiet") {
+        o.quiet = true;
+    } else {
+        return false;
     }
-    if (!any) throw lsdem::Error("", "option " + option + " needs at least one value");
-}
-
-void prepareOutputDir(const std::string& dir)
-{
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir))
-        throw lsdem::Error(dir, "cannot create the output folder (" + ec.message() + ")",
-                           "choose another --out");
-    if (::access(dir.c_str(), W_OK) != 0)
-        throw lsdem::Error(dir, "the output folder is not writable", "choose another --out");
-}
-
-int runPlots(const std::string& script, const std::string& csv, const std::string& dir)
-{
-    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3"
-                                                                          : "python3";
-    const std::string command = python + " '" + script + "' '" + csv + "' '" + dir + "'";
-    return std::system(command.c_str());
+    return true;
 }
 
 int twoSpheres(lsdem::cli::Arguments& args)
@@ -86,46 +92,15 @@ int twoSpheres(lsdem::cli::Arguments& args)
         if (a == "-h" || a == "--help") {
             std::cout << kUsage;
             return 0;
-        } else if (a == "--formulation") {
-            o.formulations.clear();
-            readList(args, a, [&](const std::string& v) { o.formulations.push_back(parseFormulation(v)); });
-        } else if (a == "--nodes") {
-            o.nodeCounts.clear();
-            readList(args, a, [&](const std::string& v) {
-                const double n = cli::Arguments::parseNumber(v, a);
-                if (n != std::floor(n)) throw Error("", "--nodes wants whole numbers, got " + v);
-                if (n <= 0) throw Error("", "--nodes must be positive, got " + v);
-                o.nodeCounts.push_back(int(std::min(n, 1e9)));
-            });
-        } else if (a == "--kn") {
-            o.stiffness.clear();
-            readList(args, a, [&](const std::string& v) { o.stiffness.push_back(cli::Arguments::parseNumber(v, a)); });
-        } else if (a == "--voxel") {
-            o.voxel = args.number(a);
-        } else if (a == "--radius") {
-            o.radius = args.number(a);
-        } else if (a == "--delta-max") {
-            o.deltaMax = args.number(a);
+        } else if (readSphereSeriesOption(args, a, o)) {
         } else if (a == "--steps") {
-            o.steps = int(args.integer(a));
-        } else if (a == "--orientations") {
-            o.orientations = int(args.integer(a));
-        } else if (a == "--seed") {
-            o.seed = unsigned(args.integer(a));
-        } else if (a == "--testing") {
-            o.testing = parseNodeTesting(args.value(a));
-        } else if (a == "--out") {
-            o.outDir = args.value(a);
-        } else if (a == "--no-plots") {
-            o.plots = false;
-        } else if (a == "-q" || a == "--quiet") {
-            o.quiet = true;
+            o.steps = int(std::clamp<long long>(args.integer(a), -1, 1000000000));
         } else {
             throw Error("", "unknown option '" + a + "'", "see lsdem-study two-spheres --help");
         }
     }
     checkTwoSpheresOptions(o);
-    prepareOutputDir(o.outDir);
+    cli::prepareOutputFolder(o.outDir);
 
     const auto start = std::chrono::steady_clock::now();
     const TwoSpheresResult result = runTwoSpheres(o);
@@ -158,16 +133,7 @@ int twoSpheres(lsdem::cli::Arguments& args)
                 s.nodesConsidered, s.nodesConsidered / contact, s.nodesCulled, s.nodesSampled,
                 s.nodesSampled / contact, s.nodesInContact);
     std::printf("wrote %s\n", csv.c_str());
-    std::fflush(stdout);  // before the plotting process writes to the same stream
-    if (o.plots) {
-        const int rc = runPlots(LSDEM_PLOT_DIR "/two_spheres.py", csv, o.outDir);
-        if (rc != 0) {
-            std::cerr << "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
-                         "python3-matplotlib); the CSV is complete\n";
-            return 4;
-        }
-    }
-    return 0;
+    return o.plots ? cli::drawPlots(LSDEM_PLOT_DIR "/two_spheres.py", {csv, o.outDir}) : 0;
 }
 
 const char* const kCube27Usage = R"(usage: lsdem-study cube27 [options]
@@ -217,37 +183,12 @@ int cube27(lsdem::cli::Arguments& args)
         while (!scan.done())
             if (scan.next() == "--full") o = cube27FullOptions();
     }
-    auto positiveCount = [](const std::string& v, const std::string& option) {
-        const double n = cli::Arguments::parseNumber(v, option);
-        if (n != std::floor(n)) throw Error("", option + " wants whole numbers, got " + v);
-        if (n <= 0) throw Error("", option + " must be positive, got " + v);
-        return int(std::min(n, 1e9));
-    };
     while (!args.done()) {
         const std::string a = args.next();
         if (a == "-h" || a == "--help") {
             std::cout << kCube27Usage;
             return 0;
-        } else if (a == "--formulation") {
-            o.formulations.clear();
-            readList(args, a, [&](const std::string& v) { o.formulations.push_back(parseFormulation(v)); });
-        } else if (a == "--nodes") {
-            o.nodeCounts.clear();
-            readList(args, a, [&](const std::string& v) { o.nodeCounts.push_back(positiveCount(v, a)); });
-        } else if (a == "--kn") {
-            o.stiffness.clear();
-            readList(args, a, [&](const std::string& v) { o.stiffness.push_back(cli::Arguments::parseNumber(v, a)); });
-        } else if (a == "--k-factors") {
-            o.stiffnessFactors.clear();
-            readList(args, a, [&](const std::string& v) { o.stiffnessFactors.push_back(cli::Arguments::parseNumber(v, a)); });
-        } else if (a == "--k-nodes") {
-            o.kSeriesNodes = positiveCount(args.value(a), a);
-        } else if (a == "--voxel") {
-            o.voxel = args.number(a);
-        } else if (a == "--radius") {
-            o.radius = args.number(a);
-        } else if (a == "--delta-max") {
-            o.deltaMax = args.number(a);
+        } else if (readSphereSeriesOption(args, a, o)) {
         } else if (a == "--speed") {
             o.speed = args.number(a);
             if (!(o.speed > 0)) throw Error("", "--speed must be positive, got " + std::to_string(o.speed));
@@ -260,33 +201,21 @@ int cube27(lsdem::cli::Arguments& args)
             o.safety = args.number(a);
         } else if (a == "--points") {
             o.points = int(args.integer(a));
-        } else if (a == "--orientations") {
-            o.orientations = int(args.integer(a));
-        } else if (a == "--seed") {
-            o.seed = unsigned(args.integer(a));
         } else if (a == "--friction") {
             o.friction = args.number(a);
         } else if (a == "--restitution") {
             o.restitution = args.number(a);
         } else if (a == "--damping") {
             o.globalDamping = args.number(a);
-        } else if (a == "--testing") {
-            o.testing = parseNodeTesting(args.value(a));
         } else if (a == "--full") {
             // applied before the loop
-        } else if (a == "--out") {
-            o.outDir = args.value(a);
-        } else if (a == "--no-plots") {
-            o.plots = false;
-        } else if (a == "-q" || a == "--quiet") {
-            o.quiet = true;
         } else {
             throw Error("", "unknown option '" + a + "'", "see lsdem-study cube27 --help");
         }
     }
     checkCube27Options(o);
     planCube27(o);  // refuses a --steps too few for any run, before anything is written
-    prepareOutputDir(o.outDir);
+    cli::prepareOutputFolder(o.outDir);
 
     const auto start = std::chrono::steady_clock::now();
     const Cube27Result result = runCube27(o);
@@ -313,16 +242,7 @@ int cube27(lsdem::cli::Arguments& args)
     std::printf("time %.1f s (bake %.1f s, simulation %.1f s in %zu runs)\n", seconds,
                 result.bakeSeconds, result.simulateSeconds, result.runs.size());
     std::printf("wrote %s\n", csv.c_str());
-    std::fflush(stdout);  // before the plotting process writes to the same stream
-    if (o.plots) {
-        const int rc = runPlots(LSDEM_PLOT_DIR "/cube27.py", csv, o.outDir);
-        if (rc != 0) {
-            std::cerr << "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
-                         "python3-matplotlib); the CSV is complete\n";
-            return 4;
-        }
-    }
-    return 0;
+    return o.plots ? cli::drawPlots(LSDEM_PLOT_DIR "/cube27.py", {csv, o.outDir}) : 0;
 }
 
 } // namespace

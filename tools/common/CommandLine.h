@@ -6,6 +6,8 @@
 
 #include "lsdem/ls/Error.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -32,6 +34,36 @@ public:
 
     double number(const std::string& option) { return parseNumber(value(option), option); }
 
+    /// The values after option @a option up to the next option, at least one. A leading minus
+    /// followed by a digit or a dot is a value ("-0.5"), otherwise an option ("--x", "-q").
+    std::vector<std::string> values(const std::string& option)
+    {
+        std::vector<std::string> out;
+        while (!done() && !looksLikeOption(peek())) out.push_back(next());
+        if (out.empty()) throw Error("", "option " + option + " needs at least one value");
+        return out;
+    }
+
+    std::vector<double> numbers(const std::string& option)
+    {
+        std::vector<double> out;
+        for (const std::string& text : values(option)) out.push_back(parseNumber(text, option));
+        return out;
+    }
+
+    /// Whole positive numbers after @a option (node counts and the like).
+    std::vector<int> positiveCounts(const std::string& option)
+    {
+        std::vector<int> out;
+        for (const std::string& text : values(option)) {
+            const double n = parseNumber(text, option);
+            if (n != std::floor(n)) throw Error("", option + " wants whole numbers, got " + text);
+            if (n <= 0) throw Error("", option + " must be positive, got " + text);
+            out.push_back(int(std::min(n, 1e9)));
+        }
+        return out;
+    }
+
     long long integer(const std::string& option)
     {
         const std::string text = value(option);
@@ -54,6 +86,12 @@ public:
     }
 
 private:
+    static bool looksLikeOption(const std::string& text)
+    {
+        return text.size() > 1 && text[0] == '-' &&
+               !(std::isdigit(static_cast<unsigned char>(text[1])) || text[1] == '.');
+    }
+
     std::vector<std::string> mArgs;
     size_t mPos = 0;
 };

@@ -11,32 +11,15 @@ Reads OUT_DIR/slab.csv, slab_runs.csv and slab_snapshots.csv; writes
                         (Fig. 6C, 6D), blocks coloured by how far they moved
 Each PNG is written to a temporary name and renamed, so a failed run leaves no half image.
 """
-import csv
 import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import cm, colors  # noqa: E402
-from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
+from plotting import plt, read_csv, save
+from matplotlib import cm, colors
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 
-def read_csv(path):
-    with open(path) as f:
-        lines = [line for line in f if not line.startswith("#")]
-    return list(csv.DictReader(lines))
-
-
-def save(fig, out_dir, name):
-    final = os.path.join(out_dir, name)
-    tmp = os.path.join(out_dir, "." + name + ".tmp.png")
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    os.replace(tmp, final)
-    print("wrote", final)
 
 
 def curves_by_run(rows):

@@ -4,22 +4,15 @@
 usage: two_spheres.py two_spheres.csv OUT_DIR
 Each PNG is written to a temporary name and renamed, so a failed run leaves no half image.
 """
-import csv
-import os
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from plotting import plt, read_csv, save
 
 
 def read_rows(path):
-    with open(path) as f:
-        lines = [line for line in f if not line.startswith("#")]
     rows = []
-    for r in csv.DictReader(lines):
+    for r in read_csv(path):
         rows.append({
             "formulation": r["formulation"], "nodes": int(r["nodes"]),
             "nodes_actual": float(r["nodes_actual"]), "kn": float(r["kn"]),
@@ -28,14 +21,6 @@ def read_rows(path):
         })
     return rows
 
-
-def save(fig, out_dir, name):
-    final = os.path.join(out_dir, name)
-    tmp = os.path.join(out_dir, "." + name + ".tmp.png")
-    fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    os.replace(tmp, final)
-    print("wrote", final)
 
 
 def curves(rows, formulation, key):

@@ -127,26 +127,11 @@ Cube27Options cube27FullOptions()
 
 void checkCube27Options(const Cube27Options& o)
 {
+    checkSphereSeriesOptions(o);
     auto positive = [](double v, const std::string& option, const std::string& example) {
         if (!(v > 0.0) || !std::isfinite(v))
             throw Error("", option + " must be positive and finite", "e.g. " + option + " " + example);
     };
-    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
-    if (o.nodeCounts.empty()) throw Error("", "--nodes needs at least one count");
-    for (size_t i = 0; i < o.nodeCounts.size(); ++i) {
-        const int n = o.nodeCounts[i];
-        if (n < 20 || n > 5000000)
-            throw Error("", "--nodes " + std::to_string(n) + " is out of range",
-                        "give node counts from 20 to 5e6");
-        if (std::find(o.nodeCounts.begin(), o.nodeCounts.begin() + i, n) != o.nodeCounts.begin() + i)
-            throw Error("", "--nodes lists " + std::to_string(n) + " twice",
-                        "use --orientations for repeated runs");
-    }
-    for (double k : o.stiffness) positive(k, "--kn", "1e3");
-    for (double f : o.stiffnessFactors) positive(f, "--k-factors", "0.5");
-    positive(o.radius, "--radius", "5");
-    positive(o.voxel, "--voxel", "0.1");
-    positive(o.deltaMax, "--delta-max", "0.3");
     if (o.deltaMax >= 0.5 * o.radius)
         throw Error("", "--delta-max must be smaller than half the radius",
                     "the closed form and the stack assume small overlaps; e.g. --delta-max 0.3");
@@ -160,8 +145,6 @@ void checkCube27Options(const Cube27Options& o)
     if (!(o.safety > 0.0 && o.safety <= 1.0))
         throw Error("", "--safety must be in (0, 1]", "e.g. --safety 0.2");
     if (o.points < 1 || o.points > 100000) throw Error("", "--points must be 1 to 100000");
-    if (o.orientations < 1 || o.orientations > 1000)
-        throw Error("", "--orientations must be 1 to 1000");
     positive(o.density, "density", "7.85e-9");
     if (o.friction < 0.0 || !std::isfinite(o.friction)) throw Error("", "--friction must be >= 0");
     if (o.shearRatio < 0.0 || !std::isfinite(o.shearRatio))

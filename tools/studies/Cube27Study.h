@@ -20,6 +20,8 @@
 ///   similar and cost the same number of steps.
 #pragma once
 
+#include "studies/SphereSeriesOptions.h"
+
 #include "lsdem/contact/ContactModel.h"
 #include "lsdem/contact/Scene.h"
 
@@ -28,34 +30,27 @@
 
 namespace lsdem {
 
-struct Cube27Options
+struct Cube27Options : SphereSeriesOptions
 {
-    std::vector<Formulation> formulations = {Formulation::Original, Formulation::Adapted};
-    std::vector<int> nodeCounts = {500, 1000, 2000, 4000, 8000};
-    /// Stiffness multipliers of each formulation's base stiffness for the k series, run at the
-    /// node count closest to kSeriesNodes (the N sweep runs at the base stiffness).
-    std::vector<double> stiffnessFactors = {0.25, 0.5, 0.75, 1.0};
-    std::vector<double> stiffness;  ///< explicit stiffnesses for every formulation (overrides)
-    int kSeriesNodes = 4000;        ///< the paper's N for Fig. 4C, 4E
-    double radius = 5.0;            ///< mm
-    double voxel = 0.1;             ///< mm
-    double deltaMax = 0.3;          ///< mm, top wall travel
+    Cube27Options()
+    {
+        nodeCounts = {500, 1000, 2000, 4000, 8000};
+        kSeriesNodes = 4000;  // the paper's N for Fig. 4C, 4E
+        voxel = 0.1;
+        deltaMax = 0.3;       // top wall travel
+        orientations = 1;
+        outDir = "results/cube27";
+    }
     double speed = 0.0;             ///< mm/s; 0: from `periods` (dynamically similar runs)
     long long steps = 0;            ///< loading steps; 0: from the time step below
     double periods = 100.0;         ///< loading time in periods of a column's slowest mode
     double safety = 0.2;            ///< dt as a fraction of the stiffest grain's stability limit
     int points = 30;                ///< δ values recorded (plus δ = 0)
-    int orientations = 1;           ///< random orientation sets averaged
-    unsigned seed = 1;
     double density = 7.85e-9;       ///< tonne/mm³ (steel)
     double friction = 0.3;
     double shearRatio = 0.5;        ///< ks/kn (ks*/kn*)
     double restitution = 0.5;       ///< contact dashpots
     double globalDamping = 0.3;
-    NodeTesting testing = NodeTesting::Symmetric;
-    std::string outDir = "results/cube27";
-    bool plots = true;
-    bool quiet = false;
 };
 
 /// The paper-like study (--full): nodes 500 … 16000, three orientations, voxel 0.05 mm.

@@ -1,5 +1,7 @@
 #include "studies/SlabStudy.h"
 
+#include "common/StudyOutput.h"
+
 #include "lsdem/contact/Simulation.h"
 #include "lsdem/contact/World.h"
 #include "lsdem/ls/AssetIO.h"
@@ -9,8 +11,6 @@
 #include "lsdem/ls/MeshIO.h"
 
 #include <tbb/global_control.h>
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -930,33 +930,6 @@ python3-matplotlib, DIR/slab_*.png.
 )";
 }
 
-namespace {
-
-/// Values after an option, up to the next option ("-0.5" is a value, "--x" is not).
-std::vector<std::string> optionValues(cli::Arguments& args, const std::string& option)
-{
-    std::vector<std::string> values;
-    while (!args.done()) {
-        const std::string& v = args.peek();
-        const bool isOption = v.size() > 1 && v[0] == '-' &&
-                              !(std::isdigit(static_cast<unsigned char>(v[1])) || v[1] == '.');
-        if (isOption) break;
-        values.push_back(args.next());
-    }
-    if (values.empty()) throw Error("", "option " + option + " needs at least one value");
-    return values;
-}
-
-std::vector<double> numbers(cli::Arguments& args, const std::string& option)
-{
-    std::vector<double> out;
-    for (const std::string& v : optionValues(args, option))
-        out.push_back(cli::Arguments::parseNumber(v, option));
-    return out;
-}
-
-} // namespace
-
 int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
 {
     // --full first: it sets the lists that later options may override.
@@ -981,22 +954,22 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         } else if (a == "--angle") {
             o.panel.angleDeg = args.number(a);
         } else if (a == "--sdp") {
-            o.sdps = numbers(args, a);
+            o.sdps = args.numbers(a);
             if (!originalGiven) o.originalSdps.clear();  // the same list for every formulation
         } else if (a == "--sdp-original") {
-            o.originalSdps = numbers(args, a);
+            o.originalSdps = args.numbers(a);
             originalGiven = true;
         } else if (a == "--vdp-fixed") {
             o.fixedVdp = args.number(a);
         } else if (a == "--vdp") {
-            o.vdps = numbers(args, a);
+            o.vdps = args.numbers(a);
         } else if (a == "--no-two-way") {
             o.twoWay = false;
         } else if (a == "--tolerance") {
             o.tolerance = args.number(a);
         } else if (a == "--formulation") {
             o.formulations.clear();
-            for (const std::string& v : optionValues(args, a)) o.formulations.push_back(parseFormulation(v));
+            for (const std::string& v : args.values(a)) o.formulations.push_back(parseFormulation(v));
         } else if (a == "--delta-max") {
             o.deltaMax = args.number(a);
         } else if (a == "--speed") {
@@ -1028,7 +1001,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         } else if (a == "--safety") {
             o.timeStepSafety = args.number(a);
         } else if (a == "--snapshots") {
-            o.snapshotDeltas = numbers(args, a);
+            o.snapshotDeltas = args.numbers(a);
         } else if (a == "--samples") {
             o.samples = int(args.integer(a));
         } else if (a == "--threads") {
@@ -1062,14 +1035,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
     std::fflush(stdout);
     if (estimateOnly) return 0;
 
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    fs::create_directories(o.outDir, ec);
-    if (ec || !fs::is_directory(o.outDir))
-        throw Error(o.outDir, "cannot create the output folder (" + ec.message() + ")",
-                    "choose another --out");
-    if (::access(o.outDir.c_str(), W_OK) != 0)
-        throw Error(o.outDir, "the output folder is not writable", "choose another --out");
+    cli::prepareOutputFolder(o.outDir);
 
     std::unique_ptr<tbb::global_control> limit;
     if (threads > 0)
@@ -1098,17 +1064,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         std::printf("%s", slabFailureSummary(panel, result.runs[result.convergedRun]).c_str());
     std::printf("time %.1f s; wrote %s/slab.csv, slab_runs.csv, slab_snapshots.csv, slab_failure.txt\n",
                 result.wallSeconds, o.outDir.c_str());
-    std::fflush(stdout);
-    if (o.plots) {
-        const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-        const std::string command = python + " '" + plotDir + "/slab.py' '" + o.outDir + "'";
-        if (std::system(command.c_str()) != 0) {
-            std::cerr << "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
-                         "python3-matplotlib); the CSV files are complete\n";
-            return 4;
-        }
-    }
-    return 0;
+    return o.plots ? cli::drawPlots(plotDir + "/slab.py", {o.outDir}) : 0;
 }
 
 } // namespace lsdem

@@ -22,26 +22,10 @@ double defaultStiffness(Formulation f)
 
 void checkTwoSpheresOptions(const TwoSpheresOptions& o)
 {
-    auto positive = [](double v, const std::string& option, const std::string& example) {
-        if (!(v > 0.0) || !std::isfinite(v))
-            throw Error("", option + " must be positive and finite", "e.g. " + option + " " + example);
-    };
-    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
-    if (o.nodeCounts.empty()) throw Error("", "--nodes needs at least one count");
-    for (int n : o.nodeCounts)
-        if (n < 20 || n > 5000000)
-            throw Error("", "--nodes " + std::to_string(n) + " is out of range",
-                        "give node counts from 20 to 5e6");
-    for (double k : o.stiffness) positive(k, "--kn", "1e3");
-    for (double f : o.stiffnessFactors) positive(f, "--k-factors", "0.5");
-    positive(o.radius, "--radius", "5");
-    positive(o.voxel, "--voxel", "0.05");
-    positive(o.deltaMax, "--delta-max", "0.1");
+    checkSphereSeriesOptions(o);
     if (o.deltaMax >= o.radius)
         throw Error("", "--delta-max must be smaller than the radius (spheres would pass through)");
     if (o.steps < 1 || o.steps > 100000) throw Error("", "--steps must be 1 to 100000");
-    if (o.orientations < 1 || o.orientations > 1000)
-        throw Error("", "--orientations must be 1 to 1000");
 }
 
 namespace {

@@ -5,7 +5,8 @@
 ///        averaged over random orientations of both spheres. Displacement control: no dynamics.
 #pragma once
 
-#include "lsdem/contact/ContactModel.h"
+#include "studies/SphereSeriesOptions.h"
+
 #include "lsdem/contact/NodeContact.h"
 
 #include <string>
@@ -13,25 +14,12 @@
 
 namespace lsdem {
 
-struct TwoSpheresOptions
+/// The two-sphere defaults: N = 500 … 16000, k series at N ≈ 8000, voxel 0.05 mm,
+/// δ up to 0.1 mm in `steps` steps, three orientations.
+struct TwoSpheresOptions : SphereSeriesOptions
 {
-    std::vector<Formulation> formulations = {Formulation::Original, Formulation::Adapted};
-    std::vector<int> nodeCounts = {500, 1000, 2000, 4000, 8000, 16000};
-    /// Stiffness multipliers of each formulation's base stiffness for the k series, run at the
-    /// node count closest to kSeriesNodes (the full N sweep runs at the base stiffness).
-    std::vector<double> stiffnessFactors = {0.25, 0.5, 0.75, 1.0};
-    std::vector<double> stiffness;  ///< explicit stiffnesses for every formulation (overrides)
-    int kSeriesNodes = 8000;
-    double radius = 5.0;            ///< mm
-    double voxel = 0.05;            ///< mm
-    double deltaMax = 0.1;          ///< mm
-    int steps = 10;
-    int orientations = 3;
-    unsigned seed = 1;
-    NodeTesting testing = NodeTesting::Symmetric;
-    std::string outDir = "results/two-spheres";
-    bool plots = true;
-    bool quiet = false;
+    TwoSpheresOptions() { outDir = "results/two-spheres"; }
+    int steps = 10;  ///< δ steps from 0 to deltaMax
 };
 
 /// The paper's base stiffness of @a f in N and mm: kn = 1 GN/mm for original and single-node,

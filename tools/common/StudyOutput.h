@@ -1,0 +1,48 @@
+/// @file StudyOutput.h
+/// @brief What every study driver does around its run: make sure the output folder can be
+///        written before any work starts, and draw the plots with Debian's matplotlib.
+#pragma once
+
+#include "lsdem/ls/Error.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lsdem::cli {
+
+/// Create @a dir (and its parents) and check that it is writable; an Error naming it otherwise.
+inline void prepareOutputFolder(const std::string& dir)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw Error(dir, "cannot create the output folder (" + ec.message() + ")",
+                    "choose another --out");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw Error(dir, "the output folder is not writable", "choose another --out");
+}
+
+/// Run the matplotlib script @a script with @a arguments. Debian's /usr/bin/python3 is
+/// preferred: a pyenv python on the PATH usually lacks python3-matplotlib. Returns 0 on
+/// success; otherwise prints a warning (the data files are complete) and returns 4, the
+/// tools' exit code for "results written, plots missing".
+inline int drawPlots(const std::string& script, const std::vector<std::string>& arguments)
+{
+    const std::string python =
+        std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    std::string command = python + " '" + script + "'";
+    for (const std::string& a : arguments) command += " '" + a + "'";
+    std::fflush(stdout);  // before the plotting process writes to the same stream
+    if (std::system(command.c_str()) == 0) return 0;
+    std::fprintf(stderr, "lsdem-study: warning: plotting failed (needs /usr/bin/python3 with "
+                         "python3-matplotlib); the data files are complete\n");
+    return 4;
+}
+
+} // namespace lsdem::cli

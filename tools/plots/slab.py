@@ -152,7 +152,8 @@ def plot_snapshots(rows, out_dir):
         xs = [float(r[k]) for rs in frames.values() for r in rs for k in ("x0", "x1", "x2", "x3")]
         zs = [float(r[k]) for rs in frames.values() for r in rs for k in ("z0", "z1", "z2", "z3")]
         half = max(abs(min(xs)), abs(max(xs)))
-        cols = min(len(deltas), 4)
+        # Rows of 3 or 4, whichever leaves fewer empty places (6 snapshots: 2 rows of 3).
+        cols = min(len(deltas), min((4, 3), key=lambda c: (-len(deltas) % c, -c)))
         rows_n = (len(deltas) + cols - 1) // cols
         fig = plt.figure(figsize=(4.2 * cols, 3.0 * rows_n))
         for k, delta in enumerate(deltas):

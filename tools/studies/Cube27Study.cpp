@@ -247,9 +247,7 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
 std::vector<Cube27Run> planCube27(const Cube27Options& o)
 {
     checkCube27Options(o);
-    int kSeriesCount = o.nodeCounts.front();
-    for (int n : o.nodeCounts)
-        if (std::abs(n - o.kSeriesNodes) < std::abs(kSeriesCount - o.kSeriesNodes)) kSeriesCount = n;
+    const int kSeriesCount = stiffnessSeriesNodes(o);
     std::vector<Cube27Run> runs;
     for (int nodes : o.nodeCounts)
         for (Formulation f : o.formulations) {
@@ -379,12 +377,8 @@ Cube27Result runCube27(const Cube27Options& o)
     size_t index = 0;
     for (int nodes : o.nodeCounts) {
         const auto bakeStart = Clock::now();
-        BakeOptions bake;
-        bake.voxelSize = o.voxel;
-        bake.nodePlacement = NodePlacement::Count;
-        bake.nodeCount = nodes;
         std::vector<std::string> warnings;
-        const GrainAsset sphere = bakeAnalytic(AnalyticShape::sphere(o.radius), bake, warnings);
+        const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
         const TemporaryAsset file(sphere, nodes);
         nodesActual[nodes] = double(sphere.nodes.size());
         result.bakeSeconds += since(bakeStart);
@@ -393,7 +387,6 @@ Cube27Result runCube27(const Cube27Options& o)
                         sphere.nodes.size(), sphere.spacing.mean, o.voxel);
             for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
         }
-        warnings.clear();
 
         for (; index < result.runs.size() && result.runs[index].nodes == nodes; ++index) {
             Cube27Run& run = result.runs[index];

@@ -1,5 +1,6 @@
 #include "studies/SphereSeriesOptions.h"
 
+#include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 
 #include <algorithm>
@@ -32,6 +33,23 @@ void checkSphereSeriesOptions(const SphereSeriesOptions& o)
     positive(o.deltaMax, "--delta-max", "0.1");
     if (o.orientations < 1 || o.orientations > 1000)
         throw Error("", "--orientations must be 1 to 1000");
+}
+
+int stiffnessSeriesNodes(const SphereSeriesOptions& o)
+{
+    int closest = o.nodeCounts.front();
+    for (int n : o.nodeCounts)
+        if (std::abs(n - o.kSeriesNodes) < std::abs(closest - o.kSeriesNodes)) closest = n;
+    return closest;
+}
+
+GrainAsset bakeSeriesSphere(const SphereSeriesOptions& o, int nodes, std::vector<std::string>& warnings)
+{
+    BakeOptions bake;
+    bake.voxelSize = o.voxel;
+    bake.nodePlacement = NodePlacement::Count;
+    bake.nodeCount = nodes;
+    return bakeAnalytic(AnalyticShape::sphere(o.radius), bake, warnings);
 }
 
 } // namespace lsdem

@@ -6,6 +6,7 @@
 
 #include "lsdem/contact/ContactModel.h"
 #include "lsdem/contact/NodeContact.h"
+#include "lsdem/ls/GrainAsset.h"
 
 #include <string>
 #include <vector>
@@ -34,5 +35,12 @@ struct SphereSeriesOptions
 
 /// Check the shared options and throw Error naming the bad option and the fix.
 void checkSphereSeriesOptions(const SphereSeriesOptions& o);
+
+/// The node count of the stiffness series: the one of o.nodeCounts closest to o.kSeriesNodes.
+int stiffnessSeriesNodes(const SphereSeriesOptions& o);
+
+/// The study's sphere of radius o.radius baked at voxel o.voxel with about @a nodes nodes;
+/// the bake's warnings are appended to @a warnings.
+GrainAsset bakeSeriesSphere(const SphereSeriesOptions& o, int nodes, std::vector<std::string>& warnings);
 
 } // namespace lsdem

@@ -4,7 +4,6 @@
 #include "lsdem/contact/RandomRotation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 
 #include <chrono>
@@ -49,19 +48,12 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
 {
     checkTwoSpheresOptions(o);
     TwoSpheresResult result;
-    // Node count used for the stiffness series: the closest to kSeriesNodes.
-    int kSeriesCount = o.nodeCounts.front();
-    for (int n : o.nodeCounts)
-        if (std::abs(n - o.kSeriesNodes) < std::abs(kSeriesCount - o.kSeriesNodes)) kSeriesCount = n;
+    const int kSeriesCount = stiffnessSeriesNodes(o);
 
     for (int nodes : o.nodeCounts) {
         const auto bakeStart = std::chrono::steady_clock::now();
-        BakeOptions bake;
-        bake.voxelSize = o.voxel;
-        bake.nodePlacement = NodePlacement::Count;
-        bake.nodeCount = nodes;
         std::vector<std::string> warnings;
-        const GrainAsset sphere = bakeAnalytic(AnalyticShape::sphere(o.radius), bake, warnings);
+        const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
         const auto contactStart = std::chrono::steady_clock::now();
         result.bakeSeconds += std::chrono::duration<double>(contactStart - bakeStart).count();
         if (!o.quiet)

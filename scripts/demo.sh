@@ -23,7 +23,7 @@ for grain in sphere box pebble; do
 done
 echo "== two-sphere study (Feldfogel et al. 2024, Fig. 1 and 3)"
 build/tools/lsdem-study two-spheres --out results/two-spheres
-echo "== 27-sphere stack study (Fig. 4; about a minute)"
+echo "== 27-sphere stack study (Fig. 4; about 15 s)"
 build/tools/lsdem-study cube27 --out results/cube27-study
 echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cube27.toml)"
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27

@@ -3,7 +3,7 @@
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
 #include "studies/Cube27Study.h"
-#include "studies/SlabStudy.h"
+#include "studies/SlabCommand.h"
 #include "studies/TwoSpheresStudy.h"
 
 #include "lsdem/ls/Error.h"

@@ -18,7 +18,6 @@
 /// damping 0.3 (quasi-static loading), gravity on.
 #pragma once
 
-#include "common/CommandLine.h"
 #include "studies/SlabPanel.h"
 
 #include "lsdem/contact/ContactModel.h"
@@ -229,11 +228,7 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
 /// The quick default and the `--full` lists of the two-way study.
 SlabStudyOptions slabFullOptions();
 
-/// `lsdem-study slab`'s help text.
-const char* slabUsage();
-
-/// `lsdem-study slab [options]`: parse @a args, print the cost, run, write the outputs and
-/// draw the plots with @a plotDir/slab.py. Returns the exit code (4: plots failed).
-int runSlabCommand(cli::Arguments& args, const std::string& plotDir);
+/// The indenter's travel: o.deltaMax, or twice the thickness when that is 0.
+double slabDeltaMax(const SlabStudyOptions& o);
 
 } // namespace lsdem

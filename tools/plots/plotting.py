@@ -17,6 +17,16 @@ def read_csv(path):
     return list(csv.DictReader(lines))
 
 
+def read_numbers(path, text=("formulation",), whole=("nodes",)):
+    """Rows of a CSV file with every column a float, except those named in text (kept as
+    strings) and in whole (ints)."""
+    def convert(key, value):
+        if key in text:
+            return value
+        return int(value) if key in whole else float(value)
+    return [{k: convert(k, v) for k, v in r.items()} for r in read_csv(path)]
+
+
 def save(fig, out_dir, name):
     """Write fig as out_dir/name atomically and close it."""
     final = os.path.join(out_dir, name)

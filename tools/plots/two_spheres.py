@@ -7,19 +7,8 @@ Each PNG is written to a temporary name and renamed, so a failed run leaves no h
 import sys
 from collections import defaultdict
 
-from plotting import plt, read_csv, save
+from plotting import plt, read_numbers, save
 
-
-def read_rows(path):
-    rows = []
-    for r in read_csv(path):
-        rows.append({
-            "formulation": r["formulation"], "nodes": int(r["nodes"]),
-            "nodes_actual": float(r["nodes_actual"]), "kn": float(r["kn"]),
-            "delta": float(r["delta"]), "P": float(r["P"]), "P_min": float(r["P_min"]),
-            "P_max": float(r["P_max"]), "P_exact": float(r["P_exact"]),
-        })
-    return rows
 
 
 
@@ -123,7 +112,7 @@ def main():
     if len(sys.argv) != 3:
         print(__doc__, file=sys.stderr)
         return 2
-    rows = read_rows(sys.argv[1])
+    rows = read_numbers(sys.argv[1])
     out_dir = sys.argv[2]
     for formulation, tag in (("original", "fig1"), ("adapted", "fig3"),
                              ("single-node", "single_node"), ("volume", "volume")):

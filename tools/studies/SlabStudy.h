@@ -210,7 +210,8 @@ struct SlabCostEstimate
     int runs = 0;
     double nodesPerBlockFinest = 0.0;
     long long steps = 0;              ///< summed over runs
-    double seconds = 0.0;             ///< on this machine's cores, roughly
+    double seconds = 0.0;             ///< on this machine's cores, roughly; at most
+    double secondsAtLeast = 0.0;      ///< the same if stage 2 converges at the coarsest SDP
     double memoryBytes = 0.0;         ///< the largest single run
     std::string text;
 };

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 
 using namespace lsdem;
@@ -316,4 +317,72 @@ TEST(SlabStudy, OriginalGrowsWithTheNodesAdaptedConverges)
     // At the reference spacing kn = kn*·(√3/2)·s_ref² makes the two laws agree (a node's
     // area on an equilateral mesh of edge s_ref).
     EXPECT_NEAR(force[Formulation::Original][0] / force[Formulation::Adapted][0], 1.0, 0.05);
+}
+
+// Options that are valid one by one but make no study: each refused, naming what to change.
+TEST(SlabStudy, OptionsThatMakeNoStudyAreRefused)
+{
+    struct Case
+    {
+        const char* what;
+        std::function<void(SlabStudyOptions&)> change;
+        const char* message;
+    };
+    const std::vector<Case> cases = {
+        {"a formulation twice (its finest run would be compared with itself)",
+         [](SlabStudyOptions& o) { o.formulations = {Formulation::Adapted, Formulation::Adapted}; },
+         "twice"},
+        {"a two-way study without the adapted formulation",
+         [](SlabStudyOptions& o) { o.formulations = {Formulation::Original}; }, "adapted"},
+        {"an original SDP that stage 1 does not run",
+         [](SlabStudyOptions& o) { o.originalSdps = {0.6}; }, "--sdp-original"},
+        {"a time step too close to the stability limit",
+         [](SlabStudyOptions& o) { o.timeStepSafety = 0.8; }, "--safety"},
+        {"an indenter that would take years", [](SlabStudyOptions& o) { o.speed = 1e-6; },
+         "time steps"},
+        {"voxels that would not fit in memory", [](SlabStudyOptions& o) { o.fixedVdp = 0.002; },
+         "GiB"},
+    };
+    checkSlabStudyOptions(SlabStudyOptions{});  // the defaults are a study
+    for (const Case& c : cases) {
+        SlabStudyOptions o;
+        c.change(o);
+        try {
+            checkSlabStudyOptions(o);
+            ADD_FAILURE() << "accepted: " << c.what;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos)
+                << c.what << ": " << e.what();
+        }
+    }
+}
+
+// The convergence measure on curves whose difference is known exactly: P_a = P_b + c (a
+// constant offset) gives c/peak both as the loading-branch RMS and as the peak difference;
+// P_a = 1.1·P_b gives a peak difference of 10 %, larger than its RMS; the branch after b's
+// peak counts only in the whole-curve measure.
+TEST(SlabStudy, CurveDifferenceOfKnownCurves)
+{
+    std::vector<SlabSample> b, offset, scaled, laterDrop;
+    for (int k = 0; k <= 100; ++k) {
+        SlabSample s;
+        s.delta = 0.02 * k;
+        s.force = 1000.0 * std::sin(kPi * s.delta / 2.0);  // peak 1000 N at δ = 1
+        b.push_back(s);
+        SlabSample u = s;
+        u.force = s.force + 50.0;
+        offset.push_back(u);
+        u.force = 1.1 * s.force;
+        scaled.push_back(u);
+        u.force = s.delta <= 1.0 ? s.force : 0.0;  // the same up to the peak, then gone
+        laterDrop.push_back(u);
+    }
+    EXPECT_NEAR(slabCurveDifference(b, b), 0.0, 1e-12);
+    EXPECT_NEAR(slabCurveDifference(offset, b), 0.05, 1e-12);
+    EXPECT_NEAR(slabCurveDifference(scaled, b), 0.1, 1e-12);
+    EXPECT_NEAR(slabCurveDifference(laterDrop, b), 0.0, 1e-12);
+    // Whole curve: RMS of the lost branch sin(πδ/2) for δ in (1, 2], over all 101 samples.
+    double sum = 0.0;
+    for (int k = 51; k <= 100; ++k) sum += std::pow(std::sin(kPi * 0.02 * k / 2.0), 2);
+    EXPECT_NEAR(slabCurveDifference(laterDrop, b, true), std::sqrt(sum / 101.0), 1e-12);
 }

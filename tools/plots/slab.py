@@ -109,7 +109,7 @@ def plot_convergence(runs, out_dir):
     ax.set_yscale("log")
     ax.invert_xaxis()
     ax.set_xlabel("SDP or VDP [mm], finer to the right")
-    ax.set_ylabel("RMS difference to the finest run / its peak P")
+    ax.set_ylabel("difference to the finest run / its peak P\n(larger of loading-branch RMS and peak)")
     ax.set_title("convergence of the P–δ curve")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)

@@ -57,10 +57,11 @@ loading and material (mm, N, s, tonne):
   --damping L          global damping (default 0.3)
   --gravity G          mm/s^2 (default 9810)
   --kn-star K          override kn*, N/mm^3
+  --ks-star K          override ks*, N/mm^3
   --kn K               original kn, N/mm (default kn*(sqrt3/2)s_ref^2, s_ref = coarsest SDP)
   --reference-sdp S    s_ref for the default kn
   --testing T          symmetric (default) or one-way
-  --safety S           time step fraction of the stability limit (default 0.3)
+  --safety S           time step fraction of the stability limit, at most 0.5 (default 0.3)
 outputs:
   --snapshots D...     delta of the failure snapshots (default 6 from 0 to delta-max)
   --samples N          P-delta rows per run (default 200)
@@ -93,7 +94,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
             return 0;
         } else if (a == "--full") {
         } else if (a == "--blocks") {
-            o.panel.blocksPerSide = int(args.integer(a));
+            o.panel.blocksPerSide = int(std::clamp<long long>(args.integer(a), -1, 1000000));
         } else if (a == "--block-size") {
             o.panel.blockSize = args.number(a);
         } else if (a == "--thickness") {
@@ -137,6 +138,8 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
             o.material.globalDamping = args.number(a);
         } else if (a == "--gravity") {
             o.material.gravity = args.number(a);
+        } else if (a == "--ks-star") {
+            o.ksStar = args.number(a);
         } else if (a == "--kn-star") {
             o.knStar = args.number(a);
         } else if (a == "--kn") {
@@ -150,7 +153,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         } else if (a == "--snapshots") {
             o.snapshotDeltas = args.numbers(a);
         } else if (a == "--samples") {
-            o.samples = int(args.integer(a));
+            o.samples = int(std::clamp<long long>(args.integer(a), -1, 1000000000));
         } else if (a == "--threads") {
             threads = args.integer(a);
             if (threads < 1) throw Error("", "--threads wants a number >= 1");

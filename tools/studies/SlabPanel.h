@@ -65,7 +65,7 @@ class SlabPanel
 {
 public:
     /// @throw Error naming the bad option: n must be odd and ≥ 3, L, t > 0, 0 ≤ θ < 90°,
-    ///        and h = tanθ·t/2 < L/2 (else the narrow end of a face vanishes).
+    ///        and h = tanθ·t/2 < 0.95·L/2 (else the narrow end of a face vanishes or is a sliver).
     explicit SlabPanel(const SlabPanelOptions& options);
 
     const SlabPanelOptions& options() const { return mOptions; }

@@ -125,9 +125,20 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     if (slabDeltaMax(o) > 3.0 * o.panel.thickness)
         throw Error("", "--delta-max " + show(slabDeltaMax(o)) + " is more than three block thicknesses",
                     "the central block is out long before; e.g. --delta-max " + show(o.panel.thickness));
-    if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 1.0))
-        throw Error("", "--safety must be in (0, 1], got " + show(o.timeStepSafety), "0.3 is the default");
+    // The step is set from the normal stiffness of a face; shear and rocking make a block
+    // stiffer than that by up to about 1.4x (ks*/kn* = 0.41 by default), hence the cap.
+    if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 0.5))
+        throw Error("", "--safety must be in (0, 0.5], got " + show(o.timeStepSafety), "0.3 is the default");
     if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
+    for (size_t i = 0; i < o.formulations.size(); ++i)
+        if (std::find(o.formulations.begin(), o.formulations.begin() + i, o.formulations[i]) !=
+            o.formulations.begin() + i)
+            throw Error("", "--formulation lists " + formulationName(o.formulations[i]) + " twice",
+                        "name each formulation once");
+    if (o.twoWay && std::find(o.formulations.begin(), o.formulations.end(), Formulation::Adapted) ==
+                        o.formulations.end())
+        throw Error("", "the two-way study refines the adapted formulation, which --formulation leaves out",
+                    "add adapted to --formulation, or give --no-two-way for curves only");
     if (o.sdps.empty()) throw Error("", "--sdp needs at least one node spacing");
     const double thinnest = o.panel.thickness;
     for (double s : o.sdps) {
@@ -137,7 +148,13 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
                                 show(thinnest) + " mm thickness",
                         "use node spacings below " + show(0.5 * thinnest) + " mm");
     }
-    for (double s : o.originalSdps) positive(s, "--sdp-original", "0.5");
+    for (double s : o.originalSdps) {
+        positive(s, "--sdp-original", "0.5");
+        if (std::none_of(o.sdps.begin(), o.sdps.end(),
+                         [&](double t) { return std::abs(t - s) <= 1e-12 * s; }))
+            throw Error("", "--sdp-original " + show(s) + " is not one of the --sdp values",
+                        "the original formulation runs at a subset of --sdp; list it there too");
+    }
     auto checkVoxel = [&](double v, const std::string& option) {
         positive(v, option, "0.15");
         if (v * 4.0 > thinnest)
@@ -156,6 +173,18 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
             throw Error("", "--snapshots " + show(d) + " is outside [0, δ_max = " + show(slabDeltaMax(o)) + "]",
                         "give snapshot displacements between 0 and --delta-max");
     if (o.samples < 10 || o.samples > 100000) throw Error("", "--samples must be 10 to 100000");
+
+    // Finite but absurd values (a crawling indenter, a feather-light block, microscopic voxels)
+    // would run for years or exhaust memory: refuse them with the estimate.
+    const SlabCostEstimate cost = estimateSlabCost(o);
+    if (cost.steps > kMaxSlabSteps)
+        throw Error("", "the study would take " + show(double(cost.steps)) + " time steps",
+                    "check --speed, --density, --safety and the stiffnesses (the default is 1.6e5 steps)");
+    if (cost.memoryBytes > kMaxSlabMemoryBytes)
+        throw Error("", "the study would need about " + show(cost.memoryBytes / 1073741824.0) +
+                            " GiB of memory (the budget is " + show(kMaxSlabMemoryBytes / 1073741824.0) +
+                            " GiB)",
+                    "use coarser --vdp / --vdp-fixed or --sdp");
 }
 
 SlabStiffness slabStiffness(const SlabStudyOptions& o)
@@ -595,7 +624,9 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
                                        : k.kn * panel.sharedFaceArea() / (area / nodes);
         const double dt =
             o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
-        const long long steps = static_cast<long long>(std::ceil(slabDeltaMax(o) / (o.speed * dt)));
+        // Clamped before the cast: absurd inputs are refused by the caller, not undefined here.
+        const long long steps = static_cast<long long>(
+            std::min(std::ceil(slabDeltaMax(o) / (o.speed * dt)), 1e15));
         ++e.runs;
         e.steps += steps;
         e.nodesPerBlockFinest = std::max(e.nodesPerBlockFinest, nodes);
@@ -716,18 +747,20 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
         }
 
     // The converged value of a refinement series: the coarsest run from which on every finer
-    // one is within tolerance of the finest (P–δ loading branch and peak) and fails the same way
-    // (push-out or not: the paper's Sec. 3.5). The finest alone proves nothing.
+    // one is within tolerance of the finest (P–δ loading branch and peak), fails the same way
+    // (push-out, blocks displaced or deflection: the paper's Sec. 3.5) and ran to the end. The
+    // finest alone proves nothing.
     auto converged = [&](const std::vector<int>& series, bool& ok) {
         ok = false;
         if (series.empty()) return -1;
         const int finest = series.back();
+        if (result.runs[finest].stopped) return finest;  // no reference to converge to
         const SlabFailureMode mode = slabFailureMode(panel, result.runs[finest]);
         int chosen = finest;
         for (int k = int(series.size()) - 2; k >= 0; --k) {
             if (slabCurveDifference(result.runs[series[k]].curve, result.runs[finest].curve) >
                     o.tolerance ||
-                slabFailureMode(panel, result.runs[series[k]]) != mode)
+                slabFailureMode(panel, result.runs[series[k]]) != mode || result.runs[series[k]].stopped)
                 break;
             chosen = series[k];
             ok = true;

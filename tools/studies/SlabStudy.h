@@ -217,6 +217,11 @@ struct SlabCostEstimate
 };
 SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o);
 
+/// Limits of checkSlabStudyOptions: a study over them is refused (the quick default is 1.6e5
+/// steps and about 0.1 GiB; the seed's resolution, one run, 9.3e3 steps and 0.8 GiB).
+constexpr long long kMaxSlabSteps = 1000000000LL;
+constexpr double kMaxSlabMemoryBytes = 20.0 * 1073741824.0;
+
 /// The whole study. Writes only the baked blocks (o.outDir/assets/block_sdp*_vdp*.vdb, read by
 /// the runs' scenes); progress goes to @a log if not null. See writeSlabOutputs.
 SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log);

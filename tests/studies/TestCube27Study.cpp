@@ -233,6 +233,7 @@ TEST(Cube27Study, ProgramRefusesBadInput)
         {"--nodes 0", "--nodes"},
         {"--nodes -100", "--nodes"},
         {"--nodes 300 300", "twice"},
+        {"--formulation adapted adapted", "twice"},
         {"--radius 0", "--radius"},
         {"--radius -5", "--radius"},
         {"--delta-max 0", "--delta-max"},

@@ -191,7 +191,9 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
     if (threads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                       static_cast<size_t>(threads));
-    const SlabStudyResult result = runSlabStudy(o, o.quiet ? nullptr : &std::cout);
+    const SlabStudyResult result =
+        runSlabStudy(o, o.quiet ? nullptr : &std::cout,
+                     [&](const SlabStudyResult& sofar) { writeSlabOutputs(sofar, o, panel); });
     writeSlabOutputs(result, o, panel);
 
     std::printf("\n%-9s %-6s %6s %6s %7s %8s %10s %10s %9s\n", "stage", "formul.", "SDP", "VDP",

@@ -677,7 +677,8 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     return e;
 }
 
-SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
+SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
+                             const std::function<void(const SlabStudyResult&)>& afterEachRun)
 {
     namespace fs = std::filesystem;
     checkSlabStudyOptions(o);
@@ -731,6 +732,8 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log)
         }
         result.runs.push_back(std::move(r));
         result.stage.push_back(stage);
+        result.wallSeconds = secondsSince(start);
+        if (afterEachRun) afterEachRun(result);
         return int(result.runs.size()) - 1;
     };
 

@@ -223,8 +223,11 @@ constexpr long long kMaxSlabSteps = 1000000000LL;
 constexpr double kMaxSlabMemoryBytes = 20.0 * 1073741824.0;
 
 /// The whole study. Writes only the baked blocks (o.outDir/assets/block_sdp*_vdp*.vdb, read by
-/// the runs' scenes); progress goes to @a log if not null. See writeSlabOutputs.
-SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log);
+/// the runs' scenes); progress goes to @a log if not null; @a afterEachRun, if set, sees the
+/// result so far after every run (lsdem-study writes the outputs there, so that a study cut
+/// short keeps its finished runs). See writeSlabOutputs.
+SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
+                             const std::function<void(const SlabStudyResult&)>& afterEachRun = {});
 
 /// Write slab.csv, slab_runs.csv, slab_snapshots.csv and slab_failure.txt into o.outDir
 /// (each atomically).

@@ -386,3 +386,71 @@ TEST(SlabStudy, CurveDifferenceOfKnownCurves)
     for (int k = 51; k <= 100; ++k) sum += std::pow(std::sin(kPi * 0.02 * k / 2.0), 2);
     EXPECT_NEAR(slabCurveDifference(laterDrop, b, true), std::sqrt(sum / 101.0), 1e-12);
 }
+
+namespace {
+
+/// A synthetic finished run on a 3×3 panel: P = peak·sin(πδ/2) up to δ = 1, and at the end the
+/// central block down by centralDrop while every other block moved by othersMoved.
+SlabRunResult syntheticRun(const SlabPanel& panel, double peak, double centralDrop, double othersMoved,
+                           bool stopped = false)
+{
+    SlabRunResult r;
+    for (int k = 0; k <= 50; ++k) {
+        SlabSample s;
+        s.delta = 0.02 * k;
+        s.force = peak * std::sin(kPi * s.delta / 2.0);
+        r.curve.push_back(s);
+    }
+    for (int b = 0; b < int(panel.blocks().size()); ++b)
+        r.finalDisplacement.push_back(b == panel.centralBlock() ? Vec3(0, 0, -centralDrop)
+                                                                : Vec3(othersMoved, 0, 0));
+    r.stopped = stopped;
+    return r;
+}
+
+} // namespace
+
+// The convergence rule on runs whose differences and failure modes are set by hand: peaks
+// 700, 900, 980, 1000 N differ from the finest by 30, 10, 2 % (tolerance 5 %).
+TEST(SlabStudy, ConvergedRunIsTheCoarsestThatAgreesWithTheFinest)
+{
+    SlabPanelOptions po;
+    po.blocksPerSide = 3;
+    const SlabPanel panel(po);
+    const double pushed = 0.8, still = 0.01;  // δ_max = 1: push-out is a drop over 0.5
+    ASSERT_EQ(slabFailureMode(panel, syntheticRun(panel, 1000, pushed, still)), SlabFailureMode::PushOut);
+    ASSERT_EQ(slabFailureMode(panel, syntheticRun(panel, 1000, pushed, 1.5)),
+              SlabFailureMode::BlocksDisplaced);
+
+    std::vector<SlabRunResult> runs = {syntheticRun(panel, 700, pushed, still),
+                                       syntheticRun(panel, 900, pushed, still),
+                                       syntheticRun(panel, 980, pushed, still),
+                                       syntheticRun(panel, 1000, pushed, still)};
+    const std::vector<int> series = {0, 1, 2, 3};
+    bool ok = false;
+    EXPECT_EQ(slabConvergedRun(panel, runs, series, 0.05, ok), 2);
+    EXPECT_TRUE(ok);
+    EXPECT_EQ(slabConvergedRun(panel, runs, series, 0.15, ok), 1);  // 10 % now agrees
+    EXPECT_TRUE(ok);
+
+    // Within tolerance but failing another way: not converged there, nor coarser.
+    runs[2] = syntheticRun(panel, 980, pushed, 1.5);
+    EXPECT_EQ(slabConvergedRun(panel, runs, series, 0.15, ok), 3);
+    EXPECT_FALSE(ok);
+
+    // A run that stopped early ends the series; a stopped finest run is no reference.
+    runs[2] = syntheticRun(panel, 980, pushed, still, /*stopped=*/true);
+    EXPECT_EQ(slabConvergedRun(panel, runs, series, 0.15, ok), 3);
+    EXPECT_FALSE(ok);
+    runs[2] = syntheticRun(panel, 980, pushed, still);
+    runs[3].stopped = true;
+    EXPECT_EQ(slabConvergedRun(panel, runs, series, 0.15, ok), 3);
+    EXPECT_FALSE(ok);
+
+    // The finest alone proves nothing; an empty series has no run.
+    runs[3].stopped = false;
+    EXPECT_EQ(slabConvergedRun(panel, runs, {3}, 0.05, ok), 3);
+    EXPECT_FALSE(ok);
+    EXPECT_EQ(slabConvergedRun(panel, runs, {}, 0.05, ok), -1);
+    EXPECT_FALSE(ok);
+}

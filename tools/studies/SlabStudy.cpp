@@ -605,6 +605,26 @@ std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run)
     return s.str();
 }
 
+int slabConvergedRun(const SlabPanel& panel, const std::vector<SlabRunResult>& runs,
+                     const std::vector<int>& series, double tolerance, bool& converged)
+{
+    converged = false;
+    if (series.empty()) return -1;
+    const int finest = series.back();
+    if (runs[finest].stopped) return finest;  // no reference to converge to
+    const SlabFailureMode mode = slabFailureMode(panel, runs[finest]);
+    int chosen = finest;
+    for (int k = int(series.size()) - 2; k >= 0; --k) {
+        const SlabRunResult& r = runs[series[k]];
+        if (r.stopped || slabFailureMode(panel, r) != mode ||
+            slabCurveDifference(r.curve, runs[finest].curve) > tolerance)
+            break;
+        chosen = series[k];
+        converged = true;
+    }
+    return chosen;
+}
+
 SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
 {
     SlabCostEstimate e;
@@ -749,28 +769,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
             if (f == Formulation::Adapted) adaptedBySdp.push_back(k);
         }
 
-    // The converged value of a refinement series: the coarsest run from which on every finer
-    // one is within tolerance of the finest (P–δ loading branch and peak), fails the same way
-    // (push-out, blocks displaced or deflection: the paper's Sec. 3.5) and ran to the end. The
-    // finest alone proves nothing.
-    auto converged = [&](const std::vector<int>& series, bool& ok) {
-        ok = false;
-        if (series.empty()) return -1;
-        const int finest = series.back();
-        if (result.runs[finest].stopped) return finest;  // no reference to converge to
-        const SlabFailureMode mode = slabFailureMode(panel, result.runs[finest]);
-        int chosen = finest;
-        for (int k = int(series.size()) - 2; k >= 0; --k) {
-            if (slabCurveDifference(result.runs[series[k]].curve, result.runs[finest].curve) >
-                    o.tolerance ||
-                slabFailureMode(panel, result.runs[series[k]]) != mode || result.runs[series[k]].stopped)
-                break;
-            chosen = series[k];
-            ok = true;
-        }
-        return chosen;
-    };
-    const int sdpRun = converged(adaptedBySdp, result.sdpConverged);
+    const int sdpRun = slabConvergedRun(panel, result.runs, adaptedBySdp, o.tolerance, result.sdpConverged);
     result.convergedSdp = sdpRun >= 0 ? result.runs[sdpRun].sdp : sdps.back();
     result.convergedVdp = o.fixedVdp;
     result.convergedRun = sdpRun;
@@ -782,7 +781,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
         std::vector<int> byVdp;
         for (double v : vdps) byVdp.push_back(run(Formulation::Adapted, result.convergedSdp, v, "vdp"));
         result.vdpSeries = byVdp;
-        const int vdpRun = converged(byVdp, result.vdpConverged);
+        const int vdpRun = slabConvergedRun(panel, result.runs, byVdp, o.tolerance, result.vdpConverged);
         result.convergedVdp = result.runs[vdpRun].vdp;
         result.convergedRun = vdpRun;
         // The coarse case of the snapshots: coarsest SDP and coarsest VDP.

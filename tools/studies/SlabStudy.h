@@ -204,6 +204,14 @@ struct SlabStudyResult
     double wallSeconds = 0.0;
 };
 
+/// The converged run of a refinement series (@a series: indices into @a runs, coarse to fine):
+/// the coarsest run from which on every finer one ran to the end, fails the same way as the
+/// finest (push-out, blocks displaced or deflection: the paper's Sec. 3.5) and is within
+/// @a tolerance of it (slabCurveDifference). The finest alone proves nothing: @a converged is
+/// false when no coarser run agrees (the finest is returned), -1 for an empty series.
+int slabConvergedRun(const SlabPanel& panel, const std::vector<SlabRunResult>& runs,
+                     const std::vector<int>& series, double tolerance, bool& converged);
+
 /// A forecast of the study's cost, printed before it starts.
 struct SlabCostEstimate
 {

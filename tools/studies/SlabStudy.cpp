@@ -1,5 +1,7 @@
 #include "studies/SlabStudy.h"
 
+#include "studies/FormulationList.h"
+
 #include "lsdem/contact/Simulation.h"
 #include "lsdem/contact/World.h"
 #include "lsdem/ls/AssetIO.h"
@@ -129,12 +131,7 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     // stiffer than that by up to about 1.4x (ks*/kn* = 0.41 by default), hence the cap.
     if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 0.5))
         throw Error("", "--safety must be in (0, 0.5], got " + show(o.timeStepSafety), "0.3 is the default");
-    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
-    for (size_t i = 0; i < o.formulations.size(); ++i)
-        if (std::find(o.formulations.begin(), o.formulations.begin() + i, o.formulations[i]) !=
-            o.formulations.begin() + i)
-            throw Error("", "--formulation lists " + formulationName(o.formulations[i]) + " twice",
-                        "name each formulation once");
+    checkFormulationList(o.formulations);
     if (o.twoWay && std::find(o.formulations.begin(), o.formulations.end(), Formulation::Adapted) ==
                         o.formulations.end())
         throw Error("", "the two-way study refines the adapted formulation, which --formulation leaves out",

@@ -1,5 +1,7 @@
 #include "studies/SphereSeriesOptions.h"
 
+#include "studies/FormulationList.h"
+
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 
@@ -14,12 +16,7 @@ void checkSphereSeriesOptions(const SphereSeriesOptions& o)
         if (!(v > 0.0) || !std::isfinite(v))
             throw Error("", option + " must be positive and finite", "e.g. " + option + " " + example);
     };
-    if (o.formulations.empty()) throw Error("", "--formulation needs at least one formulation");
-    for (size_t i = 0; i < o.formulations.size(); ++i)
-        if (std::find(o.formulations.begin(), o.formulations.begin() + i, o.formulations[i]) !=
-            o.formulations.begin() + i)
-            throw Error("", "--formulation lists " + formulationName(o.formulations[i]) + " twice",
-                        "name each formulation once");
+    checkFormulationList(o.formulations);
     if (o.nodeCounts.empty()) throw Error("", "--nodes needs at least one count");
     for (size_t i = 0; i < o.nodeCounts.size(); ++i) {
         const int n = o.nodeCounts[i];

@@ -10,8 +10,6 @@ from collections import defaultdict
 from plotting import plt, read_numbers, save
 
 
-
-
 def base_stiffness(rows, formulation):
     """The stiffness of the node-count sweep: the one run at the most node counts."""
     counts = defaultdict(set)

@@ -20,8 +20,6 @@ from matplotlib import cm, colors
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 
-
-
 def curves_by_run(rows):
     out = defaultdict(lambda: ([], [], [], []))
     for r in rows:

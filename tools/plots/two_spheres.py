@@ -10,8 +10,6 @@ from collections import defaultdict
 from plotting import plt, read_numbers, save
 
 
-
-
 def curves(rows, formulation, key):
     """Group P–δ curves of one formulation by node count or stiffness."""
     groups = defaultdict(list)

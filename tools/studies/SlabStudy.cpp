@@ -634,19 +634,21 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     // per block node and step, both directions of symmetric testing and the shear history
     // included.
     const double secondsPerNodeStep = 75e-9;
-    // Seconds of one run; the totals are added by the callers.
-    auto runCost = [&](Formulation f, double sdp, double vdp) -> double {
-        const double nodes = nodesForSpacing(area, sdp);
+    struct RunCost
+    {
+        double seconds = 0.0, nodes = 0.0, bytes = 0.0;
+        long long steps = 0;
+    };
+    auto runCost = [&](Formulation f, double sdp, double vdp) {
+        RunCost c;
+        c.nodes = nodesForSpacing(area, sdp);
         const double face = perArea(f) ? k.knStar * panel.sharedFaceArea()
-                                       : k.kn * panel.sharedFaceArea() / (area / nodes);
+                                       : k.kn * panel.sharedFaceArea() / (area / c.nodes);
         const double dt =
             o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
         // Clamped before the cast: absurd inputs are refused by the caller, not undefined here.
-        const long long steps = static_cast<long long>(
-            std::min(std::ceil(slabDeltaMax(o) / (o.speed * dt)), 1e15));
-        ++e.runs;
-        e.steps += steps;
-        e.nodesPerBlockFinest = std::max(e.nodesPerBlockFinest, nodes);
+        c.steps = static_cast<long long>(std::min(std::ceil(slabDeltaMax(o) / (o.speed * dt)), 1e15));
+        c.seconds = c.steps * blocks * c.nodes * secondsPerNodeStep;
         // The peak is the bake: measured 816 MB resident for the block at VDP 0.025 mm (a
         // 58 MiB asset), about 48 bytes per voxel of the block's padded bounding box. Then
         // the run: nodes (position, normal, area) and the shear history per node in contact
@@ -654,32 +656,34 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
         const double box = (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
                            (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
                            (o.panel.thickness + 10 * vdp);
-        const double bytes = 48.0 * box / (vdp * vdp * vdp) + nodes * 56.0 + blocks * nodes * 0.5 * 80.0;
-        e.memoryBytes = std::max(e.memoryBytes, bytes);
-        return steps * blocks * nodes * secondsPerNodeStep;
+        c.bytes = 48.0 * box / (vdp * vdp * vdp) + c.nodes * 56.0 + blocks * c.nodes * 0.5 * 80.0;
+        return c;
+    };
+    // Counted runs: the upper bound's (stage 2 at the finest SDP).
+    auto count = [&](const RunCost& c) {
+        ++e.runs;
+        e.steps += c.steps;
+        e.seconds += c.seconds;
+        e.nodesPerBlockFinest = std::max(e.nodesPerBlockFinest, c.nodes);
+        e.memoryBytes = std::max(e.memoryBytes, c.bytes);
     };
     const std::vector<double> sdps = coarseToFine(o.sdps);
-    double stage1 = 0.0;
     for (double s : sdps)
         for (Formulation f : o.formulations)
-            if (runsAt(o, f, s)) stage1 += runCost(f, s, o.fixedVdp);
-    e.seconds = e.secondsAtLeast = stage1;
+            if (runsAt(o, f, s)) count(runCost(f, s, o.fixedVdp));
+    e.secondsAtLeast = e.seconds;
     if (o.twoWay) {
         // Stage 2 runs at the converged SDP, not known yet: it costs least at the coarsest SDP
-        // and most at the finest (the runs and memory counted are the finest's).
-        const int runsBefore = e.runs;
-        const long long stepsBefore = e.steps;
-        double atCoarsest = 0.0;
-        for (double v : coarseToFine(o.vdps))
-            if (std::abs(v - o.fixedVdp) > 1e-12) atCoarsest += runCost(Formulation::Adapted, sdps.front(), v);
-        e.runs = runsBefore;
-        e.steps = stepsBefore;
-        double atFinest = 0.0;
-        for (double v : coarseToFine(o.vdps))
-            if (std::abs(v - o.fixedVdp) > 1e-12) atFinest += runCost(Formulation::Adapted, sdps.back(), v);
-        const double coarse = runCost(Formulation::Adapted, sdps.front(), coarseToFine(o.vdps).front());
-        e.secondsAtLeast = stage1 + atCoarsest + coarse;
-        e.seconds = stage1 + atFinest + coarse;
+        // and most at the finest.
+        const std::vector<double> vdps = coarseToFine(o.vdps);
+        for (double v : vdps) {
+            if (std::abs(v - o.fixedVdp) <= 1e-12) continue;  // shared with stage 1
+            e.secondsAtLeast += runCost(Formulation::Adapted, sdps.front(), v).seconds;
+            count(runCost(Formulation::Adapted, sdps.back(), v));
+        }
+        const RunCost coarse = runCost(Formulation::Adapted, sdps.front(), vdps.front());  // snapshots
+        e.secondsAtLeast += coarse.seconds;
+        count(coarse);
     }
     std::ostringstream t;
     t << std::setprecision(3) << e.runs << " runs, " << e.steps << " steps in all, up to "

@@ -5,7 +5,8 @@
 // about six touching neighbours, so the ~3000 near pairs all carry contact. One iteration is
 // one time step. Args: threads, node testing (0 one-way, 1 symmetric).
 
-#include "lsdem/contact/Simulation.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
 
 #include <benchmark/benchmark.h>
 

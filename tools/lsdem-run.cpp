@@ -2,7 +2,7 @@
 
 #include "common/CommandLine.h"
 
-#include "lsdem/contact/SimulationRun.h"
+#include "lsdem/run/SimulationRun.h"
 #include "lsdem/ls/Error.h"
 
 #include <tbb/global_control.h>

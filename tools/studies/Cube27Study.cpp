@@ -1,9 +1,10 @@
 #include "studies/Cube27Study.h"
 
-#include "lsdem/contact/RandomRotation.h"
-#include "lsdem/contact/Simulation.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/RandomRotation.h"
+#include "lsdem/simulation/Simulation.h"
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/contact/World.h"
+#include "lsdem/simulation/World.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"

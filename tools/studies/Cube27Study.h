@@ -23,7 +23,7 @@
 #include "studies/SphereSeriesOptions.h"
 
 #include "lsdem/contact/ContactModel.h"
-#include "lsdem/contact/Scene.h"
+#include "lsdem/scene/Scene.h"
 
 #include <string>
 #include <vector>

@@ -2,8 +2,9 @@
 
 #include "studies/FormulationList.h"
 
-#include "lsdem/contact/Simulation.h"
-#include "lsdem/contact/World.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+#include "lsdem/simulation/World.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"

@@ -21,7 +21,7 @@
 #include "studies/SlabPanel.h"
 
 #include "lsdem/contact/ContactModel.h"
-#include "lsdem/contact/Scene.h"
+#include "lsdem/scene/Scene.h"
 #include "lsdem/ls/GrainAsset.h"
 
 #include <functional>

@@ -1,7 +1,7 @@
 #include "studies/TwoSpheresStudy.h"
 
 #include "lsdem/contact/PairContact.h"
-#include "lsdem/contact/RandomRotation.h"
+#include "lsdem/scene/RandomRotation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"

@@ -1,0 +1,37 @@
+/// @file Checkpoint.h
+/// @brief Save and restore everything a run needs to continue bit-identically: the scene's
+///        text, the step, every grain's state and last force, the boundaries, the shear
+///        history of every contact, the energy bookkeeping and the run's output state.
+///        Binary (doubles stored exactly), versioned, written atomically.
+#pragma once
+
+#include "lsdem/run/RunRecord.h"
+#include "lsdem/simulation/World.h"
+
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+struct Checkpoint
+{
+    std::string scenePath;  ///< the scene file the run started from (relative paths in it
+                            ///< are resolved from its folder)
+    std::string sceneText;
+    double timeStep = 0.0;
+    RunRecord record;
+};
+
+/// Write @a world and @a checkpoint to @a path atomically.
+void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint);
+
+/// Read the checkpoint header (scene, time step, run record) of @a path.
+/// @throw Error naming the file if it is missing, truncated or not an lsdem checkpoint.
+Checkpoint readCheckpoint(const std::string& path);
+
+/// Overwrite the dynamic state of @a world (built from the checkpoint's scene) with the state
+/// stored in @a path.
+/// @throw Error if the file does not match the world (grain or boundary counts differ).
+void restoreWorldState(const std::string& path, World& world);
+
+} // namespace lsdem

@@ -1,0 +1,31 @@
+/// @file RunOutputs.h
+/// @brief The text outputs of a run, each written whole and atomically: `energy.csv` (global
+///        energies per history step), `boundary_<name>.csv` (displacement and reaction force of
+///        each boundary) and `grains.csv` (every grain's final state and displacement).
+///        Numbers are printed with 17 significant digits so they read back exactly.
+#pragma once
+
+#include "lsdem/run/RunRecord.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+/// Append the rows of the current state to @a record (one energy row, one row per boundary).
+void recordHistoryRow(const Simulation& sim, RunRecord& record);
+
+/// Write energy.csv and boundary_<name>.csv in @a directory from @a record.
+void writeHistoryFiles(const std::string& directory, const World& world,
+                       const RunRecord& record);
+
+/// Write grains.csv: name, position, orientation (w x y z), velocity, angular velocity and
+/// the distance moved from @a initialPositions.
+void writeGrainsFile(const std::string& path, const World& world,
+                     const std::vector<Vec3>& initialPositions);
+
+/// The file name used for boundary @a name ("boundary_<name>.csv", unsafe characters as '_').
+std::string boundaryHistoryFileName(const std::string& name);
+
+} // namespace lsdem

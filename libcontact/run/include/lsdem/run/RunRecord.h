@@ -1,0 +1,19 @@
+/// @file RunRecord.h
+/// @brief What a run keeps besides the world, so that a restart continues its outputs: the
+///        history rows recorded so far and the times of the ParaView frames written.
+#pragma once
+
+#include <vector>
+
+namespace lsdem {
+
+/// What the run driver keeps besides the world: rows of history already recorded and the
+/// times of the ParaView frames written.
+struct RunRecord
+{
+    std::vector<std::vector<double>> energyRows;
+    std::vector<std::vector<std::vector<double>>> boundaryRows;  ///< per boundary
+    std::vector<double> vtkFrameTimes;
+};
+
+} // namespace lsdem

@@ -1,0 +1,46 @@
+/// @file SimulationRun.h
+/// @brief A whole run, as lsdem-run performs it: read the scene (or a checkpoint), build the
+///        world, choose the time step, step to the end condition while writing the history,
+///        ParaView frames and checkpoints, stop cleanly on request (SIGINT/SIGTERM), and
+///        report where the time went.
+#pragma once
+
+#include "lsdem/simulation/Simulation.h"
+
+#include <iosfwd>
+#include <string>
+
+namespace lsdem {
+
+struct RunOptions
+{
+    std::string scenePath;    ///< start from this scene file, or ...
+    std::string restartPath;  ///< ... continue from this checkpoint
+    std::string outDir;       ///< output folder ("" on restart: the checkpoint's folder)
+    bool progress = false;    ///< a progress line with ETA on stderr
+    /// Stop (as if interrupted, with a checkpoint) once the step count reaches this (0: never).
+    long long stopAtStep = 0;
+};
+
+struct RunResult
+{
+    bool interrupted = false;   ///< stopped by a request or stopAtStep, not the end condition
+    long long step = 0;
+    double time = 0.0;
+    double timeStep = 0.0;
+    std::string checkpointPath;
+    StepCounters counters;
+    double outputSeconds = 0.0, setupSeconds = 0.0, wallSeconds = 0.0;
+    int grains = 0;
+};
+
+/// Perform the run described by @a options; messages and the summary go to @a log.
+/// @throw Error for bad scenes, bad checkpoints, unwritable outputs or an unstable time step
+///        (outputs written before the failure stay intact).
+RunResult runSimulation(const RunOptions& options, std::ostream& log);
+
+/// Ask a running runSimulation to stop after its current step, write a checkpoint and return.
+/// Async-signal-safe (a lock-free atomic flag), so a signal handler may call it.
+void requestStop();
+
+} // namespace lsdem

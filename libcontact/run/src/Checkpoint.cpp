@@ -1,0 +1,268 @@
+#include "lsdem/run/Checkpoint.h"
+
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Error.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
+const uint32_t kVersion = 1;
+
+/// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
+class Writer
+{
+public:
+    explicit Writer(std::ostream& out) : mOut(out) {}
+    template <typename T> void pod(const T& v) { mOut.write(reinterpret_cast<const char*>(&v), sizeof v); }
+    void text(const std::string& s)
+    {
+        pod<uint64_t>(s.size());
+        mOut.write(s.data(), static_cast<std::streamsize>(s.size()));
+    }
+    void vec(const Vec3& v) { pod(v.x()), pod(v.y()), pod(v.z()); }
+    void quat(const Quat& q) { pod(q.w()), pod(q.x()), pod(q.y()), pod(q.z()); }
+    void doubles(const std::vector<double>& v)
+    {
+        pod<uint64_t>(v.size());
+        for (double d : v) pod(d);
+    }
+    void shear(const std::map<int, Vec3>& m)
+    {
+        pod<uint64_t>(m.size());
+        for (const auto& [node, f] : m) pod<int32_t>(node), vec(f);
+    }
+
+private:
+    std::ostream& mOut;
+};
+
+class Reader
+{
+public:
+    Reader(std::istream& in, std::string path) : mIn(in), mPath(std::move(path))
+    {
+        const std::streampos here = mIn.tellg();
+        mIn.seekg(0, std::ios::end);
+        mEnd = mIn.tellg();
+        mIn.seekg(here);
+    }
+    template <typename T> T pod()
+    {
+        T v{};
+        mIn.read(reinterpret_cast<char*>(&v), sizeof v);
+        if (!mIn) fail();
+        return v;
+    }
+    /// A count of items stored in at least @a itemBytes each. A damaged count could ask for
+    /// terabytes (std::bad_alloc instead of an Error): it may not exceed what the rest of the
+    /// file can hold, checked before anything is allocated for it.
+    uint64_t count(uint64_t itemBytes)
+    {
+        const uint64_t n = pod<uint64_t>();
+        const std::streamoff left = mEnd - mIn.tellg();
+        if (left < 0 || n > static_cast<uint64_t>(left) / itemBytes) fail();
+        return n;
+    }
+    std::string text()
+    {
+        std::string s(count(1), '\0');
+        mIn.read(s.data(), static_cast<std::streamsize>(s.size()));
+        if (!mIn) fail();
+        return s;
+    }
+    Vec3 vec()
+    {
+        Vec3 v;
+        for (int k = 0; k < 3; ++k) v[k] = pod<double>();
+        return v;
+    }
+    Quat quat()
+    {
+        const double w = pod<double>(), x = pod<double>(), y = pod<double>(), z = pod<double>();
+        return Quat(w, x, y, z);
+    }
+    std::vector<double> doubles()
+    {
+        std::vector<double> v(count(sizeof(double)));
+        for (double& d : v) d = pod<double>();
+        return v;
+    }
+    std::map<int, Vec3> shear()
+    {
+        std::map<int, Vec3> m;
+        const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
+        for (uint64_t k = 0; k < n; ++k) {
+            const int node = pod<int32_t>();
+            m.emplace(node, vec());
+        }
+        return m;
+    }
+    [[noreturn]] void fail() const
+    {
+        throw Error(mPath, "the checkpoint is truncated or corrupt",
+                    "use an earlier checkpoint or start the run again");
+    }
+
+private:
+    std::istream& mIn;
+    std::string mPath;
+    std::streampos mEnd = 0;
+};
+
+void writeRecord(Writer& w, const RunRecord& r)
+{
+    w.pod<uint64_t>(r.energyRows.size());
+    for (const auto& row : r.energyRows) w.doubles(row);
+    w.pod<uint64_t>(r.boundaryRows.size());
+    for (const auto& rows : r.boundaryRows) {
+        w.pod<uint64_t>(rows.size());
+        for (const auto& row : rows) w.doubles(row);
+    }
+    w.doubles(r.vtkFrameTimes);
+}
+
+RunRecord readRecord(Reader& r)
+{
+    RunRecord rec;
+    const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
+    rec.energyRows.resize(r.count(rowBytes));
+    for (auto& row : rec.energyRows) row = r.doubles();
+    rec.boundaryRows.resize(r.count(rowBytes));
+    for (auto& rows : rec.boundaryRows) {
+        rows.resize(r.count(rowBytes));
+        for (auto& row : rows) row = r.doubles();
+    }
+    rec.vtkFrameTimes = r.doubles();
+    return rec;
+}
+
+/// Open @a path and read past the header into @a checkpoint.
+std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw Error(path, "cannot open the checkpoint", "check the path (lsdem-run writes "
+                                                        "<out>/checkpoint.lsdem)");
+    char magic[8] = {};
+    in.read(magic, sizeof magic);
+    if (!in || std::memcmp(magic, kMagic, sizeof magic) != 0)
+        throw Error(path, "not an lsdem checkpoint", "give a file written by lsdem-run");
+    Reader r(in, path);
+    const uint32_t version = r.pod<uint32_t>();
+    if (version != kVersion)
+        throw Error(path, "checkpoint version " + std::to_string(version) + " is not supported",
+                    "restart it with the lsdem version that wrote it");
+    checkpoint.scenePath = r.text();
+    checkpoint.sceneText = r.text();
+    checkpoint.timeStep = r.pod<double>();
+    checkpoint.record = readRecord(r);
+    return in;
+}
+
+} // namespace
+
+void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint)
+{
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        Writer w(out);
+        out.write(kMagic, sizeof kMagic);
+        w.pod(kVersion);
+        w.text(checkpoint.scenePath);
+        w.text(checkpoint.sceneText);
+        w.pod(checkpoint.timeStep);
+        writeRecord(w, checkpoint.record);
+
+        w.pod(world.time);
+        w.pod<int64_t>(world.step);
+        w.pod(world.energy.boundaryWork);
+        w.pod(world.energy.initialTotal);
+        w.pod<uint64_t>(world.grains.size());
+        for (const Grain& g : world.grains) {
+            w.vec(g.body.pose.position);
+            w.quat(g.body.pose.orientation);
+            w.vec(g.body.velocity);
+            w.vec(g.body.angularMomentum);
+            w.vec(g.force);
+            w.vec(g.torque);
+        }
+        w.pod<uint64_t>(world.boundaries.size());
+        for (const Boundary& b : world.boundaries) w.vec(b.displacement), w.vec(b.force);
+        w.pod<uint64_t>(world.pairHistory.size());
+        for (const auto& [pair, h] : world.pairHistory) {
+            w.pod<int32_t>(pair.first), w.pod<int32_t>(pair.second);
+            w.shear(h.shearOnFirstNodes);
+            w.shear(h.shearOnSecondNodes);
+        }
+        w.pod<uint64_t>(world.boundaryHistory.size());
+        for (const auto& [key, h] : world.boundaryHistory) {
+            w.pod<int32_t>(key.first), w.pod<int32_t>(key.second);
+            w.shear(h);
+        }
+        out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic
+        out.close();
+        if (!out) throw Error(path, "could not write the checkpoint", "check free disk space");
+    });
+}
+
+Checkpoint readCheckpoint(const std::string& path)
+{
+    Checkpoint c;
+    openAndReadHeader(path, c);
+    return c;
+}
+
+void restoreWorldState(const std::string& path, World& world)
+{
+    Checkpoint header;
+    std::ifstream in = openAndReadHeader(path, header);
+    Reader r(in, path);
+    World w = world;  // fill a copy: a failed read leaves @a world untouched
+    w.time = r.pod<double>();
+    w.step = r.pod<int64_t>();
+    w.energy.boundaryWork = r.pod<double>();
+    w.energy.initialTotal = r.pod<double>();
+    const uint64_t grainBytes = 19 * sizeof(double);  // position, orientation, 4 vectors
+    if (r.count(grainBytes) != w.grains.size())
+        throw Error(path, "the checkpoint's grain count does not match its scene",
+                    "the scene's assets may have changed; start the run again");
+    for (Grain& g : w.grains) {
+        g.body.pose.position = r.vec();
+        g.body.pose.orientation = r.quat();
+        g.body.velocity = r.vec();
+        g.body.angularMomentum = r.vec();
+        g.force = r.vec();
+        g.torque = r.vec();
+    }
+    if (r.count(6 * sizeof(double)) != w.boundaries.size())
+        throw Error(path, "the checkpoint's boundary count does not match its scene",
+                    "start the run again");
+    for (Boundary& b : w.boundaries) b.displacement = r.vec(), b.force = r.vec();
+    w.pairHistory.clear();
+    const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
+    for (uint64_t k = 0; k < pairs; ++k) {
+        const int i = r.pod<int32_t>(), j = r.pod<int32_t>();
+        PairHistory& h = w.pairHistory[{i, j}];
+        h.shearOnFirstNodes = r.shear();
+        h.shearOnSecondNodes = r.shear();
+    }
+    w.boundaryHistory.clear();
+    const uint64_t boundaryContacts = r.count(2 * sizeof(int32_t) + sizeof(uint64_t));
+    for (uint64_t k = 0; k < boundaryContacts; ++k) {
+        const int i = r.pod<int32_t>(), b = r.pod<int32_t>();
+        w.boundaryHistory[{i, b}] = r.shear();
+    }
+    char trailer[8] = {};
+    in.read(trailer, sizeof trailer);
+    if (!in || std::memcmp(trailer, kMagic, sizeof trailer) != 0) r.fail();
+    world = std::move(w);
+}
+
+} // namespace lsdem

@@ -1,0 +1,93 @@
+#include "lsdem/run/RunOutputs.h"
+
+#include "lsdem/ls/AtomicFile.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+namespace lsdem {
+
+namespace {
+
+void appendNumber(std::string& line, double v)
+{
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    if (!line.empty() && line.back() != '\n') line += ',';
+    line += buffer;
+}
+
+std::string rowsToCsv(const std::string& header, const std::vector<std::vector<double>>& rows)
+{
+    std::string text = header + "\n";
+    for (const auto& row : rows) {
+        std::string line;
+        for (double v : row) appendNumber(line, v);
+        text += line + "\n";
+    }
+    return text;
+}
+
+} // namespace
+
+void recordHistoryRow(const Simulation& sim, RunRecord& record)
+{
+    const World& w = sim.world();
+    const Energies e = sim.energies();
+    record.energyRows.push_back({static_cast<double>(w.step), w.time, e.kinetic, e.elastic,
+                                 e.potential, e.boundaryWork, e.dissipated,
+                                 static_cast<double>(sim.contactNodes())});
+    record.boundaryRows.resize(w.boundaries.size());
+    for (size_t b = 0; b < w.boundaries.size(); ++b) {
+        const Boundary& bd = w.boundaries[b];
+        record.boundaryRows[b].push_back({static_cast<double>(w.step), w.time,
+                                          bd.displacement.x(), bd.displacement.y(),
+                                          bd.displacement.z(), bd.force.x(), bd.force.y(),
+                                          bd.force.z()});
+    }
+}
+
+std::string boundaryHistoryFileName(const std::string& name)
+{
+    std::string safe = name;
+    for (char& c : safe)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return "boundary_" + safe + ".csv";
+}
+
+void writeHistoryFiles(const std::string& directory, const World& world,
+                       const RunRecord& record)
+{
+    const std::filesystem::path dir(directory);
+    writeTextFileAtomically(
+        (dir / "energy.csv").string(),
+        rowsToCsv("step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes",
+                  record.energyRows));
+    for (size_t b = 0; b < world.boundaries.size() && b < record.boundaryRows.size(); ++b)
+        writeTextFileAtomically(
+            (dir / boundaryHistoryFileName(world.boundaries[b].name)).string(),
+            rowsToCsv("step,time,ux,uy,uz,fx,fy,fz", record.boundaryRows[b]));
+}
+
+void writeGrainsFile(const std::string& path, const World& world,
+                     const std::vector<Vec3>& initialPositions)
+{
+    std::string text = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved\n";
+    for (size_t i = 0; i < world.grains.size(); ++i) {
+        const Grain& g = world.grains[i];
+        const RigidPose& p = g.body.pose;
+        const Vec3 omega = g.angularVelocity();
+        std::string line = g.name;
+        for (double v : {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(),
+                         p.orientation.x(), p.orientation.y(), p.orientation.z(),
+                         g.body.velocity.x(), g.body.velocity.y(), g.body.velocity.z(),
+                         omega.x(), omega.y(), omega.z(),
+                         (p.position - initialPositions[i]).norm()})
+            appendNumber(line, v);
+        text += line + "\n";
+    }
+    writeTextFileAtomically(path, text);
+}
+
+} // namespace lsdem

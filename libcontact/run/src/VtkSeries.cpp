@@ -1,0 +1,268 @@
+/// @file VtkSeries.cpp
+/// @brief ParaView output: VTK XML unstructured grids (`.vtu`) with their arrays in one raw
+///        appended binary block, and the `.pvd` collection listing them with their times.
+#include "lsdem/run/VtkSeries.h"
+
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Error.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace lsdem {
+
+namespace {
+
+constexpr std::uint8_t kVtkVertex = 1;
+constexpr std::uint8_t kVtkTriangle = 5;
+
+/// Append @a value least significant byte first: the files declare byte_order="LittleEndian"
+/// whatever the machine writing them is.
+void appendLittleEndian(std::string& bytes, std::uint64_t value, size_t size)
+{
+    for (size_t i = 0; i < size; ++i) bytes.push_back(static_cast<char>((value >> (8 * i)) & 0xffu));
+}
+
+// One overload per element type written, so the stored width always matches the tag's type.
+void appendValue(std::string& bytes, double v)
+{
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);  // the IEEE-754 bits, so values round-trip exactly
+    appendLittleEndian(bytes, bits, 8);
+}
+void appendValue(std::string& bytes, std::int32_t v)
+{
+    appendLittleEndian(bytes, static_cast<std::uint32_t>(v), 4);
+}
+void appendValue(std::string& bytes, std::int64_t v)
+{
+    appendLittleEndian(bytes, static_cast<std::uint64_t>(v), 8);
+}
+void appendValue(std::string& bytes, std::uint8_t v) { bytes.push_back(static_cast<char>(v)); }
+
+/// The name VTK gives each element type in a DataArray's `type` attribute.
+template <typename T> const char* vtkTypeName();
+template <> const char* vtkTypeName<double>() { return "Float64"; }
+template <> const char* vtkTypeName<std::int32_t>() { return "Int32"; }
+template <> const char* vtkTypeName<std::int64_t>() { return "Int64"; }
+template <> const char* vtkTypeName<std::uint8_t>() { return "UInt8"; }
+
+/// Make @a text safe inside a double-quoted XML attribute (a base name may hold '&' or '"').
+std::string xmlEscape(const std::string& text)
+{
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+/// One `.vtu` being assembled: the DataArray tags of each section and the appended block they
+/// point into. Each array there is its UInt64 byte count followed by its values; a tag's offset
+/// is where that count starts, counted from just after the block's leading '_'.
+class UnstructuredGridFile
+{
+public:
+    enum Section { PointData, CellData, Points, Cells, SectionCount };
+
+    template <typename T>
+    void addArray(Section section, const std::string& name, int components,
+                  const std::vector<T>& values)
+    {
+        mTags[section] += "        <DataArray type=\"" + std::string(vtkTypeName<T>()) +
+                          "\" Name=\"" + name + "\" NumberOfComponents=\"" +
+                          std::to_string(components) + "\" format=\"appended\" offset=\"" +
+                          std::to_string(mData.size()) + "\"/>\n";
+        appendLittleEndian(mData, static_cast<std::uint64_t>(values.size() * sizeof(T)), 8);
+        for (const T& v : values) appendValue(mData, v);
+    }
+
+    /// Extra attributes of a section's opening tag, e.g. `Vectors="force"`: ParaView's glyphs
+    /// and colouring start from these active arrays.
+    void setSectionAttributes(Section section, const std::string& attributes)
+    {
+        mAttributes[section] = attributes;
+    }
+
+    std::string contents(size_t pointCount, size_t cellCount) const
+    {
+        static const char* const names[SectionCount] = {"PointData", "CellData", "Points", "Cells"};
+        std::string xml = "<?xml version=\"1.0\"?>\n"
+                          "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+                          "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                          "  <UnstructuredGrid>\n"
+                          "    <Piece NumberOfPoints=\"" + std::to_string(pointCount) +
+                          "\" NumberOfCells=\"" + std::to_string(cellCount) + "\">\n";
+        for (int s = 0; s < SectionCount; ++s) {
+            const std::string attributes = mAttributes[s].empty() ? "" : " " + mAttributes[s];
+            xml += "      <" + std::string(names[s]) + attributes + ">\n" + mTags[s] +
+                   "      </" + names[s] + ">\n";
+        }
+        xml += "    </Piece>\n"
+               "  </UnstructuredGrid>\n"
+               "  <AppendedData encoding=\"raw\">\n"
+               "   _";
+        xml += mData;
+        xml += "\n  </AppendedData>\n</VTKFile>\n";
+        return xml;
+    }
+
+private:
+    std::string mTags[SectionCount];
+    std::string mAttributes[SectionCount];
+    std::string mData;
+};
+
+/// Flatten 3-vectors into x0 y0 z0 x1 ... as VTK stores 3-component arrays.
+void appendXyz(std::vector<double>& out, const Vec3& v)
+{
+    out.push_back(v.x());
+    out.push_back(v.y());
+    out.push_back(v.z());
+}
+
+/// Every grain's surface triangles in world coordinates, each vertex carrying its rigid-body
+/// velocity and each triangle the id of its grain.
+std::string grainsFile(const std::vector<VtkGrain>& grains)
+{
+    std::vector<double> points, velocities;
+    std::vector<std::int64_t> connectivity, offsets;
+    std::vector<std::int32_t> grainIds;
+    for (const VtkGrain& grain : grains) {
+        if (!grain.surface) continue;  // nothing to draw
+        const std::int64_t first = static_cast<std::int64_t>(points.size() / 3);
+        for (const Vec3& local : grain.surface->vertices) {
+            const Vec3 x = grain.pose.toWorld(local);
+            appendXyz(points, x);
+            appendXyz(velocities,
+                      grain.velocity + grain.angularVelocity.cross(x - grain.pose.position));
+        }
+        for (const auto& triangle : grain.surface->triangles) {
+            for (int corner : triangle) connectivity.push_back(first + corner);
+            offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+            grainIds.push_back(grain.id);
+        }
+    }
+    const std::vector<std::uint8_t> types(offsets.size(), kVtkTriangle);
+
+    UnstructuredGridFile file;
+    file.setSectionAttributes(UnstructuredGridFile::PointData, "Vectors=\"velocity\"");
+    file.setSectionAttributes(UnstructuredGridFile::CellData, "Scalars=\"grain\"");
+    file.addArray(UnstructuredGridFile::PointData, "velocity", 3, velocities);
+    file.addArray(UnstructuredGridFile::CellData, "grain", 1, grainIds);
+    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
+    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
+    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
+    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    return file.contents(points.size() / 3, offsets.size());
+}
+
+/// The contact forces as points (one vertex cell each, so every filter sees them) with their
+/// force vector and the grain it acts on. No forces still makes a valid, empty grid.
+std::string contactsFile(const std::vector<VtkForcePoint>& forces)
+{
+    std::vector<double> points, forceVectors;
+    std::vector<std::int32_t> grainIds;
+    std::vector<std::int64_t> connectivity, offsets;
+    for (const VtkForcePoint& f : forces) {
+        appendXyz(points, f.point);
+        appendXyz(forceVectors, f.force);
+        grainIds.push_back(f.grain);
+        connectivity.push_back(static_cast<std::int64_t>(connectivity.size()));
+        offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    }
+    const std::vector<std::uint8_t> types(forces.size(), kVtkVertex);
+
+    UnstructuredGridFile file;
+    file.setSectionAttributes(UnstructuredGridFile::PointData,
+                              "Vectors=\"force\" Scalars=\"grain\"");
+    file.addArray(UnstructuredGridFile::PointData, "force", 3, forceVectors);
+    file.addArray(UnstructuredGridFile::PointData, "grain", 1, grainIds);
+    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
+    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
+    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
+    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    return file.contents(forces.size(), forces.size());
+}
+
+/// Write @a contents to @a path atomically: a reader (ParaView reloading mid-run) sees the old
+/// file or the whole new one. Failures name the file and say what to do.
+void writeWholeFile(const std::string& path, const std::string& contents)
+{
+    writeFileAtomically(path, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out)
+            throw Error(path, "cannot create a temporary file beside it",
+                        "check that the output folder is writable and not full");
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+        out.close();
+        if (!out)
+            throw Error(path, "could not write the file (disk full?)",
+                        "free some disk space or choose another output folder");
+    });
+}
+
+std::string frameFileName(const std::string& baseName, const char* kind, size_t frame)
+{
+    return baseName + "_" + kind + "_" + std::to_string(frame) + ".vtu";
+}
+
+/// The collection: per frame, its time and the two files (part 0 grains, part 1 contacts),
+/// named relative to the .pvd so the output folder can be moved.
+std::string collectionFile(const std::string& baseName, const std::vector<double>& times)
+{
+    std::string xml = "<?xml version=\"1.0\"?>\n"
+                      "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                      "header_type=\"UInt64\">\n"
+                      "  <Collection>\n";
+    for (size_t k = 0; k < times.size(); ++k) {
+        char timestep[40];
+        std::snprintf(timestep, sizeof timestep, "%.17g", times[k]);  // round-trips the double
+        const char* const kinds[] = {"grains", "contacts"};
+        for (int part = 0; part < 2; ++part)
+            xml += "    <DataSet timestep=\"" + std::string(timestep) + "\" part=\"" +
+                   std::to_string(part) + "\" file=\"" +
+                   xmlEscape(frameFileName(baseName, kinds[part], k)) + "\"/>\n";
+    }
+    xml += "  </Collection>\n</VTKFile>\n";
+    return xml;
+}
+
+} // namespace
+
+VtkSeries::VtkSeries(std::string directory, std::string baseName)
+    : mDirectory(std::move(directory)), mBaseName(std::move(baseName))
+{
+}
+
+void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& grains,
+                           const std::vector<VtkForcePoint>& forces)
+{
+    // The .pvd names frames by their index, so a frame past the end would leave a hole in it.
+    if (frame < 0 || frame > framesWritten())
+        throw std::invalid_argument("VtkSeries::writeFrame: frame " + std::to_string(frame) +
+                                    " is not in 0.." + std::to_string(framesWritten()));
+    const std::filesystem::path dir(mDirectory);
+    const size_t k = static_cast<size_t>(frame);
+    writeWholeFile((dir / frameFileName(mBaseName, "grains", k)).string(), grainsFile(grains));
+    writeWholeFile((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
+
+    // The list changes only once the .pvd naming it is written, so a failure leaves the
+    // series as it was and the frame can be written again.
+    std::vector<double> times(mTimes.begin(), mTimes.begin() + frame);
+    times.push_back(time);
+    writeWholeFile((dir / (mBaseName + ".pvd")).string(), collectionFile(mBaseName, times));
+    mTimes = std::move(times);
+}
+
+} // namespace lsdem

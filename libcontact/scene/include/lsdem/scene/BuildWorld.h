@@ -1,0 +1,24 @@
+/// @file BuildWorld.h
+/// @brief From a scene description to the state of a simulation: load (or bake) its assets,
+///        place its grains and boundaries, and set the contact model of every pair of
+///        materials.
+#pragma once
+
+#include "lsdem/scene/Scene.h"
+#include "lsdem/simulation/World.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+/// Load (or bake) every asset of @a scene and place its grains and boundaries. Messages that
+/// do not stop the run (from baking) are appended to @a warnings.
+/// @throw Error naming the scene entry for anything that cannot be loaded or made.
+World buildWorld(const Scene& scene, std::vector<std::string>& warnings);
+
+/// The runtime boundary for @a spec (@a asset: the loaded asset of a level-set obstacle).
+Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset> asset);
+
+} // namespace lsdem

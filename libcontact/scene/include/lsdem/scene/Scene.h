@@ -1,0 +1,134 @@
+/// @file Scene.h
+/// @brief What a scene file describes, as plain data: assets, materials, contact models per
+///        pair of materials, grains, boundaries, time stepping, end condition and outputs.
+///        SceneFile.h reads it from TOML; World.h turns it into a running system. Units are
+///        the user's (declared in the scene and checked for consistency), e.g. mm, N, s, tonne.
+#pragma once
+
+#include "lsdem/contact/ContactModel.h"
+#include "lsdem/contact/RigidPose.h"
+#include "lsdem/ls/Bake.h"
+#include "lsdem/simulation/BoundaryShape.h"
+#include "lsdem/simulation/GrainMotion.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+/// The declared unit system: force must equal mass·length/time² (e.g. mm, tonne, s, N).
+struct UnitSystem
+{
+    std::string length = "mm", mass = "tonne", time = "s", force = "N";
+};
+
+/// Where an asset comes from: a baked .vdb file, or a mesh / analytic shape baked at load.
+struct AssetSpec
+{
+    std::string name;
+    std::string file;                  ///< baked asset, absolute path ("" if baked on the fly)
+    std::string meshFile;              ///< mesh to bake on the fly, absolute path
+    std::optional<AnalyticShape> shape;  ///< analytic shape to bake on the fly
+    BakeOptions bake;                  ///< voxel size, node placement, areas (on-the-fly only)
+    std::string where;                 ///< "scene.toml:12" for messages
+};
+
+struct MaterialSpec
+{
+    std::string name;
+    double density = 0.0;  ///< mass/length³; > 0 for materials of free grains
+};
+
+/// The contact law between two materials (order does not matter).
+struct ContactSpec
+{
+    int materialA = 0, materialB = 0;  ///< indices into Scene::materials
+    ContactModel model;
+    /// Coefficient of restitution for viscous contact damping, in (0, 1]; 1 means none.
+    double restitution = 1.0;
+    std::string where;
+};
+
+struct GrainSpec
+{
+    std::string name;                    ///< optional; "" means "grain <index>"
+    int asset = 0;                       ///< index into Scene::assets
+    int material = 0;                    ///< index into Scene::materials
+    RigidPose pose;                      ///< centroid position and asset-to-world rotation
+    Vec3 velocity = Vec3::Zero();
+    Vec3 angularVelocity = Vec3::Zero();
+    double mass = 0.0;                   ///< > 0 overrides density × asset volume
+    GrainMotion motion = GrainMotion::Free;
+    std::string where;
+};
+
+struct BoundarySpec
+{
+    std::string name;
+    BoundaryShape shape = BoundaryShape::Plane;
+    int material = 0;
+    // Plane: a point, the unit normal, and optionally a finite rectangular patch: nodes count
+    // only if their projection lies within ±extent/2 along the in-plane axes (axisU and
+    // normal × axisU) and they are less than `thickness` behind the plane.
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();
+    double extentU = 0.0, extentV = 0.0;  ///< 0: unbounded
+    Vec3 axisU = Vec3::UnitX();
+    double thickness = 0.0;               ///< 0: unbounded
+    // Sphere: centre and radius.
+    Vec3 center = Vec3::Zero();
+    double radius = 0.0;
+    // Level set: the asset and where it sits.
+    int asset = -1;
+    RigidPose pose;
+    /// Prescribed velocity (zero: fixed). The reaction force on the boundary is recorded.
+    Vec3 velocity = Vec3::Zero();
+    std::string where;
+};
+
+/// When a run stops: the first of the conditions given.
+struct EndCondition
+{
+    double time = 0.0;               ///< > 0: stop at this simulated time
+    long long steps = 0;             ///< > 0: stop after this many steps
+    int boundary = -1;               ///< >= 0: stop when this boundary has moved ...
+    double displacement = 0.0;       ///< ... this far (length, > 0)
+};
+
+struct TimeStepSpec
+{
+    double fixed = 0.0;    ///< > 0: this step; 0: automatic
+    double safety = 0.2;   ///< automatic: dt = safety · 2·sqrt(m_eff / k_node)
+};
+
+struct OutputSpec
+{
+    long long historyEvery = 0;     ///< steps between history rows (0: derived from period)
+    double historyPeriod = 0.0;     ///< time between history rows
+    double vtkPeriod = 0.0;         ///< time between ParaView frames (0: none)
+    double checkpointPeriod = 0.0;  ///< time between checkpoints (0: only at the end / signal)
+    bool contactForces = true;      ///< write contact force points in the VTK frames
+};
+
+struct Scene
+{
+    std::string path;       ///< the scene file, as given
+    std::string directory;  ///< its folder: relative asset paths are resolved from here
+    std::string text;       ///< the file's text (kept in checkpoints)
+    UnitSystem units;
+    std::vector<AssetSpec> assets;
+    std::vector<MaterialSpec> materials;
+    std::vector<ContactSpec> contacts;
+    std::vector<GrainSpec> grains;
+    std::vector<BoundarySpec> boundaries;
+    Vec3 gravity = Vec3::Zero();
+    /// Global non-viscous damping λ in [0, 1): each force component on a free grain is
+    /// reduced by λ·|F| against the velocity (as YADE's NewtonIntegrator).
+    double globalDamping = 0.0;
+    TimeStepSpec timeStep;
+    EndCondition end;
+    OutputSpec output;
+};
+
+} // namespace lsdem

@@ -1,0 +1,105 @@
+#include "lsdem/scene/BuildWorld.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Error.h"
+
+namespace lsdem {
+
+namespace {
+
+std::shared_ptr<const GrainAsset> loadOrBake(const AssetSpec& spec,
+                                             std::vector<std::string>& warnings)
+{
+    try {
+        if (!spec.file.empty()) return loadAsset(spec.file);
+        if (!spec.meshFile.empty())
+            return std::make_shared<const GrainAsset>(
+                bakeMeshFile(spec.meshFile, spec.bake, warnings));
+        if (spec.shape)
+            return std::make_shared<const GrainAsset>(
+                bakeAnalytic(*spec.shape, spec.bake, warnings));
+    } catch (const Error& e) {
+        throw Error(spec.where, "asset '" + spec.name + "': " + e.what());
+    }
+    throw Error(spec.where, "asset '" + spec.name + "' has no source",
+                "give file, mesh or shape");
+}
+
+Grain makeGrain(const GrainSpec& spec, const Scene& scene,
+                const std::shared_ptr<const GrainAsset>& asset)
+{
+    Grain g;
+    g.name = spec.name;
+    g.asset = asset;
+    g.material = spec.material;
+    g.motion = spec.motion;
+    const double density = scene.materials[spec.material].density;
+    const double volume = asset->mass.volume;
+    const double mass = spec.mass > 0.0 ? spec.mass : density * volume;
+    if (g.isFree() && !(mass > 0.0))
+        throw Error(spec.where, "free grain '" + spec.name + "' has no mass",
+                    "give its material a density > 0 or the grain a mass");
+    RigidBody& b = g.body;
+    b.pose = spec.pose;
+    b.velocity = spec.velocity;
+    b.mass = mass > 0.0 ? mass : 1.0;  // immovable grains never use it
+    // The asset's inertia is for unit density: scale by the grain's mass over its volume.
+    b.principalInertia = asset->mass.inertia.diagonal() * (b.mass / volume);
+    if (g.motion == GrainMotion::Prescribed) g.prescribedAngularVelocity = spec.angularVelocity;
+    if (g.isFree()) b.setAngularVelocity(spec.angularVelocity);
+    if (g.motion != GrainMotion::Free && g.motion != GrainMotion::Prescribed)
+        b.velocity = Vec3::Zero();
+    return g;
+}
+
+} // namespace
+
+Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset> asset)
+{
+    Boundary b;
+    b.name = spec.name;
+    b.shape = spec.shape;
+    b.material = spec.material;
+    b.velocity = spec.velocity;
+    b.plane.point = spec.point;
+    b.plane.normal = spec.normal.normalized();
+    b.plane.axisU = spec.axisU;
+    if (spec.extentU > 0.0) b.plane.halfU = 0.5 * spec.extentU;
+    if (spec.extentV > 0.0) b.plane.halfV = 0.5 * spec.extentV;
+    if (spec.thickness > 0.0) b.plane.thickness = spec.thickness;
+    b.center = spec.center;
+    b.radius = spec.radius;
+    b.asset = std::move(asset);
+    b.pose = spec.pose;
+    return b;
+}
+
+World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
+{
+    World w;
+    for (const AssetSpec& spec : scene.assets) w.assets.push_back(loadOrBake(spec, warnings));
+
+    w.materialCount = static_cast<int>(scene.materials.size());
+    for (const MaterialSpec& m : scene.materials) w.materialNames.push_back(m.name);
+    w.models.assign(static_cast<size_t>(w.materialCount) * w.materialCount, ContactModel{});
+    for (const ContactSpec& c : scene.contacts) {
+        ContactModel m = c.model;
+        m.dampingRatio = c.restitution < 1.0 ? dampingRatioFromRestitution(c.restitution) : 0.0;
+        w.models[static_cast<size_t>(c.materialA) * w.materialCount + c.materialB] = m;
+        w.models[static_cast<size_t>(c.materialB) * w.materialCount + c.materialA] = m;
+    }
+
+    for (const GrainSpec& spec : scene.grains)
+        w.grains.push_back(makeGrain(spec, scene, w.assets.at(spec.asset)));
+    for (size_t i = 0; i < w.grains.size(); ++i)
+        if (w.grains[i].name.empty()) w.grains[i].name = "grain" + std::to_string(i);
+    for (const BoundarySpec& spec : scene.boundaries)
+        w.boundaries.push_back(
+            makeBoundary(spec, spec.asset >= 0 ? w.assets.at(spec.asset) : nullptr));
+
+    w.gravity = scene.gravity;
+    w.globalDamping = scene.globalDamping;
+    return w;
+}
+
+} // namespace lsdem

@@ -1,0 +1,44 @@
+/// @file Boundary.h
+/// @brief Rigid boundaries of a simulation: planes (walls, optionally finite patches), a sphere
+///        (an indenter) and level-set obstacles (an asset used as a rigid body). Each moves at a
+///        prescribed velocity (zero: fixed); grains touch it with their nodes, through the same
+///        contact laws as grain–grain contacts.
+#pragma once
+
+#include "lsdem/contact/NodeContact.h"
+#include "lsdem/contact/PlaneContact.h"
+#include "lsdem/simulation/BoundaryShape.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+struct Boundary
+{
+    std::string name;
+    BoundaryShape shape = BoundaryShape::Plane;
+    int material = 0;
+    Plane plane;                                  ///< Plane: where it started
+    Vec3 center = Vec3::Zero();                   ///< Sphere: where its centre started
+    double radius = 0.0;                          ///< Sphere
+    std::shared_ptr<const GrainAsset> asset;      ///< LevelSet
+    RigidPose pose;                               ///< LevelSet: where it started
+    Vec3 velocity = Vec3::Zero();                 ///< prescribed, world
+    Vec3 displacement = Vec3::Zero();             ///< moved so far
+    Vec3 force = Vec3::Zero();                    ///< reaction: the grains' force on it
+
+    /// Its reference point now (plane point, sphere centre or obstacle centroid).
+    Vec3 referencePoint() const;
+    /// Whether a grain whose surface lies within @a radius of @a center may touch it.
+    bool mayTouch(const Vec3& center, double radius) const;
+};
+
+/// Append every node of grain @a a (at @a pose) inside boundary @a b, in node order, with the
+/// boundary's outward normal (pushing the grain out) and the contact point halfway to its
+/// surface.
+void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
+                          std::vector<NodeContact>& out, NodeCheckStats& stats);
+
+} // namespace lsdem

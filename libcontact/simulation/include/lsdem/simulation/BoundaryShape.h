@@ -1,0 +1,13 @@
+/// @file BoundaryShape.h
+/// @brief The kinds of rigid boundary a simulation offers.
+#pragma once
+
+namespace lsdem {
+
+enum class BoundaryShape {
+    Plane,     ///< half-space wall; grains live on the side its normal points to
+    Sphere,    ///< rigid sphere (an indenter); grains live outside it
+    LevelSet,  ///< a baked asset used as a rigid obstacle; grains live outside it
+};
+
+} // namespace lsdem

@@ -1,0 +1,91 @@
+/// @file Simulation.h
+/// @brief Explicit time stepping of a World: velocity Verlet (RigidBody.h) around a force
+///        evaluation made of a broad phase (BroadPhase.h), the node contacts of every candidate
+///        pair and every grain near a boundary, computed in parallel (TBB) into one slot per
+///        contact and summed in a fixed order, so results are identical for any thread count.
+#pragma once
+
+#include "lsdem/simulation/World.h"
+
+#include <vector>
+
+namespace lsdem {
+
+/// Energies now (force·length). Dissipated energy is what the balance leaves over:
+/// boundary work − (kinetic + elastic + potential − their initial total).
+struct Energies
+{
+    double kinetic = 0.0, elastic = 0.0, potential = 0.0, boundaryWork = 0.0, dissipated = 0.0;
+};
+
+/// Where the time of the force evaluations went, and how much was done.
+struct StepCounters
+{
+    double broadSeconds = 0.0, narrowSeconds = 0.0, integrateSeconds = 0.0;
+    long long steps = 0;
+    long long candidatePairs = 0;    ///< summed over steps
+    long long boundaryCandidates = 0;
+    NodeCheckStats nodes;             ///< summed over steps
+};
+
+/// One contact force for output: the point force as it acts on grain @a grain
+/// (a boundary's reaction is not listed; its total is Boundary::force).
+struct ContactForceRecord
+{
+    Vec3 point = Vec3::Zero();
+    Vec3 force = Vec3::Zero();
+    int grain = 0;
+};
+
+class Simulation
+{
+public:
+    /// Take over @a world and step it by @a dt. If @a evaluateInitialForces, the forces at
+    /// the current state are computed (a fresh start); a restart passes false because the
+    /// grains' forces come from the checkpoint. @a recordContactForces: as
+    /// setRecordContactForces, from the initial evaluation on (so a first frame has them).
+    Simulation(World world, double dt, bool evaluateInitialForces = true,
+               bool recordContactForces = false);
+
+    /// Advance one step: half kick, drift, forces, half kick.
+    /// @throw Error if the state becomes non-finite or a contact is stiffer than dt allows.
+    void step();
+
+    double timeStep() const { return mDt; }
+    const World& world() const { return mWorld; }
+    World& world() { return mWorld; }
+    Energies energies() const;
+    const StepCounters& counters() const { return mCounters; }
+
+    /// Keep the point forces of the last evaluation (for VTK frames); off by default.
+    void setRecordContactForces(bool on) { mRecordForces = on; }
+    const std::vector<ContactForceRecord>& contactForces() const { return mForces; }
+    /// Penetrating nodes at the last evaluation.
+    long long contactNodes() const { return mContactNodes; }
+    /// Elastic energy at the last evaluation.
+    double elasticEnergy() const { return mElastic; }
+    /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
+    double stabilityLimitSeen() const { return mStabilityLimit; }
+
+private:
+    void evaluateForces(double slipStep);
+    void checkStability();
+
+    World mWorld;
+    double mDt = 0.0;
+    bool mRecordForces = false;
+    std::vector<ContactForceRecord> mForces;
+    long long mContactNodes = 0;
+    double mElastic = 0.0;
+    double mStabilityLimit = 0.0;
+    std::vector<Mat3> mGrainStiffness;  ///< Σ k n nᵀ per grain at the last evaluation
+    StepCounters mCounters;
+};
+
+/// The automatic time step: safety · 2·sqrt(m / k) for the stiffest single node (original,
+/// single-node: kn; adapted, volume: kn*·A of the largest node area) and the lightest free
+/// grain, whose mass m also stands in for its rotational inertia I_min / r_max².
+/// @throw Error if no free grain touches anything stiff (nothing to base a step on).
+double automaticTimeStep(const World& world, double safety);
+
+} // namespace lsdem

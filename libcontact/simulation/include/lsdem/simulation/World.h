@@ -1,0 +1,72 @@
+/// @file World.h
+/// @brief The state of a running simulation: loaded assets, grains (rigid bodies made from
+///        shared assets), boundaries, the contact model of every pair of materials, the shear
+///        history of every contact, time and the energy bookkeeping. buildWorld
+///        (lsdem/scene/BuildWorld.h) makes one from a scene.
+#pragma once
+
+#include "lsdem/simulation/Boundary.h"
+#include "lsdem/contact/PairContact.h"
+#include "lsdem/simulation/RigidBody.h"
+#include "lsdem/simulation/GrainMotion.h"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lsdem {
+
+struct Grain
+{
+    std::string name;
+    std::shared_ptr<const GrainAsset> asset;
+    int material = 0;
+    GrainMotion motion = GrainMotion::Free;
+    RigidBody body;                       ///< pose, velocity, angular momentum, mass, inertia
+    Vec3 prescribedAngularVelocity = Vec3::Zero();  ///< Prescribed: ω (body.velocity is v)
+    Vec3 force = Vec3::Zero();            ///< on it at the last force evaluation (damped)
+    Vec3 torque = Vec3::Zero();           ///< about its centroid, likewise
+
+    bool isFree() const { return motion == GrainMotion::Free; }
+    Vec3 angularVelocity() const
+    {
+        return motion == GrainMotion::Prescribed ? prescribedAngularVelocity
+               : motion == GrainMotion::Fixed    ? Vec3::Zero()
+                                                 : body.angularVelocity();
+    }
+};
+
+/// Running totals for the energy balance (all in force·length).
+struct EnergyBook
+{
+    double boundaryWork = 0.0;  ///< work done on the grains by moving boundaries and prescribed grains
+    double initialTotal = 0.0;  ///< kinetic + elastic + potential at time 0
+};
+
+struct World
+{
+    std::vector<std::shared_ptr<const GrainAsset>> assets;  ///< per Scene::assets entry
+    std::vector<Grain> grains;
+    std::vector<Boundary> boundaries;
+    int materialCount = 0;
+    std::vector<ContactModel> models;          ///< materialCount², symmetric
+    std::vector<std::string> materialNames;
+    Vec3 gravity = Vec3::Zero();
+    double globalDamping = 0.0;
+
+    double time = 0.0;
+    long long step = 0;
+    /// Shear history per grain pair (i < j) and per (grain, boundary).
+    std::map<std::pair<int, int>, PairHistory> pairHistory;
+    std::map<std::pair<int, int>, std::map<int, Vec3>> boundaryHistory;
+    EnergyBook energy;
+
+    const ContactModel& model(int materialA, int materialB) const
+    {
+        return models[static_cast<size_t>(materialA) * materialCount + materialB];
+    }
+};
+
+} // namespace lsdem

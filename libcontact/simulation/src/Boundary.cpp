@@ -1,0 +1,111 @@
+#include "lsdem/simulation/Boundary.h"
+
+namespace lsdem {
+
+namespace {
+
+Plane movedPlane(const Boundary& b)
+{
+    Plane p = b.plane;
+    p.point += b.displacement;
+    return p;
+}
+
+RigidPose movedPose(const Boundary& b)
+{
+    RigidPose p = b.pose;
+    p.position += b.displacement;
+    return p;
+}
+
+/// Nodes of @a a inside the sphere (centre @a c, radius @a r): depth r - |x - c|.
+void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& c, double r,
+                        std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    if ((pose.position - c).norm() > a.boundingRadius + r) {
+        stats.nodesCulled += count;
+        return;
+    }
+    const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
+    auto testNodes = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+            ++stats.nodesSampled;
+            const Vec3 offset = x - c;
+            const double distance = offset.norm();
+            if (!(distance < r) || distance == 0.0) continue;
+            ++stats.nodesInContact;
+            NodeContact nc;
+            nc.node = i;
+            nc.depth = r - distance;
+            nc.normal = offset / distance;
+            nc.point = x + 0.5 * nc.depth * nc.normal;
+            nc.area = a.nodes.areas[i];
+            out.push_back(nc);
+        }
+    };
+    if (a.nodeBlocks.empty()) {
+        testNodes(0, static_cast<int>(count));
+        return;
+    }
+    // An indenter touches a small patch of the grain: skip the blocks clear of it.
+    for (const NodeBlock& block : a.nodeBlocks) {
+        const double reach = r + block.radius;
+        if ((rotation * block.center + pose.position - c).squaredNorm() > reach * reach) {
+            stats.nodesCulled += block.end - block.begin;
+            continue;
+        }
+        testNodes(block.begin, block.end);
+    }
+}
+
+} // namespace
+
+Vec3 Boundary::referencePoint() const
+{
+    switch (shape) {
+    case BoundaryShape::Plane: return plane.point + displacement;
+    case BoundaryShape::Sphere: return center + displacement;
+    case BoundaryShape::LevelSet: return pose.position + displacement;
+    }
+    return displacement;
+}
+
+bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
+{
+    switch (shape) {
+    case BoundaryShape::Plane: {
+        const Plane p = movedPlane(*this);
+        const double distance = p.signedDistance(grainCenter);
+        if (distance > grainRadius || distance < -grainRadius - p.thickness) return false;
+        if (!p.bounded()) return true;
+        const Vec3 offset = grainCenter - p.point;
+        return std::abs(offset.dot(p.axisU)) <= p.halfU + grainRadius &&
+               std::abs(offset.dot(p.normal.cross(p.axisU))) <= p.halfV + grainRadius;
+    }
+    case BoundaryShape::Sphere:
+        return (grainCenter - (center + displacement)).norm() <= radius + grainRadius;
+    case BoundaryShape::LevelSet:
+        return (grainCenter - (pose.position + displacement)).norm() <=
+               asset->boundingRadius + grainRadius;
+    }
+    return false;
+}
+
+void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
+                          std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    switch (b.shape) {
+    case BoundaryShape::Plane: findPlaneContacts(a, pose, movedPlane(b), out, stats); return;
+    case BoundaryShape::Sphere:
+        findSphereContacts(a, pose, b.center + b.displacement, b.radius, out, stats);
+        return;
+    case BoundaryShape::LevelSet:
+        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats);
+        return;
+    }
+}
+
+} // namespace lsdem

@@ -1,0 +1,367 @@
+#include "lsdem/simulation/Simulation.h"
+
+#include "lsdem/simulation/BroadPhase.h"
+#include "lsdem/ls/Error.h"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+ContactGrain contactView(const Grain& g, int index)
+{
+    ContactGrain c;
+    c.asset = g.asset.get();
+    c.pose = g.body.pose;
+    c.velocity = g.motion == GrainMotion::Fixed ? Vec3::Zero() : g.body.velocity;
+    c.angularVelocity = g.angularVelocity();
+    c.index = index;
+    c.mass = g.isFree() ? g.body.mass : 0.0;
+    return c;
+}
+
+ContactGrain contactView(const Boundary& b)
+{
+    ContactGrain c;
+    c.asset = b.asset.get();
+    c.pose.position = b.referencePoint();
+    c.pose.orientation = b.pose.orientation;
+    c.velocity = b.velocity;
+    c.mass = 0.0;
+    return c;
+}
+
+/// One contact to evaluate: a grain pair (boundary < 0) or a grain and a boundary.
+struct ContactSlot
+{
+    int first = 0, second = -1, boundary = -1;
+    PairHistory* pairHistory = nullptr;
+    std::map<int, Vec3>* boundaryHistory = nullptr;
+    PairForces result;
+    NodeCheckStats stats;
+    std::vector<PointForce> forces;
+};
+
+/// Turn a prescribed grain by ω·dt (exact rotation about a fixed world axis).
+void rotateBy(Quat& orientation, const Vec3& omega, double dt)
+{
+    const double angle = omega.norm() * dt;
+    if (angle == 0.0) return;
+    orientation = (Quat(Eigen::AngleAxisd(angle, omega.normalized())) * orientation).normalized();
+}
+
+/// YADE's non-viscous damping: each component loses λ·|F| against the motion.
+Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
+{
+    Vec3 damped = force;
+    for (int k = 0; k < 3; ++k) {
+        const double sign = force[k] * velocity[k] > 0.0 ? 1.0 : force[k] * velocity[k] < 0.0 ? -1.0 : 0.0;
+        damped[k] = force[k] * (1.0 - lambda * sign);
+    }
+    return damped;
+}
+
+} // namespace
+
+Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
+                       bool recordContactForces)
+    : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
+      mStabilityLimit(std::numeric_limits<double>::infinity())
+{
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error("", "the time step must be a positive number", "check time_step");
+    if (evaluateInitialForces) {
+        evaluateForces(0.0);
+        const Energies e = energies();
+        mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
+        // Grains that start in contact: a step too large for that contact would throw them
+        // apart in the very first kick, before any later check could see the contact.
+        checkStability();
+    }
+}
+
+void Simulation::step()
+{
+    const double dt = mDt;
+    const auto integrateStart = Clock::now();
+    // Work of moving boundaries and prescribed grains: trapezoid over the step.
+    double workBefore = 0.0;
+    for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
+    for (const Grain& g : mWorld.grains)
+        if (g.motion == GrainMotion::Prescribed)
+            workBefore -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+
+    // Each grain moves on its own: parallel, and still the same numbers on any thread count.
+    tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
+        Grain& g = mWorld.grains[i];
+        switch (g.motion) {
+        case GrainMotion::Free:
+            kick(g.body, g.force, g.torque, 0.5 * dt);
+            drift(g.body, dt);
+            break;
+        case GrainMotion::Prescribed:
+            g.body.pose.position += g.body.velocity * dt;
+            rotateBy(g.body.pose.orientation, g.prescribedAngularVelocity, dt);
+            break;
+        case GrainMotion::Fixed: break;
+        }
+    });
+    for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
+    mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
+    ++mWorld.step;
+    mCounters.integrateSeconds += secondsSince(integrateStart);
+
+    evaluateForces(dt);
+
+    const auto kickStart = Clock::now();
+    tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
+        Grain& g = mWorld.grains[i];
+        if (g.isFree()) kick(g.body, g.force, g.torque, 0.5 * dt);
+    });
+    double workAfter = 0.0;
+    for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
+    for (const Grain& g : mWorld.grains)
+        if (g.motion == GrainMotion::Prescribed)
+            workAfter -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
+    ++mCounters.steps;
+    checkStability();
+    mCounters.integrateSeconds += secondsSince(kickStart);
+}
+
+void Simulation::evaluateForces(double slipStep)
+{
+    World& w = mWorld;
+    const int n = static_cast<int>(w.grains.size());
+    const auto broadStart = Clock::now();
+
+    std::vector<Vec3> centers(n);
+    std::vector<double> radii(n);
+    std::vector<ContactGrain> views(n);
+    // Per grain, in parallel: its bounding sphere, its view for the contact laws and the
+    // boundaries it may touch (joined in grain order below, so sorted as if found serially).
+    const int boundaryCount = static_cast<int>(w.boundaries.size());
+    std::vector<std::vector<int>> nearBoundaries(static_cast<size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        const Grain& g = w.grains[i];
+        centers[i] = g.body.pose.position;
+        radii[i] = g.asset->boundingRadius;
+        views[i] = contactView(g, i);
+        if (!g.isFree()) return;
+        for (int b = 0; b < boundaryCount; ++b)
+            if (w.boundaries[b].mayTouch(centers[i], radii[i]))
+                nearBoundaries[static_cast<size_t>(i)].push_back(b);
+    });
+    std::vector<ContactSlot> slots;
+    // Grain pairs: candidates whose bounding spheres overlap, unless neither can move.
+    std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
+    std::vector<std::pair<int, int>> boundaryPairs;  // (grain, boundary), sorted
+    for (int i = 0; i < n; ++i)
+        for (int b : nearBoundaries[static_cast<size_t>(i)]) boundaryPairs.emplace_back(i, b);
+    slots.reserve(pairs.size() + boundaryPairs.size());
+    // Walk the sorted candidates and the sorted history together: history of pairs that
+    // drifted apart is dropped, new pairs start empty. std::map nodes do not move, so the
+    // slots can point into the maps while the threads work.
+    auto it = w.pairHistory.begin();
+    for (const auto& p : pairs) {
+        if (!w.grains[p.first].isFree() && !w.grains[p.second].isFree()) continue;
+        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
+        if (it == w.pairHistory.end() || it->first != p) it = w.pairHistory.emplace_hint(it, p, PairHistory{});
+        ContactSlot& s = slots.emplace_back();
+        s.first = p.first;
+        s.second = p.second;
+        s.pairHistory = &it->second;
+        ++it;
+    }
+    w.pairHistory.erase(it, w.pairHistory.end());
+    const size_t pairSlots = slots.size();
+    auto bit = w.boundaryHistory.begin();
+    for (const auto& p : boundaryPairs) {
+        while (bit != w.boundaryHistory.end() && bit->first < p) bit = w.boundaryHistory.erase(bit);
+        if (bit == w.boundaryHistory.end() || bit->first != p)
+            bit = w.boundaryHistory.emplace_hint(bit, p, std::map<int, Vec3>{});
+        ContactSlot& s = slots.emplace_back();
+        s.first = p.first;
+        s.boundary = p.second;
+        s.boundaryHistory = &bit->second;
+        ++bit;
+    }
+    w.boundaryHistory.erase(bit, w.boundaryHistory.end());
+    std::vector<ContactGrain> boundaryViews;
+    for (const Boundary& b : w.boundaries) boundaryViews.push_back(contactView(b));
+    mCounters.broadSeconds += secondsSince(broadStart);
+    mCounters.candidatePairs += static_cast<long long>(pairSlots);
+    mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
+
+    // Narrow phase and contact laws, one slot per task; nothing shared is written.
+    const auto narrowStart = Clock::now();
+    const bool record = mRecordForces;
+    tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
+        ContactSlot& s = slots[k];
+        std::vector<PointForce>* out = record ? &s.forces : nullptr;
+        const Grain& gi = w.grains[s.first];
+        if (s.boundary < 0) {
+            const ContactModel& m = w.model(gi.material, w.grains[s.second].material);
+            s.result = computePairContact(views[s.first], views[s.second], m, slipStep,
+                                          s.pairHistory, s.stats, out);
+        } else {
+            const Boundary& b = w.boundaries[s.boundary];
+            ContactSide side;
+            side.tester = &views[s.first];
+            side.other = &boundaryViews[s.boundary];
+            side.history = s.boundaryHistory;
+            findBoundaryContacts(*gi.asset, gi.body.pose, b, side.contacts, s.stats);
+            s.result = resolveContact(&side, 1, w.model(gi.material, b.material), slipStep, out);
+        }
+    });
+    mCounters.narrowSeconds += secondsSince(narrowStart);
+
+    // Sum in slot order: the same numbers whatever the thread count.
+    const auto reduceStart = Clock::now();
+    for (Grain& g : w.grains) {
+        g.force = Vec3::Zero();
+        g.torque = Vec3::Zero();
+    }
+    for (Boundary& b : w.boundaries) b.force = Vec3::Zero();
+    mGrainStiffness.assign(n, Mat3::Zero());
+    mForces.clear();
+    mContactNodes = 0;
+    mElastic = 0.0;
+    for (ContactSlot& s : slots) {
+        const PairForces& r = s.result;
+        mCounters.nodes += s.stats;
+        mContactNodes += r.contactNodes;
+        mElastic += r.elasticEnergy;
+        w.grains[s.first].force += r.forceOnFirst;
+        w.grains[s.first].torque += r.torqueOnFirst;
+        mGrainStiffness[s.first] += r.normalStiffness;
+        if (s.boundary < 0) {
+            w.grains[s.second].force += r.forceOnSecond;
+            w.grains[s.second].torque += r.torqueOnSecond;
+            mGrainStiffness[s.second] += r.normalStiffness;
+        } else {
+            w.boundaries[s.boundary].force += r.forceOnSecond;
+        }
+        for (size_t f = 0; f < s.forces.size(); ++f) {
+            const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
+            mForces.push_back({s.forces[f].point, s.forces[f].force,
+                               onFirst ? s.first : s.second});
+        }
+    }
+    for (Grain& g : w.grains) {
+        if (!g.isFree()) continue;
+        g.force += g.body.mass * w.gravity;
+        if (w.globalDamping > 0.0) {
+            g.force = dampComponents(g.force, g.body.velocity, w.globalDamping);
+            g.torque = dampComponents(g.torque, g.body.angularVelocity(), w.globalDamping);
+        }
+    }
+    mCounters.integrateSeconds += secondsSince(reduceStart);
+}
+
+void Simulation::checkStability()
+{
+    const World& w = mWorld;
+    // Each free grain's stable step limit (infinite without contacts; NaN if its state is no
+    // longer finite), in parallel; then the verdict in grain order, so the message is the same
+    // on any thread count.
+    const size_t n = w.grains.size();
+    std::vector<double> limits(n, std::numeric_limits<double>::infinity());
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+        const Grain& g = w.grains[i];
+        if (!g.isFree()) return;
+        const RigidBody& b = g.body;
+        if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
+            !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite()) {
+            limits[i] = std::numeric_limits<double>::quiet_NaN();
+            return;
+        }
+        if (mGrainStiffness[i].isZero()) return;
+        // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
+        // stable for dt < 2/ω.
+        Eigen::SelfAdjointEigenSolver<Mat3> solver;
+        solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
+        const double lambda = solver.eigenvalues().maxCoeff();
+        if (lambda > 0.0) limits[i] = 2.0 * std::sqrt(b.mass / lambda);
+    });
+    for (size_t i = 0; i < n; ++i) {
+        const Grain& g = w.grains[i];
+        const double limit = limits[i];
+        if (std::isnan(limit)) {
+            std::ostringstream s;
+            s << "grain '" << g.name << "' reached a non-finite state at step " << w.step
+              << " (t = " << w.time << ")";
+            throw Error("", s.str(),
+                        "lower the time step (time_step, or safety for \"auto\"); check the "
+                        "stiffnesses and masses for consistent units");
+        }
+        mStabilityLimit = std::min(mStabilityLimit, limit);
+        if (mDt > limit) {
+            std::ostringstream s;
+            s << "the time step " << mDt << " exceeds the stability limit " << limit
+              << " of the contacts of grain '" << g.name << "' at step " << w.step
+              << " (t = " << w.time << "): the run would explode";
+            std::ostringstream fix;
+            fix << "set [simulation] time_step to at most " << 0.2 * limit
+                << " (a fifth of the limit), or lower safety for \"auto\"";
+            throw Error("", s.str(), fix.str());
+        }
+    }
+}
+
+Energies Simulation::energies() const
+{
+    Energies e;
+    for (const Grain& g : mWorld.grains) {
+        if (!g.isFree()) continue;
+        e.kinetic += g.body.kineticEnergy();
+        e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+    }
+    e.elastic = mElastic;
+    e.boundaryWork = mWorld.energy.boundaryWork;
+    e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
+                                     mWorld.energy.initialTotal);
+    return e;
+}
+
+double automaticTimeStep(const World& world, double safety)
+{
+    double stiffest = 0.0;
+    double largestArea = 0.0;
+    for (const Grain& g : world.grains)
+        for (double a : g.asset->nodes.areas) largestArea = std::max(largestArea, a);
+    for (const ContactModel& m : world.models) {
+        const bool perArea =
+            m.formulation == Formulation::Adapted || m.formulation == Formulation::Volume;
+        const double normal = m.normalStiffness * (perArea ? largestArea : 1.0);
+        const double shear = m.shearStiffness * (perArea ? largestArea : 1.0);
+        stiffest = std::max({stiffest, normal, shear});
+    }
+    double lightest = std::numeric_limits<double>::infinity();
+    for (const Grain& g : world.grains) {
+        if (!g.isFree()) continue;
+        const double r = g.asset->boundingRadius;
+        lightest = std::min({lightest, g.body.mass, g.body.principalInertia.minCoeff() / (r * r)});
+    }
+    if (!(stiffest > 0.0) || !std::isfinite(lightest))
+        throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
+                    "give [simulation] time_step explicitly");
+    return safety * 2.0 * std::sqrt(lightest / stiffest);
+}
+
+} // namespace lsdem

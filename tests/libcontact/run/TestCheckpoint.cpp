@@ -1,0 +1,356 @@
+// Checkpoints: a run stopped, saved, restored into a freshly built world and continued ends in
+// the same bits as a run that never stopped; damaged or foreign files are refused with an Error
+// naming them, and a failed restore leaves the world as it was.
+#include "lsdem/run/Checkpoint.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Error.h"
+
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+
+using namespace lsdem;
+
+namespace {
+
+constexpr double kRadius = 5.0;  // mm; units mm, N, s, tonne
+constexpr double kDt = 2e-6;     // s: ~1/200 of the stiffest impact's contact period here
+
+/// A sphere asset (R = 5 mm, ~2000 nodes, voxel 0.25 mm), baked once for this file.
+const std::string& sphereFile()
+{
+    static lsdem::test::ScratchDir dir;
+    static const std::string path = [] {
+        BakeOptions o;
+        o.voxelSize = 0.25;
+        o.nodePlacement = NodePlacement::Count;
+        o.nodeCount = 2000;
+        std::vector<std::string> warnings;
+        const std::string p = dir.file("sphere.vdb");
+        saveAsset(bakeAnalytic(AnalyticShape::sphere(kRadius), o, warnings), p);
+        return p;
+    }();
+    return path;
+}
+
+/// @a side³ steel spheres on a loose lattice (gaps of 0.01 mm) with random velocities and spins,
+/// under gravity, on a floor with friction, pushed by a side wall moving in +x: grain pairs and
+/// grain–floor contacts slide (non-empty shear history) and the moving wall does work.
+Scene stackScene(int side)
+{
+    Scene s;
+    AssetSpec a;
+    a.name = "sphere";
+    a.file = sphereFile();
+    s.assets.push_back(a);
+    MaterialSpec steel;
+    steel.name = "steel";
+    steel.density = 7.85e-9;
+    s.materials.push_back(steel);
+    ContactSpec c;
+    c.model.formulation = Formulation::Adapted;
+    c.model.normalStiffness = 1e3;
+    c.model.shearStiffness = 500.0;
+    c.model.friction = 0.4;
+    c.restitution = 0.5;
+    s.contacts.push_back(c);
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::normal_distribution<double> n;
+    const double pitch = 2.0 * kRadius + 0.01;
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j)
+            for (int k = 0; k < side; ++k) {
+                GrainSpec g;
+                g.pose.position = Vec3(pitch * i + 0.3 * u(rng), pitch * j + 0.3 * u(rng),
+                                       kRadius + 0.005 + pitch * k);
+                g.pose.orientation = Quat(n(rng), n(rng), n(rng), n(rng)).normalized();
+                g.velocity = Vec3(100.0 * u(rng), 100.0 * u(rng), -100.0 + 100.0 * u(rng));
+                g.angularVelocity = Vec3(20.0 * u(rng), 20.0 * u(rng), 20.0 * u(rng));
+                s.grains.push_back(g);
+            }
+    BoundarySpec floor;
+    floor.name = "floor";
+    s.boundaries.push_back(floor);
+    BoundarySpec wall;
+    wall.name = "pusher";
+    wall.point = Vec3(-kRadius - 0.3, 0, 0);
+    wall.normal = Vec3::UnitX();
+    wall.velocity = Vec3(150.0, 0, 0);
+    s.boundaries.push_back(wall);
+    s.gravity = Vec3(0, 0, -9810.0);
+    return s;
+}
+
+World build(const Scene& scene)
+{
+    std::vector<std::string> warnings;
+    return buildWorld(scene, warnings);
+}
+
+template <typename T> bool sameBits(const T& a, const T& b)
+{
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+bool sameBits(const Vec3& a, const Vec3& b)
+{
+    return sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) && sameBits(a.z(), b.z());
+}
+
+bool sameBits(const Quat& a, const Quat& b)
+{
+    return sameBits(a.w(), b.w()) && sameBits(a.x(), b.x()) && sameBits(a.y(), b.y()) &&
+           sameBits(a.z(), b.z());
+}
+
+bool sameBits(const std::map<int, Vec3>& a, const std::map<int, Vec3>& b)
+{
+    if (a.size() != b.size()) return false;
+    for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
+        if (i->first != j->first || !sameBits(i->second, j->second)) return false;
+    return true;
+}
+
+/// Everything a checkpoint holds about the world, compared bit for bit.
+void expectSameState(const World& a, const World& b)
+{
+    EXPECT_TRUE(sameBits(a.time, b.time));
+    EXPECT_EQ(a.step, b.step);
+    EXPECT_TRUE(sameBits(a.energy.boundaryWork, b.energy.boundaryWork));
+    EXPECT_TRUE(sameBits(a.energy.initialTotal, b.energy.initialTotal));
+    ASSERT_EQ(a.grains.size(), b.grains.size());
+    for (size_t i = 0; i < a.grains.size(); ++i) {
+        const Grain& x = a.grains[i];
+        const Grain& y = b.grains[i];
+        EXPECT_TRUE(sameBits(x.body.pose.position, y.body.pose.position)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.body.pose.orientation, y.body.pose.orientation)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.body.velocity, y.body.velocity)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.body.angularMomentum, y.body.angularMomentum)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.force, y.force)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.torque, y.torque)) << "grain " << i;
+    }
+    ASSERT_EQ(a.boundaries.size(), b.boundaries.size());
+    for (size_t k = 0; k < a.boundaries.size(); ++k) {
+        EXPECT_TRUE(sameBits(a.boundaries[k].displacement, b.boundaries[k].displacement)) << k;
+        EXPECT_TRUE(sameBits(a.boundaries[k].force, b.boundaries[k].force)) << k;
+    }
+    ASSERT_EQ(a.pairHistory.size(), b.pairHistory.size());
+    for (auto i = a.pairHistory.begin(), j = b.pairHistory.begin(); i != a.pairHistory.end();
+         ++i, ++j) {
+        EXPECT_EQ(i->first, j->first);
+        EXPECT_TRUE(sameBits(i->second.shearOnFirstNodes, j->second.shearOnFirstNodes));
+        EXPECT_TRUE(sameBits(i->second.shearOnSecondNodes, j->second.shearOnSecondNodes));
+    }
+    ASSERT_EQ(a.boundaryHistory.size(), b.boundaryHistory.size());
+    for (auto i = a.boundaryHistory.begin(), j = b.boundaryHistory.begin();
+         i != a.boundaryHistory.end(); ++i, ++j) {
+        EXPECT_EQ(i->first, j->first);
+        EXPECT_TRUE(sameBits(i->second, j->second));
+    }
+}
+
+size_t shearedPairs(const World& w)
+{
+    size_t n = 0;
+    for (const auto& [pair, h] : w.pairHistory) n += h.empty() ? 0 : 1;
+    return n;
+}
+
+size_t shearedBoundaryContacts(const World& w)
+{
+    size_t n = 0;
+    for (const auto& [key, h] : w.boundaryHistory) n += h.empty() ? 0 : 1;
+    return n;
+}
+
+std::string readBytes(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeBytes(const std::string& path, const std::string& bytes)
+{
+    std::ofstream out(path, std::ios::binary);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+Checkpoint sampleHeader()
+{
+    Checkpoint c;
+    c.scenePath = "/somewhere/stack.toml";
+    c.sceneText = "# the scene\n[simulation]\ntime_step = 2e-6\n";
+    c.timeStep = kDt;
+    c.record.energyRows = {{0.0, 0.0, 1.5}, {10.0, 2e-5, 1.25}};
+    c.record.boundaryRows = {{{0.0, 1.0}}, {{0.0, 2.0}, {10.0, 3.0}}};
+    c.record.vtkFrameTimes = {0.0, 1e-4};
+    return c;
+}
+
+/// A world stepped a little, with contacts and shear, to restore into.
+World steppedWorld(int steps)
+{
+    Simulation sim(build(stackScene(2)), kDt);
+    for (int k = 0; k < steps; ++k) sim.step();
+    return sim.world();
+}
+
+} // namespace
+
+// N steps straight against N/2 steps, a checkpoint, a fresh world built from the same scene with
+// the checkpoint restored into it (no force evaluation: the forces come from the file), and N/2
+// more steps: the same bits everywhere, shear history included.
+TEST(Checkpoint, RestartContinuesBitIdentically)
+{
+    const int n = 300;
+    const Scene scene = stackScene(2);
+
+    Simulation straight(build(scene), kDt);
+    for (int k = 0; k < n; ++k) straight.step();
+
+    Simulation first(build(scene), kDt);
+    for (int k = 0; k < n / 2; ++k) first.step();
+    // The state to carry over is not trivial: contacts slide, the pusher has done work.
+    ASSERT_GT(shearedPairs(first.world()), 0u);
+    ASSERT_GT(shearedBoundaryContacts(first.world()), 0u);
+    ASSERT_NE(first.world().energy.boundaryWork, 0.0);
+
+    lsdem::test::ScratchDir dir;
+    const std::string path = dir.file("run.lsdem");
+    const Checkpoint header = sampleHeader();
+    saveCheckpoint(path, first.world(), header);
+    EXPECT_EQ(dir.entryCount(), 1u);  // written atomically: no temporary left
+
+    // The header comes back as written.
+    const Checkpoint back = readCheckpoint(path);
+    EXPECT_EQ(back.scenePath, header.scenePath);
+    EXPECT_EQ(back.sceneText, header.sceneText);
+    EXPECT_TRUE(sameBits(back.timeStep, header.timeStep));
+    EXPECT_EQ(back.record.energyRows, header.record.energyRows);
+    EXPECT_EQ(back.record.boundaryRows, header.record.boundaryRows);
+    EXPECT_EQ(back.record.vtkFrameTimes, header.record.vtkFrameTimes);
+
+    World fresh = build(scene);
+    restoreWorldState(path, fresh);
+    expectSameState(fresh, first.world());
+
+    Simulation second(std::move(fresh), kDt, /*evaluateInitialForces=*/false);
+    for (int k = 0; k < n / 2; ++k) second.step();
+    expectSameState(second.world(), straight.world());
+    EXPECT_GT(shearedPairs(second.world()), 0u);
+
+    const Energies a = straight.energies(), b = second.energies();
+    EXPECT_TRUE(sameBits(a.kinetic, b.kinetic));
+    EXPECT_TRUE(sameBits(a.elastic, b.elastic));
+    EXPECT_TRUE(sameBits(a.potential, b.potential));
+    EXPECT_TRUE(sameBits(a.boundaryWork, b.boundaryWork));
+    EXPECT_TRUE(sameBits(a.dissipated, b.dissipated));
+}
+
+// A checkpoint cut anywhere (inside the magic, inside the header, in the middle of the grains,
+// one byte short of the trailer) is refused with an Error naming the file, and the world handed
+// to restoreWorldState is left exactly as it was.
+TEST(Checkpoint, TruncatedFileIsRefusedAndTheWorldIsUnchanged)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string good = dir.file("good.lsdem");
+    saveCheckpoint(good, steppedWorld(150), sampleHeader());
+    const std::string bytes = readBytes(good);
+    ASSERT_GT(bytes.size(), 1000u);
+
+    const World before = steppedWorld(40);
+    ASSERT_GT(before.boundaryHistory.size(), 0u);
+    for (size_t cut : {size_t(0), size_t(5), size_t(30), bytes.size() / 2, bytes.size() - 1}) {
+        const std::string path = dir.file("cut" + std::to_string(cut) + ".lsdem");
+        writeBytes(path, bytes.substr(0, cut));
+        World w = before;
+        try {
+            restoreWorldState(path, w);
+            ADD_FAILURE() << "a checkpoint cut at " << cut << " bytes was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), path) << e.what();
+            EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
+        }
+        expectSameState(w, before);
+        if (cut < 100) {  // the header itself is cut
+            EXPECT_THROW(readCheckpoint(path), Error) << cut;
+        }
+    }
+}
+
+// A file that is not a checkpoint, a missing file, and a checkpoint of another scene (a
+// different number of grains): each refused with an Error naming the file, the world unchanged.
+TEST(Checkpoint, ForeignMissingAndMismatchedFilesAreRefused)
+{
+    lsdem::test::ScratchDir dir;
+    const World before = steppedWorld(40);
+
+    const std::string text = dir.file("notes.lsdem");
+    writeBytes(text, "this is not a checkpoint, just some text that is long enough\n");
+    const std::string missing = dir.file("missing.lsdem");
+    const std::string other = dir.file("other.lsdem");
+    {
+        Simulation small(build(stackScene(1)), kDt);
+        small.step();
+        saveCheckpoint(other, small.world(), sampleHeader());
+    }
+    for (const std::string& path : {text, missing, other}) {
+        World w = before;
+        try {
+            restoreWorldState(path, w);
+            ADD_FAILURE() << path << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), path) << e.what();
+        }
+        expectSameState(w, before);
+    }
+    try {
+        readCheckpoint(text);
+        ADD_FAILURE() << "a text file was read as a checkpoint";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), text);
+        EXPECT_NE(e.problem().find("not an lsdem checkpoint"), std::string::npos) << e.what();
+    }
+}
+
+// A checkpoint whose bytes were damaged so that a count reads as huge (here the number of energy
+// rows, 2⁴⁰ − 1) is refused with the same Error as a truncated one: a count can never exceed
+// what the rest of the file could hold, so nothing is allocated for it.
+TEST(Checkpoint, CorruptCountIsRefusedWithoutAllocatingForIt)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string good = dir.file("good.lsdem");
+    const Checkpoint header = sampleHeader();
+    saveCheckpoint(good, steppedWorld(10), header);
+    std::string bytes = readBytes(good);
+    // magic, version, scene path, scene text, time step, then the count of energy rows.
+    const size_t at = 8 + 4 + 8 + header.scenePath.size() + 8 + header.sceneText.size() + 8;
+    uint64_t count = 0;
+    std::memcpy(&count, bytes.data() + at, sizeof count);
+    ASSERT_EQ(count, header.record.energyRows.size());
+    for (uint64_t huge : {(uint64_t(1) << 40) - 1, uint64_t(1) << 20}) {
+        std::memcpy(bytes.data() + at, &huge, sizeof huge);
+        const std::string path = dir.file("corrupt.lsdem");
+        writeBytes(path, bytes);
+        World w = steppedWorld(0);
+        const World before = w;
+        try {
+            restoreWorldState(path, w);
+            ADD_FAILURE() << "a corrupt count was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), path) << e.what();
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "not an lsdem::Error: " << e.what();
+        }
+        expectSameState(w, before);
+        EXPECT_THROW(readCheckpoint(path), Error);
+    }
+}

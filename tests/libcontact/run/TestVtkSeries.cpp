@@ -1,0 +1,421 @@
+// ParaView series: the .vtu files are read back here by a small independent parser of the VTK
+// XML format (header, DataArray tags, raw appended block of UInt64 byte counts and values) and
+// must hold exactly the posed surfaces, rigid velocities, grain ids and contact forces given;
+// the .pvd lists each frame's time and files, drops frames a restart rewrites, and a failed
+// write throws an Error and leaves nothing half-written.
+#include "lsdem/run/VtkSeries.h"
+#include "lsdem/ls/Error.h"
+
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <stdexcept>
+
+using namespace lsdem;
+using lsdem::test::ScratchDir;
+
+namespace {
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot open " + path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The attributes of one XML tag's text, e.g. `type="Int32" Name="grain"`.
+std::map<std::string, std::string> attributesOf(const std::string& tag)
+{
+    static const std::regex attribute(R"__((\w+)="([^"]*)")__");
+    std::map<std::string, std::string> out;
+    for (auto it = std::sregex_iterator(tag.begin(), tag.end(), attribute);
+         it != std::sregex_iterator(); ++it)
+        out[(*it)[1]] = (*it)[2];
+    return out;
+}
+
+/// Little-endian unsigned integer of @a size bytes at @a at in @a bytes.
+std::uint64_t readLittleEndian(const std::string& bytes, size_t at, size_t size)
+{
+    if (at + size > bytes.size()) throw std::runtime_error("appended data ends early");
+    std::uint64_t v = 0;
+    for (size_t i = 0; i < size; ++i)
+        v |= std::uint64_t(static_cast<unsigned char>(bytes[at + i])) << (8 * i);
+    return v;
+}
+
+struct ParsedArray
+{
+    std::string type;
+    int components = 1;
+    std::vector<double> reals;       ///< Float64 arrays
+    std::vector<std::int64_t> ints;  ///< Int32, Int64, UInt8 arrays
+};
+
+struct ParsedGrid
+{
+    size_t points = 0, cells = 0;
+    /// Keyed "Section/Name", e.g. "PointData/velocity", "Points/Points", "Cells/types".
+    std::map<std::string, ParsedArray> arrays;
+
+    const ParsedArray& at(const std::string& key) const
+    {
+        const auto it = arrays.find(key);
+        if (it == arrays.end()) throw std::runtime_error("no array " + key);
+        return it->second;
+    }
+    Vec3 vec3(const std::string& key, size_t i) const
+    {
+        const ParsedArray& a = at(key);
+        return {a.reals.at(3 * i), a.reals.at(3 * i + 1), a.reals.at(3 * i + 2)};
+    }
+};
+
+/// Read a .vtu written with raw appended data and UInt64 headers, checking its structure.
+ParsedGrid parseVtu(const std::string& path)
+{
+    const std::string text = readFile(path);
+    if (text.find("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                  "header_type=\"UInt64\">") == std::string::npos)
+        throw std::runtime_error("not a little-endian UInt64 UnstructuredGrid file");
+    const size_t appended = text.find("<AppendedData encoding=\"raw\">");
+    if (appended == std::string::npos) throw std::runtime_error("no raw AppendedData");
+    const size_t underscore = text.find('_', appended);
+    if (underscore == std::string::npos) throw std::runtime_error("no '_' opening the data");
+    const size_t dataStart = underscore + 1;
+    const std::string xml = text.substr(0, appended);
+
+    ParsedGrid grid;
+    static const std::regex piece(R"(<Piece ([^>]*)>)");
+    std::smatch match;
+    if (!std::regex_search(xml, match, piece)) throw std::runtime_error("no Piece");
+    const auto pieceAttributes = attributesOf(match[1]);
+    grid.points = std::stoul(pieceAttributes.at("NumberOfPoints"));
+    grid.cells = std::stoul(pieceAttributes.at("NumberOfCells"));
+
+    size_t dataEnd = dataStart;
+    static const std::regex dataArray(R"(<DataArray ([^>]*)/>)");
+    for (auto it = std::sregex_iterator(xml.begin(), xml.end(), dataArray);
+         it != std::sregex_iterator(); ++it) {
+        // The section is the nearest opening tag before this array.
+        const std::string before = xml.substr(0, static_cast<size_t>(it->position()));
+        std::string section;
+        size_t sectionAt = 0;
+        for (const char* name : {"PointData", "CellData", "Points", "Cells"}) {
+            const size_t p = before.rfind(std::string("<") + name + " ");
+            const size_t q = before.rfind(std::string("<") + name + ">");
+            const size_t found = p == std::string::npos ? q : (q == std::string::npos ? p : std::max(p, q));
+            if (found != std::string::npos && (section.empty() || found > sectionAt))
+                section = name, sectionAt = found;
+        }
+        const auto attributes = attributesOf((*it)[1]);
+        if (attributes.at("format") != "appended") throw std::runtime_error("not appended");
+        ParsedArray array;
+        array.type = attributes.at("type");
+        array.components = std::stoi(attributes.at("NumberOfComponents"));
+        const size_t at = dataStart + std::stoull(attributes.at("offset"));
+        const size_t bytes = readLittleEndian(text, at, 8);
+        const size_t width = array.type == "Float64" || array.type == "Int64" ? 8
+                             : array.type == "Int32"                         ? 4
+                             : array.type == "UInt8"                         ? 1
+                                                                             : 0;
+        if (width == 0 || bytes % width != 0) throw std::runtime_error("bad array " + array.type);
+        for (size_t i = 0; i < bytes / width; ++i) {
+            const std::uint64_t raw = readLittleEndian(text, at + 8 + i * width, width);
+            if (array.type == "Float64") {
+                double d;
+                std::memcpy(&d, &raw, sizeof d);
+                array.reals.push_back(d);
+            } else if (array.type == "Int32") {
+                array.ints.push_back(static_cast<std::int32_t>(static_cast<std::uint32_t>(raw)));
+            } else {
+                array.ints.push_back(static_cast<std::int64_t>(raw));
+            }
+        }
+        dataEnd = std::max(dataEnd, at + 8 + bytes);
+        grid.arrays[section + "/" + attributes.at("Name")] = array;
+    }
+    // The block holds exactly the arrays, then closes.
+    const size_t close = text.find_first_not_of(" \n", dataEnd);
+    if (close == std::string::npos || text.compare(close, 16, "</AppendedData>\n") != 0)
+        throw std::runtime_error("appended data does not end where the arrays do");
+    return grid;
+}
+
+/// Number of values of @a key per point or cell must match the Piece's counts.
+void expectCount(const ParsedGrid& grid, const std::string& key, size_t count)
+{
+    const ParsedArray& a = grid.at(key);
+    EXPECT_EQ(a.reals.size() + a.ints.size(), count * static_cast<size_t>(a.components)) << key;
+}
+
+struct DataSetEntry
+{
+    double time = 0.0;
+    int part = -1;
+    std::string file;
+};
+
+std::vector<DataSetEntry> parsePvd(const std::string& path)
+{
+    const std::string text = readFile(path);
+    EXPECT_NE(text.find("<VTKFile type=\"Collection\""), std::string::npos);
+    static const std::regex dataSet(R"(<DataSet ([^>]*)/>)");
+    std::vector<DataSetEntry> out;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), dataSet);
+         it != std::sregex_iterator(); ++it) {
+        const auto a = attributesOf((*it)[1]);
+        out.push_back({std::strtod(a.at("timestep").c_str(), nullptr), std::stoi(a.at("part")),
+                       a.at("file")});
+    }
+    return out;
+}
+
+TriangleMesh tetrahedron()
+{
+    TriangleMesh m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.triangles = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 3}}};
+    return m;
+}
+
+/// A 2 x 1 x 0.5 box centred on the origin.
+TriangleMesh box()
+{
+    TriangleMesh m;
+    for (int i = 0; i < 8; ++i)
+        m.vertices.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 0.5 : -0.5, i & 4 ? 0.25 : -0.25});
+    m.triangles = {{{0, 2, 3}}, {{0, 3, 1}}, {{4, 5, 7}}, {{4, 7, 6}}, {{0, 1, 5}}, {{0, 5, 4}},
+                   {{2, 6, 7}}, {{2, 7, 3}}, {{0, 4, 6}}, {{0, 6, 2}}, {{1, 3, 7}}, {{1, 7, 5}}};
+    return m;
+}
+
+RigidPose pose(double angle, const Vec3& axis, const Vec3& position)
+{
+    RigidPose p;
+    p.orientation = Quat(Eigen::AngleAxisd(angle, axis.normalized()));
+    p.position = position;
+    return p;
+}
+
+/// Check @a grid holds @a grains in order: posed vertices, rigid velocities, triangles, ids.
+void expectGrains(const ParsedGrid& grid, const std::vector<VtkGrain>& grains)
+{
+    size_t vertexCount = 0, triangleCount = 0;
+    for (const VtkGrain& g : grains) {
+        vertexCount += g.surface->vertices.size();
+        triangleCount += g.surface->triangles.size();
+    }
+    ASSERT_EQ(grid.points, vertexCount);
+    ASSERT_EQ(grid.cells, triangleCount);
+    expectCount(grid, "Points/Points", vertexCount);
+    expectCount(grid, "PointData/velocity", vertexCount);
+    expectCount(grid, "CellData/grain", triangleCount);
+    EXPECT_EQ(grid.at("CellData/grain").type, "Int32");
+    EXPECT_EQ(grid.at("Points/Points").type, "Float64");
+    EXPECT_EQ(grid.at("Cells/connectivity").ints.size(), 3 * triangleCount);
+    expectCount(grid, "Cells/offsets", triangleCount);
+    expectCount(grid, "Cells/types", triangleCount);
+
+    size_t point = 0, cell = 0;
+    for (const VtkGrain& g : grains) {
+        const size_t first = point;
+        for (const Vec3& local : g.surface->vertices) {
+            const Vec3 x = g.pose.toWorld(local);
+            EXPECT_EQ(grid.vec3("Points/Points", point), x) << "point " << point;
+            const Vec3 expected = g.velocity + g.angularVelocity.cross(x - g.pose.position);
+            EXPECT_LT((grid.vec3("PointData/velocity", point) - expected).norm(),
+                      1e-14 * (1.0 + expected.norm()))
+                << "point " << point;
+            ++point;
+        }
+        for (const auto& t : g.surface->triangles) {
+            for (int c = 0; c < 3; ++c)
+                EXPECT_EQ(grid.at("Cells/connectivity").ints[3 * cell + c],
+                          static_cast<std::int64_t>(first) + t[c]);
+            EXPECT_EQ(grid.at("Cells/offsets").ints[cell], static_cast<std::int64_t>(3 * (cell + 1)));
+            EXPECT_EQ(grid.at("Cells/types").ints[cell], 5);  // VTK_TRIANGLE
+            EXPECT_EQ(grid.at("CellData/grain").ints[cell], g.id);
+            ++cell;
+        }
+    }
+}
+
+} // namespace
+
+TEST(VtkSeries, GrainFramesHoldPosedSurfacesRigidVelocitiesAndIds)
+{
+    ScratchDir dir;
+    const TriangleMesh tet = tetrahedron(), block = box();
+    VtkSeries series(dir.path().string(), "run");
+
+    std::vector<VtkGrain> grains(2);
+    grains[0] = {&tet, pose(0.7, {1, 2, 3}, {1.5, -2.0, 0.25}), 3, {0.1, -0.2, 0.3}, {2.0, -1.0, 0.5}};
+    grains[1] = {&block, pose(-1.9, {0, 1, -1}, {-4.0, 3.5, 1e-3}), 7, {0, 0, -9.81}, {0, 0, 0}};
+    series.writeFrame(0, 0.0, grains, {});
+    const ParsedGrid frame0 = parseVtu(dir.file("run_grains_0.vtu"));
+    expectGrains(frame0, grains);
+
+    // Next frame: the grains moved and spin differently; the first file is left as it was.
+    grains[0].pose = pose(2.2, {-1, 0.3, 0.1}, {1.6, -2.1, 0.2});
+    grains[1].pose = pose(0.4, {1, 1, 1}, {-4.0, 3.4, -0.5});
+    grains[1].angularVelocity = {0.0, 30.0, -12.5};
+    series.writeFrame(1, 0.01, grains, {});
+    expectGrains(parseVtu(dir.file("run_grains_1.vtu")), grains);
+    EXPECT_EQ(parseVtu(dir.file("run_grains_0.vtu")).arrays.at("Points/Points").reals,
+              frame0.arrays.at("Points/Points").reals);
+    EXPECT_EQ(series.framesWritten(), 2);
+}
+
+TEST(VtkSeries, ContactFramesHoldOneVertexPerForcePoint)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.path().string(), "frames");
+    const std::vector<VtkForcePoint> forces = {{{0.5, 1.0, -2.0}, {1e3, -2.5, 0.125}, 0},
+                                               {{3.0, -1.0, 1.0 / 3.0}, {0.0, 0.0, -7.0}, 12},
+                                               {{-1.0, 0.0, 0.0}, {-4.0, 5.0, 6.0}, -2}};
+    series.writeFrame(0, 0.5, {}, forces);
+    const ParsedGrid grid = parseVtu(dir.file("frames_contacts_0.vtu"));
+    ASSERT_EQ(grid.points, 3u);
+    ASSERT_EQ(grid.cells, 3u);
+    expectCount(grid, "Points/Points", 3);
+    expectCount(grid, "PointData/force", 3);
+    expectCount(grid, "PointData/grain", 3);
+    EXPECT_EQ(grid.at("PointData/grain").type, "Int32");
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(grid.vec3("Points/Points", i), forces[i].point);
+        EXPECT_EQ(grid.vec3("PointData/force", i), forces[i].force);
+        EXPECT_EQ(grid.at("PointData/grain").ints.at(i), forces[i].grain);
+        EXPECT_EQ(grid.at("Cells/connectivity").ints.at(i), static_cast<std::int64_t>(i));
+        EXPECT_EQ(grid.at("Cells/offsets").ints.at(i), static_cast<std::int64_t>(i + 1));
+        EXPECT_EQ(grid.at("Cells/types").ints.at(i), 1);  // VTK_VERTEX
+    }
+}
+
+TEST(VtkSeries, EmptyFramesAreStillCompleteFiles)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.path().string(), "frames");
+    series.writeFrame(0, 0.0, {}, {});
+    for (const char* name : {"frames_grains_0.vtu", "frames_contacts_0.vtu"}) {
+        const ParsedGrid grid = parseVtu(dir.file(name));
+        EXPECT_EQ(grid.points, 0u) << name;
+        EXPECT_EQ(grid.cells, 0u) << name;
+        // Every array is still declared (ParaView looks for them), with a zero byte count.
+        for (const char* key : {"Points/Points", "Cells/connectivity", "Cells/offsets", "Cells/types"})
+            expectCount(grid, key, 0);
+    }
+    expectCount(parseVtu(dir.file("frames_contacts_0.vtu")), "PointData/force", 0);
+    expectCount(parseVtu(dir.file("frames_grains_0.vtu")), "PointData/velocity", 0);
+}
+
+TEST(VtkSeries, CollectionListsEachFrameWithItsTimeAndFiles)
+{
+    ScratchDir dir;
+    const TriangleMesh tet = tetrahedron();
+    VtkSeries series(dir.path().string(), "frames");
+    const std::vector<VtkGrain> grains = {{&tet, RigidPose(), 0, Vec3::Zero(), Vec3::Zero()}};
+    const double times[] = {0.0, 0.1, 1.0 / 3.0};  // 0.1 and 1/3 need all 17 digits
+    for (int k = 0; k < 3; ++k) series.writeFrame(k, times[k], grains, {});
+
+    const std::vector<DataSetEntry> entries = parsePvd(dir.file("frames.pvd"));
+    ASSERT_EQ(entries.size(), 6u);
+    for (size_t k = 0; k < 3; ++k) {
+        for (int part = 0; part < 2; ++part) {
+            const DataSetEntry& e = entries[2 * k + static_cast<size_t>(part)];
+            EXPECT_EQ(e.time, times[k]);
+            EXPECT_EQ(e.part, part);
+            EXPECT_EQ(e.file, std::string(part == 0 ? "frames_grains_" : "frames_contacts_") +
+                                  std::to_string(k) + ".vtu");
+            EXPECT_TRUE(std::filesystem::exists(dir.path() / e.file)) << e.file;
+        }
+    }
+    EXPECT_EQ(series.frameTimes(), std::vector<double>(std::begin(times), std::end(times)));
+}
+
+TEST(VtkSeries, RewritingAFrameDropsTheLaterOnes)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.path().string(), "frames");
+    series.writeFrame(0, 0.0, {}, {});
+    series.writeFrame(1, 1.0, {}, {});
+    series.writeFrame(2, 2.0, {}, {});
+    series.writeFrame(1, 1.5, {}, {});  // a restart from between frames 0 and 1
+
+    EXPECT_EQ(series.framesWritten(), 2);
+    EXPECT_EQ(series.frameTimes(), (std::vector<double>{0.0, 1.5}));
+    const std::vector<DataSetEntry> entries = parsePvd(dir.file("frames.pvd"));
+    ASSERT_EQ(entries.size(), 4u);
+    EXPECT_EQ(entries[2].time, 1.5);
+    EXPECT_EQ(entries[3].file, "frames_contacts_1.vtu");
+    EXPECT_EQ(readFile(dir.file("frames.pvd")).find("_2.vtu"), std::string::npos);
+}
+
+TEST(VtkSeries, RestoredTimesAreListedBeforeTheNextFrame)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.path().string(), "frames");
+    series.restoreFrameTimes({0.0, 0.25});
+    EXPECT_THROW(series.writeFrame(3, 1.0, {}, {}), std::invalid_argument);  // would leave a hole
+    EXPECT_THROW(series.writeFrame(-1, 1.0, {}, {}), std::invalid_argument);
+    series.writeFrame(2, 0.5, {}, {});
+    const std::vector<DataSetEntry> entries = parsePvd(dir.file("frames.pvd"));
+    ASSERT_EQ(entries.size(), 6u);
+    EXPECT_EQ(entries[0].time, 0.0);
+    EXPECT_EQ(entries[2].time, 0.25);
+    EXPECT_EQ(entries[4].time, 0.5);
+    EXPECT_EQ(entries[4].file, "frames_grains_2.vtu");
+}
+
+TEST(VtkSeries, MissingFolderThrowsAndWritesNothing)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.file("no-such-folder"), "frames");
+    try {
+        series.writeFrame(0, 0.0, {}, {});
+        FAIL() << "expected an Error";
+    } catch (const Error& e) {
+        EXPECT_NE(e.where().find("frames_grains_0.vtu"), std::string::npos) << e.what();
+        EXPECT_FALSE(e.fix().empty()) << e.what();
+    }
+    EXPECT_EQ(dir.entryCount(), 0u);
+    EXPECT_EQ(series.framesWritten(), 0);
+}
+
+TEST(VtkSeries, FailedCollectionLeavesTheSeriesAsItWas)
+{
+    ScratchDir dir;
+    VtkSeries series(dir.path().string(), "frames");
+    series.writeFrame(0, 0.0, {}, {});
+    const std::string before = readFile(dir.file("frames.pvd"));
+
+    // Something in the way of the .pvd: the frame's files are complete, the list unchanged.
+    std::filesystem::remove(dir.file("frames.pvd"));
+    std::filesystem::create_directory(dir.file("frames.pvd"));
+    try {
+        series.writeFrame(1, 1.0, {}, {});
+        FAIL() << "expected an Error";
+    } catch (const Error& e) {
+        EXPECT_NE(e.where().find("frames.pvd"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(series.framesWritten(), 1);
+    for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos)
+            << entry.path();
+
+    // Cleared, the same frame goes through and the list is as if nothing had failed.
+    std::filesystem::remove(dir.file("frames.pvd"));
+    series.writeFrame(1, 1.0, {}, {});
+    EXPECT_EQ(parsePvd(dir.file("frames.pvd")).size(), 4u);
+    EXPECT_NE(readFile(dir.file("frames.pvd")), before);
+}

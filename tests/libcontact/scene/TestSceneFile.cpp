@@ -1,0 +1,282 @@
+// Scene files: the bundled examples parse to what they say, units and lattices are read right,
+// and a table of bad scenes is each refused with a message naming the line, the key and a fix.
+#include "lsdem/scene/SceneFile.h"
+#include "lsdem/ls/Error.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+using namespace lsdem;
+using namespace lsdem::test;
+
+namespace {
+
+const std::string kScenes = std::string(LSDEM_SOURCE_DIR) + "/assets/scenes/";
+
+/// A small valid scene; the bad cases below each change one thing in it.
+const std::string kGood = R"([units]
+length = "mm"
+mass = "tonne"
+time = "s"
+force = "N"
+
+[assets.ball]
+shape = "sphere"
+radius = 2.0
+voxel = 0.25
+nodes = 200
+
+[materials.steel]
+density = 7.85e-9
+[materials.wall]
+density = 0.0
+
+[[contacts]]
+materials = ["steel", "steel"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.4
+restitution = 0.6
+
+[[contacts]]
+materials = ["steel", "wall"]
+formulation = "original"
+testing = "one-way"
+normal_stiffness = 1e6
+
+[[grains]]
+name = "a"
+asset = "ball"
+material = "steel"
+position = [0, 0, 2]
+velocity = [1, 0, 0]
+axis_angle = [0, 0, 1, 90]
+
+[[grains]]
+asset = "ball"
+material = "steel"
+position = [5, 0, 2]
+mass = 2e-7
+
+[[boundaries]]
+name = "floor"
+type = "plane"
+material = "wall"
+point = [0, 0, 0]
+normal = [0, 0, 2]
+
+[simulation]
+gravity = [0, 0, -9810]
+time_step = "auto"
+end_time = 0.01
+
+[output]
+history_every = 10
+vtk_period = 1e-3
+)";
+
+/// kGood with the first occurrence of @a from replaced by @a to (which must be found).
+std::string edited(const std::string& from, const std::string& to)
+{
+    std::string s = kGood;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) s.replace(at, from.size(), to);
+    return s;
+}
+
+/// The 1-based line of the first occurrence of @a text in @a scene.
+int lineOf(const std::string& scene, const std::string& text)
+{
+    const size_t at = scene.find(text);
+    return 1 + static_cast<int>(std::count(scene.begin(), scene.begin() + static_cast<long>(at), '\n'));
+}
+
+} // namespace
+
+TEST(SceneFile, GoodSceneIsReadAsWritten)
+{
+    const Scene s = parseScene(kGood, "/tmp/x/scene.toml");
+    EXPECT_EQ(s.directory, "/tmp/x");
+    ASSERT_EQ(s.assets.size(), 1u);
+    ASSERT_TRUE(s.assets[0].shape.has_value());
+    EXPECT_EQ(s.assets[0].shape->kind, AnalyticShape::Kind::Sphere);
+    EXPECT_EQ(s.assets[0].bake.voxelSize, 0.25);
+    EXPECT_EQ(s.assets[0].bake.nodePlacement, NodePlacement::Count);
+    EXPECT_EQ(s.assets[0].bake.nodeCount, 200);
+    ASSERT_EQ(s.materials.size(), 2u);
+    EXPECT_EQ(s.materials[0].name, "steel");
+    EXPECT_EQ(s.materials[0].density, 7.85e-9);
+    ASSERT_EQ(s.contacts.size(), 2u);
+    EXPECT_EQ(s.contacts[0].model.formulation, Formulation::Adapted);  // the default
+    EXPECT_EQ(s.contacts[0].restitution, 0.6);
+    EXPECT_EQ(s.contacts[1].model.formulation, Formulation::Original);
+    EXPECT_EQ(s.contacts[1].model.testing, NodeTesting::OneWay);
+    EXPECT_EQ(s.contacts[1].restitution, 1.0);
+    ASSERT_EQ(s.grains.size(), 2u);
+    EXPECT_EQ(s.grains[0].name, "a");
+    // 90° about z takes x to y.
+    EXPECT_NEAR((s.grains[0].pose.orientation * Vec3::UnitX() - Vec3::UnitY()).norm(), 0.0, 1e-15);
+    EXPECT_EQ(s.grains[0].velocity, Vec3(1, 0, 0));
+    EXPECT_EQ(s.grains[1].mass, 2e-7);
+    EXPECT_EQ(s.grains[1].motion, GrainMotion::Free);
+    ASSERT_EQ(s.boundaries.size(), 1u);
+    EXPECT_EQ(s.boundaries[0].normal, Vec3(0, 0, 1));  // normalised
+    EXPECT_EQ(s.gravity, Vec3(0, 0, -9810));
+    EXPECT_EQ(s.timeStep.fixed, 0.0);
+    EXPECT_EQ(s.end.time, 0.01);
+    EXPECT_EQ(s.output.historyEvery, 10);
+    EXPECT_EQ(s.output.vtkPeriod, 1e-3);
+    EXPECT_EQ(s.grains[0].where, "/tmp/x/scene.toml:" + std::to_string(lineOf(kGood, "[[grains]]")));
+}
+
+TEST(SceneFile, BundledExamplesParse)
+{
+    const Scene bounce = readSceneFile(kScenes + "bounce.toml");
+    EXPECT_EQ(bounce.grains.size(), 1u);
+    EXPECT_EQ(bounce.end.time, 0.25);
+
+    const Scene cube = readSceneFile(kScenes + "cube27.toml");
+    ASSERT_EQ(cube.grains.size(), 27u);
+    ASSERT_EQ(cube.boundaries.size(), 6u);
+    EXPECT_EQ(cube.boundaries[static_cast<size_t>(cube.end.boundary)].name, "top");
+    EXPECT_EQ(cube.end.displacement, 0.3);
+    // The stack exactly fills [0, 30]³: centres at 5, 15, 25 along each axis.
+    std::set<double> xs;
+    for (const GrainSpec& g : cube.grains) {
+        xs.insert(g.pose.position.x());
+        EXPECT_NEAR(g.pose.orientation.norm(), 1.0, 1e-14);
+    }
+    EXPECT_EQ(xs, (std::set<double>{5.0, 15.0, 25.0}));
+
+    const Scene settle = readSceneFile(kScenes + "settle.toml");
+    EXPECT_EQ(settle.grains.size(), 36u + 16u);
+    ASSERT_FALSE(settle.assets[0].meshFile.empty());
+    EXPECT_TRUE(std::filesystem::is_regular_file(settle.assets[0].meshFile));
+}
+
+TEST(SceneFile, LatticesAreReproducibleAndJitterStaysWithinBounds)
+{
+    const std::string lattice = R"(
+[[lattices]]
+name = "g"
+asset = "ball"
+material = "steel"
+origin = [10, 20, 30]
+count = [4, 3, 2]
+spacing = [5, 6, 7]
+jitter = 0.5
+random_orientation = true
+seed = 42
+)";
+    const std::string text = kGood + lattice;
+    const Scene a = parseScene(text, "s.toml"), b = parseScene(text, "s.toml");
+    ASSERT_EQ(a.grains.size(), 2u + 24u);
+    std::set<std::string> names;
+    Vec3 meanAxis = Vec3::Zero();
+    for (size_t k = 2; k < a.grains.size(); ++k) {
+        const GrainSpec& g = a.grains[k];
+        EXPECT_EQ(g.pose.position, b.grains[k].pose.position);  // same seed, same lattice
+        EXPECT_EQ(g.pose.orientation.coeffs(), b.grains[k].pose.orientation.coeffs());
+        names.insert(g.name);
+        // Each grain is within the jitter of its lattice site.
+        const int i = static_cast<int>(k - 2) % 4, j = static_cast<int>(k - 2) / 4 % 3,
+                  l = static_cast<int>(k - 2) / 12;
+        const Vec3 site(10 + 5 * i, 20 + 6 * j, 30 + 7 * l);
+        EXPECT_LE((g.pose.position - site).cwiseAbs().maxCoeff(), 0.5);
+        EXPECT_GT((g.pose.position - site).norm(), 0.0);
+        EXPECT_NEAR(g.pose.orientation.norm(), 1.0, 1e-14);
+        meanAxis += g.pose.orientation * Vec3::UnitZ();
+    }
+    EXPECT_EQ(names.size(), 24u);
+    EXPECT_TRUE(names.count("g_3_2_1"));
+    // Random rotations: the rotated z axes do not all point one way.
+    EXPECT_LT(meanAxis.norm() / 24.0, 0.6);
+    // Another seed gives another lattice.
+    std::string other = text;
+    other.replace(other.find("seed = 42"), 9, "seed = 43");
+    EXPECT_NE(parseScene(other, "s.toml").grains[2].pose.position, a.grains[2].pose.position);
+}
+
+TEST(SceneFile, UnitsMustBeConsistent)
+{
+    // m, kg, s, N and mm, g, ms, N are both consistent (1 g·mm/ms² = 1 N).
+    EXPECT_NO_THROW(parseScene(edited("length = \"mm\"\nmass = \"tonne\"", "length = \"m\"\nmass = \"kg\""), "s.toml"));
+    EXPECT_NO_THROW(parseScene(edited("mass = \"tonne\"\ntime = \"s\"", "mass = \"g\"\ntime = \"ms\""), "s.toml"));
+    try {
+        parseScene(edited("mass = \"tonne\"", "mass = \"kg\""), "s.toml");
+        FAIL() << "mm, kg, s, N accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("inconsistent"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("mN"), std::string::npos) << e.what();  // the fix
+    }
+}
+
+TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
+{
+    struct Case
+    {
+        const char* what;
+        std::string text;
+        const char* lineOf;   ///< text whose line the message must name
+        const char* message;  ///< must appear in the message
+    };
+    const std::string noEnd = edited("end_time = 0.01\n", "");
+    const Case cases[] = {
+        {"unknown key", edited("vtk_period", "vtk_every"), "vtk_every", "unknown key 'vtk_every'"},
+        {"unknown section", kGood + "[solver]\nx = 1\n", "[solver]", "unknown top-level"},
+        {"wrong type", edited("radius = 2.0", "radius = \"2\""), "radius = ", "expected a positive number, got a string"},
+        {"negative size", edited("radius = 2.0", "radius = -2.0"), "radius = ", "must be > 0"},
+        {"NaN", edited("density = 7.85e-9", "density = nan"), "density = nan", "not finite"},
+        {"vector of 2", edited("position = [0, 0, 2]", "position = [0, 0]"), "position = [0, 0]", "array of 3 numbers"},
+        {"unknown asset", edited("asset = \"ball\"", "asset = \"bal\""), "asset = \"bal\"", "no asset named 'bal'"},
+        {"unknown material", edited("material = \"steel\"", "material = \"stel\""), "material = \"stel\"", "no material named 'stel'"},
+        {"missing position", edited("position = [0, 0, 2]\n", ""), "[[grains]]", "missing key 'position'"},
+        {"missing contact law", edited("materials = [\"steel\", \"wall\"]", "materials = [\"wall\", \"wall\"]"), "[[boundaries]]", "no contact law between materials 'steel' and 'wall'"},
+        {"duplicate contact", edited("materials = [\"steel\", \"wall\"]", "materials = [\"steel\", \"steel\"]"), "[[contacts]]\nmaterials = [\"steel\", \"steel\"]\nformulation", "a second entry"},
+        {"unknown formulation", edited("formulation = \"original\"", "formulation = \"hertz\""), "\"hertz\"", "unknown value 'hertz'"},
+        {"restitution > 1", edited("restitution = 0.6", "restitution = 1.5"), "restitution = 1.5", "(0, 1]"},
+        {"no end condition", noEnd, "[simulation]", "no end condition"},
+        {"bad time step", edited("time_step = \"auto\"", "time_step = \"fast\""), "\"fast\"", "unknown value 'fast'"},
+        {"zero time step", edited("time_step = \"auto\"", "time_step = 0"), "time_step = 0", "must be > 0"},
+        {"zero normal", edited("normal = [0, 0, 2]", "normal = [0, 0, 0]"), "normal = [0, 0, 0]", "zero vector"},
+        {"inconsistent units", edited("force = \"N\"", "force = \"kN\""), "force = \"kN\"", "inconsistent"},
+        {"asset without nodes", edited("nodes = 200\n", ""), "[assets.ball]", "surface nodes"},
+        {"two sources", edited("shape = \"sphere\"", "shape = \"sphere\"\nmesh = \"x.obj\""), "[assets.ball]", "more than one source"},
+        {"missing mesh file", edited("shape = \"sphere\"\nradius = 2.0", "mesh = \"nowhere.obj\""), "mesh = ", "file not found"},
+        {"fixed grain with velocity", edited("velocity = [1, 0, 0]", "velocity = [1, 0, 0]\nmotion = \"fixed\""), "velocity = [1, 0, 0]", "a fixed grain cannot move"},
+        {"damping out of range", edited("gravity = [0, 0, -9810]", "gravity = [0, 0, -9810]\nglobal_damping = 1.0"), "global_damping", "[0, 1)"},
+        {"end displacement of a fixed wall", edited("end_time = 0.01", "end_displacement = { boundary = \"floor\", value = 1.0 }"), "end_displacement", "does not move"},
+        {"bad boundary name", edited("name = \"floor\"", "name = \"floor/1\""), "name = \"floor/1\"", "cannot name a file"},
+        {"duplicate grain name", edited("position = [5, 0, 2]", "position = [5, 0, 2]\nname = \"a\""), "[[grains]]\nasset", "a second grain named 'a'"},
+        {"not TOML", edited("radius = 2.0", "radius = = 2.0"), "radius = = 2.0", "not valid TOML"},
+        {"non-unit quaternion", edited("axis_angle = [0, 0, 1, 90]", "orientation = [1, 1, 0, 0]"), "orientation", "not a unit quaternion"},
+    };
+    static_assert(sizeof(cases) / sizeof(cases[0]) >= 20);
+    for (const Case& c : cases) {
+        try {
+            parseScene(c.text, "/data/scene.toml");
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const Error& e) {
+            const std::string msg = e.what();
+            const int line = lineOf(c.text, c.lineOf);
+            EXPECT_NE(msg.find(c.message), std::string::npos) << c.what << ": " << msg;
+            EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(line)) << c.what << ": " << msg;
+            EXPECT_FALSE(e.fix().empty()) << c.what << ": no fix in: " << msg;
+        }
+    }
+}
+
+TEST(SceneFile, MissingFileIsNamed)
+{
+    try {
+        readSceneFile("/nonexistent/scene.toml");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "/nonexistent/scene.toml");
+    }
+}

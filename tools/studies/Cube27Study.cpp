@@ -33,11 +33,6 @@ const double kColumn = 2.0 + 2.0 * std::sqrt(2.0);
 /// down to 500) for the cost estimate printed before a study: grain-node steps per second.
 constexpr double kNodeStepsPerSecond = 1.2e8;
 
-double baseStiffness(Formulation f)
-{
-    return (f == Formulation::Original || f == Formulation::SingleNode) ? 1e9 : 1e3;
-}
-
 /// A uniformly random rotation drawn from @a rng (the studies' reproducible sequence).
 Quat randomRotation(std::mt19937& rng)
 {
@@ -56,14 +51,15 @@ ColumnStiffness columnStiffness(Formulation f, double radius, double delta, doub
                                 int nodes)
 {
     ColumnStiffness c;
-    if (f == Formulation::SingleNode) {
+    const NormalModel& law = normalModel(f);
+    if (!law.perNodeForces()) {
         // One linear spring per contact (symmetric testing: two half-weight deepest nodes).
         c.kWall = c.kSphere = stiffness;
         return c;
     }
-    const double kStar = f == Formulation::Original
-                             ? originalEffectiveStiffness(stiffness, nodes, 4 * kPi * radius * radius)
-                             : stiffness;
+    const double kStar = law.stiffnessPerArea()
+                             ? stiffness
+                             : originalEffectiveStiffness(stiffness, nodes, 4 * kPi * radius * radius);
     const double dWall = delta / kColumn, dSphere = std::sqrt(2.0) * dWall;
     c.kWall = 2 * kPi * kStar * radius * dWall;     // d/dd of π k R d²
     c.kSphere = kPi * kStar * radius * dSphere;     // d/dδ of (π/2) k R δ²
@@ -72,7 +68,7 @@ ColumnStiffness columnStiffness(Formulation f, double radius, double delta, doub
 
 bool hasShear(const Cube27Options& o, Formulation f)
 {
-    return (f == Formulation::Original || f == Formulation::Adapted) && o.friction > 0 &&
+    return normalModel(f).perNodeForces() && o.friction > 0 &&
            o.shearRatio > 0;
 }
 
@@ -255,8 +251,8 @@ std::vector<Cube27Run> planCube27(const Cube27Options& o)
             std::vector<double> ks;
             if (!o.stiffness.empty()) ks = o.stiffness;
             else if (nodes == kSeriesCount)
-                for (double factor : o.stiffnessFactors) ks.push_back(factor * baseStiffness(f));
-            else ks.push_back(baseStiffness(f));
+                for (double factor : o.stiffnessFactors) ks.push_back(factor * normalModel(f).paperStiffness());
+            else ks.push_back(normalModel(f).paperStiffness());
             for (double k : ks)
                 for (int m = 0; m < o.orientations; ++m)
                     runs.push_back(planCube27Run(o, f, nodes, k, m));
@@ -480,11 +476,13 @@ Cube27Result runCube27(const Cube27Options& o)
             row.forceStd = std::sqrt(std::max(0.0, sum2 / n - row.forceMean * row.forceMean));
             row.floorForce = floor / n;
             row.sideForce = side / n;
-            double kStar = stiffness;
-            if (row.formulation == Formulation::Original)
-                kStar = originalEffectiveStiffness(stiffness, row.nodesActual,
-                                                   4 * kPi * o.radius * o.radius);
-            if (row.formulation == Formulation::SingleNode) {
+            const NormalModel& law = normalModel(row.formulation);
+            const double kStar =
+                law.stiffnessPerArea()
+                    ? stiffness
+                    : originalEffectiveStiffness(stiffness, row.nodesActual,
+                                                 4 * kPi * o.radius * o.radius);
+            if (!law.perNodeForces()) {
                 // Linear springs kn in every contact: d_s = d_w = δ/4, 9 columns.
                 row.forceClosed = row.forceExact = 9.0 * stiffness * row.delta / 4.0;
             } else {

@@ -43,7 +43,7 @@ std::string show(double v)
     return s.str();
 }
 
-bool perArea(Formulation f) { return f == Formulation::Adapted || f == Formulation::Volume; }
+bool perArea(Formulation f) { return normalModel(f).stiffnessPerArea(); }
 
 
 std::vector<double> snapshotDeltasOf(const SlabStudyOptions& o)
@@ -208,7 +208,7 @@ ContactModel slabContactModel(const SlabStudyOptions& o, Formulation formulation
     m.testing = o.testing;
     m.normalStiffness = perArea(formulation) ? k.knStar : k.kn;
     // single-node and volume carry no shear springs (contact.md).
-    const bool shear = formulation == Formulation::Adapted || formulation == Formulation::Original;
+    const bool shear = normalModel(formulation).perNodeForces();
     m.shearStiffness = shear ? (perArea(formulation) ? k.ksStar : k.ks) : 0.0;
     m.friction = shear ? o.material.friction : 0.0;
     return m;
@@ -239,13 +239,9 @@ double slabTimeStep(const SlabStudyOptions& o, const SlabPanel& panel, const Gra
     // One shared face in full contact: kn*·A (adapted: the nodes' areas add up to A; symmetric
     // testing adds both sides at half weight), or kn per node on it (original).
     const double meanNodeArea = block.nodes.totalArea() / double(std::max<size_t>(1, block.nodes.size()));
-    double face = 0.0;
-    switch (formulation) {
-    case Formulation::Adapted:
-    case Formulation::Volume: face = k.knStar * panel.sharedFaceArea(); break;
-    case Formulation::Original: face = k.kn * panel.sharedFaceArea() / meanNodeArea; break;
-    case Formulation::SingleNode: face = k.kn; break;
-    }
+    const ContactModel model = slabContactModel(o, formulation);
+    const double face =
+        model.normal().patchStiffness(model.normalStiffness, panel.sharedFaceArea(), meanNodeArea);
     // A block squeezed between its two x neighbours (the stiffest direction), with its shear
     // springs as stiff again along the faces.
     const double stiffest = 2.0 * face * std::max(1.0, k.ksStar / k.knStar);
@@ -643,8 +639,9 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     auto runCost = [&](Formulation f, double sdp, double vdp) {
         RunCost c;
         c.nodes = nodesForSpacing(area, sdp);
-        const double face = perArea(f) ? k.knStar * panel.sharedFaceArea()
-                                       : k.kn * panel.sharedFaceArea() / (area / c.nodes);
+        const ContactModel model = slabContactModel(o, f);
+        const double face = model.normal().patchStiffness(
+            model.normalStiffness, panel.sharedFaceArea(), area / c.nodes);
         const double dt =
             o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
         // Clamped before the cast: absurd inputs are refused by the caller, not undefined here.

@@ -14,10 +14,7 @@
 
 namespace lsdem {
 
-double defaultStiffness(Formulation f)
-{
-    return (f == Formulation::Original || f == Formulation::SingleNode) ? 1e9 : 1e3;
-}
+double defaultStiffness(Formulation f) { return normalModel(f).paperStiffness(); }
 
 void checkTwoSpheresOptions(const TwoSpheresOptions& o)
 {

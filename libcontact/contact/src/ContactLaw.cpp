@@ -1,19 +1,10 @@
 #include "lsdem/contact/ContactLaw.h"
 
-#include "lsdem/contact/ShearSpring.h"
-
 #include <cmath>
 
 namespace lsdem {
 
 namespace {
-
-bool hasPerNodeShear(const ContactModel& model)
-{
-    return (model.formulation == Formulation::Original ||
-            model.formulation == Formulation::Adapted) &&
-           model.friction > 0.0 && model.shearStiffness > 0.0;
-}
 
 /// The mass that the contact's dashpot acts on: the reduced mass of two free bodies, or the
 /// free one's mass against an immovable one (0 when neither can move).
@@ -33,21 +24,19 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
 
     // The normal laws first, for every side, so that the dashpot sees the whole contact's
     // stiffness K (both directions of symmetric testing together).
+    const NormalModel& normalLaw = model.normal();
+    const ShearSpringModel shearSprings = model.tangential();
     std::vector<std::vector<PointForce>> normal(sideCount);
     double totalStiffness = 0.0;
     for (int s = 0; s < sideCount; ++s) {
-        normalForces(model.formulation, sides[s].contacts, model.normalStiffness,
-                     sides[s].weight, normal[s]);
+        normalLaw.forces(sides[s].contacts, model.normalStiffness, sides[s].weight, normal[s]);
         for (const PointForce& f : normal[s]) totalStiffness += f.stiffness;
         result.contactNodes += static_cast<int>(sides[s].contacts.size());
     }
     // c_f = 2β·sqrt(m/K)·k_f: the dashpots add up to 2β·sqrt(m·K), shared by stiffness.
-    double dashpotPerStiffness = 0.0;
-    if (model.dampingRatio > 0.0 && totalStiffness > 0.0)
-        dashpotPerStiffness = 2.0 * model.dampingRatio *
-                              std::sqrt(effectiveMass(*sides[0].tester, *sides[0].other) /
-                                        totalStiffness);
-    const bool perNodeShear = hasPerNodeShear(model);
+    const double dashpotPerStiffness = model.damping().dashpotPerStiffness(
+        effectiveMass(*sides[0].tester, *sides[0].other), totalStiffness);
+    const bool perNodeShear = shearSprings.active(normalLaw);
 
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
@@ -72,10 +61,9 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                 const auto found = side.history->find(c.node);
                 const Vec3 stored = found == side.history->end() ? Vec3::Zero() : found->second;
                 const double shearStiffness =
-                    side.weight * model.shearStiffness *
-                    (model.formulation == Formulation::Adapted ? c.area : 1.0);
+                    shearSprings.nodeStiffness(normalLaw, c.area, side.weight);
                 const Vec3 shear = updateShearForce(stored, c.normal, relativeVelocity * dt,
-                                                    shearStiffness, model.friction * size);
+                                                    shearStiffness, shearSprings.friction * size);
                 nextHistory.emplace(c.node, shear);
                 total += shear;
                 result.elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;

@@ -21,15 +21,16 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
     c.materialA = idx[0];
     c.materialB = idx[1];
     ContactModel& model = c.model;
-    model.formulation = parseFormulation(
-        t.choice("formulation", {"original", "adapted", "single-node", "volume"}, "adapted"));
+    std::vector<std::string> formulations;
+    for (Formulation f : allFormulations()) formulations.push_back(formulationName(f));
+    model.formulation =
+        parseFormulation(t.choice("formulation", formulations, formulationName(model.formulation)));
     model.testing = parseNodeTesting(
         t.choice("testing", {"one-way", "symmetric"}, nodeTestingName(model.testing)));
     model.normalStiffness = t.positive("normal_stiffness");
     model.shearStiffness = t.nonNegative("shear_stiffness", 0.0);
     model.friction = t.nonNegative("friction", 0.0);
-    if (model.shearStiffness > 0.0 && (model.formulation == Formulation::SingleNode ||
-                                       model.formulation == Formulation::Volume))
+    if (model.shearStiffness > 0.0 && !model.normal().perNodeForces())
         t.fail("shear_stiffness", "has no effect with formulation " +
                                       formulationName(model.formulation),
                "use original or adapted for tangential forces, or remove it");

@@ -346,10 +346,8 @@ double automaticTimeStep(const World& world, double safety)
     for (const Grain& g : world.grains)
         for (double a : g.asset->nodes.areas) largestArea = std::max(largestArea, a);
     for (const ContactModel& m : world.models) {
-        const bool perArea =
-            m.formulation == Formulation::Adapted || m.formulation == Formulation::Volume;
-        const double normal = m.normalStiffness * (perArea ? largestArea : 1.0);
-        const double shear = m.shearStiffness * (perArea ? largestArea : 1.0);
+        const double normal = m.normal().nodeStiffness(m.normalStiffness, largestArea);
+        const double shear = m.normal().nodeStiffness(m.shearStiffness, largestArea);
         stiffest = std::max({stiffest, normal, shear});
     }
     double lightest = std::numeric_limits<double>::infinity();

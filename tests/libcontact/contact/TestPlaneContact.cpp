@@ -1,5 +1,5 @@
 // A grain against a rigid plane: the static force law and an elastic bounce.
-#include "lsdem/contact/NormalForce.h"
+#include "lsdem/contact/NormalModel.h"
 #include "lsdem/contact/PlaneContact.h"
 #include "lsdem/ls/Constants.h"
 #include "lsdem/simulation/RigidBody.h"
@@ -32,7 +32,7 @@ void planeForce(const GrainAsset& a, const RigidPose& pose, const Plane& plane, 
     NodeCheckStats stats;
     findPlaneContacts(a, pose, plane, contacts, stats);
     std::vector<PointForce> forces;
-    normalForces(Formulation::Adapted, contacts, kStar, 1.0, forces);
+    normalModel(Formulation::Adapted).forces(contacts, kStar, 1.0, forces);
     force = torque = Vec3::Zero();
     for (const PointForce& f : forces) {
         force += f.force;

@@ -7,7 +7,6 @@
 
 #include "lsdem/contact/ContactModel.h"
 #include "lsdem/contact/NodeContact.h"
-#include "lsdem/contact/NormalForce.h"
 
 #include <map>
 #include <vector>

@@ -1,7 +1,7 @@
 /// @file PlaneContact.h
 /// @brief Contact of a grain with a rigid plane (a wall): the grain's nodes behind the plane
 ///        become NodeContacts with depth = distance behind it and the plane's normal, so every
-///        formulation of NormalForce.h applies unchanged.
+///        formulation of NormalModel.h applies unchanged.
 #pragma once
 
 #include "lsdem/contact/NodeContact.h"

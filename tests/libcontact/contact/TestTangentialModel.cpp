@@ -1,7 +1,7 @@
 // The per-node shear spring: elastic increments, Coulomb cap, rotation with the normal, and
 // the history kept per (pair, node) through a sliding contact.
 #include "lsdem/contact/PairContact.h"
-#include "lsdem/contact/ShearSpring.h"
+#include "lsdem/contact/TangentialModel.h"
 #include "lsdem/ls/Bake.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "lsdem/contact/ShearSpring.h"
+#include "lsdem/contact/TangentialModel.h"
 
 namespace lsdem {
 

@@ -1,0 +1,74 @@
+/// @file NormalModel.h
+/// @brief The normal contact law of each formulation as one small sub-model (in the manner of
+///        LAMMPS GRANULAR's normal sub-models). It knows its name, the unit of its stiffness,
+///        whether that stiffness is per unit area, whether its forces are per node (and so can
+///        carry per-node shear springs), the stiffness the paper uses, and how it turns the
+///        penetrating nodes of grain A inside grain B into point forces on A (B gets the
+///        opposite). The laws, the time step, the scene reader and the studies all ask it.
+#pragma once
+
+#include "lsdem/contact/NodeContact.h"
+#include "lsdem/contact/PointForce.h"
+
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+/// How the penetrating nodes of a contact become a force (SCIENCE.md §2).
+enum class Formulation {
+    Original,    ///< F_a = kn·d_a·n_a per node; kn in force/length
+    Adapted,     ///< F_a = kn*·d_a·A_a·n_a per node; kn* in force/length³ (traction/length)
+    SingleNode,  ///< one force kn·d_max·n from the deepest node; kn in force/length
+    Volume,      ///< F = kv·V·n̄ with V = Σ d_a·A_a; kv in force/length³
+};
+
+class NormalModel
+{
+public:
+    virtual ~NormalModel() = default;
+
+    virtual Formulation formulation() const = 0;
+    /// "original", "adapted", "single-node", "volume".
+    virtual std::string name() const = 0;
+    /// The unit of its stiffness, in words ("force/length", ...).
+    virtual std::string stiffnessUnit() const = 0;
+    /// Whether the stiffness is per unit area (a traction per penetration, or a force per
+    /// overlap volume): a node of tributary area A then stands for k·A.
+    virtual bool stiffnessPerArea() const = 0;
+    /// Whether every penetrating node gets a force of its own (so it may carry a shear spring).
+    virtual bool perNodeForces() const = 0;
+    /// The stiffness of the paper's studies (Feldfogel et al. 2024): kn = 1 GN/mm per node,
+    /// kn* = 1 GPa/mm = 1e3 N/mm³ per area (in mm, N).
+    virtual double paperStiffness() const = 0;
+
+    /// The stiffness one node of tributary area @a area brings (force/length): k·A per area,
+    /// k per node.
+    double nodeStiffness(double stiffness, double area) const
+    {
+        return stiffnessPerArea() ? stiffness * area : stiffness;
+    }
+    /// The normal stiffness (force/length) of a flat patch of area @a area in full contact,
+    /// covered by nodes of tributary area @a nodeArea each: the integral of the traction for
+    /// the per-area laws, one spring per node for the original law, one spring for the
+    /// single-node law.
+    virtual double patchStiffness(double stiffness, double area, double nodeArea) const = 0;
+
+    /// Append the point forces of the penetrating nodes @a contacts of A in B, for stiffness
+    /// @a stiffness scaled by @a weight (1/2 per side in symmetric testing).
+    virtual void forces(const std::vector<NodeContact>& contacts, double stiffness,
+                        double weight, std::vector<PointForce>& out) const = 0;
+};
+
+/// The sub-model of @a formulation (one shared, immutable instance each).
+const NormalModel& normalModel(Formulation formulation);
+
+/// Every formulation, in a fixed order (original, adapted, single-node, volume).
+const std::vector<Formulation>& allFormulations();
+
+/// normalModel(f).name().
+std::string formulationName(Formulation f);
+/// Inverse of formulationName. @throw Error naming the accepted values.
+Formulation parseFormulation(const std::string& name);
+
+} // namespace lsdem

@@ -1,0 +1,43 @@
+/// @file TangentialModel.h
+/// @brief The tangential sub-model: a linear shear spring per contact node, with history. The
+///        stored shear force is turned onto the current tangent plane (keeping its size),
+///        incremented by -k_t·Δu_t and capped by Coulomb's μ·|F_n|. Its stiffness follows the
+///        normal law's rule: ks per node (original) or ks*·A_a per area (adapted).
+#pragma once
+
+#include "lsdem/contact/NormalModel.h"
+#include "lsdem/ls/TriangleMesh.h"
+
+namespace lsdem {
+
+/// The spring's step.
+/// @param stored   shear force from the last step (zero for a node just entering contact)
+/// @param normal   current unit contact normal
+/// @param slip     relative displacement of the contact point in the step (any direction;
+///                 only its tangential part counts)
+/// @param stiffness k_t of this node (force/length)
+/// @param limit    μ·|F_n|, the largest shear the node can carry
+/// @return the new shear force (tangent to @a normal, at most @a limit long)
+Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
+                      double stiffness, double limit);
+
+/// Shear springs with Coulomb friction, for the formulations with per-node forces.
+struct ShearSpringModel
+{
+    double stiffness = 0.0;  ///< ks (force/length) or ks* (force/length³), per the normal law
+    double friction = 0.0;   ///< Coulomb coefficient μ
+
+    /// Whether shear forces arise at all with normal law @a normal: it needs per-node forces,
+    /// a stiffness and friction.
+    bool active(const NormalModel& normal) const
+    {
+        return normal.perNodeForces() && stiffness > 0.0 && friction > 0.0;
+    }
+    /// k_t of a node of tributary area @a area, at testing weight @a weight.
+    double nodeStiffness(const NormalModel& normal, double area, double weight) const
+    {
+        return weight * normal.nodeStiffness(stiffness, area);
+    }
+};
+
+} // namespace lsdem

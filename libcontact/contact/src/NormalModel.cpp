@@ -1,0 +1,39 @@
+#include "lsdem/contact/NormalModel.h"
+
+#include "NormalModels.h"
+
+#include "lsdem/ls/Error.h"
+
+namespace lsdem {
+
+const NormalModel& normalModel(Formulation formulation)
+{
+    switch (formulation) {
+    case Formulation::Original: return normal_models::original();
+    case Formulation::Adapted: return normal_models::adapted();
+    case Formulation::SingleNode: return normal_models::singleNode();
+    case Formulation::Volume: return normal_models::volume();
+    }
+    throw Error("", "unknown contact formulation (corrupt value)");
+}
+
+const std::vector<Formulation>& allFormulations()
+{
+    static const std::vector<Formulation> all = {Formulation::Original, Formulation::Adapted,
+                                                 Formulation::SingleNode, Formulation::Volume};
+    return all;
+}
+
+std::string formulationName(Formulation f) { return normalModel(f).name(); }
+
+Formulation parseFormulation(const std::string& name)
+{
+    std::string names;
+    for (Formulation f : allFormulations()) {
+        if (formulationName(f) == name) return f;
+        names += (names.empty() ? "" : ", ") + formulationName(f);
+    }
+    throw Error("", "unknown contact formulation '" + name + "'", "use one of: " + names);
+}
+
+} // namespace lsdem

@@ -7,7 +7,7 @@ packages=(
     build-essential cmake ccache pkg-config
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libimath-dev libblosc-dev
     libtbb-dev libeigen3-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev
-    libpng-dev zlib1g-dev libtomlplusplus-dev libssl-dev
+    libpng-dev zlib1g-dev libtomlplusplus-dev libssl-dev libcli11-dev nlohmann-json3-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     python3 python3-matplotlib
 )

@@ -7,6 +7,8 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -14,32 +16,7 @@
 
 namespace {
 
-const char* const kUsage = R"(usage: lsdem-bake (MESH | --sphere R | --box A B C | --ellipsoid A B C)
-                  --voxel VDP (--node-spacing SDP | --nodes N | --mesh-nodes)
-                  [--areas mesh|uniform] [--band VOXELS] [--memory-budget-gb G]
-                  -o OUT.vdb
-
-Bakes a grain asset: one .vdb file with the signed distance (voxel size VDP, interior filled),
-the surface nodes with their tributary areas and outward normals, and the unit-density mass
-properties, all in the grain's principal frame (centroid at the origin).
-
-  MESH                 closed triangle mesh file (OBJ, STL, PLY, or any format assimp reads)
-  --sphere R           analytic sphere of radius R
-  --box A B C          analytic box with full edge lengths A, B, C
-  --ellipsoid A B C    analytic ellipsoid with semi-axes A, B, C
-  --voxel VDP          level-set voxel size (volume discretization parameter)
-  --node-spacing SDP   surface nodes by isotropic remeshing to edge length SDP
-  --nodes N            surface nodes by remeshing to about N nodes
-  --mesh-nodes         surface nodes at the input mesh's own vertices
-  --areas RULE         tributary areas: 'mesh' (1/3 of each incident triangle; default) or
-                       'uniform' (total area / N, as in Feldfogel et al. 2024)
-  --band VOXELS        exterior narrow-band width in voxels (default 3)
-  --memory-budget-gb G refuse level sets estimated above G GiB (default 4)
-  -o, --output FILE    the asset to write (written atomically)
-  -q, --quiet          print nothing but warnings and errors
-
-All lengths are in the mesh's own unit (e.g. mm); lsdem never converts units.
-)";
+constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 std::string quoteArgs(int argc, char** argv)
 {
@@ -48,101 +25,179 @@ std::string quoteArgs(int argc, char** argv)
     return text;
 }
 
+/// What the command line says, before it is checked and turned into BakeOptions.
+struct BakeCommandLine
+{
+    std::vector<std::string> meshPaths;
+    double sphereRadius = 0.0;
+    std::vector<double> box, ellipsoid;
+    lsdem::BakeOptions options;
+    double memoryBudgetGb = options.memoryBudgetBytes / kGiB;
+    long long nodeCount = 0;
+    std::string areas = "mesh";
+    std::string outputPath;
+    bool quiet = false;
+    // The options whose presence matters (which shape, which node placement).
+    CLI::Option *sphereOption = nullptr, *boxOption = nullptr, *ellipsoidOption = nullptr;
+    CLI::Option *spacingOption = nullptr, *countOption = nullptr, *meshNodesOption = nullptr;
+};
+
+/// Every option of lsdem-bake, its default and its help.
+void addOptions(CLI::App& app, BakeCommandLine& c)
+{
+    using lsdem::cli::addInteger;
+    using lsdem::cli::addNumber;
+    using lsdem::cli::addNumbers;
+    const std::string input = "Input (one of)";
+    app.add_option("mesh", c.meshPaths,
+                   "closed triangle mesh file (OBJ, STL, PLY, or any format assimp reads)")
+        ->type_name("MESH")
+        ->group(input);
+    c.sphereOption = addNumber(app, "--sphere", c.sphereRadius, "analytic sphere of radius R")
+                         ->type_name("R")
+                         ->default_str("")
+                         ->group(input);
+    c.boxOption = addNumbers(app, "--box", c.box, "analytic box with full edge lengths A, B, C", 3)
+                      ->option_text("A B C")
+                      ->group(input);
+    c.ellipsoidOption =
+        addNumbers(app, "--ellipsoid", c.ellipsoid, "analytic ellipsoid with semi-axes A, B, C", 3)
+            ->option_text("A B C")
+            ->group(input);
+
+    const std::string levelSet = "Level set";
+    addNumber(app, "--voxel", c.options.voxelSize,
+              "level-set voxel size (volume discretization parameter)")
+        ->type_name("VDP")
+        ->default_str("")
+        ->group(levelSet);
+    addInteger(app, "--band", c.options.exteriorBandVoxels, "exterior narrow-band width, voxels")
+        ->type_name("VOXELS")
+        ->group(levelSet);
+    addNumber(app, "--memory-budget-gb", c.memoryBudgetGb,
+              "refuse level sets estimated above G GiB")
+        ->type_name("G")
+        ->group(levelSet);
+
+    const std::string nodes = "Surface nodes (one of)";
+    c.spacingOption = addNumber(app, "--node-spacing", c.options.nodeSpacing,
+                                "by isotropic remeshing to edge length SDP")
+                          ->type_name("SDP")
+                          ->default_str("")
+                          ->group(nodes);
+    c.countOption = addInteger(app, "--nodes", c.nodeCount, "by remeshing to about N nodes")
+                        ->type_name("N")
+                        ->default_str("")
+                        ->group(nodes);
+    c.meshNodesOption = app.add_flag("--mesh-nodes", "at the input mesh's own vertices")
+                            ->group(nodes);
+    app.add_option("--areas", c.areas,
+                   "tributary areas: 'mesh' (1/3 of each incident triangle) or\n"
+                   "'uniform' (total area / N, as in Feldfogel et al. 2024)")
+        ->type_name("RULE")
+        ->capture_default_str()
+        ->group(nodes);
+
+    const std::string output = "Output";
+    app.add_option("-o,--output", c.outputPath, "the asset to write (written atomically)")
+        ->type_name("FILE")
+        ->group(output);
+    app.add_flag("-q,--quiet", c.quiet, "print nothing but warnings and errors")->group(output);
+}
+
+/// The analytic shape the command line names, if any; Error if it names more than one.
+std::optional<lsdem::AnalyticShape> chosenShape(const BakeCommandLine& c)
+{
+    using lsdem::AnalyticShape;
+    // Uses, not options: a repeated --sphere is as ambiguous as --sphere with --box.
+    const size_t given = c.sphereOption->count() + (c.boxOption->count() + 2) / 3 +
+                         (c.ellipsoidOption->count() + 2) / 3;
+    if (given > 1) throw lsdem::Error("", "give only one analytic shape");
+    if (c.sphereOption->count()) return AnalyticShape::sphere(c.sphereRadius);
+    if (c.boxOption->count()) return AnalyticShape::box(c.box[0], c.box[1], c.box[2]);
+    if (c.ellipsoidOption->count())
+        return AnalyticShape::ellipsoid(c.ellipsoid[0], c.ellipsoid[1], c.ellipsoid[2]);
+    return std::nullopt;
+}
+
+/// Check what the options do not check one by one, and fill in c.options.
+void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShape>& shape)
+{
+    using lsdem::Error;
+    lsdem::BakeOptions& o = c.options;
+    if (c.meshPaths.size() > 1)
+        throw Error("", "more than one input mesh ('" + c.meshPaths[0] + "', '" +
+                            c.meshPaths[1] + "')");
+    const size_t placements = c.spacingOption->count() + c.countOption->count() +
+                              c.meshNodesOption->count();
+    if (placements > 1) throw Error("", "give only one of --node-spacing, --nodes, --mesh-nodes");
+    if (c.spacingOption->count()) o.nodePlacement = lsdem::NodePlacement::Spacing;
+    if (c.meshNodesOption->count()) o.nodePlacement = lsdem::NodePlacement::MeshVertices;
+    if (c.countOption->count()) {
+        o.nodePlacement = lsdem::NodePlacement::Count;
+        if (c.nodeCount < 4 || c.nodeCount > 100000000)
+            throw Error("", "--nodes wants a count from 4 to 1e8, got " +
+                                std::to_string(c.nodeCount));
+        o.nodeCount = int(c.nodeCount);
+    }
+    if (c.areas == "mesh") o.areaRule = lsdem::AreaRule::Mesh;
+    else if (c.areas == "uniform") o.areaRule = lsdem::AreaRule::Uniform;
+    else throw Error("", "--areas wants 'mesh' or 'uniform', got '" + c.areas + "'");
+    if (!(c.memoryBudgetGb > 0)) throw Error("", "--memory-budget-gb must be positive");
+    o.memoryBudgetBytes = c.memoryBudgetGb * kGiB;
+
+    if (c.meshPaths.empty() && !shape)
+        throw Error("", "no input: give a mesh file or --sphere/--box/--ellipsoid",
+                    "see lsdem-bake --help");
+    if (!c.meshPaths.empty() && shape)
+        throw Error("", "give either a mesh file or an analytic shape, not both");
+    if (placements == 0)
+        throw Error("", "say how to place surface nodes",
+                    "add --node-spacing SDP, --nodes N or --mesh-nodes");
+    if (o.voxelSize == 0.0) throw Error("", "the voxel size is missing", "add --voxel VDP");
+    if (c.outputPath.empty()) throw Error("", "no output file", "add -o OUT.vdb");
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
     using namespace lsdem;
+    CLI::App app(
+        "Bakes a grain asset: one .vdb file with the signed distance (voxel size VDP, interior\n"
+        "filled), the surface nodes with their tributary areas and outward normals, and the\n"
+        "unit-density mass properties, all in the grain's principal frame (centroid at the "
+        "origin).\n\n"
+        "  lsdem-bake (MESH | --sphere R | --box A B C | --ellipsoid A B C) --voxel VDP\n"
+        "             (--node-spacing SDP | --nodes N | --mesh-nodes) -o OUT.vdb",
+        "lsdem-bake");
+    cli::applyConventions(app);
+    app.footer("All lengths are in the mesh's own unit (e.g. mm); lsdem never converts units.\n"
+               "Exit codes: 0 baked, 1 bad input, 2 no arguments (this help on stderr), "
+               "3 internal error.");
+    BakeCommandLine c;
+    addOptions(app, c);
+    if (argc < 2) {
+        std::cerr << app.help();
+        return 2;
+    }
     return cli::runTool("lsdem-bake", [&]() -> int {
-        cli::Arguments args(argc, argv);
-        std::string meshPath, outputPath;
-        std::optional<AnalyticShape> shape;
-        BakeOptions options;
-        bool placementGiven = false, quiet = false;
-        auto setPlacement = [&](NodePlacement p) {
-            if (placementGiven)
-                throw Error("", "give only one of --node-spacing, --nodes, --mesh-nodes");
-            placementGiven = true;
-            options.nodePlacement = p;
-        };
-        auto setShape = [&](const AnalyticShape& s) {
-            if (shape) throw Error("", "give only one analytic shape");
-            shape = s;
-        };
-        if (args.done()) {
-            std::cerr << kUsage;
-            return 2;
-        }
-        while (!args.done()) {
-            const std::string a = args.next();
-            if (a == "-h" || a == "--help") {
-                std::cout << kUsage;
-                return 0;
-            } else if (a == "--sphere") {
-                setShape(AnalyticShape::sphere(args.number(a)));
-            } else if (a == "--box" || a == "--ellipsoid") {
-                const double x = args.number(a), y = args.number(a), z = args.number(a);
-                setShape(a == "--box" ? AnalyticShape::box(x, y, z)
-                                      : AnalyticShape::ellipsoid(x, y, z));
-            } else if (a == "--voxel") {
-                options.voxelSize = args.number(a);
-            } else if (a == "--node-spacing") {
-                setPlacement(NodePlacement::Spacing);
-                options.nodeSpacing = args.number(a);
-            } else if (a == "--nodes") {
-                setPlacement(NodePlacement::Count);
-                const long long n = args.integer(a);
-                if (n < 4 || n > 100000000)
-                    throw Error("", "--nodes wants a count from 4 to 1e8, got " +
-                                        std::to_string(n));
-                options.nodeCount = int(n);
-            } else if (a == "--mesh-nodes") {
-                setPlacement(NodePlacement::MeshVertices);
-            } else if (a == "--areas") {
-                const std::string rule = args.value(a);
-                if (rule == "mesh") options.areaRule = AreaRule::Mesh;
-                else if (rule == "uniform") options.areaRule = AreaRule::Uniform;
-                else throw Error("", "--areas wants 'mesh' or 'uniform', got '" + rule + "'");
-            } else if (a == "--band") {
-                options.exteriorBandVoxels = int(args.integer(a));
-            } else if (a == "--memory-budget-gb") {
-                const double gb = args.number(a);
-                if (!(gb > 0)) throw Error("", "--memory-budget-gb must be positive");
-                options.memoryBudgetBytes = gb * 1024.0 * 1024.0 * 1024.0;
-            } else if (a == "-o" || a == "--output") {
-                outputPath = args.value(a);
-            } else if (a == "-q" || a == "--quiet") {
-                quiet = true;
-            } else if (!a.empty() && a[0] == '-') {
-                throw Error("", "unknown option '" + a + "'", "see lsdem-bake --help");
-            } else {
-                if (!meshPath.empty())
-                    throw Error("", "more than one input mesh ('" + meshPath + "', '" + a + "')");
-                meshPath = a;
-            }
-        }
-        if (meshPath.empty() && !shape)
-            throw Error("", "no input: give a mesh file or --sphere/--box/--ellipsoid",
-                        "see lsdem-bake --help");
-        if (!meshPath.empty() && shape)
-            throw Error("", "give either a mesh file or an analytic shape, not both");
-        if (!placementGiven)
-            throw Error("", "say how to place surface nodes",
-                        "add --node-spacing SDP, --nodes N or --mesh-nodes");
-        if (options.voxelSize == 0.0)
-            throw Error("", "the voxel size is missing", "add --voxel VDP");
-        if (outputPath.empty()) throw Error("", "no output file", "add -o OUT.vdb");
-        options.optionsText = quoteArgs(argc, argv);
+        if (const auto exitCode = cli::parse(app, argc, argv)) return *exitCode;
+        const std::optional<AnalyticShape> shape = chosenShape(c);
+        checkAndResolve(c, shape);
+        const BakeOptions& options = c.options;
+        const std::string& outputPath = c.outputPath;
+        c.options.optionsText = quoteArgs(argc, argv);
 
         const auto start = std::chrono::steady_clock::now();
         std::vector<std::string> warnings;
         const GrainAsset asset = shape ? bakeAnalytic(*shape, options, warnings)
-                                       : bakeMeshFile(meshPath, options, warnings);
+                                       : bakeMeshFile(c.meshPaths[0], options, warnings);
         for (const auto& w : warnings) std::cerr << "lsdem-bake: warning: " << w << "\n";
         saveAsset(asset, outputPath);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (!quiet) {
+        if (!c.quiet) {
             std::printf("baked %s -> %s in %.2f s\n", asset.provenance.source.c_str(),
                         outputPath.c_str(), seconds);
             std::printf("  voxel %.6g, %zu nodes (spacing mean %.4g, min %.4g, max %.4g), "

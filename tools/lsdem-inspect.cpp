@@ -8,97 +8,80 @@
 #include "lsdem/ls/MeshIO.h"
 #include "lsdem/ls/SlicePlot.h"
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
-#include <sstream>
+#include <string>
+#include <vector>
 
 namespace {
 
-const char* const kUsage = R"(usage: lsdem-inspect FILE.vdb [--json] [--sample X Y Z]...
-                     [--slice AXIS=VALUE --png OUT.png] [--mesh OUT.obj|.stl|.ply]
+using Json = nlohmann::ordered_json;
 
-Prints a summary of a grain asset (or of the first level-set grid of any .vdb): grid size and
-memory, node count and spacing, node-area sum against the level set's own area and volume,
-mass properties, and quality (|φ| at the nodes, share of band voxels with |∇φ| off 1 by >10 %).
-
-  --json               print the summary as JSON instead of text
-  --sample X Y Z       print φ and ∇φ (trilinear interpolant) at a point of the asset frame
-  --slice AXIS=VALUE   with --png: draw φ on the plane x=, y= or z=VALUE, zero contour, nodes
-  --png OUT.png        where to write the slice picture
-  --mesh OUT           write the zero isosurface as a triangle mesh (.obj, .stl, .ply)
-)";
-
-std::string jsonNumber(double v)
+/// A number as JSON: non-finite values (which JSON cannot hold) become null.
+Json number(double v)
 {
-    if (!std::isfinite(v)) return "null";
-    std::ostringstream out;
-    out.precision(12);
-    out << v;
-    return out.str();
+    return std::isfinite(v) ? Json(v) : Json(nullptr);
 }
 
-std::string jsonString(const std::string& s)
+Json vec(const lsdem::Vec3& v)
 {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\', out += c;
-        else if (static_cast<unsigned char>(c) < 0x20) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "\\u%04x", c);
-            out += buf;
-        } else out += c;
-    }
-    return out + "\"";
+    return Json::array({number(v.x()), number(v.y()), number(v.z())});
 }
 
-std::string jsonVec(const lsdem::Vec3& v)
+/// @a json as text; doubles are written to round-trip exactly, and bytes of a file name that
+/// are not UTF-8 are replaced rather than refused.
+std::string text(const Json& json, int indent)
 {
-    return "[" + jsonNumber(v.x()) + ", " + jsonNumber(v.y()) + ", " + jsonNumber(v.z()) + "]";
+    return json.dump(indent, ' ', false, Json::error_handler_t::replace);
 }
 
 void printJson(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& r)
 {
-    std::ostringstream o;
-    o << "{\n  \"file\": " << jsonString(t.path) << ",\n  \"grid\": " << jsonString(t.gridName)
-      << ",\n  \"lsdem_asset\": " << (t.asset ? "true" : "false")
-      << ",\n  \"voxel_size\": " << jsonNumber(r.voxelSize)
-      << ",\n  \"index_min\": [" << r.indexMin[0] << ", " << r.indexMin[1] << ", " << r.indexMin[2]
-      << "],\n  \"index_max\": [" << r.indexMax[0] << ", " << r.indexMax[1] << ", "
-      << r.indexMax[2] << "],\n  \"world_min\": " << jsonVec(r.worldMin)
-      << ",\n  \"world_max\": " << jsonVec(r.worldMax)
-      << ",\n  \"active_voxels\": " << r.activeVoxels
-      << ",\n  \"memory_bytes\": " << jsonNumber(r.memoryBytes)
-      << ",\n  \"dense_bytes\": " << jsonNumber(r.denseBytes)
-      << ",\n  \"background\": " << jsonNumber(r.background)
-      << ",\n  \"level_set_area\": " << jsonNumber(r.levelSetArea)
-      << ",\n  \"level_set_volume\": " << jsonNumber(r.levelSetVolume)
-      << ",\n  \"band_voxels\": " << r.bandVoxels
-      << ",\n  \"band_gradient_off_share\": " << jsonNumber(r.bandGradientOffShare);
+    Json o;
+    o["file"] = t.path;
+    o["grid"] = t.gridName;
+    o["lsdem_asset"] = bool(t.asset);
+    o["voxel_size"] = number(r.voxelSize);
+    o["index_min"] = r.indexMin;
+    o["index_max"] = r.indexMax;
+    o["world_min"] = vec(r.worldMin);
+    o["world_max"] = vec(r.worldMax);
+    o["active_voxels"] = r.activeVoxels;
+    o["memory_bytes"] = number(r.memoryBytes);
+    o["dense_bytes"] = number(r.denseBytes);
+    o["background"] = number(r.background);
+    o["level_set_area"] = number(r.levelSetArea);
+    o["level_set_volume"] = number(r.levelSetVolume);
+    o["band_voxels"] = r.bandVoxels;
+    o["band_gradient_off_share"] = number(r.bandGradientOffShare);
     if (t.asset) {
         const auto& a = *t.asset;
-        o << ",\n  \"node_count\": " << r.nodeCount
-          << ",\n  \"node_spacing\": {\"mean\": " << jsonNumber(r.spacing.mean)
-          << ", \"min\": " << jsonNumber(r.spacing.min) << ", \"max\": "
-          << jsonNumber(r.spacing.max) << "}"
-          << ",\n  \"node_area_sum\": " << jsonNumber(r.nodeAreaSum)
-          << ",\n  \"area_rule\": " << jsonString(a.areaRule == lsdem::AreaRule::Mesh ? "mesh" : "uniform")
-          << ",\n  \"max_abs_phi_at_nodes_voxels\": " << jsonNumber(r.maxAbsPhiAtNodesVoxels)
-          << ",\n  \"volume\": " << jsonNumber(a.mass.volume)
-          << ",\n  \"centroid\": " << jsonVec(a.mass.centroid)
-          << ",\n  \"principal_moments\": " << jsonVec(a.mass.inertia.diagonal())
-          << ",\n  \"input_centroid\": " << jsonVec(a.inputFrame.centroid)
-          << ",\n  \"input_to_asset_rotation\": [" << jsonVec(a.inputFrame.rotation.row(0))
-          << ", " << jsonVec(a.inputFrame.rotation.row(1)) << ", "
-          << jsonVec(a.inputFrame.rotation.row(2)) << "]"
-          << ",\n  \"bounding_radius\": " << jsonNumber(a.boundingRadius)
-          << ",\n  \"source\": " << jsonString(a.provenance.source)
-          << ",\n  \"source_sha256\": " << jsonString(a.provenance.sourceSha256)
-          << ",\n  \"bake_options\": " << jsonString(a.provenance.options)
-          << ",\n  \"lsdem_version\": " << jsonString(a.provenance.lsdemVersion);
+        o["node_count"] = r.nodeCount;
+        o["node_spacing"] = {{"mean", number(r.spacing.mean)},
+                             {"min", number(r.spacing.min)},
+                             {"max", number(r.spacing.max)}};
+        o["node_area_sum"] = number(r.nodeAreaSum);
+        o["area_rule"] = a.areaRule == lsdem::AreaRule::Mesh ? "mesh" : "uniform";
+        o["max_abs_phi_at_nodes_voxels"] = number(r.maxAbsPhiAtNodesVoxels);
+        o["volume"] = number(a.mass.volume);
+        o["centroid"] = vec(a.mass.centroid);
+        o["principal_moments"] = vec(a.mass.inertia.diagonal());
+        o["input_centroid"] = vec(a.inputFrame.centroid);
+        o["input_to_asset_rotation"] =
+            Json::array({vec(a.inputFrame.rotation.row(0)), vec(a.inputFrame.rotation.row(1)),
+                         vec(a.inputFrame.rotation.row(2))});
+        o["bounding_radius"] = number(a.boundingRadius);
+        o["source"] = a.provenance.source;
+        o["source_sha256"] = a.provenance.sourceSha256;
+        o["bake_options"] = a.provenance.options;
+        o["lsdem_version"] = a.provenance.lsdemVersion;
     }
-    o << "\n}\n";
-    std::cout << o.str();
+    std::cout << text(o, 2) << "\n";
 }
 
 void printText(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& r)
@@ -156,68 +139,75 @@ void printText(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& 
 int main(int argc, char** argv)
 {
     using namespace lsdem;
+    CLI::App app("Prints a summary of a grain asset (or of the first level-set grid of any .vdb): "
+                 "grid size and\nmemory, node count and spacing, node-area sum against the level "
+                 "set's own area and volume,\nmass properties, and quality (|φ| at the nodes, "
+                 "share of band voxels with |∇φ| off 1 by >10 %).",
+                 "lsdem-inspect");
+    cli::applyConventions(app);
+    app.footer("Lengths are in the asset's own unit. Exit codes: 0 done, 1 bad input, 2 no "
+               "arguments (this\nhelp on stderr), 3 internal error.");
+    std::vector<std::string> paths;
+    std::string slice, pngPath, meshPath;
+    std::vector<double> samples;
+    bool json = false;
+    app.add_option("file", paths, "the asset or level set to inspect")->type_name("FILE.vdb");
+    app.add_flag("--json", json, "print the summary (or the samples) as JSON instead of text");
+    cli::addNumbers(app, "--sample", samples,
+                    "print φ and ∇φ (trilinear interpolant) at a point of the asset\n"
+                    "frame; may be repeated",
+                    3)
+        ->option_text("X Y Z")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--slice", slice,
+                   "with --png: draw φ on the plane x=, y= or z=VALUE, the zero\n"
+                   "contour and the nodes")
+        ->type_name("AXIS=VALUE");
+    app.add_option("--png", pngPath, "where to write the slice picture")->type_name("OUT.png");
+    app.add_option("--mesh", meshPath,
+                   "write the zero isosurface as a triangle mesh (.obj, .stl, .ply)")
+        ->type_name("OUT");
+    if (argc < 2) {
+        std::cerr << app.help();
+        return 2;
+    }
     return cli::runTool("lsdem-inspect", [&]() -> int {
-        cli::Arguments args(argc, argv);
-        std::string path, pngPath, meshPath;
-        std::optional<SliceSpec> slice;
-        std::vector<Vec3> samples;
-        bool json = false;
-        if (args.done()) {
-            std::cerr << kUsage;
-            return 2;
-        }
-        while (!args.done()) {
-            const std::string a = args.next();
-            if (a == "-h" || a == "--help") {
-                std::cout << kUsage;
-                return 0;
-            } else if (a == "--json") {
-                json = true;
-            } else if (a == "--sample") {
-                const double x = args.number(a), y = args.number(a), z = args.number(a);
-                samples.emplace_back(x, y, z);
-            } else if (a == "--slice") {
-                slice = parseSliceSpec(args.value(a));
-            } else if (a == "--png") {
-                pngPath = args.value(a);
-            } else if (a == "--mesh") {
-                meshPath = args.value(a);
-            } else if (!a.empty() && a[0] == '-') {
-                throw Error("", "unknown option '" + a + "'", "see lsdem-inspect --help");
-            } else {
-                if (!path.empty()) throw Error("", "more than one input file");
-                path = a;
-            }
-        }
-        if (path.empty()) throw Error("", "no input file", "see lsdem-inspect --help");
-        if (slice.has_value() != !pngPath.empty())
+        if (const auto exitCode = cli::parse(app, argc, argv)) return *exitCode;
+        if (paths.size() > 1) throw Error("", "more than one input file");
+        const std::optional<SliceSpec> sliceSpec =
+            slice.empty() ? std::nullopt : std::optional<SliceSpec>(parseSliceSpec(slice));
+        if (paths.empty()) throw Error("", "no input file", "see lsdem-inspect --help");
+        if (sliceSpec.has_value() != !pngPath.empty())
             throw Error("", "--slice and --png go together",
                         "e.g. --slice z=0 --png slice.png");
 
-        const InspectionTarget target = openForInspection(path);
+        const InspectionTarget target = openForInspection(paths[0]);
         if (!samples.empty()) {
             LevelSetSampler sampler(*target.levelSet);
-            for (const Vec3& p : samples) {
+            for (size_t i = 0; i + 2 < samples.size(); i += 3) {
+                const Vec3 p(samples[i], samples[i + 1], samples[i + 2]);
                 const LevelSetSample s = sampler.sample(p);
                 if (json)
-                    std::printf("{\"point\": %s, \"phi\": %s, \"gradient\": %s}\n",
-                                jsonVec(p).c_str(), jsonNumber(s.phi).c_str(),
-                                jsonVec(s.gradient).c_str());
+                    std::cout << text({{"point", vec(p)},
+                                       {"phi", number(s.phi)},
+                                       {"gradient", vec(s.gradient)}},
+                                      -1)
+                              << "\n";
                 else
                     std::printf("phi(%.6g, %.6g, %.6g) = %.8g   grad = (%.6g, %.6g, %.6g)\n",
                                 p.x(), p.y(), p.z(), s.phi, s.gradient.x(), s.gradient.y(),
                                 s.gradient.z());
             }
         }
-        if (slice) {
-            writeSlicePng(target, *slice, pngPath);
+        if (sliceSpec) {
+            writeSlicePng(target, *sliceSpec, pngPath);
             if (!json) std::printf("wrote %s\n", pngPath.c_str());
         }
         if (!meshPath.empty()) {
             writeMesh(zeroIsosurface(*target.levelSet), meshPath);
             if (!json) std::printf("wrote %s\n", meshPath.c_str());
         }
-        if (samples.empty() && !slice && meshPath.empty()) {
+        if (samples.empty() && !sliceSpec && meshPath.empty()) {
             const InspectionReport report = inspect(target);
             if (json) printJson(target, report);
             else printText(target, report);

@@ -5,6 +5,7 @@
 #include "lsdem/run/SimulationRun.h"
 #include "lsdem/ls/Error.h"
 
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include <unistd.h>
@@ -13,26 +14,10 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace {
-
-const char* const kUsage = R"(usage: lsdem-run SCENE.toml --out DIR [options]
-       lsdem-run --restart DIR/checkpoint.lsdem [options]
-
-Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:
-energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), grains.csv,
-frames.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set) and checkpoint.lsdem.
-
-  --out DIR            output folder (created if missing; on restart: the checkpoint's folder)
-  --restart FILE       continue a run from its checkpoint, bit-identically
-  --threads N          worker threads (default: all cores); results do not depend on N
-  --stop-at-step N     stop at step N as if interrupted (checkpoint written)
-  -q, --quiet          no progress line
-  -h, --help           this text
-
-Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; a second
-Ctrl-C stops at once. Exit codes: 0 finished, 1 bad input, 3 internal error, 130 stopped.
-)";
 
 void onSignal(int)
 {
@@ -46,42 +31,59 @@ void onSignal(int)
 
 int main(int argc, char** argv)
 {
+    using lsdem::Error;
+    CLI::App app(
+        "Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:\n"
+        "energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), "
+        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set) and "
+        "checkpoint.lsdem.\n\n"
+        "  lsdem-run SCENE.toml --out DIR [options]\n"
+        "  lsdem-run --restart DIR/checkpoint.lsdem [options]",
+        "lsdem-run");
+    lsdem::cli::applyConventions(app);
+    app.footer("Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; "
+               "a second\nCtrl-C stops at once. Exit codes: 0 finished, 1 bad input, 3 internal "
+               "error, 130 stopped.");
+    lsdem::RunOptions options;
+    std::vector<std::string> scenes;
+    long long threads = 0;
+    bool quiet = false;
+    app.add_option("scene", scenes, "the scene file (TOML)")->type_name("SCENE.toml");
+    app.add_option("--out", options.outDir,
+                   "output folder (created if missing; on restart: the checkpoint's\nfolder)")
+        ->type_name("DIR");
+    app.add_option("--restart", options.restartPath,
+                   "continue a run from its checkpoint, bit-identically")
+        ->type_name("FILE");
+    app.add_option_function<std::string>(
+           "--threads",
+           [&threads](const std::string& text) {
+               threads = lsdem::cli::parseInteger(text, "--threads");
+               if (threads < 1) throw Error("", "--threads wants a number >= 1");
+           },
+           "worker threads (default: all cores); results do not depend on N")
+        ->type_name("N");
+    app.add_option_function<std::string>(
+           "--stop-at-step",
+           [&options](const std::string& text) {
+               options.stopAtStep = lsdem::cli::parseInteger(text, "--stop-at-step");
+               if (options.stopAtStep < 1) throw Error("", "--stop-at-step wants a step >= 1");
+           },
+           "stop at step N as if interrupted (checkpoint written)")
+        ->type_name("N");
+    app.add_flag("-q,--quiet", quiet, "no progress line");
+
     return lsdem::cli::runTool("lsdem-run", [&] {
-        lsdem::cli::Arguments args(argc, argv);
-        lsdem::RunOptions options;
-        long long threads = 0;
-        bool quiet = false;
-        while (!args.done()) {
-            const std::string a = args.next();
-            if (a == "-h" || a == "--help") {
-                std::fputs(kUsage, stdout);
-                return 0;
-            } else if (a == "--out") {
-                options.outDir = args.value(a);
-            } else if (a == "--restart") {
-                options.restartPath = args.value(a);
-            } else if (a == "--threads") {
-                threads = args.integer(a);
-                if (threads < 1) throw lsdem::Error("", "--threads wants a number >= 1");
-            } else if (a == "--stop-at-step") {
-                options.stopAtStep = args.integer(a);
-                if (options.stopAtStep < 1) throw lsdem::Error("", "--stop-at-step wants a step >= 1");
-            } else if (a == "-q" || a == "--quiet") {
-                quiet = true;
-            } else if (!a.empty() && a[0] == '-') {
-                throw lsdem::Error("", "unknown option " + a, "see lsdem-run --help");
-            } else if (options.scenePath.empty()) {
-                options.scenePath = a;
-            } else {
-                throw lsdem::Error("", "more than one scene file given ('" + a + "')",
-                                   "run one scene at a time");
-            }
-        }
+        if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
+        if (scenes.size() > 1)
+            throw Error("", "more than one scene file given ('" + scenes[1] + "')",
+                        "run one scene at a time");
+        if (!scenes.empty()) options.scenePath = scenes[0];
         if (options.scenePath.empty() == options.restartPath.empty())
-            throw lsdem::Error("", "give either a scene file or --restart CHECKPOINT",
-                               "see lsdem-run --help");
+            throw Error("", "give either a scene file or --restart CHECKPOINT",
+                        "see lsdem-run --help");
         if (!options.scenePath.empty() && options.outDir.empty())
-            throw lsdem::Error("", "no output folder given", "pass --out DIR");
+            throw Error("", "no output folder given", "pass --out DIR");
         options.progress = !quiet && isatty(STDERR_FILENO);
 
         std::unique_ptr<tbb::global_control> limit;

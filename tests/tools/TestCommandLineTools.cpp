@@ -5,8 +5,11 @@
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
+#include <sstream>
 
 using namespace lsdem;
 using lsdem::test::runCommand;
@@ -32,9 +35,6 @@ TEST(CommandLineTools, BakeThenInspectAnAnalyticSphere)
     auto summary = runCommand(kInspect + " " + out);
     ASSERT_EQ(summary.exitCode, 0) << summary.output;
     EXPECT_TRUE(contains(summary.output, "lsdem grain asset"));
-    auto json = runCommand(kInspect + " " + out + " --json");
-    ASSERT_EQ(json.exitCode, 0) << json.output;
-    EXPECT_TRUE(contains(json.output, "\"node_count\""));
     auto sample = runCommand(kInspect + " " + out + " --sample 0 0 0");
     ASSERT_EQ(sample.exitCode, 0) << sample.output;
     EXPECT_TRUE(contains(sample.output, "= -1")) << sample.output;  // φ(centre) = -R
@@ -43,6 +43,74 @@ TEST(CommandLineTools, BakeThenInspectAnAnalyticSphere)
     ASSERT_EQ(slice.exitCode, 0) << slice.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("z.png")));
     EXPECT_GT(readMesh(dir.file("iso.obj")).triangles.size(), 100u);
+}
+
+// lsdem-inspect --json as a program reads it: every value parsed back and checked against the
+// sphere's closed forms, the level set's measures within the tolerances of TestInspection and
+// TestBake, and the asset's own doubles bit for bit (printed to round-trip).
+TEST(CommandLineTools, InspectJsonHoldsTheSphereValues)
+{
+    test::ScratchDir dir;
+    const std::string out = dir.file("sphere.vdb");
+    const double radius = 1.0, vox = 0.1;
+    const std::string bake = kBake + " --sphere 1 --voxel 0.1 --node-spacing 0.25 -q -o " + out;
+    ASSERT_EQ(runCommand(bake).exitCode, 0);
+    const auto result = runCommand(kInspect + " " + out + " --json");
+    ASSERT_EQ(result.exitCode, 0) << result.output;
+    const nlohmann::json j = nlohmann::json::parse(result.output);
+
+    const MassProperties exact = AnalyticShape::sphere(radius).massProperties();
+    const double area = 4 * test::kPi * radius * radius;
+    EXPECT_EQ(j.at("file"), out);
+    EXPECT_EQ(j.at("grid"), "phi");
+    EXPECT_EQ(j.at("lsdem_asset"), true);
+    EXPECT_EQ(j.at("voxel_size").get<double>(), vox);
+    EXPECT_EQ(j.at("volume").get<double>(), exact.volume);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(j.at("principal_moments").at(k).get<double>(), exact.inertia(k, k)) << k;
+        EXPECT_EQ(j.at("centroid").at(k).get<double>(), 0.0) << k;
+        EXPECT_GE(j.at("world_min").at(k).get<double>(), -radius - 4 * vox) << k;
+        EXPECT_LE(j.at("world_max").at(k).get<double>(), radius + 4 * vox) << k;
+        EXPECT_LT(j.at("index_min").at(k).get<int>(), j.at("index_max").at(k).get<int>()) << k;
+        double rowNorm = 0;
+        for (int m = 0; m < 3; ++m)
+            rowNorm += std::pow(j.at("input_to_asset_rotation").at(k).at(m).get<double>(), 2);
+        EXPECT_NEAR(rowNorm, 1.0, 1e-12) << k;
+    }
+    EXPECT_NEAR(j.at("level_set_volume").get<double>(), exact.volume,
+                0.5 * (vox / radius) * exact.volume);
+    EXPECT_NEAR(j.at("level_set_area").get<double>(), area, 0.5 * (vox / radius) * area);
+    EXPECT_NEAR(j.at("node_area_sum").get<double>(), area, 0.02 * area);
+    EXPECT_EQ(j.at("area_rule"), "mesh");
+    EXPECT_GT(j.at("node_count").get<int>(), 100);
+    const auto& spacing = j.at("node_spacing");
+    EXPECT_LE(spacing.at("min").get<double>(), spacing.at("mean").get<double>());
+    EXPECT_LE(spacing.at("mean").get<double>(), spacing.at("max").get<double>());
+    EXPECT_LT(j.at("max_abs_phi_at_nodes_voxels").get<double>(), 3 * vox / (8 * radius) + 1e-4);
+    EXPECT_GT(j.at("band_voxels").get<long long>(), 0);
+    EXPECT_GT(j.at("active_voxels").get<long long>(), j.at("band_voxels").get<long long>());
+    EXPECT_EQ(j.at("band_gradient_off_share").get<double>(), 0.0);
+    EXPECT_EQ(j.at("bake_options"), "--sphere 1 --voxel 0.1 --node-spacing 0.25 -q -o " + out);
+    EXPECT_GE(j.at("bounding_radius").get<double>(), radius);
+
+    // --sample with --json: one object per line, a point per --sample (negative coordinates,
+    // "-.5" too, are values, not options). The centre and (-0.5, 0, 0) are grid points, where
+    // the exact distance is stored.
+    const auto samples =
+        runCommand(kInspect + " " + out + " --json --sample 0 0 0 --sample -.5 0 -0");
+    ASSERT_EQ(samples.exitCode, 0) << samples.output;
+    std::istringstream lines(samples.output);
+    std::string centreLine, offsetLine, extra;
+    ASSERT_TRUE(std::getline(lines, centreLine) && std::getline(lines, offsetLine));
+    EXPECT_FALSE(std::getline(lines, extra)) << samples.output;
+    const nlohmann::json centre = nlohmann::json::parse(centreLine);
+    const nlohmann::json offset = nlohmann::json::parse(offsetLine);
+    EXPECT_EQ(centre.at("point"), nlohmann::json::array({0.0, 0.0, 0.0}));
+    EXPECT_NEAR(centre.at("phi").get<double>(), -radius, 1e-6);
+    EXPECT_EQ(offset.at("point").at(0).get<double>(), -0.5);
+    EXPECT_NEAR(offset.at("phi").get<double>(), -0.5, 1e-6);
+    EXPECT_NEAR(offset.at("gradient").at(0).get<double>(), -1.0, 0.05);
+    EXPECT_NEAR(offset.at("gradient").at(1).get<double>(), 0.0, 0.05);
 }
 
 TEST(CommandLineTools, VdbPrintOpensAnAsset)

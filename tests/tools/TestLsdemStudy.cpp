@@ -68,3 +68,42 @@ TEST(LsdemStudy, RefusesBadInput)
     EXPECT_NE(unknown.exitCode, 0);
     EXPECT_NE(unknown.output.find("three-spheres"), std::string::npos);
 }
+
+// The plot scripts are found from the program's own folder, <exe>/../share/lsdem/plots (the
+// build keeps a copy there, as an installation does), or in $LSDEM_PLOT_DIR; no source path is
+// compiled into the program.
+TEST(LsdemStudy, FindsThePlotScriptsBesideItself)
+{
+    const std::filesystem::path exe = kStudy;
+    const std::filesystem::path beside = exe.parent_path().parent_path() / "share/lsdem/plots";
+    for (const char* script : {"two_spheres.py", "cube27.py", "slab.py", "plotting.py"})
+        EXPECT_TRUE(std::filesystem::is_regular_file(beside / script)) << beside / script;
+    {
+        std::ifstream in(exe, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_EQ(bytes.find(LSDEM_SOURCE_DIR "/tools/plots"), std::string::npos);
+    }
+
+    // A stand-in script in a folder named by LSDEM_PLOT_DIR: it writes down its arguments.
+    lsdem::test::ScratchDir dir;
+    std::filesystem::create_directory(dir.file("plots"));
+    std::ofstream(dir.file("plots/two_spheres.py"))
+        << "import pathlib, sys\n"
+           "pathlib.Path(sys.argv[2], 'plotted.txt').write_text(' '.join(sys.argv[1:]))\n";
+    const std::string tiny = " two-spheres --nodes 300 --steps 1 --orientations 1 --voxel 0.2"
+                             " --formulation adapted --k-factors 1 -q --out ";
+    const auto r = runCommand("LSDEM_PLOT_DIR=" + dir.file("plots") + " " + kStudy + tiny +
+                              dir.file("a"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream plotted(dir.file("a/plotted.txt"));
+    std::string arguments;
+    std::getline(plotted, arguments);
+    EXPECT_EQ(arguments, dir.file("a/two_spheres.csv") + " " + dir.file("a"));
+
+    // A folder without the script: the data is complete, a warning names the folder, exit 4.
+    const auto missing = runCommand("LSDEM_PLOT_DIR=" + dir.file("nowhere") + " " + kStudy +
+                                    tiny + dir.file("b"));
+    EXPECT_EQ(missing.exitCode, 4) << missing.output;
+    EXPECT_NE(missing.output.find(dir.file("nowhere")), std::string::npos) << missing.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("b/two_spheres.csv")));
+}

@@ -1,100 +1,67 @@
 /// @file CommandLine.h
-/// @brief A small strict command-line reader shared by the lsdem tools: every value is checked
-///        (numbers must parse completely and be finite), and mistakes become lsdem::Error with
-///        the option named.
+/// @brief What the lsdem tools add to CLI11: numbers read strictly (the whole text must parse,
+///        base 10, finite: no nan, no inf), their defaults shown in --help, and one way to end:
+///        mistakes become lsdem::Error naming the option, printed once with the documented exit
+///        codes (0 done or --help, 1 bad input, 3 internal error).
 #pragma once
 
 #include "lsdem/ls/Error.h"
 
-#include <algorithm>
-#include <cctype>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+class Option;
+} // namespace CLI
+
 namespace lsdem::cli {
 
-class Arguments
-{
-public:
-    Arguments(int argc, char** argv) : mArgs(argv + 1, argv + argc) {}
+/// Give @a app (before its options and subcommands are added) the tools' conventions: a
+/// repeated option keeps its last value, and the help reads usage, description, options.
+void applyConventions(CLI::App& app);
 
-    bool done() const { return mPos >= mArgs.size(); }
-    const std::string& peek() const { return mArgs[mPos]; }
-    std::string next() { return mArgs[mPos++]; }
+/// @a text as a finite number; Error naming @a option otherwise.
+double parseNumber(const std::string& text, const std::string& option);
 
-    /// The value after option @a option, which must exist.
-    std::string value(const std::string& option)
-    {
-        if (done()) throw Error("", "option " + option + " needs a value");
-        return next();
-    }
+/// @a text as a whole number in base 10; Error naming @a option otherwise.
+long long parseInteger(const std::string& text, const std::string& option);
 
-    double number(const std::string& option) { return parseNumber(value(option), option); }
+/// Option @a name taking one finite number into @a value; its current value is the default
+/// shown in the help.
+CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value,
+                       const std::string& help);
 
-    /// The values after option @a option up to the next option, at least one. A leading minus
-    /// followed by a digit or a dot is a value ("-0.5"), otherwise an option ("--x", "-q").
-    std::vector<std::string> values(const std::string& option)
-    {
-        std::vector<std::string> out;
-        while (!done() && !looksLikeOption(peek())) out.push_back(next());
-        if (out.empty()) throw Error("", "option " + option + " needs at least one value");
-        return out;
-    }
+/// Option @a name taking one or more finite numbers (exactly @a group of them if @a group > 0,
+/// "--box A B C"), which replace @a values.
+CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<double>& values,
+                        const std::string& help, int group = 0);
 
-    std::vector<double> numbers(const std::string& option)
-    {
-        std::vector<double> out;
-        for (const std::string& text : values(option)) out.push_back(parseNumber(text, option));
-        return out;
-    }
+/// Option @a name taking one whole number into @a value; a number beyond the range of int is
+/// clamped to it, so the range check downstream reports it.
+CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
+                        const std::string& help);
+CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value,
+                        const std::string& help);
 
-    /// Whole positive numbers after @a option (node counts and the like).
-    std::vector<int> positiveCounts(const std::string& option)
-    {
-        std::vector<int> out;
-        for (const std::string& text : values(option)) {
-            const double n = parseNumber(text, option);
-            if (n != std::floor(n)) throw Error("", option + " wants whole numbers, got " + text);
-            if (n <= 0) throw Error("", option + " must be positive, got " + text);
-            out.push_back(int(std::min(n, 1e9)));
-        }
-        return out;
-    }
+/// Option @a name taking one or more whole positive numbers (node counts: "1e4" is allowed),
+/// which replace @a values.
+CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
+                       const std::string& help);
 
-    long long integer(const std::string& option)
-    {
-        const std::string text = value(option);
-        char* end = nullptr;
-        const long long v = std::strtoll(text.c_str(), &end, 10);
-        if (text.empty() || *end != '\0')
-            throw Error("", "option " + option + " wants a whole number, got '" + text + "'");
-        return v;
-    }
+/// @a value as the help shows defaults ("0.05", "1e+09").
+std::string showNumber(double value);
 
-    static double parseNumber(const std::string& text, const std::string& option)
-    {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0')
-            throw Error("", "option " + option + " wants a number, got '" + text + "'");
-        if (!std::isfinite(v))
-            throw Error("", "option " + option + " wants a finite number, got '" + text + "'");
-        return v;
-    }
+/// @a values as the help shows defaults ("[0.25,0.5,1]").
+std::string showList(const std::vector<std::string>& values);
 
-private:
-    static bool looksLikeOption(const std::string& text)
-    {
-        return text.size() > 1 && text[0] == '-' &&
-               !(std::isdigit(static_cast<unsigned char>(text[1])) || text[1] == '.');
-    }
-
-    std::vector<std::string> mArgs;
-    size_t mPos = 0;
-};
+/// Parse @a argc, @a argv into @a app. Returns the exit code if the program should stop here
+/// (0 after --help, which is printed), nothing to go on. A mistake throws Error with the
+/// problem as CLI11 words it and the fix "see <command> --help".
+std::optional<int> parse(CLI::App& app, int argc, char** argv);
 
 /// Run a tool's @a body, turning exceptions into one clear message and the exit codes the
 /// tools document: 1 for bad input (lsdem::Error), 3 for an internal error.

@@ -3,6 +3,8 @@
 ///        written before any work starts, and draw the plots with Debian's matplotlib.
 #pragma once
 
+#include "common/PlotScripts.h"
+
 #include "lsdem/ls/Error.h"
 
 #include <unistd.h>
@@ -28,12 +30,19 @@ inline void prepareOutputFolder(const std::string& dir)
         throw Error(dir, "the output folder is not writable", "choose another --out");
 }
 
-/// Run the matplotlib script @a script with @a arguments. Debian's /usr/bin/python3 is
-/// preferred: a pyenv python on the PATH usually lacks python3-matplotlib. Returns 0 on
-/// success; otherwise prints a warning (the data files are complete) and returns 4, the
-/// tools' exit code for "results written, plots missing".
-inline int drawPlots(const std::string& script, const std::vector<std::string>& arguments)
+/// Run the matplotlib script @a scriptName (found with plotScriptFolder) with @a arguments.
+/// Debian's /usr/bin/python3 is preferred: a pyenv python on the PATH usually lacks
+/// python3-matplotlib. Returns 0 on success; otherwise prints a warning (the data files are
+/// complete) and returns 4, the tools' exit code for "results written, plots missing".
+inline int drawPlots(const std::string& scriptName, const std::vector<std::string>& arguments)
 {
+    const std::string script = plotScriptFolder() + "/" + scriptName;
+    if (!std::filesystem::is_regular_file(script)) {
+        std::fprintf(stderr, "lsdem-study: warning: no plot script %s (set LSDEM_PLOT_DIR to the "
+                             "folder of lsdem's plot scripts); the data files are complete\n",
+                     script.c_str());
+        return 4;
+    }
     const std::string python =
         std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     std::string command = python + " '" + script + "'";

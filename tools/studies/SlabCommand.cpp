@@ -1,12 +1,14 @@
 #include "studies/SlabCommand.h"
 
 #include "studies/SlabPanel.h"
-#include "studies/SlabStudy.h"
+#include "studies/StudyCommandOptions.h"
 
+#include "common/CommandLine.h"
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Error.h"
 
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -16,161 +18,164 @@
 
 namespace lsdem {
 
-const char* slabUsage()
+SlabCommand::SlabCommand(CLI::App& study)
+    : mCommand(study.add_subcommand(
+          "slab",
+          "An interlocked slab pushed by an indenter (Fig. 5, 6)\n\n"
+          "The interlocked slab (Feldfogel et al. 2024, Fig. 5, 6): n x n planar blocks with\n"
+          "faces inclined alternately by +-angle, held by a rigid frame (a ring of fixed blocks\n"
+          "of the same shape), the central block pushed down by a sphere at constant speed. P\n"
+          "against the indenter's displacement delta per formulation and discretization; the\n"
+          "two-way study refines SDP at fixed VDP (every formulation), then VDP at the\n"
+          "converged SDP (adapted), and reports VDP/SDP."))
 {
-    return R"(usage: lsdem-study slab [options]
+    using cli::addInteger;
+    using cli::addNumber;
+    using cli::addNumbers;
+    SlabStudyOptions& o = mOptions;
+    // First: CLI11 applies options in the order they are added, so --full sets the lists that
+    // the other options then override, wherever it stands on the command line.
+    mCommand->add_flag_callback("--full", [&o] { o = slabFullOptions(); },
+                                "the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original "
+                                "to\n0.25) at VDP 0.035, then VDP 0.4 0.28 0.2 ... 0.035 (steps "
+                                "of\nsqrt 2); other options refine it");
 
-The interlocked slab (Feldfogel et al. 2024, Fig. 5, 6): n x n planar blocks with faces
-inclined alternately by +-angle, held by a rigid frame (a ring of fixed blocks of the same
-shape), the central block pushed down by a sphere at constant speed. P against the indenter's
-displacement delta per formulation and discretization; the two-way study refines SDP at fixed
-VDP (every formulation), then VDP at the converged SDP (adapted), and reports VDP/SDP.
+    const std::string panel = "Panel";
+    addInteger(*mCommand, "--blocks", o.panel.blocksPerSide, "blocks per side, odd")
+        ->type_name("N")
+        ->group(panel);
+    addNumber(*mCommand, "--block-size", o.panel.blockSize, "grid pitch, mm")
+        ->type_name("L")
+        ->group(panel);
+    addNumber(*mCommand, "--thickness", o.panel.thickness, "mm")->type_name("T")->group(panel);
+    addNumber(*mCommand, "--angle", o.panel.angleDeg, "interlocking angle, degrees")
+        ->type_name("A")
+        ->group(panel);
 
-panel:
-  --blocks N           blocks per side, odd (default 5)
-  --block-size L       grid pitch, mm (default 8)
-  --thickness T        mm (default 3)
-  --angle A            interlocking angle, degrees (default 15)
-discretizations (mm):
-  --sdp S...           node spacings of stage 1 (default 1 0.7 0.5 0.35 0.25)
-  --sdp-original S...  the subset run with original (and single-node), whose time step
-                       shrinks with the node count (default 1 0.7 0.5 0.35; with --sdp
-                       alone: all of them)
-  --vdp-fixed V        voxel of stage 1 (default 0.05)
-  --vdp V...           voxels of stage 2 (default 0.4 0.2 0.14 0.1 0.05)
-  --full               the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original to
-                       0.25) at VDP 0.035, then VDP 0.4 0.28 0.2 ... 0.035 (steps of
-                       sqrt 2)
-  --no-two-way         stage 1 only
-  --tolerance X        converged: the loading branch (RMS) and the peak within X of the
-                       finest run's peak P (default 0.05), and the same failure mode
-loading and material (mm, N, s, tonne):
-  --formulation F...   original, adapted, single-node, volume (default: adapted original)
-  --delta-max D        indenter travel (default: twice the thickness)
-  --speed V            indenter speed, mm/s (default 1000; quasi-static: within 1% of 200)
-  --indenter-radius R  mm (default 2.5)
-  --young E            MPa (default 7e4, glass); kn* = E/L
-  --poisson NU         (default 0.22); ks* = kn*/(2(1+nu))
-  --density RHO        t/mm^3 (default 2.5e-9)
-  --friction MU        (default 0.4)
-  --restitution E      contact damping (default 0.5)
-  --damping L          global damping (default 0.3)
-  --gravity G          mm/s^2 (default 9810)
-  --kn-star K          override kn*, N/mm^3
-  --ks-star K          override ks*, N/mm^3
-  --kn K               original kn, N/mm (default kn*(sqrt3/2)s_ref^2, s_ref = coarsest SDP)
-  --reference-sdp S    s_ref for the default kn
-  --testing T          symmetric (default) or one-way
-  --safety S           time step fraction of the stability limit, at most 0.5 (default 0.3)
-outputs:
-  --snapshots D...     delta of the failure snapshots (default 6 from 0 to delta-max)
-  --samples N          P-delta rows per run (default 200)
-  --threads N          worker threads (default: all cores)
-  --out DIR            output folder (default results/slab)
-  --no-plots           CSV and text only
-  --no-scene           do not write slab_scene.toml / slab_block.obj
-  --estimate           print the cost and stop
-  -q, --quiet          print only the summary
+    const std::string discretizations = "Discretizations (mm)";
+    CLI::Option* sdps = addNumbers(*mCommand, "--sdp", o.sdps, "node spacings of stage 1")
+                            ->type_name("S")
+                            ->group(discretizations);
+    CLI::Option* originalSdps =
+        addNumbers(*mCommand, "--sdp-original", o.originalSdps,
+                   "the subset run with original (and single-node), whose time step\n"
+                   "shrinks with the node count (with --sdp alone: all of them)")
+            ->type_name("S")
+            ->group(discretizations);
+    // --sdp alone: one list for every formulation.
+    mCommand->callback([sdps, originalSdps, &o] {
+        if (sdps->count() > 0 && originalSdps->count() == 0) o.originalSdps.clear();
+    });
+    addNumber(*mCommand, "--vdp-fixed", o.fixedVdp, "voxel of stage 1")
+        ->type_name("V")
+        ->group(discretizations);
+    addNumbers(*mCommand, "--vdp", o.vdps, "voxels of stage 2")
+        ->type_name("V")
+        ->group(discretizations);
+    mCommand->add_flag_callback("--no-two-way", [&o] { o.twoWay = false; }, "stage 1 only")
+        ->group(discretizations);
+    addNumber(*mCommand, "--tolerance", o.tolerance,
+              "converged: the loading branch (RMS) and the peak within X of the\n"
+              "finest run's peak P, and the same failure mode")
+        ->type_name("X")
+        ->group(discretizations);
 
-Writes DIR/slab.csv (P-delta), slab_runs.csv (one row per run), slab_snapshots.csv,
-slab_failure.txt, slab_scene.toml + assets/ (the converged case, for lsdem-run) and, with
-python3-matplotlib, DIR/slab_*.png.
-)";
+    const std::string loading = "Loading and material (mm, N, s, tonne)";
+    addFormulationOption(*mCommand, o.formulations)->group(loading);
+    addNumber(*mCommand, "--delta-max", o.deltaMax,
+              "indenter travel (default: twice the thickness)")
+        ->type_name("D")
+        ->default_str("")
+        ->group(loading);
+    addNumber(*mCommand, "--speed", o.speed,
+              "indenter speed, mm/s (quasi-static: within 1% of 200)")
+        ->type_name("V")
+        ->group(loading);
+    addNumber(*mCommand, "--indenter-radius", o.indenterRadius, "mm")
+        ->type_name("R")
+        ->group(loading);
+    addNumber(*mCommand, "--young", o.material.youngModulus, "MPa (glass); kn* = E/L")
+        ->type_name("E")
+        ->group(loading);
+    addNumber(*mCommand, "--poisson", o.material.poisson, "ks* = kn*/(2(1+nu))")
+        ->type_name("NU")
+        ->group(loading);
+    addNumber(*mCommand, "--density", o.material.density, "t/mm^3")
+        ->type_name("RHO")
+        ->group(loading);
+    addNumber(*mCommand, "--friction", o.material.friction, "Coulomb coefficient")
+        ->type_name("MU")
+        ->group(loading);
+    addNumber(*mCommand, "--restitution", o.material.restitution, "contact damping")
+        ->type_name("E")
+        ->group(loading);
+    addNumber(*mCommand, "--damping", o.material.globalDamping, "global damping")
+        ->type_name("L")
+        ->group(loading);
+    addNumber(*mCommand, "--gravity", o.material.gravity, "mm/s^2")
+        ->type_name("G")
+        ->group(loading);
+    addNumber(*mCommand, "--kn-star", o.knStar, "override kn*, N/mm^3")
+        ->type_name("K")
+        ->default_str("")
+        ->group(loading);
+    addNumber(*mCommand, "--ks-star", o.ksStar, "override ks*, N/mm^3")
+        ->type_name("K")
+        ->default_str("")
+        ->group(loading);
+    addNumber(*mCommand, "--kn", o.knOriginal,
+              "original kn, N/mm (default kn*(sqrt3/2)s_ref^2, s_ref = the\n"
+              "coarsest SDP)")
+        ->type_name("K")
+        ->default_str("")
+        ->group(loading);
+    addNumber(*mCommand, "--reference-sdp", o.referenceSdp, "s_ref for the default kn")
+        ->type_name("S")
+        ->default_str("")
+        ->group(loading);
+    addTestingOption(*mCommand, o.testing)->group(loading);
+    addNumber(*mCommand, "--safety", o.timeStepSafety,
+              "time step fraction of the stability limit, at most 0.5")
+        ->type_name("S")
+        ->group(loading);
+
+    const std::string output = "Output";
+    addNumbers(*mCommand, "--snapshots", o.snapshotDeltas,
+               "delta of the failure snapshots (default 6 from 0 to delta-max)")
+        ->type_name("D")
+        ->group(output);
+    addInteger(*mCommand, "--samples", o.samples, "P-delta rows per run")
+        ->type_name("N")
+        ->group(output);
+    mCommand
+        ->add_option_function<std::string>(
+            "--threads",
+            [this](const std::string& text) {
+                mThreads = cli::parseInteger(text, "--threads");
+                if (mThreads < 1) throw Error("", "--threads wants a number >= 1");
+            },
+            "worker threads (default: all cores)")
+        ->type_name("N")
+        ->group(output);
+    addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the summary");
+    mCommand->add_flag_callback("--no-scene", [&o] { o.writeScene = false; },
+                                "do not write slab_scene.toml / slab_block.obj")
+        ->group(output);
+    mCommand->add_flag("--estimate", mEstimateOnly, "print the cost and stop")->group(output);
+    mCommand->footer(
+        "Writes DIR/slab.csv (P-delta), slab_runs.csv (one row per run), slab_snapshots.csv,\n"
+        "slab_failure.txt, slab_scene.toml + assets/ (the converged case, for lsdem-run) and, "
+        "with\npython3-matplotlib, DIR/slab_*.png.");
 }
 
-int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
+bool SlabCommand::chosen() const
 {
-    // --full first: it sets the lists that later options may override.
-    SlabStudyOptions o;
-    for (cli::Arguments scan = args; !scan.done();)
-        if (scan.next() == "--full") o = slabFullOptions();
-    long long threads = 0;
-    bool estimateOnly = false;
-    bool originalGiven = false;
-    while (!args.done()) {
-        const std::string a = args.next();
-        if (a == "-h" || a == "--help") {
-            std::cout << slabUsage();
-            return 0;
-        } else if (a == "--full") {
-        } else if (a == "--blocks") {
-            o.panel.blocksPerSide = int(std::clamp<long long>(args.integer(a), -1, 1000000));
-        } else if (a == "--block-size") {
-            o.panel.blockSize = args.number(a);
-        } else if (a == "--thickness") {
-            o.panel.thickness = args.number(a);
-        } else if (a == "--angle") {
-            o.panel.angleDeg = args.number(a);
-        } else if (a == "--sdp") {
-            o.sdps = args.numbers(a);
-            if (!originalGiven) o.originalSdps.clear();  // the same list for every formulation
-        } else if (a == "--sdp-original") {
-            o.originalSdps = args.numbers(a);
-            originalGiven = true;
-        } else if (a == "--vdp-fixed") {
-            o.fixedVdp = args.number(a);
-        } else if (a == "--vdp") {
-            o.vdps = args.numbers(a);
-        } else if (a == "--no-two-way") {
-            o.twoWay = false;
-        } else if (a == "--tolerance") {
-            o.tolerance = args.number(a);
-        } else if (a == "--formulation") {
-            o.formulations.clear();
-            for (const std::string& v : args.values(a)) o.formulations.push_back(parseFormulation(v));
-        } else if (a == "--delta-max") {
-            o.deltaMax = args.number(a);
-        } else if (a == "--speed") {
-            o.speed = args.number(a);
-        } else if (a == "--indenter-radius") {
-            o.indenterRadius = args.number(a);
-        } else if (a == "--young") {
-            o.material.youngModulus = args.number(a);
-        } else if (a == "--poisson") {
-            o.material.poisson = args.number(a);
-        } else if (a == "--density") {
-            o.material.density = args.number(a);
-        } else if (a == "--friction") {
-            o.material.friction = args.number(a);
-        } else if (a == "--restitution") {
-            o.material.restitution = args.number(a);
-        } else if (a == "--damping") {
-            o.material.globalDamping = args.number(a);
-        } else if (a == "--gravity") {
-            o.material.gravity = args.number(a);
-        } else if (a == "--ks-star") {
-            o.ksStar = args.number(a);
-        } else if (a == "--kn-star") {
-            o.knStar = args.number(a);
-        } else if (a == "--kn") {
-            o.knOriginal = args.number(a);
-        } else if (a == "--reference-sdp") {
-            o.referenceSdp = args.number(a);
-        } else if (a == "--testing") {
-            o.testing = parseNodeTesting(args.value(a));
-        } else if (a == "--safety") {
-            o.timeStepSafety = args.number(a);
-        } else if (a == "--snapshots") {
-            o.snapshotDeltas = args.numbers(a);
-        } else if (a == "--samples") {
-            o.samples = int(std::clamp<long long>(args.integer(a), -1, 1000000000));
-        } else if (a == "--threads") {
-            threads = args.integer(a);
-            if (threads < 1) throw Error("", "--threads wants a number >= 1");
-        } else if (a == "--out") {
-            o.outDir = args.value(a);
-        } else if (a == "--no-plots") {
-            o.plots = false;
-        } else if (a == "--no-scene") {
-            o.writeScene = false;
-        } else if (a == "--estimate") {
-            estimateOnly = true;
-        } else if (a == "-q" || a == "--quiet") {
-            o.quiet = true;
-        } else {
-            throw Error("", "unknown option '" + a + "'", "see lsdem-study slab --help");
-        }
-    }
+    return mCommand->parsed();
+}
+
+int SlabCommand::run() const
+{
+    const SlabStudyOptions& o = mOptions;
     checkSlabStudyOptions(o);
     const SlabPanel panel(o.panel);
     const SlabStiffness k = slabStiffness(o);
@@ -183,14 +188,14 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
                 o.panel.angleDeg, o.indenterRadius, o.speed, slabDeltaMax(o), k.knStar, k.ksStar,
                 k.kn, o.material.friction, cost.text.c_str());
     std::fflush(stdout);
-    if (estimateOnly) return 0;
+    if (mEstimateOnly) return 0;
 
     cli::prepareOutputFolder(o.outDir);
 
     std::unique_ptr<tbb::global_control> limit;
-    if (threads > 0)
+    if (mThreads > 0)
         limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      static_cast<size_t>(threads));
+                                                      static_cast<size_t>(mThreads));
     const SlabStudyResult result =
         runSlabStudy(o, o.quiet ? nullptr : &std::cout,
                      [&](const SlabStudyResult& sofar) { writeSlabOutputs(sofar, o, panel); });
@@ -216,7 +221,7 @@ int runSlabCommand(cli::Arguments& args, const std::string& plotDir)
         std::printf("%s", slabFailureSummary(panel, result.runs[result.convergedRun]).c_str());
     std::printf("time %.1f s; wrote %s/slab.csv, slab_runs.csv, slab_snapshots.csv, slab_failure.txt\n",
                 result.wallSeconds, o.outDir.c_str());
-    return o.plots ? cli::drawPlots(plotDir + "/slab.py", {o.outDir}) : 0;
+    return o.plots ? cli::drawPlots("slab.py", {o.outDir}) : 0;
 }
 
 } // namespace lsdem

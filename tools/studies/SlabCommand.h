@@ -1,18 +1,37 @@
 /// @file SlabCommand.h
-/// @brief `lsdem-study slab`: the command line of the interlocked-slab study (SlabStudy.h).
+/// @brief `lsdem-study slab`: the command line of the interlocked-slab study (SlabStudy.h), its
+///        cost estimate, summary and plots.
 #pragma once
 
-#include "common/CommandLine.h"
+#include "studies/SlabStudy.h"
 
-#include <string>
+namespace CLI {
+class App;
+} // namespace CLI
 
 namespace lsdem {
 
-/// `lsdem-study slab`'s help text.
-const char* slabUsage();
+class SlabCommand
+{
+public:
+    /// Add `slab` to @a study, with its options, their defaults and the help.
+    explicit SlabCommand(CLI::App& study);
+    SlabCommand(const SlabCommand&) = delete;  // the options point into this object
+    SlabCommand& operator=(const SlabCommand&) = delete;
 
-/// `lsdem-study slab [options]`: parse @a args, print the cost, run, write the outputs and
-/// draw the plots with @a plotDir/slab.py. Returns the exit code (4: plots failed).
-int runSlabCommand(cli::Arguments& args, const std::string& plotDir);
+    /// Whether the parsed command line chose this study.
+    bool chosen() const;
+
+    /// Check the options, print the cost (and stop there with --estimate), run the study,
+    /// write the outputs, print the summary and draw the plots. Returns the exit code (4: the
+    /// plots failed). @throw Error for bad options, before anything is written.
+    int run() const;
+
+private:
+    CLI::App* mCommand = nullptr;
+    SlabStudyOptions mOptions;
+    long long mThreads = 0;                ///< worker threads (0: all cores)
+    bool mEstimateOnly = false;
+};
 
 } // namespace lsdem

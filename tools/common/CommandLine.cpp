@@ -1,0 +1,202 @@
+#include "common/CommandLine.h"
+
+#include "common/HelpFormatter.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+namespace lsdem::cli {
+
+void applyConventions(CLI::App& app)
+{
+    auto help = std::make_shared<HelpFormatter>();
+    help->column_width(30);  // the option column; descriptions fit in the 70 after it
+    app.formatter(help);
+    // A repeated option's last value wins (rather than CLI11's refusal), so a script can
+    // override an option by appending it, as it always could.
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+}
+
+double parseNumber(const std::string& text, const std::string& option)
+{
+    // strtod rather than CLI11's conversion: CLI11 reads through long double (a second
+    // rounding) and takes "nan" and "inf".
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0')
+        throw Error("", "option " + option + " wants a number, got '" + text + "'");
+    if (!std::isfinite(v))
+        throw Error("", "option " + option + " wants a finite number, got '" + text + "'");
+    return v;
+}
+
+long long parseInteger(const std::string& text, const std::string& option)
+{
+    // Base 10: CLI11's conversion reads "010" as octal 8.
+    char* end = nullptr;
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0')
+        throw Error("", "option " + option + " wants a whole number, got '" + text + "'");
+    return v;
+}
+
+std::string showNumber(double value)
+{
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+std::string showList(const std::vector<std::string>& values)
+{
+    std::string text = "[";
+    for (size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + values[i];
+    return text + "]";
+}
+
+namespace {
+
+std::vector<std::string> shown(const std::vector<double>& values)
+{
+    std::vector<std::string> out;
+    for (double v : values) out.push_back(showNumber(v));
+    return out;
+}
+
+std::vector<std::string> shown(const std::vector<int>& values)
+{
+    std::vector<std::string> out;
+    for (int v : values) out.push_back(std::to_string(v));
+    return out;
+}
+
+} // namespace
+
+CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value,
+                       const std::string& help)
+{
+    return app
+        .add_option_function<std::string>(
+            name, [&value, name](const std::string& text) { value = parseNumber(text, name); },
+            help)
+        ->type_name("FLOAT")
+        ->default_str(showNumber(value));
+}
+
+CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<double>& values,
+                        const std::string& help, int group)
+{
+    CLI::Option* option =
+        app.add_option_function<std::vector<std::string>>(
+               name,
+               [&values, name, group](const std::vector<std::string>& texts) {
+                   if (group > 0 && texts.size() % size_t(group) != 0)
+                       throw Error("", "option " + name + " wants " + std::to_string(group) +
+                                           " numbers, got " + std::to_string(texts.size()));
+                   values.clear();
+                   for (const std::string& text : texts) values.push_back(parseNumber(text, name));
+               },
+               help)
+            ->type_name("FLOAT")
+            ->default_str(values.empty() ? "" : showList(shown(values)));
+    // A group stops at its last number, so a positional argument may follow it.
+    if (group > 0) option->type_size(1)->expected(group)->allow_extra_args(false);
+    return option;
+}
+
+CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value,
+                        const std::string& help)
+{
+    return app
+        .add_option_function<std::string>(
+            name, [&value, name](const std::string& text) { value = parseInteger(text, name); },
+            help)
+        ->type_name("INT")
+        ->default_str(std::to_string(value));
+}
+
+CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
+                        const std::string& help)
+{
+    return app
+        .add_option_function<std::string>(
+            name,
+            [&value, name](const std::string& text) {
+                using Limits = std::numeric_limits<int>;
+                value = int(std::clamp<long long>(parseInteger(text, name), Limits::min(),
+                                                  Limits::max()));
+            },
+            help)
+        ->type_name("INT")
+        ->default_str(std::to_string(value));
+}
+
+CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
+                       const std::string& help)
+{
+    return app
+        .add_option_function<std::vector<std::string>>(
+            name,
+            [&values, name](const std::vector<std::string>& texts) {
+                values.clear();
+                for (const std::string& text : texts) {
+                    const double n = parseNumber(text, name);
+                    if (n != std::floor(n))
+                        throw Error("", name + " wants whole numbers, got " + text);
+                    if (n <= 0) throw Error("", name + " must be positive, got " + text);
+                    values.push_back(int(std::min(n, 1e9)));
+                }
+            },
+            help)
+        ->type_name("N")
+        ->default_str(values.empty() ? "" : showList(shown(values)));
+}
+
+std::optional<int> parse(CLI::App& app, int argc, char** argv)
+{
+    // CLI11 takes "-5" for a value but "-.5" for the short option "-." followed by "5"; the
+    // tools always read it as a number, so it is handed on as "-0.5". CLI11 wants the
+    // arguments last first.
+    std::vector<std::string> arguments;
+    for (int i = argc - 1; i > 0; --i) {
+        std::string argument = argv[i];
+        if (argument.size() > 2 && argument[0] == '-' && argument[1] == '.' &&
+            std::isdigit(static_cast<unsigned char>(argument[2])))
+            argument.insert(1, "0");
+        arguments.push_back(std::move(argument));
+    }
+    try {
+        app.parse(std::move(arguments));
+        return std::nullopt;
+    } catch (const CLI::CallForHelp&) {
+        std::cout << app.help();
+        return 0;
+    } catch (const CLI::CallForAllHelp&) {
+        std::cout << app.help("", CLI::AppFormatMode::All);
+        return 0;
+    } catch (const CLI::ParseError& e) {
+        std::string command = app.get_name();
+        for (const CLI::App* sub : app.get_subcommands()) command += " " + sub->get_name();
+        const std::string fix = "see " + command + " --help";
+        // CLI11 lists every argument it could not place (in reverse, in a subcommand); the
+        // first one is the mistake.
+        const std::vector<std::string> extras = app.remaining(true);
+        if (dynamic_cast<const CLI::ExtrasError*>(&e) && !extras.empty()) {
+            const std::string& first = extras.front();
+            throw Error("", (first[0] == '-' ? "unknown option '" : "unexpected argument '") +
+                                first + "'",
+                        fix);
+        }
+        throw Error("", e.what(), fix);
+    }
+}
+
+} // namespace lsdem::cli

@@ -60,7 +60,7 @@ TEST(CommandLineTools, InspectJsonHoldsTheSphereValues)
     const nlohmann::json j = nlohmann::json::parse(result.output);
 
     const MassProperties exact = AnalyticShape::sphere(radius).massProperties();
-    const double area = 4 * test::kPi * radius * radius;
+    const double area = 4 * kPi * radius * radius;
     EXPECT_EQ(j.at("file"), out);
     EXPECT_EQ(j.at("grid"), "phi");
     EXPECT_EQ(j.at("lsdem_asset"), true);

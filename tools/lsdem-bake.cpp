@@ -6,10 +6,10 @@
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -189,14 +189,13 @@ int main(int argc, char** argv)
         const std::string& outputPath = c.outputPath;
         c.options.optionsText = quoteArgs(argc, argv);
 
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch bakeTime;
         std::vector<std::string> warnings;
         const GrainAsset asset = shape ? bakeAnalytic(*shape, options, warnings)
                                        : bakeMeshFile(c.meshPaths[0], options, warnings);
         for (const auto& w : warnings) std::cerr << "lsdem-bake: warning: " << w << "\n";
         saveAsset(asset, outputPath);
-        const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = bakeTime.seconds();
         if (!c.quiet) {
             std::printf("baked %s -> %s in %.2f s\n", asset.provenance.source.c_str(),
                         outputPath.c_str(), seconds);

@@ -44,14 +44,37 @@ void writeFileAtomically(const std::string& path,
     }
 }
 
-void writeTextFileAtomically(const std::string& path, const std::string& contents)
+void writeStreamAtomically(const std::string& path,
+                           const std::function<void(std::ostream& out)>& write)
 {
     writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << contents;
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out)
+            throw Error(path, "cannot create a temporary file beside it",
+                        "check that the folder is writable and not full");
+        write(out);
         out.close();
-        if (!out) throw Error(path, "could not write the file (disk full?)");
+        if (!out)
+            throw Error(path, "could not write the file (disk full?)",
+                        "free some disk space or choose another output folder");
     });
+}
+
+void writeTextFileAtomically(const std::string& path, const std::string& contents)
+{
+    writeStreamAtomically(path, [&](std::ostream& out) {
+        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+    });
+}
+
+void prepareOutputFolder(const std::string& dir, const std::string& fix)
+{
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw Error(dir, "cannot create the output folder (" + ec.message() + ")", fix);
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw Error(dir, "the output folder is not writable", fix);
 }
 
 } // namespace lsdem

@@ -191,14 +191,9 @@ void writeMesh(const TriangleMesh& mesh, const std::string& path)
     else
         throw Error(path, "cannot write a mesh with extension '" + ext + "'",
                     "use one of .obj, .stl, .ply");
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(path, "cannot write the mesh: the file cannot be created",
-                              "check that the folder is writable");
+    writeStreamAtomically(path, [&](std::ostream& out) {
         out << std::setprecision(17);  // enough digits to read back every double exactly
         writer(mesh, out);
-        out.close();
-        if (!out) throw Error(path, "cannot write the mesh: writing failed (disk full?)");
     });
 }
 

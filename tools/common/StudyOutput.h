@@ -5,6 +5,7 @@
 
 #include "common/PlotScripts.h"
 
+#include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 
 #include <unistd.h>
@@ -20,14 +21,7 @@ namespace lsdem::cli {
 /// Create @a dir (and its parents) and check that it is writable; an Error naming it otherwise.
 inline void prepareOutputFolder(const std::string& dir)
 {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec || !fs::is_directory(dir))
-        throw Error(dir, "cannot create the output folder (" + ec.message() + ")",
-                    "choose another --out");
-    if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(dir, "the output folder is not writable", "choose another --out");
+    lsdem::prepareOutputFolder(dir, "choose another --out");
 }
 
 /// Run the matplotlib script @a scriptName (found with plotScriptFolder) with @a arguments.

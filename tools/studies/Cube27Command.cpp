@@ -7,11 +7,11 @@
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 
 namespace lsdem {
@@ -101,12 +101,11 @@ int Cube27Command::run() const
     planCube27(o);  // refuses a --steps too few for any run, before anything is written
     cli::prepareOutputFolder(o.outDir);
 
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch wall;
     const Cube27Result result = runCube27(o);
     const std::string csv = o.outDir + "/cube27.csv";
     writeCube27Csv(result, o, csv);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = wall.seconds();
 
     std::printf("cube27: R = %g mm, voxel = %g mm, δ_max = %g mm, %d orientation(s), %s testing\n",
                 o.radius, o.voxel, o.deltaMax, o.orientations, nodeTestingName(o.testing).c_str());

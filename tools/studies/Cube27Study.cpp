@@ -10,11 +10,11 @@
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -340,10 +340,6 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run, const std::s
 
 Cube27Result runCube27(const Cube27Options& o)
 {
-    using Clock = std::chrono::steady_clock;
-    auto since = [](Clock::time_point t) {
-        return std::chrono::duration<double>(Clock::now() - t).count();
-    };
     checkCube27Options(o);
     Cube27Result result;
     result.runs = planCube27(o);
@@ -373,12 +369,12 @@ Cube27Result runCube27(const Cube27Options& o)
     double doneNodeSteps = 0.0;
     size_t index = 0;
     for (int nodes : o.nodeCounts) {
-        const auto bakeStart = Clock::now();
+        const auto bakeStart = SteadyClock::now();
         std::vector<std::string> warnings;
         const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
         const TemporaryAsset file(sphere, nodes);
         nodesActual[nodes] = double(sphere.nodes.size());
-        result.bakeSeconds += since(bakeStart);
+        result.bakeSeconds += secondsSince(bakeStart);
         if (!o.quiet) {
             std::printf("N = %d: baked %zu nodes (spacing %.3g mm), voxel %g mm\n", nodes,
                         sphere.nodes.size(), sphere.spacing.mean, o.voxel);
@@ -387,7 +383,7 @@ Cube27Result runCube27(const Cube27Options& o)
 
         for (; index < result.runs.size() && result.runs[index].nodes == nodes; ++index) {
             Cube27Run& run = result.runs[index];
-            const auto start = Clock::now();
+            const auto start = SteadyClock::now();
             const Scene scene = makeCube27Scene(o, run, file.path());
             World world = buildWorld(scene, warnings);
             Samples s;
@@ -421,7 +417,7 @@ Cube27Result runCube27(const Cube27Options& o)
                 throw Error("", "cube27 run " + where.str() + ": " + e.problem(),
                             "lower --safety or raise --steps");
             }
-            run.seconds = since(start);
+            run.seconds = secondsSince(start);
             result.simulateSeconds += run.seconds;
             doneNodeSteps += 27.0 * nodes * double(run.steps);
             if (!o.quiet) {

@@ -2,6 +2,7 @@
 
 #include "studies/FormulationList.h"
 
+#include "lsdem/ls/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/World.h"
@@ -12,7 +13,6 @@
 #include "lsdem/ls/MeshIO.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -28,13 +28,6 @@
 namespace lsdem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string show(double v)
 {
@@ -390,7 +383,7 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
                           Formulation f, double sdp, double vdp,
                           const std::function<void(double)>& progress)
 {
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     SlabRunResult r;
     r.formulation = f;
     r.sdp = sdp;
@@ -456,7 +449,7 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
 
     sample(0.0);
     takeSnapshots(0.0);
-    Clock::time_point lastReport = Clock::now();
+    SteadyClock::time_point lastReport = SteadyClock::now();
     try {
         while (delta() < deltaMax * (1.0 - 1e-12)) {
             sim.step();
@@ -466,7 +459,7 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
             takeSnapshots(d);
             if (progress && secondsSince(lastReport) > 10.0) {
                 progress(d);
-                lastReport = Clock::now();
+                lastReport = SteadyClock::now();
             }
         }
     } catch (const Error& e) {
@@ -701,7 +694,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
 {
     namespace fs = std::filesystem;
     checkSlabStudyOptions(o);
-    const auto start = Clock::now();
+    const auto start = SteadyClock::now();
     const SlabPanel panel(o.panel);
     SlabStudyResult result;
     const std::string assetDir = o.outDir + "/assets";
@@ -713,7 +706,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
         const auto key = std::make_pair(sdp, vdp);
         auto it = baked.find(key);
         if (it != baked.end()) return it->second;
-        const auto t0 = Clock::now();
+        const auto t0 = SteadyClock::now();
         auto asset = bakeSlabBlock(panel, vdp, sdp);
         std::ostringstream name;
         name << assetDir << "/block_sdp" << sdp << "_vdp" << vdp << ".vdb";
@@ -731,7 +724,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
             const SlabRunResult& r = result.runs[k];
             if (r.formulation == f && r.sdp == sdp && r.vdp == vdp) return int(k);
         }
-        const auto bakeStart = Clock::now();
+        const auto bakeStart = SteadyClock::now();
         const auto [asset, path] = blockFor(sdp, vdp);
         const double bakeSeconds = secondsSince(bakeStart);
         if (log)

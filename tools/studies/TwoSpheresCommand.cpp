@@ -6,10 +6,11 @@
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
 
+#include "lsdem/ls/Stopwatch.h"
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -49,12 +50,11 @@ int TwoSpheresCommand::run() const
     checkTwoSpheresOptions(o);
     cli::prepareOutputFolder(o.outDir);
 
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch wall;
     const TwoSpheresResult result = runTwoSpheres(o);
     const std::string csv = o.outDir + "/two_spheres.csv";
     writeTwoSpheresCsv(result, o, csv);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = wall.seconds();
 
     // Summary: P at δ_max per formulation and N at the base stiffness, against the exact value.
     std::printf("two-spheres: R = %g mm, voxel = %g mm, δ_max = %g mm, %d orientations, %s testing\n",

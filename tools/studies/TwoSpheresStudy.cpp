@@ -5,8 +5,8 @@
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -48,11 +48,11 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
     const int kSeriesCount = stiffnessSeriesNodes(o);
 
     for (int nodes : o.nodeCounts) {
-        const auto bakeStart = std::chrono::steady_clock::now();
+        const Stopwatch bake;
         std::vector<std::string> warnings;
         const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
-        const auto contactStart = std::chrono::steady_clock::now();
-        result.bakeSeconds += std::chrono::duration<double>(contactStart - bakeStart).count();
+        result.bakeSeconds += bake.seconds();
+        const Stopwatch contact;
         if (!o.quiet)
             std::printf("  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes, sphere.nodes.size(),
                         sphere.spacing.mean);
@@ -116,8 +116,7 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
                 row.forceExact = exactSphereContactForce(o.radius, row.delta, row.stiffness);
                 result.rows.push_back(row);
             }
-        result.contactSeconds +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - contactStart).count();
+        result.contactSeconds += contact.seconds();
     }
     return result;
 }

@@ -170,8 +170,7 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint)
 
 void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint)
 {
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
+    writeStreamAtomically(path, [&](std::ostream& out) {
         Writer w(out);
         out.write(kMagic, sizeof kMagic);
         w.pod(kVersion);
@@ -207,8 +206,6 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
             w.shear(h);
         }
         out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic
-        out.close();
-        if (!out) throw Error(path, "could not write the checkpoint", "check free disk space");
     });
 }
 

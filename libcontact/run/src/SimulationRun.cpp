@@ -1,15 +1,16 @@
 #include "lsdem/run/SimulationRun.h"
 
+#include "lsdem/ls/Stopwatch.h"
 #include "lsdem/run/Checkpoint.h"
 #include "lsdem/run/RunOutputs.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/run/VtkSeries.h"
+#include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/Inspection.h"
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,13 +23,6 @@ namespace {
 
 std::atomic<bool> gStopRequested{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "requestStop must be signal-safe");
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Steps between outputs for a period in time units (at least one step).
 long long stepsPer(double period, double dt)
@@ -69,15 +63,6 @@ std::string formatDuration(double seconds)
     else if (seconds < 3600) std::snprintf(buffer, sizeof buffer, "%dm%02ds", int(seconds) / 60, int(seconds) % 60);
     else std::snprintf(buffer, sizeof buffer, "%dh%02dm", int(seconds) / 3600, (int(seconds) / 60) % 60);
     return buffer;
-}
-
-void createOutputFolder(const std::string& dir)
-{
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir))
-        throw Error(dir, "cannot create the output folder (" + ec.message() + ")",
-                    "choose a writable --out folder");
 }
 
 /// The ParaView output of a run: surfaces extracted once per asset, frames on demand.
@@ -156,7 +141,7 @@ void requestStop()
 
 RunResult runSimulation(const RunOptions& options, std::ostream& log)
 {
-    const auto wallStart = Clock::now();
+    const auto wallStart = SteadyClock::now();
     RunResult result;
     gStopRequested.store(false);
 
@@ -181,7 +166,7 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     std::vector<std::string> warnings;
     World world = buildWorld(scene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
-    createOutputFolder(outDir);  // only once the scene is known to be good
+    prepareOutputFolder(outDir, "choose a writable --out folder");  // once the scene is good
     std::vector<Vec3> initialPositions;
     for (const Grain& g : world.grains) initialPositions.push_back(g.body.pose.position);
 
@@ -234,8 +219,8 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
 
     const long long planned = plannedSteps(scene, sim.world(), dt);
     const long long firstStep = sim.world().step;
-    auto lastFlush = Clock::now(), lastProgress = Clock::now();
-    const auto loopStart = Clock::now();
+    auto lastFlush = SteadyClock::now(), lastProgress = SteadyClock::now();
+    const auto loopStart = SteadyClock::now();
     while (!endReached(scene, sim.world(), dt)) {
         try {
             sim.step();
@@ -244,17 +229,17 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
             throw;
         }
         const long long step = sim.world().step;
-        const auto outputStart = Clock::now();
+        const auto outputStart = SteadyClock::now();
         if (step % historyEvery == 0) recordHistoryRow(sim, record);
         if (frames && step % vtkEvery == 0) frames->write(sim);
         const bool stop = gStopRequested.load() ||
                           (options.stopAtStep > 0 && step >= options.stopAtStep);
         if (stop || (checkpointEvery > 0 && step % checkpointEvery == 0)) {
             writeCheckpoint();
-            lastFlush = Clock::now();
+            lastFlush = SteadyClock::now();
         } else if (secondsSince(lastFlush) > 10.0) {  // keep the history files fresh
             writeTextOutputs();
-            lastFlush = Clock::now();
+            lastFlush = SteadyClock::now();
         }
         result.outputSeconds += secondsSince(outputStart);
         if (stop) {
@@ -262,7 +247,7 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
             break;
         }
         if (options.progress && secondsSince(lastProgress) > 0.5) {
-            lastProgress = Clock::now();
+            lastProgress = SteadyClock::now();
             const double elapsed = secondsSince(loopStart);
             const double perStep = elapsed / static_cast<double>(step - firstStep);
             char line[160];
@@ -278,7 +263,7 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     }
     if (options.progress) std::fputs("\n", stderr);
 
-    const auto finalStart = Clock::now();
+    const auto finalStart = SteadyClock::now();
     if (!result.interrupted) {
         const World& w = sim.world();
         const bool rowWritten = !record.energyRows.empty() &&

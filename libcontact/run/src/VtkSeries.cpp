@@ -195,23 +195,6 @@ std::string contactsFile(const std::vector<VtkForcePoint>& forces)
     return file.contents(forces.size(), forces.size());
 }
 
-/// Write @a contents to @a path atomically: a reader (ParaView reloading mid-run) sees the old
-/// file or the whole new one. Failures name the file and say what to do.
-void writeWholeFile(const std::string& path, const std::string& contents)
-{
-    writeFileAtomically(path, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        if (!out)
-            throw Error(path, "cannot create a temporary file beside it",
-                        "check that the output folder is writable and not full");
-        out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
-        out.close();
-        if (!out)
-            throw Error(path, "could not write the file (disk full?)",
-                        "free some disk space or choose another output folder");
-    });
-}
-
 std::string frameFileName(const std::string& baseName, const char* kind, size_t frame)
 {
     return baseName + "_" + kind + "_" + std::to_string(frame) + ".vtu";
@@ -254,14 +237,14 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
                                     " is not in 0.." + std::to_string(framesWritten()));
     const std::filesystem::path dir(mDirectory);
     const size_t k = static_cast<size_t>(frame);
-    writeWholeFile((dir / frameFileName(mBaseName, "grains", k)).string(), grainsFile(grains));
-    writeWholeFile((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
+    writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(), grainsFile(grains));
+    writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
 
     // The list changes only once the .pvd naming it is written, so a failure leaves the
     // series as it was and the frame can be written again.
     std::vector<double> times(mTimes.begin(), mTimes.begin() + frame);
     times.push_back(time);
-    writeWholeFile((dir / (mBaseName + ".pvd")).string(), collectionFile(mBaseName, times));
+    writeTextFileAtomically((dir / (mBaseName + ".pvd")).string(), collectionFile(mBaseName, times));
     mTimes = std::move(times);
 }
 

@@ -1,5 +1,6 @@
 #include "lsdem/simulation/Simulation.h"
 
+#include "lsdem/ls/Stopwatch.h"
 #include "lsdem/simulation/BroadPhase.h"
 #include "lsdem/ls/Error.h"
 
@@ -7,7 +8,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -15,13 +15,6 @@
 namespace lsdem {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 ContactGrain contactView(const Grain& g, int index)
 {
@@ -98,7 +91,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
 void Simulation::step()
 {
     const double dt = mDt;
-    const auto integrateStart = Clock::now();
+    const auto integrateStart = SteadyClock::now();
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
     double workBefore = 0.0;
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
@@ -128,7 +121,7 @@ void Simulation::step()
 
     evaluateForces(dt);
 
-    const auto kickStart = Clock::now();
+    const auto kickStart = SteadyClock::now();
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         Grain& g = mWorld.grains[i];
         if (g.isFree()) kick(g.body, g.force, g.torque, 0.5 * dt);
@@ -148,7 +141,7 @@ void Simulation::evaluateForces(double slipStep)
 {
     World& w = mWorld;
     const int n = static_cast<int>(w.grains.size());
-    const auto broadStart = Clock::now();
+    const auto broadStart = SteadyClock::now();
 
     std::vector<Vec3> centers(n);
     std::vector<double> radii(n);
@@ -209,7 +202,7 @@ void Simulation::evaluateForces(double slipStep)
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
 
     // Narrow phase and contact laws, one slot per task; nothing shared is written.
-    const auto narrowStart = Clock::now();
+    const auto narrowStart = SteadyClock::now();
     const bool record = mRecordForces;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
         ContactSlot& s = slots[k];
@@ -232,7 +225,7 @@ void Simulation::evaluateForces(double slipStep)
     mCounters.narrowSeconds += secondsSince(narrowStart);
 
     // Sum in slot order: the same numbers whatever the thread count.
-    const auto reduceStart = Clock::now();
+    const auto reduceStart = SteadyClock::now();
     for (Grain& g : w.grains) {
         g.force = Vec3::Zero();
         g.torque = Vec3::Zero();

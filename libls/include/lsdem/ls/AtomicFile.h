@@ -1,9 +1,11 @@
 /// @file AtomicFile.h
 /// @brief Write a result file so that readers see either the old file or the whole new one,
-///        never a half-written one: write to a temporary beside it, then rename.
+///        never a half-written one: write to a temporary beside it, then rename. And make sure
+///        an output folder can be written before the work that fills it.
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 
 namespace lsdem {
@@ -15,7 +17,16 @@ namespace lsdem {
 void writeFileAtomically(const std::string& path,
                          const std::function<void(const std::string& tmpPath)>& writeTo);
 
+/// Stream version: @a write writes to a binary stream on the temporary. A stream that cannot be
+/// opened or fails while writing (a full disk) is an Error naming @a path.
+void writeStreamAtomically(const std::string& path,
+                           const std::function<void(std::ostream& out)>& write);
+
 /// Text version: writes @a contents.
 void writeTextFileAtomically(const std::string& path, const std::string& contents);
+
+/// Create @a dir (and its parents) and check that it is writable, before any work starts.
+/// @throw Error naming the folder, with @a fix (e.g. "choose another --out").
+void prepareOutputFolder(const std::string& dir, const std::string& fix);
 
 } // namespace lsdem

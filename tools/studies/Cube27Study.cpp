@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <random>
 #include <sstream>
 #include <tuple>
 
@@ -32,13 +31,6 @@ const double kColumn = 2.0 + 2.0 * std::sqrt(2.0);
 /// Throughput measured on the development machine (2 shared cores, 0.9–1.7e8 from N = 16000
 /// down to 500) for the cost estimate printed before a study: grain-node steps per second.
 constexpr double kNodeStepsPerSecond = 1.2e8;
-
-/// A uniformly random rotation drawn from @a rng (the studies' reproducible sequence).
-Quat randomRotation(std::mt19937& rng)
-{
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    return lsdem::randomRotation([&] { return u(rng); });
-}
 
 /// Contact stiffnesses of a column at top wall travel @a delta, from the continuum laws:
 /// kWall (sphere against a plane) and kSphere (sphere against sphere), force/length.
@@ -297,7 +289,7 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run, const std::s
     }
 
     // The orientation set: one random rotation per grain, the same set for every N and law.
-    std::mt19937 rng(o.seed * 7919u + unsigned(run.orientation));
+    std::mt19937_64 rng(o.seed * 7919u + unsigned(run.orientation));
     for (int k = 0; k < 3; ++k)
         for (int j = 0; j < 3; ++j)
             for (int i = 0; i < 3; ++i) {

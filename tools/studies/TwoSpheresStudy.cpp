@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <sstream>
 
 namespace lsdem {
@@ -25,13 +24,6 @@ void checkTwoSpheresOptions(const TwoSpheresOptions& o)
 }
 
 namespace {
-
-/// A uniformly random rotation drawn from @a rng (the studies' reproducible sequence).
-Quat randomRotation(std::mt19937& rng)
-{
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    return lsdem::randomRotation([&] { return u(rng); });
-}
 
 struct Series
 {
@@ -72,7 +64,7 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
         std::vector<std::vector<std::vector<double>>> force(
             series.size(), std::vector<std::vector<double>>(o.steps + 1));
         for (int m = 0; m < o.orientations; ++m) {
-            std::mt19937 rng(o.seed * 7919u + unsigned(m));
+            std::mt19937_64 rng(o.seed * 7919u + unsigned(m));
             ContactGrain fixed, moved;
             fixed.asset = moved.asset = &sphere;
             fixed.index = 0;

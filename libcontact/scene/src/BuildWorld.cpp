@@ -10,6 +10,7 @@ namespace {
 std::shared_ptr<const GrainAsset> loadOrBake(const AssetSpec& spec,
                                              std::vector<std::string>& warnings)
 {
+    if (spec.loaded) return spec.loaded;
     try {
         if (!spec.file.empty()) return loadAsset(spec.file);
         if (!spec.meshFile.empty())

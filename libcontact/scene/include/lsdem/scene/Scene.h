@@ -11,6 +11,7 @@
 #include "lsdem/simulation/BoundaryShape.h"
 #include "lsdem/simulation/GrainMotion.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,10 +24,14 @@ struct UnitSystem
     std::string length = "mm", mass = "tonne", time = "s", force = "N";
 };
 
-/// Where an asset comes from: a baked .vdb file, or a mesh / analytic shape baked at load.
+/// Where an asset comes from: a baked .vdb file, or a mesh / analytic shape baked at load, or
+/// (for scenes built by a program) an asset already in memory.
 struct AssetSpec
 {
     std::string name;
+    /// An asset already loaded or baked by the program that built the scene: used as it is
+    /// (no file is read). @a file, if also set, is where it was saved (for sceneToToml).
+    std::shared_ptr<const GrainAsset> loaded;
     std::string file;                  ///< baked asset, absolute path ("" if baked on the fly)
     std::string meshFile;              ///< mesh to bake on the fly, absolute path
     std::optional<AnalyticShape> shape;  ///< analytic shape to bake on the fly

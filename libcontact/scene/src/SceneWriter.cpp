@@ -1,0 +1,298 @@
+// Writing a scene as TOML, section by section in the reader's order, so that the file reads
+// back to the same scene. Strings (and keys that are not bare) are escaped by toml++; numbers
+// are written by std::to_chars in their shortest form that reads back to the same double
+// (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
+#include "lsdem/scene/SceneWriter.h"
+
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Error.h"
+
+#include <toml++/toml.h>
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A TOML document written line by line.
+class TomlText
+{
+public:
+    void comment(const std::string& text)
+    {
+        std::istringstream lines(text);
+        for (std::string line; std::getline(lines, line);)
+            mOut << (line.empty() ? "#" : "# " + line) << "\n";
+    }
+    void table(const std::string& header) { blank(), mOut << "[" << header << "]\n"; }
+    void arrayTable(const std::string& name) { blank(), mOut << "[[" << name << "]]\n"; }
+
+    void string(const std::string& key, const std::string& value)
+    {
+        mOut << key << " = " << quoted(value) << "\n";
+    }
+    void number(const std::string& key, double value, const std::string& note = "")
+    {
+        mOut << key << " = " << numberText(value, key) << (note.empty() ? "" : "   # " + note)
+             << "\n";
+    }
+    void integer(const std::string& key, long long value) { mOut << key << " = " << value << "\n"; }
+    void boolean(const std::string& key, bool value)
+    {
+        mOut << key << " = " << (value ? "true" : "false") << "\n";
+    }
+    void numbers(const std::string& key, std::initializer_list<double> values)
+    {
+        mOut << key << " = [";
+        const char* separator = "";
+        for (double v : values) mOut << separator << numberText(v, key), separator = ", ";
+        mOut << "]\n";
+    }
+    void vec3(const std::string& key, const Vec3& v) { numbers(key, {v.x(), v.y(), v.z()}); }
+    void strings(const std::string& key, const std::string& a, const std::string& b)
+    {
+        mOut << key << " = [" << quoted(a) << ", " << quoted(b) << "]\n";
+    }
+    /// key = { name = "...", value = ... } (the end displacement).
+    void inlineTable(const std::string& key, const std::string& nameKey, const std::string& name,
+                     const std::string& valueKey, double value)
+    {
+        mOut << key << " = { " << nameKey << " = " << quoted(name) << ", " << valueKey << " = "
+             << numberText(value, key) << " }\n";
+    }
+
+    /// A key as TOML wants it: bare if it can be, else a quoted string.
+    static std::string key(const std::string& k)
+    {
+        bool bare = !k.empty();
+        for (char c : k)
+            bare = bare && (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-');
+        return bare ? k : quoted(k);
+    }
+
+    std::string str() const { return mOut.str(); }
+
+private:
+    void blank()
+    {
+        if (mOut.tellp() > 0) mOut << "\n";
+    }
+    static std::string quoted(const std::string& s)
+    {
+        std::ostringstream out;
+        out << toml::value<std::string>(s);
+        return out.str();
+    }
+    static std::string numberText(double v, const std::string& key)
+    {
+        if (!std::isfinite(v))
+            throw Error("", "cannot write " + key + " = " + std::to_string(v) + " to a scene file",
+                        "every number in a scene must be finite");
+        char buffer[64];
+        const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+        std::string text(buffer, end);
+        // TOML tells floats from integers by a point or an exponent.
+        if (text.find_first_of(".eE") == std::string::npos) text += ".0";
+        return text;
+    }
+
+    std::ostringstream mOut;
+};
+
+/// @a file relative to @a directory if it lies below it, else absolute.
+std::string pathFrom(const std::string& directory, const std::string& file)
+{
+    const fs::path absolute = fs::absolute(file).lexically_normal();
+    const fs::path relative =
+        absolute.lexically_relative(fs::absolute(directory).lexically_normal());
+    if (relative.empty() || *relative.begin() == "..") return absolute.string();
+    return relative.string();
+}
+
+std::string motionName(GrainMotion m)
+{
+    switch (m) {
+    case GrainMotion::Free: return "free";
+    case GrainMotion::Fixed: return "fixed";
+    case GrainMotion::Prescribed: return "prescribed";
+    }
+    return "free";
+}
+
+void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)
+{
+    t.table("assets." + TomlText::key(a.name));
+    if (!a.file.empty()) {
+        t.string("file", pathFrom(directory, a.file));
+        return;
+    }
+    if (a.loaded)
+        throw Error(a.where, "asset '" + a.name + "' is held only in memory",
+                    "save it (saveAsset) and set its file before writing the scene");
+    if (!a.meshFile.empty()) {
+        t.string("mesh", pathFrom(directory, a.meshFile));
+    } else if (a.shape) {
+        const AnalyticShape& s = *a.shape;
+        switch (s.kind) {
+        case AnalyticShape::Kind::Sphere:
+            t.string("shape", "sphere");
+            t.number("radius", s.size.x());
+            break;
+        case AnalyticShape::Kind::Box:
+            t.string("shape", "box");
+            t.vec3("size", s.size);
+            break;
+        case AnalyticShape::Kind::Ellipsoid:
+            t.string("shape", "ellipsoid");
+            t.vec3("size", s.size);
+            break;
+        }
+    } else {
+        throw Error(a.where, "asset '" + a.name + "' has no source",
+                    "give it a file, a mesh or a shape");
+    }
+    const BakeOptions& b = a.bake;
+    t.number("voxel", b.voxelSize);
+    switch (b.nodePlacement) {
+    case NodePlacement::Spacing: t.number("node_spacing", b.nodeSpacing); break;
+    case NodePlacement::Count: t.integer("nodes", b.nodeCount); break;
+    case NodePlacement::MeshVertices: t.boolean("mesh_nodes", true); break;
+    }
+    t.string("areas", b.areaRule == AreaRule::Mesh ? "mesh" : "uniform");
+}
+
+void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
+{
+    const ContactModel& m = c.model;
+    t.arrayTable("contacts");
+    t.strings("materials", scene.materials[c.materialA].name, scene.materials[c.materialB].name);
+    t.string("formulation", formulationName(m.formulation));
+    t.string("testing", nodeTestingName(m.testing));
+    t.number("normal_stiffness", m.normalStiffness, m.normal().stiffnessUnit());
+    if (m.shearStiffness > 0.0) t.number("shear_stiffness", m.shearStiffness);
+    if (m.friction > 0.0) t.number("friction", m.friction);
+    if (c.restitution != 1.0) t.number("restitution", c.restitution);
+}
+
+void writeOrientation(TomlText& t, const Quat& q)
+{
+    t.numbers("orientation", {q.w(), q.x(), q.y(), q.z()});
+}
+
+void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
+{
+    t.arrayTable("grains");
+    if (!g.name.empty()) t.string("name", g.name);
+    t.string("asset", scene.assets[g.asset].name);
+    t.string("material", scene.materials[g.material].name);
+    t.vec3("position", g.pose.position);
+    writeOrientation(t, g.pose.orientation);
+    if (g.motion != GrainMotion::Free) t.string("motion", motionName(g.motion));
+    if (g.motion != GrainMotion::Fixed) {
+        if (!g.velocity.isZero(0.0)) t.vec3("velocity", g.velocity);
+        if (!g.angularVelocity.isZero(0.0)) t.vec3("angular_velocity", g.angularVelocity);
+    }
+    if (g.mass > 0.0) t.number("mass", g.mass);
+}
+
+void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
+{
+    t.arrayTable("boundaries");
+    t.string("name", b.name);
+    switch (b.shape) {
+    case BoundaryShape::Plane:
+        t.string("type", "plane");
+        t.string("material", scene.materials[b.material].name);
+        t.vec3("point", b.point);
+        t.vec3("normal", b.normal);
+        if (b.extentU > 0.0 && b.extentV > 0.0) {
+            t.numbers("extent", {b.extentU, b.extentV});
+            t.vec3("axis_u", b.axisU);
+        }
+        if (b.thickness > 0.0) t.number("thickness", b.thickness);
+        break;
+    case BoundaryShape::Sphere:
+        t.string("type", "sphere");
+        t.string("material", scene.materials[b.material].name);
+        t.vec3("center", b.center);
+        t.number("radius", b.radius);
+        break;
+    case BoundaryShape::LevelSet:
+        t.string("type", "level-set");
+        t.string("asset", scene.assets[b.asset].name);
+        t.string("material", scene.materials[b.material].name);
+        t.vec3("position", b.pose.position);
+        writeOrientation(t, b.pose.orientation);
+        break;
+    }
+    if (!b.velocity.isZero(0.0)) t.vec3("velocity", b.velocity);
+}
+
+void writeSimulation(TomlText& t, const Scene& scene)
+{
+    t.table("simulation");
+    t.vec3("gravity", scene.gravity);
+    if (scene.globalDamping > 0.0) t.number("global_damping", scene.globalDamping);
+    if (scene.timeStep.fixed > 0.0) {
+        t.number("time_step", scene.timeStep.fixed);
+    } else {
+        t.string("time_step", "auto");
+        t.number("safety", scene.timeStep.safety);
+    }
+    const EndCondition& end = scene.end;
+    if (end.time > 0.0) t.number("end_time", end.time);
+    if (end.steps > 0) t.integer("end_steps", end.steps);
+    if (end.boundary >= 0)
+        t.inlineTable("end_displacement", "boundary", scene.boundaries[end.boundary].name,
+                      "value", end.displacement);
+}
+
+void writeOutput(TomlText& t, const OutputSpec& o)
+{
+    t.table("output");
+    if (o.historyEvery > 0) t.integer("history_every", o.historyEvery);
+    if (o.historyPeriod > 0.0) t.number("history_period", o.historyPeriod);
+    if (o.vtkPeriod > 0.0) t.number("vtk_period", o.vtkPeriod);
+    if (o.checkpointPeriod > 0.0) t.number("checkpoint_period", o.checkpointPeriod);
+    t.boolean("contact_forces", o.contactForces);
+}
+
+} // namespace
+
+std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
+                        const std::string& header)
+{
+    TomlText t;
+    if (!header.empty()) t.comment(header);
+    t.table("units");
+    t.string("length", scene.units.length);
+    t.string("mass", scene.units.mass);
+    t.string("time", scene.units.time);
+    t.string("force", scene.units.force);
+    for (const AssetSpec& a : scene.assets) writeAsset(t, a, sceneDirectory);
+    for (const MaterialSpec& m : scene.materials) {
+        t.table("materials." + TomlText::key(m.name));
+        t.number("density", m.density);
+    }
+    for (const ContactSpec& c : scene.contacts) writeContact(t, scene, c);
+    for (const GrainSpec& g : scene.grains) writeGrain(t, scene, g);
+    for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
+    writeSimulation(t, scene);
+    writeOutput(t, scene.output);
+    return t.str();
+}
+
+void writeSceneFile(const Scene& scene, const std::string& path, const std::string& header)
+{
+    const fs::path folder = fs::absolute(path).parent_path();
+    writeTextFileAtomically(path, sceneToToml(scene, folder.string(), header));
+}
+
+} // namespace lsdem

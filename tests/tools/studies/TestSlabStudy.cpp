@@ -166,10 +166,9 @@ TEST(SlabStudy, SceneAndItsTomlAgree)
     SlabStudyOptions o = tinyOptions();
     const SlabPanel panel(o.panel);
     const auto block = bakeSlabBlock(panel, 0.3, 1.0);
-    const std::string assetPath = dir.file("block.vdb");
-    saveAsset(*block, assetPath);
     const double dt = slabTimeStep(o, panel, *block, Formulation::Adapted);
-    const Scene scene = makeSlabScene(o, Formulation::Adapted, *block, assetPath, dt);
+    Scene scene = makeSlabScene(o, Formulation::Adapted, block, dt);
+    EXPECT_EQ(scene.assets.front().loaded, block);  // held in memory, no file needed
     ASSERT_EQ(scene.grains.size(), 9u);
     ASSERT_EQ(scene.boundaries.size(), 13u);
     const BoundarySpec& indenter = scene.boundaries.back();
@@ -179,11 +178,12 @@ TEST(SlabStudy, SceneAndItsTomlAgree)
     // The central grain's centroid is the block's centre (the shape is symmetric about it).
     EXPECT_NEAR((scene.grains[panel.centralBlock()].pose.position - Vec3(0, 0, 1.5)).norm(), 0.0, 1e-9);
 
-    const std::string text = slabSceneToml(scene, o, dir.path().string());
+    // For lsdem-run the block is saved and the scene names its file.
+    const std::string assetPath = dir.file("block.vdb");
+    saveAsset(*block, assetPath);
+    scene.assets.front().file = assetPath;
     const std::string path = dir.file("slab_scene.toml");
-    {
-        std::ofstream(path) << text;
-    }
+    writeSlabScene(scene, o, path);
     const Scene back = readSceneFile(path);
     ASSERT_EQ(back.grains.size(), scene.grains.size());
     ASSERT_EQ(back.boundaries.size(), scene.boundaries.size());
@@ -208,13 +208,10 @@ TEST(SlabStudy, SceneAndItsTomlAgree)
 // more than any other, each of them less than half as far.
 TEST(SlabStudy, TinyPanelRunsAndTheCentralBlockMovesMost)
 {
-    lsdem::test::ScratchDir dir;
     SlabStudyOptions o = tinyOptions();
     const SlabPanel panel(o.panel);
     const auto block = bakeSlabBlock(panel, o.fixedVdp, 1.0);
-    const std::string assetPath = dir.file("block.vdb");
-    saveAsset(*block, assetPath);
-    const SlabRunResult r = runSlabCase(o, panel, block, assetPath, Formulation::Adapted, 1.0, o.fixedVdp);
+    const SlabRunResult r = runSlabCase(o, panel, block, Formulation::Adapted, 1.0, o.fixedVdp);
     ASSERT_FALSE(r.stopped) << r.error;
     ASSERT_GE(r.curve.size(), 20u);
     EXPECT_NEAR(r.curve.back().delta, 0.3, 1e-3);
@@ -294,7 +291,6 @@ TEST(SlabStudy, ProgramRefusesBadInputAndEstimatesWithoutRunning)
 // step).
 TEST(SlabStudy, OriginalGrowsWithTheNodesAdaptedConverges)
 {
-    lsdem::test::ScratchDir dir;
     SlabStudyOptions o = tinyOptions();
     o.formulations = {Formulation::Adapted, Formulation::Original};
     o.referenceSdp = 0.5;
@@ -303,10 +299,9 @@ TEST(SlabStudy, OriginalGrowsWithTheNodesAdaptedConverges)
     std::vector<double> nodes;
     for (double sdp : {0.5, 0.35}) {
         const auto block = bakeSlabBlock(panel, 0.1, sdp);
-        saveAsset(*block, dir.file("block.vdb"));
         nodes.push_back(double(block->nodes.size()));
         for (Formulation f : o.formulations) {
-            const SlabRunResult r = runSlabCase(o, panel, block, dir.file("block.vdb"), f, sdp, 0.1);
+            const SlabRunResult r = runSlabCase(o, panel, block, f, sdp, 0.1);
             ASSERT_FALSE(r.stopped) << r.error;
             force[f].push_back(r.curve.back().force);
         }

@@ -1,0 +1,153 @@
+#include "studies/SlabOptions.h"
+
+#include "studies/FormulationList.h"
+#include "studies/SlabCost.h"
+
+#include "common/NumberText.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace lsdem {
+
+double slabDeltaMax(const SlabStudyOptions& o)
+{
+    // Twice the thickness: the central block is out well before (at about 1.6 t by default).
+    return o.deltaMax > 0.0 ? o.deltaMax : 2.0 * o.panel.thickness;
+}
+
+void checkSlabStudyOptions(const SlabStudyOptions& o)
+{
+    checkSlabPanelOptions(o.panel);
+    auto positive = [](double v, const std::string& option, const std::string& example) {
+        if (!(v > 0.0) || !std::isfinite(v))
+            throw Error("", option + " must be positive and finite, got " + cli::numberText(v),
+                        "e.g. " + option + " " + example);
+    };
+    auto nonNegative = [](double v, const std::string& option) {
+        if (!(v >= 0.0) || !std::isfinite(v))
+            throw Error("", option + " must be zero (default) or positive, got " + cli::numberText(v));
+    };
+    const SlabMaterial& m = o.material;
+    positive(m.youngModulus, "--young", "7e4");
+    if (!(m.poisson >= 0.0 && m.poisson < 0.5))
+        throw Error("", "--poisson must be in [0, 0.5), got " + cli::numberText(m.poisson), "e.g. --poisson 0.22");
+    positive(m.density, "--density", "2.5e-9");
+    nonNegative(m.friction, "--friction");
+    if (!(m.restitution > 0.0 && m.restitution <= 1.0))
+        throw Error("", "--restitution must be in (0, 1], got " + cli::numberText(m.restitution),
+                    "1 means no contact damping");
+    if (!(m.globalDamping >= 0.0 && m.globalDamping < 1.0))
+        throw Error("", "--damping must be in [0, 1), got " + cli::numberText(m.globalDamping));
+    nonNegative(m.gravity, "--gravity");
+    nonNegative(o.knStar, "--kn-star");
+    nonNegative(o.ksStar, "--ks-star");
+    nonNegative(o.knOriginal, "--kn");
+    nonNegative(o.referenceSdp, "--reference-sdp");
+    positive(o.indenterRadius, "--indenter-radius", "2.5");
+    positive(o.speed, "--speed", "200");
+    nonNegative(o.deltaMax, "--delta-max");
+    if (slabDeltaMax(o) > 3.0 * o.panel.thickness)
+        throw Error("", "--delta-max " + cli::numberText(slabDeltaMax(o)) + " is more than three block thicknesses",
+                    "the central block is out long before; e.g. --delta-max " + cli::numberText(o.panel.thickness));
+    // The step is set from the normal stiffness of a face; shear and rocking make a block
+    // stiffer than that by up to about 1.4x (ks*/kn* = 0.41 by default), hence the cap.
+    if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 0.5))
+        throw Error("", "--safety must be in (0, 0.5], got " + cli::numberText(o.timeStepSafety), "0.3 is the default");
+    checkFormulationList(o.formulations);
+    if (o.twoWay && std::find(o.formulations.begin(), o.formulations.end(), Formulation::Adapted) ==
+                        o.formulations.end())
+        throw Error("", "the two-way study refines the adapted formulation, which --formulation leaves out",
+                    "add adapted to --formulation, or give --no-two-way for curves only");
+    if (o.sdps.empty()) throw Error("", "--sdp needs at least one node spacing");
+    const double thinnest = o.panel.thickness;
+    for (double s : o.sdps) {
+        positive(s, "--sdp", "0.5");
+        if (s > 0.5 * thinnest)
+            throw Error("", "--sdp " + cli::numberText(s) + " mm leaves fewer than two node spacings across the " +
+                                cli::numberText(thinnest) + " mm thickness",
+                        "use node spacings below " + cli::numberText(0.5 * thinnest) + " mm");
+    }
+    for (double s : o.originalSdps) {
+        positive(s, "--sdp-original", "0.5");
+        if (std::none_of(o.sdps.begin(), o.sdps.end(),
+                         [&](double t) { return std::abs(t - s) <= 1e-12 * s; }))
+            throw Error("", "--sdp-original " + cli::numberText(s) + " is not one of the --sdp values",
+                        "the original formulation runs at a subset of --sdp; list it there too");
+    }
+    auto checkVoxel = [&](double v, const std::string& option) {
+        positive(v, option, "0.15");
+        if (v * 4.0 > thinnest)
+            throw Error("", option + " " + cli::numberText(v) + " mm leaves fewer than 4 voxels across the " +
+                                cli::numberText(thinnest) + " mm thickness",
+                        "use voxels of at most " + cli::numberText(thinnest / 4.0) + " mm");
+    };
+    checkVoxel(o.fixedVdp, "--vdp-fixed");
+    if (o.twoWay) {
+        if (o.vdps.empty()) throw Error("", "--vdp needs at least one voxel size");
+        for (double v : o.vdps) checkVoxel(v, "--vdp");
+    }
+    positive(o.tolerance, "--tolerance", "0.05");
+    for (double d : o.snapshotDeltas)
+        if (!(d >= 0.0 && d <= slabDeltaMax(o)))
+            throw Error("", "--snapshots " + cli::numberText(d) + " is outside [0, δ_max = " + cli::numberText(slabDeltaMax(o)) + "]",
+                        "give snapshot displacements between 0 and --delta-max");
+    if (o.samples < 10 || o.samples > 100000) throw Error("", "--samples must be 10 to 100000");
+
+    // Finite but absurd values (a crawling indenter, a feather-light block, microscopic voxels)
+    // would run for years or exhaust memory: refuse them with the estimate.
+    const SlabCostEstimate cost = estimateSlabCost(o);
+    if (cost.steps > kMaxSlabSteps)
+        throw Error("", "the study would take " + cli::numberText(double(cost.steps)) + " time steps",
+                    "check --speed, --density, --safety and the stiffnesses (the default is 1.6e5 steps)");
+    if (cost.memoryBytes > kMaxSlabMemoryBytes)
+        throw Error("", "the study would need about " + cli::numberText(cost.memoryBytes / 1073741824.0) +
+                            " GiB of memory (the budget is " + cli::numberText(kMaxSlabMemoryBytes / 1073741824.0) +
+                            " GiB)",
+                    "use coarser --vdp / --vdp-fixed or --sdp");
+}
+
+SlabStudyOptions slabFullOptions()
+{
+    SlabStudyOptions o;
+    o.sdps = {1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.125};
+    o.originalSdps = {1.0, 0.7, 0.5, 0.35, 0.25};
+    o.fixedVdp = 0.035;
+    o.vdps = {0.4, 0.28, 0.2, 0.14, 0.1, 0.07, 0.05, 0.035};
+    return o;
+}
+
+std::vector<double> slabCoarseToFine(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end(), std::greater<double>());
+    v.erase(std::unique(v.begin(), v.end(), [](double a, double b) {
+                return std::abs(a - b) <= 1e-12 * std::max(a, b);
+            }),
+            v.end());
+    return v;
+}
+
+bool slabStageOneRuns(const SlabStudyOptions& o, Formulation f, double sdp)
+{
+    if (normalModel(f).stiffnessPerArea() || o.originalSdps.empty()) return true;
+    for (double s : o.originalSdps)
+        if (std::abs(s - sdp) <= 1e-12 * sdp) return true;
+    return false;
+}
+
+std::vector<double> slabSnapshotDeltas(const SlabStudyOptions& o)
+{
+    if (!o.snapshotDeltas.empty()) {
+        std::vector<double> d = o.snapshotDeltas;
+        std::sort(d.begin(), d.end());
+        return d;
+    }
+    std::vector<double> d;
+    for (int k = 0; k <= 5; ++k) d.push_back(slabDeltaMax(o) * k / 5.0);
+    return d;
+}
+
+} // namespace lsdem

@@ -9,7 +9,7 @@
 ///
 /// Loading plan (all from closed forms at δ_max, so the cost is known before any run starts):
 /// - contact stiffnesses: the continuum tangent stiffness of the stack at δ_max
-///   (cube27ColumnStiffness); the original law is treated as the adapted one with the
+///   (Cube27Plan.h); the original law is treated as the adapted one with the
 ///   effective kn* = kn·N/(4πR²) of N uniformly spread nodes (SCIENCE.md §2–3);
 /// - time step: dt = safety·2/ω_max, ω_max² the stiffest grain's (the top sphere, wall above
 ///   and sphere below) largest of K/m (normal) and (ks/kn)·K·R²/I (rotation on the shear
@@ -20,92 +20,15 @@
 ///   similar and cost the same number of steps.
 #pragma once
 
-#include "studies/SphereSeriesOptions.h"
-
-#include "lsdem/contact/ContactModel.h"
-#include "lsdem/scene/Scene.h"
+#include "studies/Cube27ClosedForm.h"
+#include "studies/Cube27Options.h"
+#include "studies/Cube27Plan.h"
+#include "studies/Cube27Scene.h"
 
 #include <string>
 #include <vector>
 
 namespace lsdem {
-
-struct Cube27Options : SphereSeriesOptions
-{
-    Cube27Options()
-    {
-        nodeCounts = {500, 1000, 2000, 4000, 8000};
-        kSeriesNodes = 4000;  // the paper's N for Fig. 4C, 4E
-        voxel = 0.1;
-        deltaMax = 0.3;       // top wall travel
-        orientations = 1;
-        outDir = "results/cube27";
-    }
-    double speed = 0.0;             ///< mm/s; 0: from `periods` (dynamically similar runs)
-    long long steps = 0;            ///< loading steps; 0: from the time step below
-    double periods = 100.0;         ///< loading time in periods of a column's slowest mode
-    double safety = 0.2;            ///< dt as a fraction of the stiffest grain's stability limit
-    int points = 30;                ///< δ values recorded (plus δ = 0)
-    double density = 7.85e-9;       ///< tonne/mm³ (steel)
-    double friction = 0.3;
-    double shearRatio = 0.5;        ///< ks/kn (ks*/kn*)
-    double restitution = 0.5;       ///< contact dashpots
-    double globalDamping = 0.3;
-};
-
-/// The paper-like study (--full): nodes 500 … 16000, three orientations, voxel 0.05 mm.
-Cube27Options cube27FullOptions();
-
-/// Check @a o and throw Error naming the bad option and the fix.
-void checkCube27Options(const Cube27Options& o);
-
-/// Closed form (parabolic caps, small δ/R) of the adapted law: each of the 9 columns is
-/// wall–sphere (P = π·k·R·d_w², exact for a plane), sphere–sphere twice (P = (π/2)·k·R·d_s²)
-/// and sphere–floor in series, so d_s = √2·d_w, δ = (2 + 2√2)·d_w and
-/// P = 9·π·k·R·δ² / (2 + 2√2)².
-double cube27ClosedForm(double radius, double delta, double knStar);
-
-/// The same continuum limit without the parabolic approximation of the sphere–sphere caps:
-/// the sphere–sphere force is exactSphereContactForce (1-D quadrature), and d_w is found so
-/// that 2·d_w + 2·d_s = δ with equal forces in every contact of a column.
-double cube27ExactForce(double radius, double delta, double knStar);
-
-/// The continuum kn* that the original law with stiffness @a kn behaves like with @a nodes
-/// nodes spread uniformly over @a area: kn·N / area.
-double originalEffectiveStiffness(double kn, double nodes, double area);
-
-/// One simulation of the study: a formulation, node count, stiffness and orientation set.
-struct Cube27Run
-{
-    Formulation formulation = Formulation::Adapted;
-    int nodes = 0;
-    double stiffness = 0.0;
-    int orientation = 0;
-    // The loading plan.
-    double timeStep = 0.0;    ///< s
-    long long steps = 0;      ///< loading steps
-    double speed = 0.0;       ///< mm/s
-    double stabilityLimit = 0.0;  ///< the planned stiffest grain's limit 2/ω_max, s
-    // What happened.
-    double seconds = 0.0;
-    double stabilityLimitSeen = 0.0;  ///< Simulation's smallest limit met, s
-    long long contactNodes = 0;       ///< penetrating nodes at the end
-};
-
-/// Plan the loading of one run (time step, steps, speed) from closed forms; see the file note.
-Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double stiffness,
-                        int orientation);
-
-/// All runs of the study, in the order they are made (per node count: formulations ×
-/// stiffnesses × orientations).
-std::vector<Cube27Run> planCube27(const Cube27Options& o);
-
-/// The scene of one run: 27 spheres of @a asset (an analytic sphere baked at load, or
-/// @a assetFile if given), randomly oriented per grain from the run's orientation seed, six
-/// plane walls, the contact model, no gravity, global damping, the planned time step and
-/// end displacement.
-Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
-                      const std::string& assetFile = "");
 
 /// One row of results: one formulation, node count, stiffness and δ, over orientations.
 struct Cube27Row

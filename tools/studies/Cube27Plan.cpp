@@ -1,0 +1,116 @@
+#include "studies/Cube27Plan.h"
+
+#include "studies/Cube27ClosedForm.h"
+
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+/// Contact stiffnesses of a column at top wall travel @a delta, from the continuum laws:
+/// kWall (sphere against a plane) and kSphere (sphere against sphere), force/length.
+struct ColumnStiffness
+{
+    double kWall = 0.0, kSphere = 0.0;
+};
+
+ColumnStiffness columnStiffness(Formulation f, double radius, double delta, double stiffness,
+                                int nodes)
+{
+    ColumnStiffness c;
+    const NormalModel& law = normalModel(f);
+    if (!law.perNodeForces()) {
+        // One linear spring per contact (symmetric testing: two half-weight deepest nodes).
+        c.kWall = c.kSphere = stiffness;
+        return c;
+    }
+    const double kStar = law.stiffnessPerArea()
+                             ? stiffness
+                             : originalEffectiveStiffness(stiffness, nodes, 4 * kPi * radius * radius);
+    const double dWall = delta / kCube27Column, dSphere = std::sqrt(2.0) * dWall;
+    c.kWall = 2 * kPi * kStar * radius * dWall;     // d/dd of π k R d²
+    c.kSphere = kPi * kStar * radius * dSphere;     // d/dδ of (π/2) k R δ²
+    return c;
+}
+
+bool hasShear(const Cube27Options& o, Formulation f)
+{
+    return normalModel(f).perNodeForces() && o.friction > 0 &&
+           o.shearRatio > 0;
+}
+
+} // namespace
+
+Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double stiffness,
+                        int orientation)
+{
+    Cube27Run run;
+    run.formulation = f;
+    run.nodes = nodes;
+    run.stiffness = stiffness;
+    run.orientation = orientation;
+
+    const double mass = o.density * 4.0 / 3.0 * kPi * std::pow(o.radius, 3);
+    const double inertia = 0.4 * mass * o.radius * o.radius;
+    const ColumnStiffness c = columnStiffness(f, o.radius, o.deltaMax, stiffness, nodes);
+    // Stiffest grain: the top (or bottom) sphere, a wall on one side and a sphere on the other;
+    // the middle one has two sphere contacts.
+    const double kGrain = std::max(c.kWall + c.kSphere, 2.0 * c.kSphere);
+    double omegaMax2 = kGrain / mass;
+    if (hasShear(o, f))  // rotation on the shear springs at distance R
+        omegaMax2 = std::max(omegaMax2, o.shearRatio * kGrain * o.radius * o.radius / inertia);
+    run.stabilityLimit = 2.0 / std::sqrt(omegaMax2);
+    // Slowest vertical mode of a column (symmetric mode of wall–m–m–m–floor).
+    const double trace = c.kWall + 3.0 * c.kSphere, det = 2.0 * c.kWall * c.kSphere;
+    const double omega1 = std::sqrt((trace - std::sqrt(trace * trace - 4.0 * det)) / 2.0 / mass);
+    const double loadingTime =
+        o.speed > 0.0 ? o.deltaMax / o.speed : o.periods * 2.0 * kPi / omega1;
+
+    if (o.steps > 0) {
+        run.steps = o.steps;
+        run.timeStep = loadingTime / double(o.steps);
+        if (run.timeStep > run.stabilityLimit) {
+            std::ostringstream s;
+            s << "--steps " << o.steps << " is too few for " << formulationName(f) << " at N = "
+              << nodes << ", k = " << stiffness << ": the time step " << run.timeStep
+              << " s would exceed the stack's stability limit " << run.stabilityLimit << " s";
+            throw Error("", s.str(),
+                        "give at least --steps " +
+                            std::to_string((long long)std::ceil(loadingTime / run.stabilityLimit)) +
+                            " (5x that is safe), or leave --steps out");
+        }
+    } else {
+        const double dt = o.safety * run.stabilityLimit;
+        run.steps = std::max<long long>(1, (long long)std::ceil(loadingTime / dt));
+        run.timeStep = loadingTime / double(run.steps);
+    }
+    run.speed = o.deltaMax / (run.timeStep * double(run.steps));
+    return run;
+}
+
+std::vector<Cube27Run> planCube27(const Cube27Options& o)
+{
+    checkCube27Options(o);
+    const int kSeriesCount = stiffnessSeriesNodes(o);
+    std::vector<Cube27Run> runs;
+    for (int nodes : o.nodeCounts)
+        for (Formulation f : o.formulations) {
+            std::vector<double> ks;
+            if (!o.stiffness.empty()) ks = o.stiffness;
+            else if (nodes == kSeriesCount)
+                for (double factor : o.stiffnessFactors) ks.push_back(factor * normalModel(f).paperStiffness());
+            else ks.push_back(normalModel(f).paperStiffness());
+            for (double k : ks)
+                for (int m = 0; m < o.orientations; ++m)
+                    runs.push_back(planCube27Run(o, f, nodes, k, m));
+        }
+    return runs;
+}
+
+} // namespace lsdem

@@ -229,3 +229,26 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
     EXPECT_NE(badCheckpoint.output.find("not an lsdem checkpoint"), std::string::npos)
         << badCheckpoint.output;
 }
+
+// An end condition far beyond what anyone means (1e30 time units at a 1e-5 step) is run, as
+// asked, but the user is told at once how many steps and how long that is; a short run is not.
+TEST(LsdemRun, WarnsOfAnAbsurdlyLongRun)
+{
+    ScratchDir dir;
+    std::string text = smallScene(400);
+    const std::string steps = "end_steps = 400";
+    text.replace(text.find(steps), steps.size(), "end_time = 1e30");
+    const std::string scene = writeScene(dir, text);
+    const CommandResult r =
+        runCommand(kRun + " " + scene + " --out " + dir.file("out") + " --stop-at-step 5 -q");
+    EXPECT_EQ(r.exitCode, 130) << r.output;  // stopped as if interrupted
+    EXPECT_NE(r.output.find("warning: the end condition (end_time = 1e+30) means 1e+35 steps"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("years"), std::string::npos) << r.output;
+
+    const CommandResult shortRun =
+        runCommand(kRun + " " + writeScene(dir, smallScene(20)) + " --out " + dir.file("short"));
+    EXPECT_EQ(shortRun.exitCode, 0) << shortRun.output;
+    EXPECT_EQ(shortRun.output.find("warning"), std::string::npos) << shortRun.output;
+}

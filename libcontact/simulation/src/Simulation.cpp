@@ -155,13 +155,15 @@ void Simulation::evaluateForces(double slipStep)
         centers[i] = g.body.pose.position;
         radii[i] = g.asset->boundingRadius;
         views[i] = contactView(g, i);
-        if (!g.isFree()) return;
+        // Fixed and prescribed grains too: they do not move by forces, but they feel and
+        // record them (a prescribed grain pushed into a wall, and the wall, get the reaction).
         for (int b = 0; b < boundaryCount; ++b)
             if (w.boundaries[b].mayTouch(centers[i], radii[i]))
                 nearBoundaries[static_cast<size_t>(i)].push_back(b);
     });
     std::vector<ContactSlot> slots;
-    // Grain pairs: candidates whose bounding spheres overlap, unless neither can move.
+    // Grain pairs: candidates whose bounding spheres overlap (kinematic pairs too, so their
+    // forces are recorded).
     std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
     std::vector<std::pair<int, int>> boundaryPairs;  // (grain, boundary), sorted
     for (int i = 0; i < n; ++i)
@@ -172,7 +174,6 @@ void Simulation::evaluateForces(double slipStep)
     // slots can point into the maps while the threads work.
     auto it = w.pairHistory.begin();
     for (const auto& p : pairs) {
-        if (!w.grains[p.first].isFree() && !w.grains[p.second].isFree()) continue;
         while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
         if (it == w.pairHistory.end() || it->first != p) it = w.pairHistory.emplace_hint(it, p, PairHistory{});
         ContactSlot& s = slots.emplace_back();

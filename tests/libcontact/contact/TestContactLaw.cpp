@@ -1,0 +1,304 @@
+// resolveContact on hand-made penetrating nodes (no level sets involved): action and reaction
+// with torques about each centroid, the two half-weight sides of symmetric testing, the dashpot
+// against the critical-damping closed form, the shear history of the nodes now in contact, and
+// the elastic energy and contact stiffness it reports. Every expected value is summed here by
+// hand from the documented laws (docs/contact.md, docs/dynamics.md).
+#include "lsdem/contact/ContactLaw.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace lsdem;
+
+namespace {
+
+constexpr double kKnStar = 1e3;
+
+NodeContact node(int index, double depth, const Vec3& normal, const Vec3& point, double area)
+{
+    NodeContact c;
+    c.node = index;
+    c.depth = depth;
+    c.normal = normal.normalized();
+    c.point = point;
+    c.area = area;
+    return c;
+}
+
+/// Grain A at the origin, grain B above it; A's nodes 2 and 6 are inside B.
+struct TwoGrains
+{
+    ContactGrain a, b;
+    std::vector<NodeContact> aInB = {
+        node(2, 0.1, Vec3(0, 0, -1), Vec3(0.3, 0.0, 1.0), 0.5),
+        node(6, 0.05, Vec3(0.6, 0, -0.8), Vec3(-0.2, 0.4, 1.1), 0.25)};
+    std::vector<NodeContact> bInA = {node(1, 0.08, Vec3(0, 0.28, 0.96), Vec3(0.1, 0.1, 0.95), 0.4)};
+
+    TwoGrains()
+    {
+        a.pose.position = Vec3(0, 0, 0);
+        b.pose.position = Vec3(0.1, -0.2, 2.0);
+        b.index = 1;
+    }
+};
+
+ContactModel adapted(double ks = 0.0, double friction = 0.0, double beta = 0.0)
+{
+    ContactModel m;
+    m.formulation = Formulation::Adapted;
+    m.normalStiffness = kKnStar;
+    m.shearStiffness = ks;
+    m.friction = friction;
+    m.dampingRatio = beta;
+    return m;
+}
+
+/// The adapted normal force of one node at weight @a w.
+Vec3 adaptedForce(const NodeContact& c, double w) { return w * kKnStar * c.depth * c.area * c.normal; }
+
+void expectVecNear(const Vec3& actual, const Vec3& expected, double tolerance)
+{
+    EXPECT_LT((actual - expected).norm(), tolerance)
+        << actual.transpose() << " vs " << expected.transpose();
+}
+
+} // namespace
+
+// One side at full weight: A gets Σ F at the contact points, B the opposite; each torque is
+// about its own centroid, so the two torques differ by (x_B - x_A) × F.
+TEST(ContactLaw, ActionEqualsReactionAndTorquesAreAboutEachCentroid)
+{
+    TwoGrains g;
+    ContactSide side;
+    side.tester = &g.a;
+    side.other = &g.b;
+    side.contacts = g.aInB;
+    std::vector<PointForce> all;
+    const PairForces r = resolveContact(&side, 1, adapted(), 0.0, &all);
+
+    Vec3 force = Vec3::Zero(), torqueA = Vec3::Zero(), torqueB = Vec3::Zero();
+    for (const NodeContact& c : g.aInB) {
+        const Vec3 f = adaptedForce(c, 1.0);
+        force += f;
+        torqueA += (c.point - g.a.pose.position).cross(f);
+        torqueB -= (c.point - g.b.pose.position).cross(f);
+    }
+    const double tol = 1e-13 * force.norm();  // a handful of sums of numbers of size ~|F|
+    expectVecNear(r.forceOnFirst, force, tol);
+    expectVecNear(r.forceOnSecond, -force, tol);
+    expectVecNear(r.torqueOnFirst, torqueA, tol);
+    expectVecNear(r.torqueOnSecond, torqueB, tol);
+    // The total moment about any point vanishes (equal and opposite forces at the same points).
+    expectVecNear(r.torqueOnFirst + r.torqueOnSecond + g.a.pose.position.cross(r.forceOnFirst) +
+                      g.b.pose.position.cross(r.forceOnSecond),
+                  Vec3::Zero(), tol);
+    EXPECT_EQ(r.contactNodes, 2);
+    EXPECT_EQ(r.pointForcesOnFirst, 2);
+    ASSERT_EQ(all.size(), 2u);
+    for (size_t k = 0; k < all.size(); ++k) {
+        expectVecNear(all[k].force, adaptedForce(g.aInB[k], 1.0), tol);
+        EXPECT_EQ(all[k].point, g.aInB[k].point);
+        EXPECT_EQ(all[k].node, g.aInB[k].node);
+    }
+}
+
+// Symmetric testing: side 0 (A's nodes in B) and side 1 (B's nodes in A), each at half weight.
+// A gets half of its own nodes' forces and the reaction to half of B's; the point forces are
+// listed side by side, each as it acts on its side's tester.
+TEST(ContactLaw, SymmetricSidesAddAtHalfWeight)
+{
+    TwoGrains g;
+    ContactSide sides[2];
+    sides[0].tester = &g.a;
+    sides[0].other = &g.b;
+    sides[0].contacts = g.aInB;
+    sides[0].weight = 0.5;
+    sides[1].tester = &g.b;
+    sides[1].other = &g.a;
+    sides[1].contacts = g.bInA;
+    sides[1].weight = 0.5;
+    std::vector<PointForce> all;
+    const PairForces r = resolveContact(sides, 2, adapted(), 0.0, &all);
+
+    Vec3 onA = Vec3::Zero(), torqueA = Vec3::Zero(), torqueB = Vec3::Zero();
+    for (const NodeContact& c : g.aInB) {
+        const Vec3 f = adaptedForce(c, 0.5);
+        onA += f;
+        torqueA += (c.point - g.a.pose.position).cross(f);
+        torqueB -= (c.point - g.b.pose.position).cross(f);
+    }
+    for (const NodeContact& c : g.bInA) {
+        const Vec3 f = adaptedForce(c, 0.5);  // on B
+        onA -= f;
+        torqueB += (c.point - g.b.pose.position).cross(f);
+        torqueA -= (c.point - g.a.pose.position).cross(f);
+    }
+    const double tol = 1e-13 * 50.0;
+    expectVecNear(r.forceOnFirst, onA, tol);
+    expectVecNear(r.forceOnSecond, -onA, tol);
+    expectVecNear(r.torqueOnFirst, torqueA, tol);
+    expectVecNear(r.torqueOnSecond, torqueB, tol);
+    EXPECT_EQ(r.contactNodes, 3);
+    EXPECT_EQ(r.pointForcesOnFirst, 2);
+    ASSERT_EQ(all.size(), 3u);
+    expectVecNear(all[2].force, adaptedForce(g.bInA[0], 0.5), tol);  // on B, B's node
+    // The contact stiffness Σ k·n nᵀ of every normal point force, both sides.
+    Mat3 k = Mat3::Zero();
+    for (const NodeContact& c : g.aInB) k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
+    for (const NodeContact& c : g.bInA) k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
+    EXPECT_LT((r.normalStiffness - k).norm(), 1e-12 * k.norm());
+    // ½|F|²/k = ½·k·d² per point force.
+    double energy = 0.0;
+    for (const NodeContact& c : g.aInB) energy += 0.25 * kKnStar * c.area * c.depth * c.depth;
+    for (const NodeContact& c : g.bInA) energy += 0.25 * kKnStar * c.area * c.depth * c.depth;
+    EXPECT_NEAR(r.elasticEnergy, energy, 1e-14 * energy);
+}
+
+// A flat contact of stiffness K = Σ kn*·A closing at speed v between masses m_A and m_B: the
+// dashpot adds 2β·sqrt(m·K)·v against the approach, with m the reduced mass (or the moving
+// body's mass against an immovable one). Opening, it pulls (no cut-off on tension).
+TEST(ContactLaw, DashpotIsTheCriticalFractionOfTheWholeContact)
+{
+    TwoGrains g;
+    const std::vector<NodeContact> flat = {node(0, 0.1, -Vec3::UnitZ(), Vec3(0.2, 0, 1), 0.25),
+                                           node(1, 0.04, -Vec3::UnitZ(), Vec3(-0.2, 0, 1), 0.5),
+                                           node(4, 0.02, -Vec3::UnitZ(), Vec3(0, 0.3, 1), 0.125)};
+    double elastic = 0.0, stiffness = 0.0;
+    for (const NodeContact& c : flat) {
+        elastic += kKnStar * c.depth * c.area;
+        stiffness += kKnStar * c.area;
+    }
+    const double beta = 0.3, v = 2.0;
+    struct Masses { double a, b, effective; };
+    for (const Masses m : {Masses{2.0, 3.0, 1.2}, Masses{2.0, 0.0, 2.0}, Masses{0.0, 3.0, 3.0}}) {
+        g.a.mass = m.a;
+        g.b.mass = m.b;
+        for (double speed : {v, -v}) {
+            g.a.velocity = Vec3(0.7, -0.1, 0.5 * speed);  // A up (toward B), B down
+            g.b.velocity = Vec3(0.0, 0.4, -0.5 * speed);
+            ContactSide side;
+            side.tester = &g.a;
+            side.other = &g.b;
+            side.contacts = flat;
+            const PairForces r = resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr);
+            const double dashpot = 2 * beta * std::sqrt(m.effective * stiffness) * speed;
+            EXPECT_NEAR(r.forceOnFirst.z(), -(elastic + dashpot), 1e-13 * elastic)
+                << m.a << " " << m.b << " " << speed;
+            EXPECT_NEAR(r.forceOnFirst.x(), 0.0, 1e-13 * elastic);  // tangential motion: no
+            EXPECT_NEAR(r.forceOnFirst.y(), 0.0, 1e-13 * elastic);  // dashpot, no shear
+        }
+    }
+    // Neither body can move: no dashpot.
+    g.a.mass = g.b.mass = 0.0;
+    ContactSide side;
+    side.tester = &g.a;
+    side.other = &g.b;
+    side.contacts = flat;
+    EXPECT_NEAR(resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr).forceOnFirst.z(),
+                -elastic, 1e-13 * elastic);
+
+    // A spinning tester: each point force gets its own share c/k·k_f of its normal velocity.
+    g.a.mass = 2.0;
+    g.b.mass = 3.0;
+    g.a.velocity = g.b.velocity = Vec3::Zero();
+    g.a.angularVelocity = Vec3(0.0, 5.0, 0.0);
+    g.b.angularVelocity = Vec3(1.0, 0.0, 0.0);
+    const double perStiffness = 2 * beta * std::sqrt(1.2 / stiffness);
+    Vec3 expected = Vec3::Zero();
+    for (const NodeContact& c : flat) {
+        const Vec3 va = g.a.angularVelocity.cross(c.point - g.a.pose.position);
+        const Vec3 vb = g.b.angularVelocity.cross(c.point - g.b.pose.position);
+        const double k = kKnStar * c.area;
+        expected += k * c.depth * c.normal - perStiffness * k * (va - vb).dot(c.normal) * c.normal;
+    }
+    expectVecNear(resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr).forceOnFirst,
+                  expected, 1e-13 * elastic);
+}
+
+// After a step the history holds exactly the nodes now in contact: a node that left loses its
+// shear, a node that entered starts from zero and takes -k_t·Δu_t, a node that stayed adds the
+// increment to what it had (and is capped at μ·|F_n|). k_t = ks*·A·weight (adapted).
+TEST(ContactLaw, ShearHistoryIsReplacedByTheNodesNowInContact)
+{
+    TwoGrains g;
+    g.a.velocity = Vec3(3.0, -1.0, 0.0);
+    g.b.velocity = Vec3(-1.0, 1.0, 0.0);
+    const double ks = 400.0, mu = 0.5, dt = 1e-3;
+    std::map<int, Vec3> history = {{1, Vec3(0.01, 0.0, 0.0)},   // left contact
+                                   {2, Vec3(0.02, -0.01, 0.0)}}; // stays (tangent to -z)
+    ContactSide side;
+    side.tester = &g.a;
+    side.other = &g.b;
+    side.contacts = g.aInB;  // nodes 2 and 6: 6 enters
+    side.history = &history;
+    const PairForces r = resolveContact(&side, 1, adapted(ks, mu), dt, nullptr);
+
+    ASSERT_EQ(history.size(), 2u);
+    ASSERT_TRUE(history.count(2));
+    ASSERT_TRUE(history.count(6));
+    const Vec3 slip = (g.a.velocity - g.b.velocity) * dt;  // no spin: uniform
+    // Node 2, normal -z: tangential slip (4e-3, -2e-3, 0), k_t = 400·0.5 = 200.
+    const Vec3 shear2 = Vec3(0.02, -0.01, 0.0) - 200.0 * Vec3(4e-3, -2e-3, 0.0);
+    expectVecNear(history[2], shear2, 1e-15);
+    // Node 6 from zero: k_t = 400·0.25 = 100 times the slip minus its normal part.
+    const Vec3 n6 = g.aInB[1].normal;
+    const Vec3 shear6 = -100.0 * (slip - slip.dot(n6) * n6);
+    expectVecNear(history[6], shear6, 1e-15);
+    EXPECT_LT(shear2.norm(), mu * 50.0);  // below the cap μ·kn*·d·A
+    EXPECT_LT(shear6.norm(), mu * 12.5);
+
+    const Vec3 normal = adaptedForce(g.aInB[0], 1.0) + adaptedForce(g.aInB[1], 1.0);
+    expectVecNear(r.forceOnFirst, normal + shear2 + shear6, 1e-13);
+    expectVecNear(r.forceOnSecond, -(normal + shear2 + shear6), 1e-13);
+    // Energy: ½k d² per normal spring, ½|F_t|²/k_t per shear spring.
+    const double energy = 0.5 * kKnStar * 0.5 * 0.01 + 0.5 * kKnStar * 0.25 * 0.0025 +
+                          0.5 * shear2.squaredNorm() / 200.0 + 0.5 * shear6.squaredNorm() / 100.0;
+    EXPECT_NEAR(r.elasticEnergy, energy, 1e-14 * energy);
+
+    // Slide far: node 2 saturates at μ·|F_n| = 25 along its (stored - increment) direction.
+    history = {{2, Vec3(30.0, 40.0, 0.0)}};
+    side.contacts = {g.aInB[0]};
+    resolveContact(&side, 1, adapted(ks, mu), dt, nullptr);
+    const Vec3 unlimited = Vec3(30.0, 40.0, 0.0) - 200.0 * Vec3(4e-3, -2e-3, 0.0);
+    expectVecNear(history[2], 25.0 * unlimited.normalized(), 1e-13);
+
+    // No step (dt = 0): a stored tangential shear is carried over unchanged.
+    history = {{2, Vec3(0.5, 0.25, 0.0)}};
+    resolveContact(&side, 1, adapted(ks, mu), 0.0, nullptr);
+    EXPECT_EQ(history[2], Vec3(0.5, 0.25, 0.0));
+
+    // Nodes out of contact: the history empties.
+    side.contacts.clear();
+    const PairForces none = resolveContact(&side, 1, adapted(ks, mu), dt, nullptr);
+    EXPECT_TRUE(history.empty());
+    EXPECT_EQ(none.forceOnFirst, Vec3::Zero());
+    EXPECT_EQ(none.contactNodes, 0);
+}
+
+// No history to carry (null), or a law without per-node forces: no shear force, and a history
+// given to such a law ends empty.
+TEST(ContactLaw, NoShearWithoutHistoryOrPerNodeForces)
+{
+    TwoGrains g;
+    g.a.velocity = Vec3(3.0, -1.0, 0.0);
+    ContactSide side;
+    side.tester = &g.a;
+    side.other = &g.b;
+    side.contacts = g.aInB;
+    const Vec3 normal = adaptedForce(g.aInB[0], 1.0) + adaptedForce(g.aInB[1], 1.0);
+    expectVecNear(resolveContact(&side, 1, adapted(400, 0.5), 1e-3, nullptr).forceOnFirst,
+                  normal, 1e-13);
+
+    std::map<int, Vec3> history = {{2, Vec3(1.0, 0.0, 0.0)}};
+    side.history = &history;
+    ContactModel volume = adapted(400, 0.5);
+    volume.formulation = Formulation::Volume;
+    std::vector<PointForce> all;
+    const PairForces r = resolveContact(&side, 1, volume, 1e-3, &all);
+    EXPECT_TRUE(history.empty());
+    ASSERT_EQ(all.size(), 1u);  // the pooled force, with no shear added
+    std::vector<PointForce> pooled;
+    normalModel(Formulation::Volume).forces(g.aInB, kKnStar, 1.0, pooled);
+    expectVecNear(r.forceOnFirst, pooled[0].force, 1e-13);
+}

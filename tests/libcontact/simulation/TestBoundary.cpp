@@ -1,0 +1,271 @@
+// Rigid boundaries: the reference point and the cheap "may touch" test of each shape (plane,
+// finite patch, sphere, level-set obstacle), moved by their displacement; and the penetrating
+// nodes findBoundaryContacts reports for each shape, against distances worked out here.
+#include "lsdem/simulation/Boundary.h"
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Constants.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+using namespace lsdem;
+
+namespace {
+
+/// A grain of six nodes on the axes at distance 1 (areas 0.5 each), no level set: enough for
+/// planes and spheres, which only look at nodes.
+GrainAsset sixNodes()
+{
+    GrainAsset a;
+    for (int axis = 0; axis < 3; ++axis)
+        for (double s : {1.0, -1.0}) {
+            Vec3 p = Vec3::Zero();
+            p[axis] = s;
+            a.nodes.positions.push_back(p);
+            a.nodes.normals.push_back(p);
+            a.nodes.areas.push_back(0.5);
+        }
+    a.boundingRadius = 1.0;
+    return a;
+}
+
+/// A 2 × 2 × 1 box obstacle baked at coarse voxels, with its nodes (for the level-set shape).
+const GrainAsset& boxAsset()
+{
+    static const GrainAsset asset = [] {
+        BakeOptions o;
+        o.voxelSize = 0.1;
+        o.nodeSpacing = 0.25;
+        std::vector<std::string> warnings;
+        return bakeAnalytic(AnalyticShape::box(2.0, 2.0, 1.0), o, warnings);
+    }();
+    return asset;
+}
+
+Boundary plane(const Vec3& point, const Vec3& normal)
+{
+    Boundary b;
+    b.shape = BoundaryShape::Plane;
+    b.plane.point = point;
+    b.plane.normal = normal.normalized();
+    return b;
+}
+
+} // namespace
+
+TEST(Boundary, ReferencePointIsWhereEachShapeStartedPlusItsDisplacement)
+{
+    Boundary p = plane(Vec3(1, 2, 3), Vec3::UnitZ());
+    p.center = Vec3(9, 9, 9);  // other shapes' fields do not matter
+    p.displacement = Vec3(0.5, -1, 2);
+    EXPECT_EQ(p.referencePoint(), Vec3(1.5, 1, 5));
+
+    Boundary s;
+    s.shape = BoundaryShape::Sphere;
+    s.center = Vec3(-1, 0, 4);
+    s.radius = 2;
+    s.displacement = Vec3(0, 0, -0.25);
+    EXPECT_EQ(s.referencePoint(), Vec3(-1, 0, 3.75));
+
+    Boundary l;
+    l.shape = BoundaryShape::LevelSet;
+    l.pose.position = Vec3(3, 2, 1);
+    l.displacement = Vec3(1, 1, 1);
+    EXPECT_EQ(l.referencePoint(), Vec3(4, 3, 2));
+}
+
+// A grain (centre c, radius r) may touch a plane when -r - thickness ≤ distance ≤ r, and a
+// finite patch when its centre is also within the half-extents plus r along each in-plane axis.
+TEST(Boundary, MayTouchAPlaneAndAFinitePatch)
+{
+    Boundary b = plane(Vec3(0, 0, 1), Vec3::UnitZ());
+    EXPECT_TRUE(b.mayTouch(Vec3(5, -7, 1.9), 1.0));
+    EXPECT_FALSE(b.mayTouch(Vec3(5, -7, 2.1), 1.0));
+    EXPECT_TRUE(b.mayTouch(Vec3(0, 0, -50), 1.0));  // an infinitely thick wall
+    b.displacement = Vec3(0, 0, 1.5);               // the wall rose to z = 2.5
+    EXPECT_TRUE(b.mayTouch(Vec3(5, -7, 2.1), 1.0));
+    EXPECT_FALSE(b.mayTouch(Vec3(5, -7, 3.6), 1.0));
+
+    // A 4 × 2 patch (axes x and z × x = y), 0.5 thick, at z = 0.
+    Boundary patch = plane(Vec3::Zero(), Vec3::UnitZ());
+    patch.plane.halfU = 2.0;
+    patch.plane.halfV = 1.0;
+    patch.plane.thickness = 0.5;
+    EXPECT_TRUE(patch.mayTouch(Vec3(2.9, 0, 0.5), 1.0));
+    EXPECT_FALSE(patch.mayTouch(Vec3(3.1, 0, 0.5), 1.0));  // off the end along u
+    EXPECT_TRUE(patch.mayTouch(Vec3(0, -1.9, 0.5), 1.0));
+    EXPECT_FALSE(patch.mayTouch(Vec3(0, -2.1, 0.5), 1.0));  // off the side along v
+    EXPECT_TRUE(patch.mayTouch(Vec3(0, 0, -1.4), 1.0));
+    EXPECT_FALSE(patch.mayTouch(Vec3(0, 0, -1.6), 1.0));   // below its thickness
+    patch.displacement = Vec3(1.0, 0, 0);
+    EXPECT_TRUE(patch.mayTouch(Vec3(3.1, 0, 0.5), 1.0));   // the patch moved along
+}
+
+TEST(Boundary, MayTouchASphereAndAnObstacleByTheirBoundingSpheres)
+{
+    Boundary s;
+    s.shape = BoundaryShape::Sphere;
+    s.center = Vec3(0, 0, 5);
+    s.radius = 2.0;
+    EXPECT_TRUE(s.mayTouch(Vec3(0, 2.9, 5), 1.0));
+    EXPECT_FALSE(s.mayTouch(Vec3(0, 3.1, 5), 1.0));
+    s.displacement = Vec3(0, 0.5, 0);
+    EXPECT_TRUE(s.mayTouch(Vec3(0, 3.1, 5), 1.0));
+
+    Boundary l;
+    l.shape = BoundaryShape::LevelSet;
+    l.asset = std::shared_ptr<const GrainAsset>(&boxAsset(), [](const GrainAsset*) {});
+    l.pose.position = Vec3(1, 1, 1);
+    const double reach = boxAsset().boundingRadius + 0.5;
+    EXPECT_TRUE(l.mayTouch(Vec3(1, 1, 1) + (reach - 1e-9) * Vec3(0.6, 0, 0.8), 0.5));
+    EXPECT_FALSE(l.mayTouch(Vec3(1, 1, 1) + (reach + 1e-9) * Vec3(0.6, 0, 0.8), 0.5));
+    l.displacement = Vec3(0, 0, 0.1);
+    EXPECT_TRUE(l.mayTouch(Vec3(1, 1, 1) + (reach + 1e-9) * Vec3(0.6, 0, 0.8), 0.5));
+}
+
+// Nodes behind a tilted, moved plane: depth = distance behind it, the plane's normal, the point
+// halfway back to it; a finite patch keeps only the nodes over it and less than its thickness
+// behind.
+TEST(Boundary, PlaneContactsAreTheNodesBehindIt)
+{
+    const GrainAsset a = sixNodes();
+    RigidPose pose;
+    pose.position = Vec3(0.2, 0.0, 0.6);
+    const Vec3 n = Vec3(0, 0.6, 0.8);
+    Boundary b = plane(Vec3(0, 0, -0.5), n);
+    b.displacement = Vec3(0, 0, 0.25);  // now through (0, 0, -0.25)
+    std::vector<NodeContact> contacts;
+    NodeCheckStats stats;
+    findBoundaryContacts(a, pose, b, contacts, stats);
+    // Signed distances (x - (0,0,-0.25))·n = 0.6·y + 0.8·(z + 0.25): node 3 (0.2,-1,0.6) is
+    // 0.08 in front, node 5 (0.2,0,-0.4) 0.12 behind, the others further in front.
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_EQ(contacts[0].node, 5);
+    EXPECT_NEAR(contacts[0].depth, 0.12, 1e-15);
+    EXPECT_EQ(contacts[0].normal, b.plane.normal);
+    EXPECT_LT((contacts[0].point - (Vec3(0.2, 0, -0.4) + 0.06 * b.plane.normal)).norm(), 1e-15);
+    EXPECT_EQ(contacts[0].area, 0.5);
+    EXPECT_EQ(stats.nodesConsidered, 6);
+
+    // A finite patch: the same plane, only 0.1 wide along x, so the node at x = 0.2 is off it.
+    b.plane.axisU = Vec3::UnitX();
+    b.plane.halfU = 0.1;
+    b.plane.halfV = 10.0;
+    contacts.clear();
+    findBoundaryContacts(a, pose, b, contacts, stats);
+    EXPECT_TRUE(contacts.empty());
+    b.plane.halfU = 0.3;
+    b.plane.thickness = 0.1;  // node 5 is 0.12 behind: too deep for this thin patch
+    findBoundaryContacts(a, pose, b, contacts, stats);
+    EXPECT_TRUE(contacts.empty());
+    b.plane.thickness = 0.15;
+    findBoundaryContacts(a, pose, b, contacts, stats);
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_EQ(contacts[0].node, 5);
+}
+
+// Nodes inside a sphere indenter: depth R - |x - c|, normal (x - c)/|x - c| (pushing the node
+// out), point halfway to the sphere's surface; the rotation of the grain is applied to nodes.
+TEST(Boundary, SphereContactsAreTheNodesInsideIt)
+{
+    const GrainAsset a = sixNodes();
+    RigidPose pose;
+    pose.orientation = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));  // x node -> +y
+    Boundary s;
+    s.shape = BoundaryShape::Sphere;
+    s.center = Vec3(0.3, 1.5, 0.4);
+    s.radius = 0.9;
+    s.displacement = Vec3(-0.3, 0.0, -0.4);  // now at (0, 1.5, 0)
+    std::vector<NodeContact> contacts;
+    NodeCheckStats stats;
+    findBoundaryContacts(a, pose, s, contacts, stats);
+    // Only node 0 (+x in the asset, +y in the world) is inside: 0.5 from the centre.
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_EQ(contacts[0].node, 0);
+    EXPECT_NEAR(contacts[0].depth, 0.4, 1e-15);
+    EXPECT_LT((contacts[0].normal - Vec3(0, -1, 0)).norm(), 1e-15);
+    EXPECT_LT((contacts[0].point - Vec3(0, 0.8, 0)).norm(), 1e-15);
+
+    // A sphere far away: the whole grain is culled.
+    s.displacement = Vec3(10, 0, 0);
+    NodeCheckStats far;
+    contacts.clear();
+    findBoundaryContacts(a, pose, s, contacts, far);
+    EXPECT_TRUE(contacts.empty());
+    EXPECT_EQ(far.nodesCulled, 6);
+}
+
+// A sphere indenter on a baked grain with node blocks: the block culling keeps exactly the
+// contacts of a full scan, each against the exact sphere distance.
+TEST(Boundary, SphereBlockCullingKeepsEveryContact)
+{
+    const GrainAsset& withBlocks = boxAsset();
+    GrainAsset plain = withBlocks;
+    plain.nodeBlocks.clear();
+    RigidPose pose;
+    pose.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
+    // The indenter 0.4 above a point of the turned top face: 0.2 deep, a cap of ~10 nodes.
+    Boundary s;
+    s.shape = BoundaryShape::Sphere;
+    s.center = pose.toWorld(Vec3(0.3, -0.2, 0.5)) + 0.4 * (pose.orientation * Vec3::UnitZ());
+    s.radius = 0.6;
+    std::vector<NodeContact> blocked, scanned;
+    NodeCheckStats blockedStats, scannedStats;
+    findBoundaryContacts(withBlocks, pose, s, blocked, blockedStats);
+    findBoundaryContacts(plain, pose, s, scanned, scannedStats);
+    ASSERT_GT(scanned.size(), 3u);
+    ASSERT_EQ(blocked.size(), scanned.size());
+    for (size_t k = 0; k < scanned.size(); ++k) {
+        EXPECT_EQ(blocked[k].node, scanned[k].node);
+        EXPECT_EQ(blocked[k].depth, scanned[k].depth);
+        const Vec3 x = pose.toWorld(plain.nodes.positions[scanned[k].node]);
+        EXPECT_NEAR(scanned[k].depth, 0.6 - (x - s.center).norm(), 1e-15);
+    }
+    EXPECT_GT(blockedStats.nodesCulled, scannedStats.nodesCulled);
+}
+
+// An obstacle is a level set posed like a grain: its contacts are those of the narrow phase
+// against it at its moved pose.
+TEST(Boundary, LevelSetContactsAreTheNarrowPhaseAtTheMovedPose)
+{
+    const GrainAsset& box = boxAsset();
+    Boundary l;
+    l.shape = BoundaryShape::LevelSet;
+    l.asset = std::shared_ptr<const GrainAsset>(&box, [](const GrainAsset*) {});
+    l.pose.position = Vec3(0, 0, -1.0);
+    l.pose.orientation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
+    l.displacement = Vec3(0.1, 0, 0.2);
+    const GrainAsset grain = sixNodes();
+    // The grain's -z node 0.2 under the top face of the turned box, whose centre is now
+    // (0.1, 0, -0.8); its other nodes are clear of the box.
+    RigidPose pose;
+    pose.position = Vec3(0.05, 0.0, 0.2 + 0.3 / std::cos(0.2));
+    std::vector<NodeContact> contacts, direct;
+    NodeCheckStats stats;
+    findBoundaryContacts(grain, pose, l, contacts, stats);
+    RigidPose moved = l.pose;
+    moved.position += l.displacement;
+    findNodeContacts(grain, pose, box, moved, direct, stats);
+    ASSERT_EQ(contacts.size(), 1u);  // the -z node, inside the top face
+    ASSERT_EQ(direct.size(), 1u);
+    EXPECT_EQ(contacts[0].node, 5);
+    EXPECT_EQ(contacts[0].depth, direct[0].depth);
+    EXPECT_EQ(contacts[0].normal, direct[0].normal);
+    // The top face is 0.5 from the box's centre along its turned z axis. Near a face the box's
+    // distance is linear, which trilinear interpolation reproduces (float storage: ~1e-7).
+    const Vec3 up = l.pose.orientation * Vec3::UnitZ();
+    const Vec3 node = pose.position - Vec3::UnitZ();
+    const double depth = 0.5 - (node - Vec3(0.1, 0, -0.8)).dot(up);
+    EXPECT_NEAR(depth, 0.2, 1e-12);
+    EXPECT_NEAR(contacts[0].depth, depth, 1e-6);
+    EXPECT_LT((contacts[0].normal - up).norm(), 1e-6);
+    // Without the displacement the node is only 0.2 deep: the displacement is applied.
+    l.displacement = Vec3::Zero();
+    contacts.clear();
+    findBoundaryContacts(grain, pose, l, contacts, stats);
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_NEAR(contacts[0].depth, depth - 0.2 * up.z(), 1e-6);
+}

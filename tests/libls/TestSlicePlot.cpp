@@ -186,7 +186,8 @@ TEST(SlicePlot, NodesNearThePlaneShowAsGreenDotsOnTheSurface)
             if (!(c[0] == 20 && c[1] == 160 && c[2] == 40)) continue;
             ++green;
             const double u = loU + (x + 0.5) * pixel, v = hiV - (y + 0.5) * pixel;
-            const double outline = std::min(std::abs(std::abs(u) - 1.0), std::abs(std::abs(v) - 0.5));
+            const double outline =
+                std::min(std::abs(std::abs(u) - 1.0), std::abs(std::abs(v) - 0.5));
             const bool withinBox = std::abs(u) <= 1.0 + 2 * pixel && std::abs(v) <= 0.5 + 2 * pixel;
             EXPECT_TRUE(withinBox && outline < 2.5 * pixel) << u << "," << v;
         }

@@ -55,7 +55,10 @@ ContactModel adapted(double ks = 0.0, double friction = 0.0, double beta = 0.0)
 }
 
 /// The adapted normal force of one node at weight @a w.
-Vec3 adaptedForce(const NodeContact& c, double w) { return w * kKnStar * c.depth * c.area * c.normal; }
+Vec3 adaptedForce(const NodeContact& c, double w)
+{
+    return w * kKnStar * c.depth * c.area * c.normal;
+}
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, double tolerance)
 {
@@ -145,8 +148,9 @@ TEST(ContactLaw, SymmetricSidesAddAtHalfWeight)
     expectVecNear(all[2].force, adaptedForce(g.bInA[0], 0.5), tol);  // on B, B's node
     // The contact stiffness Σ k·n nᵀ of every normal point force, both sides.
     Mat3 k = Mat3::Zero();
-    for (const NodeContact& c : g.aInB) k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
-    for (const NodeContact& c : g.bInA) k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
+    for (const auto* list : {&g.aInB, &g.bInA})
+        for (const NodeContact& c : *list)
+            k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
     EXPECT_LT((r.normalStiffness - k).norm(), 1e-12 * k.norm());
     // ½|F|²/k = ½·k·d² per point force.
     double energy = 0.0;

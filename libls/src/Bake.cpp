@@ -113,6 +113,7 @@ void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::strin
 {
     sortNodesSpatially(asset.nodes, 8.0 * o.voxelSize);  // one OpenVDB leaf is 8 voxels wide
     asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
+    insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
     asset.areaRule = o.areaRule;
     asset.spacing = nodeSpacing(asset.nodes);
     asset.voxelSize = o.voxelSize;

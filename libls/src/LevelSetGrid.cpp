@@ -1,5 +1,6 @@
 #include "lsdem/ls/LevelSetGrid.h"
 
+#include <limits>
 #include <mutex>
 
 namespace lsdem {
@@ -8,6 +9,24 @@ void initializeOpenVdb()
 {
     static std::once_flag once;
     std::call_once(once, [] { openvdb::initialize(); });
+}
+
+void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max)
+{
+    openvdb::CoordBBox box;  // empty
+    // Active voxels and tiles; the interior is filled, and inactive values outside it are the
+    // positive background.
+    for (auto it = levelSet.grid->cbeginValueOn(); it; ++it)
+        if (*it < 0.0f) box.expand(it.getBoundingBox());
+    if (box.empty()) {
+        min = Vec3::Constant(std::numeric_limits<double>::infinity());
+        max = -min;
+        return;
+    }
+    const double h = levelSet.voxelSize;
+    const openvdb::Coord lo = box.min(), hi = box.max();
+    min = levelSet.origin + h * Vec3(lo.x() - 1, lo.y() - 1, lo.z() - 1);
+    max = levelSet.origin + h * Vec3(hi.x() + 1, hi.y() + 1, hi.z() + 1);
 }
 
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin)

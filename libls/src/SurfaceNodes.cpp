@@ -154,39 +154,43 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
     return stats;
 }
 
-std::vector<NodeBlock> groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize)
+namespace {
+
+/// Cut the (spatially sorted) @a positions into runs of at most @a runSize with bounding
+/// spheres; @a patchSide is the side of a typical run's patch of surface.
+std::vector<NodeBlock> runsWithSpheres(const std::vector<Vec3>& positions, int runSize,
+                                       double patchSide)
 {
     std::vector<NodeBlock> blocks;
-    const int n = static_cast<int>(nodes.size());
+    const int n = static_cast<int>(positions.size());
     if (n == 0) return blocks;
-    // A Z-order curve jumps now and then; a block that spans a jump would get a large sphere.
-    // So a block also ends where its bounding box would grow beyond 1.5 times the side of
-    // a patch of blockSize nodes.
-    const double patchSide = std::sqrt(std::max(nodes.totalArea(), 1e-300) * blockSize / n);
+    // A Z-order curve jumps now and then; a run that spans a jump would get a large sphere.
+    // So a run also ends where its bounding box would grow beyond 1.5 times the side of its
+    // patch.
     const double widest = 1.5 * patchSide;
     auto close = [&](int begin, int end) {
         NodeBlock b;
         b.begin = begin;
         b.end = end;
-        Vec3 lo = nodes.positions[begin], hi = lo;
+        Vec3 lo = positions[begin], hi = lo;
         for (int i = begin; i < end; ++i) {
-            lo = lo.cwiseMin(nodes.positions[i]);
-            hi = hi.cwiseMax(nodes.positions[i]);
+            lo = lo.cwiseMin(positions[i]);
+            hi = hi.cwiseMax(positions[i]);
         }
         b.center = 0.5 * (lo + hi);
         for (int i = begin; i < end; ++i)
-            b.radius = std::max(b.radius, (nodes.positions[i] - b.center).norm());
+            b.radius = std::max(b.radius, (positions[i] - b.center).norm());
         blocks.push_back(b);
     };
     int begin = 0;
-    Vec3 lo = nodes.positions[0], hi = lo;
+    Vec3 lo = positions[0], hi = lo;
     for (int i = 1; i < n; ++i) {
-        const Vec3 newLo = lo.cwiseMin(nodes.positions[i]);
-        const Vec3 newHi = hi.cwiseMax(nodes.positions[i]);
-        if (i - begin >= blockSize || (newHi - newLo).maxCoeff() > widest) {
+        const Vec3 newLo = lo.cwiseMin(positions[i]);
+        const Vec3 newHi = hi.cwiseMax(positions[i]);
+        if (i - begin >= runSize || (newHi - newLo).maxCoeff() > widest) {
             close(begin, i);
             begin = i;
-            lo = hi = nodes.positions[i];
+            lo = hi = positions[i];
         } else {
             lo = newLo;
             hi = newHi;
@@ -194,6 +198,31 @@ std::vector<NodeBlock> groupNodesIntoBlocks(const SurfaceNodes& nodes, int block
     }
     close(begin, n);
     return blocks;
+}
+
+} // namespace
+
+NodeBlocks groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize, int clusterSize)
+{
+    NodeBlocks result;
+    const int n = static_cast<int>(nodes.size());
+    if (n == 0) return result;
+    const double area = std::max(nodes.totalArea(), 1e-300);
+    result.blocks =
+        runsWithSpheres(nodes.positions, blockSize, std::sqrt(area * blockSize / n));
+    // Clusters: runs of block centres, each cluster's sphere then widened to hold its blocks.
+    std::vector<Vec3> centers;
+    for (const NodeBlock& b : result.blocks) centers.push_back(b.center);
+    result.clusters = runsWithSpheres(centers, clusterSize,
+                                      std::sqrt(area * blockSize * clusterSize / n));
+    for (NodeBlock& c : result.clusters) {
+        c.radius = 0.0;
+        for (int k = c.begin; k < c.end; ++k) {
+            const NodeBlock& b = result.blocks[static_cast<size_t>(k)];
+            c.radius = std::max(c.radius, (b.center - c.center).norm() + b.radius);
+        }
+    }
+    return result;
 }
 
 } // namespace lsdem

@@ -74,27 +74,42 @@ TEST(SurfaceNodes, SpacingOfAStructuredGridIsItsStep)
     EXPECT_NEAR(s.mean, 0.25, 1e-12);
 }
 
-// The narrow phase skips whole blocks by their bounding spheres, so every node must lie in
-// exactly one block and inside its sphere; sorted nodes make the spheres small.
+// The narrow phase skips whole clusters and blocks by their bounding spheres, so every node
+// must lie in exactly one block and inside its sphere, every block in exactly one cluster and
+// inside its sphere; sorted nodes make the spheres small.
 TEST(SurfaceNodes, BlocksCoverEveryNodeOnceInsideTheirSpheres)
 {
     SurfaceNodes nodes = nodesFromMesh(AnalyticShape::sphere(5.0).surfaceMesh(0.3), AreaRule::Mesh);
     sortNodesSpatially(nodes, 0.4);
-    const std::vector<NodeBlock> blocks = groupNodesIntoBlocks(nodes, 32);
+    const NodeBlocks groups = groupNodesIntoBlocks(nodes, 32, 4);
+    ASSERT_TRUE(groups.matches(nodes.size()));
     int next = 0;
     double meanRadius = 0.0;
-    for (const NodeBlock& b : blocks) {
+    for (const NodeBlock& b : groups.blocks) {
         EXPECT_EQ(b.begin, next);
         EXPECT_GT(b.end, b.begin);
         EXPECT_LE(b.end - b.begin, 32);
         for (int i = b.begin; i < b.end; ++i)
             EXPECT_LE((nodes.positions[i] - b.center).norm(), b.radius * (1 + 1e-12));
         next = b.end;
-        meanRadius += b.radius / blocks.size();
+        meanRadius += b.radius / groups.blocks.size();
     }
     EXPECT_EQ(next, static_cast<int>(nodes.size()));
     // 32 nodes at spacing ~0.3 cover a patch of ~2.5 mm² (side ~1.6 mm); blocks are cut
     // where the box would exceed 1.5 times that, so the radius stays near 1 mm, far below R = 5.
     EXPECT_LT(meanRadius, 1.5);
-    EXPECT_LT(blocks.size(), nodes.size() / 10);  // and most blocks are still well filled
+    EXPECT_LT(groups.blocks.size(), nodes.size() / 10);  // and most blocks are still well filled
+    next = 0;
+    for (const NodeBlock& c : groups.clusters) {
+        EXPECT_EQ(c.begin, next);
+        EXPECT_GT(c.end, c.begin);
+        EXPECT_LE(c.end - c.begin, 4);
+        for (int k = c.begin; k < c.end; ++k) {
+            const NodeBlock& b = groups.blocks[size_t(k)];
+            EXPECT_LE((b.center - c.center).norm() + b.radius, c.radius * (1 + 1e-12));
+        }
+        next = c.end;
+    }
+    EXPECT_EQ(next, static_cast<int>(groups.blocks.size()));
+    EXPECT_LT(groups.clusters.size(), groups.blocks.size() / 2);
 }

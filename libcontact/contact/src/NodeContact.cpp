@@ -1,9 +1,9 @@
 #include "lsdem/contact/NodeContact.h"
 
+#include "lsdem/contact/NodeBlockWalk.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <optional>
-#include <stdexcept>
 
 namespace lsdem {
 
@@ -26,50 +26,47 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     const Eigen::Matrix3d bToWorld = poseB.orientation.toRotationMatrix();
     const double reach2 = reachB * reachB;
 
-    // The accessor costs ~100 ns to make: only when some node gets near B.
-    std::optional<LevelSetSampler> sampler;
-    auto testNodes = [&](int begin, int end) {
-        for (int i = begin; i < end; ++i) {
-            const Vec3 inB = rotation * a.nodes.positions[i] + translation;
-            if (inB.squaredNorm() > reach2) {  // outside B's bounding sphere: φ_B > 0
-                ++stats.nodesCulled;
-                continue;
-            }
-            ++stats.nodesSampled;
-            if (!sampler) sampler.emplace(*b.levelSet);
-            const LevelSetSample s = sampler->sample(inB);
-            if (!(s.phi < 0.0)) continue;
-            const double gradientLength = s.gradient.norm();
-            if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
-            ++stats.nodesInContact;
-            NodeContact c;
-            c.node = i;
-            c.depth = -s.phi;
-            c.normal = bToWorld * (s.gradient / gradientLength);
-            const Vec3 nodeWorld = poseB.position + bToWorld * inB;
-            c.point = nodeWorld + 0.5 * c.depth * c.normal;
-            c.area = a.nodes.areas[i];
-            out.push_back(c);
-        }
+    // Clusters and blocks of A's nodes are ruled out in two ways: their sphere misses B's
+    // bounding sphere (tested in A's frame, where it costs no rotation), or it misses the box
+    // outside which B's level set is never negative. Both keep a hair of slack for round-off:
+    // a node they let through still meets the exact tests below, so they only save work.
+    const Vec3 centerOfB = -(rotation.transpose() * translation);  // B's origin in A's frame
+    const double slack = 1.0 + 1e-9;
+    auto isClear = [&](const NodeBlock& run) {
+        const double reach = (reachB + run.radius) * slack;
+        if ((run.center - centerOfB).squaredNorm() > reach * reach) return true;
+        const Vec3 c = rotation * run.center + translation;
+        const Vec3 outside = (b.insideBoxMin - c).cwiseMax(0.0) + (c - b.insideBoxMax).cwiseMax(0.0);
+        const double r = run.radius * slack;
+        return outside.squaredNorm() > r * r;
     };
-    if (a.nodeBlocks.empty()) {
-        testNodes(0, static_cast<int>(count));
-        return;
-    }
-    // Blocks left over from other nodes would silently drop contacts: refuse them.
-    if (a.nodeBlocks.back().end != static_cast<int>(count))
-        throw std::logic_error("grain asset: node blocks do not match the nodes; call "
-                               "groupNodesIntoBlocks after changing them");
-    // Whole blocks of nearby nodes whose bounding sphere misses B's are skipped unsampled.
-    for (const NodeBlock& block : a.nodeBlocks) {
-        const Vec3 centerInB = rotation * block.center + translation;
-        const double reach = reachB + block.radius;
-        if (centerInB.squaredNorm() > reach * reach) {
-            stats.nodesCulled += block.end - block.begin;
-            continue;
+
+    // An unregistered accessor costs next to nothing, but only when some node gets near B.
+    std::optional<LevelSetSampler> sampler;
+    auto visit = [&](int i) {
+        const Vec3 inB = rotation * a.nodes.positions[i] + translation;
+        if (inB.squaredNorm() > reach2 ||                                   // outside B's sphere
+            (inB - b.insideBoxMin).minCoeff() < 0.0 || (b.insideBoxMax - inB).minCoeff() < 0.0) {
+            ++stats.nodesCulled;  // φ_B > 0 there
+            return;
         }
-        testNodes(block.begin, block.end);
-    }
+        ++stats.nodesSampled;
+        if (!sampler) sampler.emplace(*b.levelSet);
+        const LevelSetSample s = sampler->sample(inB);
+        if (!(s.phi < 0.0)) return;
+        const double gradientLength = s.gradient.norm();
+        if (gradientLength == 0.0) return;  // no direction to push (degenerate level set)
+        ++stats.nodesInContact;
+        NodeContact c;
+        c.node = i;
+        c.depth = -s.phi;
+        c.normal = bToWorld * (s.gradient / gradientLength);
+        const Vec3 nodeWorld = poseB.position + bToWorld * inB;
+        c.point = nodeWorld + 0.5 * c.depth * c.normal;
+        c.area = a.nodes.areas[i];
+        out.push_back(c);
+    };
+    forEachNodeNotClear(a, isClear, visit, stats);
 }
 
 } // namespace lsdem

@@ -1,5 +1,7 @@
 #include "lsdem/contact/PlaneContact.h"
 
+#include "lsdem/contact/NodeBlockWalk.h"
+
 namespace lsdem {
 
 void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& plane,
@@ -12,35 +14,25 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
         return;
     }
     const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
-    auto testNodes = [&](int begin, int end) {
-        for (int i = begin; i < end; ++i) {
-            const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
-            ++stats.nodesSampled;
-            const double distance = plane.signedDistance(x);
-            if (!(distance < 0.0) || !plane.withinPatch(x, distance)) continue;
-            ++stats.nodesInContact;
-            NodeContact c;
-            c.node = i;
-            c.depth = -distance;
-            c.normal = plane.normal;
-            c.point = x + 0.5 * c.depth * plane.normal;
-            c.area = a.nodes.areas[i];
-            out.push_back(c);
-        }
+    auto visit = [&](int i) {
+        const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+        ++stats.nodesSampled;
+        const double distance = plane.signedDistance(x);
+        if (!(distance < 0.0) || !plane.withinPatch(x, distance)) return;
+        ++stats.nodesInContact;
+        NodeContact c;
+        c.node = i;
+        c.depth = -distance;
+        c.normal = plane.normal;
+        c.point = x + 0.5 * c.depth * plane.normal;
+        c.area = a.nodes.areas[i];
+        out.push_back(c);
     };
-    if (a.nodeBlocks.empty()) {
-        testNodes(0, static_cast<int>(count));
-        return;
-    }
-    // A grain touching a wall has most of its node blocks wholly in front of it: skip those.
-    for (const NodeBlock& block : a.nodeBlocks) {
-        const Vec3 center = rotation * block.center + pose.position;
-        if (plane.signedDistance(center) > block.radius) {
-            stats.nodesCulled += block.end - block.begin;
-            continue;
-        }
-        testNodes(block.begin, block.end);
-    }
+    // A grain touching a wall has most of its nodes wholly in front of it: skip those.
+    auto isClear = [&](const NodeBlock& run) {
+        return plane.signedDistance(rotation * run.center + pose.position) > run.radius;
+    };
+    forEachNodeNotClear(a, isClear, visit, stats);
 }
 
 } // namespace lsdem

@@ -6,6 +6,7 @@
 #include "lsdem/ls/MassProperties.h"
 #include "lsdem/ls/SurfaceNodes.h"
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -35,7 +36,12 @@ struct GrainAsset
     SurfaceNodes nodes;                  ///< in the asset frame, stored in Morton order
     /// Runs of nearby nodes with bounding spheres, derived from @a nodes when an asset is
     /// baked or loaded (not stored in the file); empty means "one block of all nodes".
-    std::vector<NodeBlock> nodeBlocks;
+    NodeBlocks nodeBlocks;
+    /// The box (asset frame) outside which the trilinear φ is never negative: the voxels with
+    /// φ < 0, widened by one voxel. Outside it no node can be in contact. Derived from the
+    /// level set when an asset is baked or loaded; unbounded by default.
+    Vec3 insideBoxMin = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    Vec3 insideBoxMax = Vec3::Constant(std::numeric_limits<double>::infinity());
     AreaRule areaRule = AreaRule::Mesh;
     NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)
 

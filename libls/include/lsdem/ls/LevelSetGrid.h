@@ -20,6 +20,11 @@ struct LevelSetGrid
 /// Initialise OpenVDB once per process (idempotent, thread-safe).
 void initializeOpenVdb();
 
+/// The box (in the asset frame) of the voxels of @a levelSet with φ < 0, widened by one voxel:
+/// a trilinear sample can only be negative inside it. An empty box (min > max) if no voxel is
+/// negative.
+void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max);
+
 /// A linear transform with the given voxel size whose index (0,0,0) sits at @a origin.
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin);
 

@@ -1,7 +1,10 @@
 /// @file LevelSetSampler.h
 /// @brief Samples a grain's signed distance φ and the gradient ∇φ of its trilinear interpolant
 ///        from one 8-voxel fetch. One sampler per thread: it owns a cached OpenVDB accessor,
-///        which is not thread-safe, over a grid that is never modified.
+///        which is not thread-safe, over a grid that is never modified. The accessor is not
+///        registered with the tree (OpenVDB's "unsafe" accessor): registering costs a
+///        concurrent hash-map insertion per sampler, and an immutable tree never needs to
+///        clear its accessors' caches.
 #pragma once
 
 #include "lsdem/ls/LevelSetGrid.h"
@@ -18,7 +21,7 @@ class LevelSetSampler
 {
 public:
     explicit LevelSetSampler(const LevelSetGrid& levelSet)
-        : mAccessor(levelSet.grid->getConstAccessor()), mOrigin(levelSet.origin),
+        : mAccessor(levelSet.grid->getConstUnsafeAccessor()), mOrigin(levelSet.origin),
           mInvVoxel(1.0 / levelSet.voxelSize)
     {
     }
@@ -30,10 +33,16 @@ public:
     LevelSetSample sample(const Vec3& p)
     {
         const Vec3 index = (p - mOrigin) * mInvVoxel;
-        LevelSetSample s = evaluate(index);
+        double value[8];
+        Vec3 base, fraction;
+        fetch(index, value, base, fraction);
+        LevelSetSample s = interpolate(value, fraction);
         for (int axis = 0; axis < 3; ++axis) {
-            const double face = std::round(index[axis]);
-            if (std::abs(index[axis] - face) > kFaceTolerance) continue;
+            // On a face when the fraction within the cell is within the tolerance of 0 or 1
+            // (the subtractions are exact, so this is |index - round(index)| <= tolerance).
+            const double f = fraction[axis];
+            if (f > kFaceTolerance && 1.0 - f > kFaceTolerance) continue;
+            const double face = f <= 0.5 ? base[axis] : base[axis] + 1.0;
             Vec3 before = index, after = index;
             before[axis] = face - kFaceOffset;
             after[axis] = face + kFaceOffset;
@@ -56,8 +65,15 @@ private:
     LevelSetSample evaluate(const Vec3& index)
     {
         double value[8];
-        double fx, fy, fz;
-        fetch(index, value, fx, fy, fz);
+        Vec3 base, fraction;
+        fetch(index, value, base, fraction);
+        return interpolate(value, fraction);
+    }
+
+    /// The trilinear interpolant of the cell corners @a value and its gradient at @a fraction.
+    LevelSetSample interpolate(const double value[8], const Vec3& fraction) const
+    {
+        const double fx = fraction.x(), fy = fraction.y(), fz = fraction.z();
         // Trilinear interpolation along x, then y, then z; corners indexed as (z<<2)|(y<<1)|x.
         const double c00 = value[0] + fx * (value[1] - value[0]);
         const double c10 = value[2] + fx * (value[3] - value[2]);
@@ -76,15 +92,14 @@ private:
         return s;
     }
 
-    void fetch(const Vec3& index, double value[8], double& fx, double& fy, double& fz)
+    /// The 8 corners of the cell holding @a index, its lower corner @a cell and the position
+    /// @a fraction within it.
+    void fetch(const Vec3& index, double value[8], Vec3& cell, Vec3& fraction)
     {
-        const double bx = std::floor(index.x()), by = std::floor(index.y()),
-                     bz = std::floor(index.z());
-        fx = index.x() - bx;
-        fy = index.y() - by;
-        fz = index.z() - bz;
-        const openvdb::Coord base(static_cast<int>(bx), static_cast<int>(by),
-                                  static_cast<int>(bz));
+        cell = Vec3(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
+        fraction = index - cell;
+        const openvdb::Coord base(static_cast<int>(cell.x()), static_cast<int>(cell.y()),
+                                  static_cast<int>(cell.z()));
         // Fast path: the 2x2x2 stencil lies inside one 8^3 leaf (7 times in 8 per axis), so
         // read the leaf's buffer directly; offsets are x*64 + y*8 + z within a leaf.
         using Leaf = openvdb::FloatTree::LeafNodeType;
@@ -111,7 +126,7 @@ private:
         }
     }
 
-    openvdb::FloatGrid::ConstAccessor mAccessor;
+    openvdb::FloatGrid::ConstUnsafeAccessor mAccessor;
     Vec3 mOrigin;
     double mInvVoxel;
 };

@@ -32,17 +32,42 @@ SurfaceNodes nodesFromMesh(const TriangleMesh& mesh, AreaRule rule);
 /// the array are neighbours in space and level-set lookups stay cache-friendly.
 void sortNodesSpatially(SurfaceNodes& nodes, double cellSize);
 
-/// A run of consecutive nodes (in Morton order, so close together) and a sphere holding them:
-/// the narrow phase skips a whole block when the sphere is clear of the other grain.
+/// A run of consecutive items (in Morton order, so close together) and a sphere holding them:
+/// the narrow phase skips a whole run when the sphere is clear of the other grain.
 struct NodeBlock
 {
-    int begin = 0, end = 0;       ///< node indices [begin, end)
-    Vec3 center = Vec3::Zero();   ///< of the block's bounding sphere, asset frame
+    int begin = 0, end = 0;       ///< indices [begin, end) of nodes (a block) or blocks (a cluster)
+    Vec3 center = Vec3::Zero();   ///< of the run's bounding sphere, asset frame
     double radius = 0.0;
 };
 
-/// Cut the (spatially sorted) nodes into runs of at most @a blockSize with bounding spheres.
-std::vector<NodeBlock> groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize = 32);
+/// The nodes grouped for culling, in two levels: blocks of a few consecutive nodes, and
+/// clusters of consecutive blocks. A contact test skips a cluster clear of the other body
+/// without looking at its blocks, and a block without looking at its nodes.
+struct NodeBlocks
+{
+    std::vector<NodeBlock> blocks;    ///< begin/end: node indices, covering every node once
+    std::vector<NodeBlock> clusters;  ///< begin/end: block indices, covering every block once
+
+    bool empty() const { return blocks.empty(); }
+    void clear()
+    {
+        blocks.clear();
+        clusters.clear();
+    }
+    /// Whether they describe exactly @a nodeCount nodes (blocks made for other nodes would
+    /// silently drop contacts).
+    bool matches(size_t nodeCount) const
+    {
+        return !blocks.empty() && blocks.back().end == static_cast<int>(nodeCount) &&
+               !clusters.empty() && clusters.back().end == static_cast<int>(blocks.size());
+    }
+};
+
+/// Cut the (spatially sorted) nodes into blocks of at most @a blockSize nodes and the blocks
+/// into clusters of at most @a clusterSize blocks, each with its bounding sphere.
+NodeBlocks groupNodesIntoBlocks(const SurfaceNodes& nodes, int blockSize = 8,
+                                int clusterSize = 8);
 
 /// Spacing statistics: for each node, the distance to its nearest other node.
 struct NodeSpacing

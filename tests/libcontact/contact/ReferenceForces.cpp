@@ -87,7 +87,7 @@ std::vector<std::string> assetRecipes()
     return {"sphere: radius 1; level set bakeAnalytic(sphere(1)) at voxel 0.1, band 3 voxels;",
             "  nodes: the " + std::to_string(s.nodes.size()) +
                 " vertices of an icosahedron subdivided 3 times (tests/support/TestMeshes.h),",
-            "  mesh areas, exact normals, Morton-sorted in cells of 0.8, blocks of 32",
+            "  mesh areas, exact normals, Morton-sorted in cells of 0.8, grouped for culling",
             "box: 2 x 1.6 x 1.2; bakeAnalytic(box) at voxel 0.1, node spacing 0.2, band 3",
             "  voxels (" + std::to_string(b.nodes.size()) + " nodes)"};
 }

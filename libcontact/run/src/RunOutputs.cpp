@@ -1,6 +1,7 @@
 #include "lsdem/run/RunOutputs.h"
 
 #include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/CsvText.h"
 
 #include <cctype>
 #include <cstdio>
@@ -14,7 +15,7 @@ void appendNumber(std::string& line, double v)
 {
     char buffer[40];
     std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    if (!line.empty() && line.back() != '\n') line += ',';
+    if (!line.empty() && line.back() != ',') line += ',';
     line += buffer;
 }
 
@@ -78,7 +79,7 @@ void writeGrainsFile(const std::string& path, const World& world,
         const Grain& g = world.grains[i];
         const RigidPose& p = g.body.pose;
         const Vec3 omega = g.angularVelocity();
-        std::string line = g.name;
+        std::string line = csvField(g.name) + ",";  // the name column even when it is empty
         for (double v : {p.position.x(), p.position.y(), p.position.z(), p.orientation.w(),
                          p.orientation.x(), p.orientation.y(), p.orientation.z(),
                          g.body.velocity.x(), g.body.velocity.y(), g.body.velocity.z(),

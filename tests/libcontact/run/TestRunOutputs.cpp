@@ -3,6 +3,8 @@
 // exactly (17 significant digits read back to the same double), and boundary file names.
 #include "lsdem/run/RunOutputs.h"
 
+#include "lsdem/ls/CsvText.h"
+
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -84,18 +86,7 @@ std::string readFile(const std::string& path)
 /// The lines of a CSV file, each split at commas (no quoting in these files).
 std::vector<std::vector<std::string>> readCsv(const std::string& path)
 {
-    std::vector<std::vector<std::string>> rows;
-    std::istringstream text(readFile(path));
-    std::string line;
-    while (std::getline(text, line)) {
-        std::vector<std::string> fields;
-        std::string field;
-        std::istringstream cells(line);
-        while (std::getline(cells, field, ',')) fields.push_back(field);
-        if (!line.empty() && line.back() == ',') fields.emplace_back();
-        rows.push_back(fields);
-    }
-    return rows;
+    return readCsvRecords(readFile(path), path);
 }
 
 double number(const std::string& text)
@@ -227,25 +218,23 @@ TEST(RunOutputs, BoundaryFileNamesReplaceUnsafeCharacters)
     EXPECT_EQ(boundaryHistoryFileName("caf\xc3\xa9"), "boundary_caf__.csv");
 }
 
-// BUG (reported): grain names are written into grains.csv unquoted, and the scene reader
-// accepts any name (docs/scenes.md: "a unique name"), so a name with a comma shifts every
-// column of its row (16 fields under a 15-column header). Expected: the name is quoted (RFC
-// 4180) or refused when the scene is read.
-TEST(RunOutputs, DISABLED_GrainNameWithACommaStaysInItsColumn)
+// The scene reader accepts any grain name, so grains.csv quotes a name with a comma (RFC 4180)
+// and it keeps its column: 15 fields under the 15-column header, the name read back whole.
+TEST(RunOutputs, GrainNameWithACommaStaysInItsColumn)
 {
     test::ScratchDir dir;
     World w = smallWorld();
-    w.grains[0].name = "left,top";
+    w.grains[0].name = "left,top \"A\"";
     writeGrainsFile(dir.file("grains.csv"), w, {Vec3::Zero(), Vec3::Zero()});
     const auto lines = readCsv(dir.file("grains.csv"));
     ASSERT_EQ(lines.size(), 3u);
     EXPECT_EQ(lines[1].size(), 15u) << readFile(dir.file("grains.csv"));
+    EXPECT_EQ(lines[1][0], "left,top \"A\"");
 }
 
-// BUG (reported): writeGrainsFile separates the numbers with a comma only when the line is not
-// empty, so a grain with an empty name (possible through the World API; buildWorld names them)
-// loses its name column: 14 fields under a 15-column header.
-TEST(RunOutputs, DISABLED_EmptyGrainNameKeepsItsColumn)
+// A grain with an empty name (possible through the World API; buildWorld names them) keeps its
+// (empty) name column: 15 fields under the 15-column header.
+TEST(RunOutputs, EmptyGrainNameKeepsItsColumn)
 {
     test::ScratchDir dir;
     World w = smallWorld();

@@ -115,6 +115,68 @@ TEST(AssetIO, BadFilesFailCleanlyNamingTheFile)
     EXPECT_THROW(loadAsset(dir.path().string()), Error);
 }
 
+// Found by fuzzing (fuzz/corpus/asset/regression-*): OpenVDB allocates whatever a length field
+// says, so a damaged length made loadAsset take gigabytes before failing. The SHA-256 seal
+// written by saveAsset is checked first, by a parser that bounds each length by the file size.
+TEST(AssetIO, DamagedLengthFieldIsRefusedBeforeOpenVdbReadsIt)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const auto write = [&](const std::string& name, const std::string& content) {
+        std::ofstream(dir.file(name), std::ios::binary) << content;
+        return dir.file(name);
+    };
+    const auto expectRefused = [](const std::string& path, const std::string& message) {
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << path << " loaded";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), path);
+            EXPECT_NE(e.problem().find(message), std::string::npos) << e.what();
+            EXPECT_FALSE(e.fix().empty());
+        }
+    };
+    // The length of the grid name "phi" (after the seal): 4 GiB - 16.
+    const size_t phi = bytes.find(std::string("\x03\0\0\0phi", 7));
+    ASSERT_NE(phi, std::string::npos);
+    std::string longName = bytes;
+    longName.replace(phi, 4, "\xf0\xff\xff\xff");
+    expectRefused(write("long-name.vdb", longName), "damaged");
+    // The length of the seal's own key, within the metadata our parser reads.
+    const size_t key = bytes.find("lsdem_sha256");
+    ASSERT_NE(key, std::string::npos);
+    std::string longKey = bytes;
+    longKey.replace(key - 4, 4, "\xf0\xff\xff\xff");
+    expectRefused(write("long-key.vdb", longKey), "the file ends inside the file metadata");
+    // One flipped bit far inside the grids.
+    std::string flipped = bytes;
+    flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x10);
+    expectRefused(write("flipped.vdb", flipped), "damaged");
+}
+
+TEST(AssetIO, UnsealedFileIsRefused)
+{
+    // The grids of an asset written by OpenVDB alone, as lsdem before format 2 did.
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("sealed.vdb"));
+    openvdb::io::File sealed(dir.file("sealed.vdb"));
+    sealed.open();
+    openvdb::io::File(dir.file("unsealed.vdb")).write(*sealed.getGrids());
+    sealed.close();
+    try {
+        loadAsset(dir.file("unsealed.vdb"));
+        FAIL() << "an unsealed asset loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(e.problem().find("no checksum"), std::string::npos) << e.what();
+        EXPECT_NE(e.fix().find("lsdem-bake"), std::string::npos) << e.what();
+    }
+}
+
 TEST(AssetIO, ForeignLevelSetIsNotMistakenForAnAsset)
 {
     test::ScratchDir dir;

@@ -7,7 +7,7 @@ packages=(
     build-essential cmake ccache pkg-config
     libopenvdb-dev libopenvdb-tools libboost-iostreams-dev libimath-dev libblosc-dev
     libtbb-dev libeigen3-dev libassimp-dev libcgal-dev libgmp-dev libmpfr-dev
-    libpng-dev zlib1g-dev libtomlplusplus-dev
+    libpng-dev zlib1g-dev libtomlplusplus-dev libssl-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     python3 python3-matplotlib
 )

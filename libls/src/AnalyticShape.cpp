@@ -1,5 +1,6 @@
 #include "lsdem/ls/AnalyticShape.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/GaussLegendre.h"
 
@@ -13,8 +14,6 @@
 namespace lsdem {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 void requirePositive(const Vec3& size, const char* what)
 {

@@ -1,5 +1,7 @@
 #include "lsdem/ls/GaussLegendre.h"
 
+#include "lsdem/ls/Constants.h"
+
 #include <cmath>
 
 namespace lsdem {
@@ -9,7 +11,7 @@ void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w)
     x.assign(n, 0.0);
     w.assign(n, 0.0);
     for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = std::cos(3.14159265358979323846 * (i + 0.75) / (n + 0.5));
+        double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
         double dp = 0.0;
         for (int iter = 0; iter < 100; ++iter) {
             double p0 = 1.0, p1 = 0.0;

@@ -1,5 +1,6 @@
 #include "lsdem/ls/MeshRemesh.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -117,7 +118,7 @@ void refineBelow(SurfaceMesh& mesh, double maxLength, FeatureMap isFeature)
 void markCorners(const SurfaceMesh& mesh, FeatureMap isFeature, double angleDeg,
                  CornerMap isCorner)
 {
-    const double cosAngle = std::cos(angleDeg * 3.14159265358979323846 / 180.0);
+    const double cosAngle = std::cos(angleDeg * kPi / 180.0);
     for (VertexIndex v : mesh.vertices()) {
         std::vector<Point> ends;
         for (auto h : CGAL::halfedges_around_target(mesh.halfedge(v), mesh))

@@ -1,5 +1,6 @@
 #include "lsdem/ls/MeshValidation.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
 #include <Eigen/Geometry>
@@ -229,7 +230,7 @@ void measureComponents(const TriangleMesh& mesh, const Vec3& origin,
     }
 }
 
-/// How many times the closed surface @a comp winds around @a p (solid angle / 4 pi).
+/// How many times the closed surface @a comp winds around @a p (solid angle / 4 kPi).
 double windingNumber(const TriangleMesh& mesh, const Component& comp, const Vec3& p)
 {
     double solidAngle = 0.0;
@@ -243,8 +244,7 @@ double windingNumber(const TriangleMesh& mesh, const Component& comp, const Vec3
         solidAngle += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc +
                                                               b.dot(c) * la + c.dot(a) * lb);
     }
-    const double pi = 3.14159265358979323846;
-    return solidAngle / (4.0 * pi);
+    return solidAngle / (4.0 * kPi);
 }
 
 /// Whether component @a inner lies inside the closed surface @a outer.

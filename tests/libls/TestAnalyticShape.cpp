@@ -9,7 +9,7 @@
 #include <random>
 
 using namespace lsdem;
-using lsdem::test::kPi;
+using lsdem::kPi;
 
 TEST(AnalyticShape, SphereAndBoxDistancesMatchClosedForms)
 {

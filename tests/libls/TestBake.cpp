@@ -13,7 +13,7 @@
 #include <openvdb/tools/LevelSetMeasure.h>
 
 using namespace lsdem;
-using lsdem::test::kPi;
+using lsdem::kPi;
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <fstream>
 
 using namespace lsdem;
-using lsdem::test::kPi;
+using lsdem::kPi;
 
 namespace {
 

@@ -32,7 +32,7 @@ using lsdem::test::makeBox;
 using lsdem::test::makeIcosphere;
 using lsdem::test::signedVolume;
 
-using lsdem::test::kPi;
+using lsdem::kPi;
 
 using Corner = std::array<double, 3>;
 using Face = std::array<Corner, 3>;

@@ -3,6 +3,8 @@
 ///        programs, and reference values computed independently of the code under test.
 #pragma once
 
+#include "lsdem/ls/Constants.h"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -11,8 +13,6 @@
 #include <sys/wait.h>
 
 namespace lsdem::test {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// A fresh folder under the system temp dir, removed when the object dies.
 class ScratchDir

@@ -1,6 +1,7 @@
 #include "studies/Cube27Study.h"
 
 #include "lsdem/scene/BuildWorld.h"
+#include "lsdem/ls/Constants.h"
 #include "lsdem/scene/RandomRotation.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/contact/SphereContactReference.h"
@@ -26,7 +27,6 @@ namespace lsdem {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// δ = kColumn·d_w for a column of wall, two sphere–sphere contacts and floor.
 const double kColumn = 2.0 + 2.0 * std::sqrt(2.0);
 /// Throughput measured on the development machine (2 shared cores, 0.9–1.7e8 from N = 16000

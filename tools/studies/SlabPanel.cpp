@@ -1,6 +1,7 @@
 #include "studies/SlabPanel.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/Constants.h"
 
 #include <cmath>
 #include <sstream>
@@ -8,8 +9,6 @@
 namespace lsdem {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string show(double v)
 {

@@ -1,5 +1,6 @@
 #include "lsdem/contact/ContactModel.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
 #include <cmath>
@@ -41,8 +42,7 @@ NodeTesting parseNodeTesting(const std::string& name)
 double dampingRatioFromRestitution(double restitution)
 {
     const double logE = std::log(restitution);
-    const double pi = 3.14159265358979323846;
-    return -logE / std::sqrt(pi * pi + logE * logE);
+    return -logE / std::sqrt(kPi * kPi + logE * logE);
 }
 
 std::string stiffnessUnit(Formulation f)

@@ -1,5 +1,6 @@
 #include "lsdem/contact/SphereContactReference.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/GaussLegendre.h"
 
 #include <cmath>
@@ -8,8 +9,6 @@
 namespace lsdem {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 } // namespace
 

@@ -3,6 +3,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/LevelSetGrid.h"
 
 #include <gtest/gtest.h>
@@ -131,7 +132,7 @@ TEST(PairContact, SymmetricEqualsOneWayForEqualSpheres)
         g0.asset = g1.asset = &a;
         g1.index = 1;
         g0.pose.orientation = randomRotation(rng);
-        g1.pose.orientation = Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())) * g0.pose.orientation;
+        g1.pose.orientation = Quat(Eigen::AngleAxisd(kPi, Vec3::UnitZ())) * g0.pose.orientation;
         g1.pose.position = Vec3(2 * kRadius - delta, 0, 0);
         NodeCheckStats stats;
         const PairForces oneWay = computePairContact(
@@ -281,7 +282,7 @@ TEST(PairContact, MeshAreasMakeTheAdaptedForceInsensitiveToNodeDensity)
             .forceOnSecond.x();
     };
     // Contact at a pole (dense) or on the equator (sparse) of the tested sphere.
-    const Quat poleFacing(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));  // +z pole -> +x
+    const Quat poleFacing(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()));  // +z pole -> +x
     const double exact = exactSphereContactForce(kRadius, 0.2, 1e3);
     const double meshPole = force(meshAreas, poleFacing), meshEquator = force(meshAreas, Quat::Identity());
     const double uniPole = force(uniformAreas, poleFacing), uniEquator = force(uniformAreas, Quat::Identity());

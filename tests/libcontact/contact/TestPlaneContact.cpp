@@ -1,6 +1,7 @@
 // A grain against a rigid plane: the static force law and an elastic bounce.
 #include "lsdem/contact/NormalForce.h"
 #include "lsdem/contact/PlaneContact.h"
+#include "lsdem/ls/Constants.h"
 #include "lsdem/simulation/RigidBody.h"
 #include "lsdem/ls/Bake.h"
 
@@ -56,7 +57,7 @@ TEST(PlaneContact, SpherePressedIntoAPlaneGivesTheCapIntegral)
         planeForce(a, pose, floor, 1e3, force, torque);
         // With u = cos θ from the bottom, d = δ - R(1 - u) for u > 1 - δ/R and dA = 2πR² du:
         // P = kn*·2πR²·∫ (δ - R + R u) du = kn*·π·R·δ².
-        const double exact = 1e3 * 3.14159265358979323846 * 5.0 * delta * delta;
+        const double exact = 1e3 * kPi * 5.0 * delta * delta;
         EXPECT_NEAR(force.z() / exact, 1.0, 0.02) << delta;  // node quadrature at N = 8000
         EXPECT_NEAR(force.x(), 0.0, 1e-12 * exact);           // the plane pushes along its normal
         EXPECT_LT(torque.norm(), 0.02 * exact * 5.0);
@@ -80,8 +81,8 @@ TEST(PlaneContact, ElasticSphereReboundsWithItsImpactSpeed)
     // 2π k R δ_max with δ_max from ½mv² = π k R δ³/3; dt = a small fraction of sqrt(m/k_eff).
     const double kStar = 1e3;
     const double deltaMax = std::cbrt(1.5 * ball.mass * impactSpeed * impactSpeed /
-                                      (3.14159265358979323846 * kStar * 5.0));
-    const double stiffness = 2 * 3.14159265358979323846 * kStar * 5.0 * deltaMax;
+                                      (kPi * kStar * 5.0));
+    const double stiffness = 2 * kPi * kStar * 5.0 * deltaMax;
     const double dt = 0.02 * std::sqrt(ball.mass / stiffness);
     Vec3 force, torque;
     planeForce(a, ball.pose, floor, kStar, force, torque);

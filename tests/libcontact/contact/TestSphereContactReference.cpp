@@ -1,5 +1,6 @@
 // The exact two-sphere reference against an independent quadrature and the small-δ limit.
 #include "lsdem/contact/SphereContactReference.h"
+#include "lsdem/ls/Constants.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +9,7 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using lsdem::kPi;
 
 /// Adaptive Simpson on [a, b]: an independent method from the library's Gauss–Legendre.
 double simpson(const std::function<double(double)>& f, double a, double b, double tol, int depth = 0)

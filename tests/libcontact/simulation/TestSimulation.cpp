@@ -21,7 +21,7 @@
 #include <set>
 
 using namespace lsdem;
-using lsdem::test::kPi;
+using lsdem::kPi;
 
 namespace {
 

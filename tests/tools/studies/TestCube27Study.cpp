@@ -19,7 +19,7 @@
 
 #include <unistd.h>
 
-using lsdem::test::kPi;
+using lsdem::kPi;
 using lsdem::test::runCommand;
 
 namespace {

@@ -5,6 +5,7 @@
 
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
 #include <gtest/gtest.h>
@@ -14,8 +15,6 @@
 using namespace lsdem;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 SlabPanelOptions smallPanel(double angleDeg = 15.0)
 {

@@ -21,7 +21,7 @@
 #include <map>
 
 using namespace lsdem;
-using lsdem::test::kPi;
+using lsdem::kPi;
 using lsdem::test::runCommand;
 
 namespace {

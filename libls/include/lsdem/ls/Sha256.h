@@ -1,5 +1,6 @@
 /// @file Sha256.h
-/// @brief SHA-256 of a file's bytes (FIPS 180-4), for asset provenance; matches `sha256sum`.
+/// @brief SHA-256 of a file's bytes (FIPS 180-4, computed by OpenSSL), for asset provenance;
+///        matches `sha256sum`.
 #pragma once
 
 #include <string>

@@ -1,0 +1,80 @@
+/// @file SceneSections.h
+/// @brief The readers of the sections of a scene file (private to the scene reader), one file
+///        each: units, assets, grains and lattices, contacts, boundaries, simulation and output,
+///        and the checks across sections.
+#pragma once
+
+#include "TableReader.h"
+
+#include "lsdem/scene/Scene.h"
+
+#include <string>
+#include <vector>
+
+namespace lsdem::scenefile {
+
+/// [units]: the declared system, checked for force = mass·length/time². Null: the defaults.
+UnitSystem readUnits(const toml::table* table, const std::string& path);
+
+/// [assets.NAME]: a baked file, or a mesh or shape baked at load with its options.
+AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene);
+
+/// [[grains]]: one grain.
+GrainSpec readGrain(TableReader& t, const Scene& scene);
+/// [[lattices]]: a block of grains, appended to @a scene.
+void readLattice(TableReader& t, Scene& scene);
+/// orientation = [w, x, y, z] or axis_angle = [ax, ay, az, degrees]; identity if neither.
+Quat readOrientation(TableReader& t);
+
+/// [[contacts]]: the contact law between two materials.
+ContactSpec readContact(TableReader& t, const Scene& scene);
+
+/// [[boundaries]]: a plane, a sphere or a level-set obstacle.
+BoundarySpec readBoundary(TableReader& t, const Scene& scene);
+
+/// [simulation]: gravity, damping, time step and the end condition (required).
+void readSimulation(const toml::table* table, Scene& scene);
+/// [output]: history, ParaView and checkpoint periods (optional).
+void readOutput(const toml::table* table, Scene& scene);
+
+/// Every pair of materials that can meet has one [[contacts]] entry.
+void checkContactPairs(const Scene& scene);
+/// Grains and boundaries have distinct names.
+void checkUniqueNames(const Scene& scene);
+
+template <typename Spec>
+int indexByName(const std::vector<Spec>& specs, const std::string& name)
+{
+    for (size_t i = 0; i < specs.size(); ++i)
+        if (specs[i].name == name) return static_cast<int>(i);
+    return -1;
+}
+
+/// The index of the @a what (e.g. "material") that @a key names, or an error listing the names.
+template <typename Spec>
+int lookUp(TableReader& t, const std::string& key, const std::vector<Spec>& specs,
+           const std::string& what, const std::string& howToDefine)
+{
+    const std::string name = t.string(key);
+    const int i = indexByName(specs, name);
+    if (i < 0) {
+        std::vector<std::string> names;
+        for (const Spec& s : specs) names.push_back("'" + s.name + "'");
+        t.fail(key, "no " + what + " named '" + name + "'",
+               (names.empty() ? "" : "use one of " + joined(names) + ", or ") + howToDefine);
+    }
+    return i;
+}
+
+inline int lookUpAsset(TableReader& t, const Scene& scene)
+{
+    return lookUp(t, "asset", scene.assets, "asset", "define it in an [assets.NAME] table");
+}
+
+inline int lookUpMaterial(TableReader& t, const Scene& scene)
+{
+    return lookUp(t, "material", scene.materials, "material",
+                  "define it in a [materials.NAME] table");
+}
+
+} // namespace lsdem::scenefile

@@ -46,6 +46,7 @@ fi
 
 cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DLSDEM_FUZZ=ON -DLSDEM_WERROR=OFF -DLSDEM_BUILD_TESTS=OFF -DLSDEM_BUILD_BENCHMARKS=OFF \
+      -DBUILD_SHARED_LIBS=OFF \
       > /dev/null
 cmake --build build-fuzz -j2 --target "${targets[@]/#/fuzz_}"
 

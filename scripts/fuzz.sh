@@ -61,13 +61,16 @@ fuzz_one() {
     echo "lsdem fuzz: $t for $seconds s (log: $out/fuzz.log)"
     local dict=()
     [ -f "fuzz/$t.dict" ] && dict=(-dict="fuzz/$t.dict")
-    # New inputs go to the first folder only; the committed corpus is read, not written.
+    # New inputs go to the first folder only; the committed corpus is read, not written. The
+    # CPU time (user + system, the fuzzer and its children) goes to the end of the log.
+    local TIMEFORMAT="cpu_seconds: %U user + %S system"
     # shellcheck disable=SC2086 # the extra flags are words
-    build-fuzz/fuzz/fuzz_"$t" "$out/corpus" "fuzz/corpus/$t" "${limits[@]}" "${dict[@]}" \
-        ${LSDEM_FUZZ_FLAGS:-} \
-        -max_total_time="$seconds" -artifact_prefix="$out/crashes/" -print_final_stats=1 \
-        > "$out/fuzz.log" 2>&1 || true
-    grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb" "$out/fuzz.log" | sed "s/^/  $t /"
+    { time build-fuzz/fuzz/fuzz_"$t" "$out/corpus" "fuzz/corpus/$t" "${limits[@]}" \
+        "${dict[@]}" ${LSDEM_FUZZ_FLAGS:-} -max_total_time="$seconds" \
+        -artifact_prefix="$out/crashes/" -print_final_stats=1 > "$out/fuzz.log" 2>&1 || true
+    } 2>> "$out/fuzz.log"
+    grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb|^cpu_seconds" "$out/fuzz.log" |
+        sed "s/^/  $t /"
     local found
     found=$(find "$out/crashes" -type f | wc -l)
     echo "  $t: $found reproducer(s) in $out/crashes/"

@@ -3,13 +3,18 @@
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/Sha256.h"
 
+#include <openvdb/points/StreamCompression.h>
 #include <openvdb/version.h>
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <optional>
+#include <vector>
 
 namespace lsdem {
 
@@ -40,6 +45,12 @@ public:
     {
         const auto length = read<std::uint32_t>(what);
         return std::string(take(length, what), length);
+    }
+    size_t offset() const { return mOffset; }
+    void seek(size_t offset, const char* what)
+    {
+        if (offset > mBytes.size()) fail(std::string("the ") + what + " points past the end");
+        mOffset = offset;
     }
     /// Skip @a count bytes; returns the offset where they start.
     size_t skip(size_t count, const char* what)
@@ -79,9 +90,8 @@ std::string readWholeFile(const std::string& path)
 
 /// The offset of the seal's hex digits in @a bytes, or nothing if the file has no seal. The
 /// header layout is OpenVDB's (io/Archive.cc, file format 222 and later).
-std::optional<size_t> findChecksum(const std::string& bytes, const std::string& path)
+std::optional<size_t> findChecksum(ByteReader& in)
 {
-    ByteReader in(bytes, path);
     if (in.read<std::int64_t>("header") != openvdb::OPENVDB_MAGIC)
         in.fail("it does not start like an OpenVDB file");
     const auto version = in.read<std::uint32_t>("header");
@@ -106,6 +116,105 @@ std::optional<size_t> findChecksum(const std::string& bytes, const std::string& 
     return found;
 }
 
+/// Bytes of the fixed-size metadata types OpenVDB registers: it reads exactly this many
+/// whatever size the file states, so a different size would put its reading out of step.
+size_t fixedMetadataSize(const std::string& type)
+{
+    static const std::map<std::string, size_t> sizes = {
+        {"bool", 1},   {"int32", 4},  {"int64", 8},  {"float", 4},  {"double", 8},
+        {"vec2i", 8},  {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12}, {"vec3s", 12},
+        {"vec3d", 24}, {"vec4i", 16}, {"vec4s", 16}, {"vec4d", 32}, {"mat4s", 64},
+        {"mat4d", 128}};
+    const auto it = sizes.find(type);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+/// OpenVDB's per-grid index of leaf buffers (io/DelayedLoadMetadata.cc): a leaf count, then a
+/// mask byte and a compressed size per leaf, each array raw or as a blosc frame. OpenVDB sizes
+/// its arrays from the count and from the frame's own header before reading them, so both must
+/// agree with the bytes there are. Read from @a start, @a size bytes.
+void checkDelayedLoadMetadata(ByteReader& in, size_t start, std::uint32_t size)
+{
+    const size_t after = in.offset();
+    in.seek(start, "leaf index");
+    const size_t end = start + size;
+    const auto count = in.read<std::uint32_t>("leaf index");
+    const auto checkArray = [&](std::uint32_t bytes, size_t itemSize) {
+        const size_t raw = size_t{count} * itemSize;
+        const size_t stored = bytes > 0 ? size_t{bytes} : raw;
+        if (stored > end - std::min(end, in.offset()))
+            in.fail("a leaf index larger than its metadata");
+        if (bytes > 0) {
+            // A blosc frame: a 16-byte header whose second word is the uncompressed size,
+            // which OpenVDB pads to at least BLOSC_PAD_BYTES.
+            if (bytes < 16) in.fail("a leaf index frame shorter than its header");
+            const size_t frame = in.skip(bytes, "leaf index");
+            in.seek(frame + 4, "leaf index");
+            const size_t unpacked = in.read<std::uint32_t>("leaf index");
+            const size_t padded = std::max<size_t>(raw, openvdb::compression::BLOSC_PAD_BYTES);
+            if (unpacked < raw || unpacked > padded)
+                in.fail("a leaf index frame of the wrong size");
+            in.seek(frame + bytes, "leaf index");
+        } else {
+            in.skip(raw, "leaf index");
+        }
+    };
+    checkArray(in.read<std::uint32_t>("leaf index"), sizeof(std::int8_t));  // the masks
+    const auto sizesBytes = in.read<std::uint32_t>("leaf index");
+    if (sizesBytes != std::numeric_limits<std::uint32_t>::max())  // max: no sizes stored
+        checkArray(sizesBytes, sizeof(std::int64_t));
+    if (in.offset() > end) in.fail("a leaf index larger than its metadata");
+    in.seek(after, "leaf index");
+}
+
+/// The grid descriptors and each grid's compression flags, metadata and transform name, read
+/// the way OpenVDB reads them (io/Archive.cc, io/GridDescriptor.cc, MetaMap::readMeta), each
+/// length bounded by the grid's own byte range. The trees that follow are not parsed here.
+void checkGridHeaders(ByteReader& in)
+{
+    const auto count = in.read<std::int32_t>("grid count");
+    if (count < 1 || count > 64) in.fail("a grid count of " + std::to_string(count));
+    struct Range
+    {
+        std::int64_t grid, block, end;
+    };
+    std::vector<Range> ranges;
+    for (std::int32_t i = 0; i < count; ++i) {
+        in.string("grid descriptor");  // the grid's unique name
+        in.string("grid descriptor");  // its type
+        in.string("grid descriptor");  // the grid it instances, if any
+        Range r{};
+        r.grid = in.read<std::int64_t>("grid descriptor");
+        r.block = in.read<std::int64_t>("grid descriptor");
+        r.end = in.read<std::int64_t>("grid descriptor");
+        if (!(static_cast<std::int64_t>(in.offset()) <= r.grid && r.grid <= r.block &&
+              r.block <= r.end))
+            in.fail("grid " + std::to_string(i) + " has its data out of order");
+        in.seek(static_cast<size_t>(r.end), "grid descriptor");
+        ranges.push_back(r);
+    }
+    for (const Range& r : ranges) {
+        in.seek(static_cast<size_t>(r.grid), "grid");
+        in.read<std::uint32_t>("grid compression flags");
+        const auto entries = in.read<std::int32_t>("grid metadata");
+        if (entries < 0) in.fail("a negative metadata count");
+        for (std::int32_t e = 0; e < entries; ++e) {
+            in.string("grid metadata");
+            const std::string type = in.string("grid metadata");
+            const auto size = in.read<std::uint32_t>("grid metadata");
+            const size_t fixed = fixedMetadataSize(type);
+            if (fixed != 0 && size != fixed)
+                in.fail("grid metadata of type " + type + " stored in " +
+                        std::to_string(size) + " bytes");
+            const size_t start = in.skip(size, "grid metadata");
+            if (type == "__delayedload" && size > 0) checkDelayedLoadMetadata(in, start, size);
+        }
+        in.string("grid transform");  // the map's type name; its numbers have fixed sizes
+        if (in.offset() > static_cast<size_t>(r.block))
+            in.fail("a grid's header runs into its tree");
+    }
+}
+
 /// The seal of @a bytes: SHA-256 of the file with the seal's digits set to the placeholder
 /// (done in place: assets can be large).
 std::string checksumOf(std::string& bytes, size_t at)
@@ -121,7 +230,8 @@ std::string unsealedAssetChecksum() { return std::string(kChecksumLength, '0'); 
 void sealAssetFile(const std::string& tmpPath, const std::string& path)
 {
     std::string bytes = readWholeFile(tmpPath);
-    const std::optional<size_t> at = findChecksum(bytes, path);
+    ByteReader in(bytes, path);
+    const std::optional<size_t> at = findChecksum(in);
     if (!at) throw Error(path, "cannot seal the asset: OpenVDB wrote no checksum placeholder");
     const std::string checksum = checksumOf(bytes, *at);
     std::fstream out(tmpPath, std::ios::binary | std::ios::in | std::ios::out);
@@ -134,7 +244,8 @@ void sealAssetFile(const std::string& tmpPath, const std::string& path)
 void verifyAssetFile(const std::string& path)
 {
     std::string bytes = readWholeFile(path);
-    const std::optional<size_t> at = findChecksum(bytes, path);
+    ByteReader in(bytes, path);
+    const std::optional<size_t> at = findChecksum(in);
     if (!at)
         throw Error(path, "the asset has no checksum (" + std::string(kAssetChecksumKey) +
                               "): it was baked by an older lsdem or written by another program",
@@ -144,6 +255,9 @@ void verifyAssetFile(const std::string& path)
         throw Error(path, "the file is damaged: its SHA-256 differs from the one stored when it "
                           "was written (truncated, or changed since)",
                     "copy it again from where it came from, or bake it again with lsdem-bake");
+    // A sealed file can still be made by hand: its headers are checked too. (The trees after
+    // them are OpenVDB's to read; see docs/fuzzing.md.)
+    checkGridHeaders(in);
 }
 
 } // namespace lsdem

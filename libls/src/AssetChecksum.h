@@ -23,7 +23,9 @@ std::string unsealedAssetChecksum();
 void sealAssetFile(const std::string& tmpPath, const std::string& path);
 
 /// Check the seal of the file at @a path: the header and the file-level metadata are parsed
-/// with every length checked against the file size, then the SHA-256 of the bytes is compared.
+/// with every length checked against the file size, then the SHA-256 of the bytes is compared,
+/// then the grid descriptors and each grid's metadata and transform name are checked the same
+/// way (a sealed file can be made by hand). The grids' trees are left to OpenVDB.
 /// @throw Error naming the file if it is unreadable, malformed, unsealed or damaged.
 void verifyAssetFile(const std::string& path);
 

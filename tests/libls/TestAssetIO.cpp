@@ -3,6 +3,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetGrid.h"
+#include "lsdem/ls/Sha256.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -157,6 +158,67 @@ TEST(AssetIO, DamagedLengthFieldIsRefusedBeforeOpenVdbReadsIt)
     std::string flipped = bytes;
     flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x10);
     expectRefused(write("flipped.vdb", flipped), "damaged");
+}
+
+namespace {
+
+/// @a bytes with its seal recomputed, as someone editing a file on purpose would do.
+std::string resealed(std::string bytes)
+{
+    const std::string key = "lsdem_sha256";
+    const size_t digits = bytes.find(key) + key.size() + 4 + 6 + 4;  // "string", its size
+    bytes.replace(digits, 64, std::string(64, '0'));
+    bytes.replace(digits, 64, sha256Hex(bytes));
+    return bytes;
+}
+
+} // namespace
+
+// Found by fuzzing (fuzz/corpus/asset/regression-sealed-*): libFuzzer forges the seal (it sees
+// both sides of the comparison), and the next damaged length OpenVDB trusted was in the grid
+// descriptors. The headers of every grid are checked after the seal, the same way.
+TEST(AssetIO, HandMadeGridHeadersAreRefusedEvenWhenSealed)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    EXPECT_EQ(resealed(bytes), bytes);  // the helper computes the seal saveAsset wrote
+    struct Case
+    {
+        const char* what;
+        std::string field;        ///< bytes to find
+        size_t offset;            ///< where in them the length starts
+        std::string replacement;  ///< 4 bytes
+        const char* message;
+    };
+    const std::string huge("\xf0\xff\xff\x7f", 4);
+    const Case cases[] = {
+        {"grid name", std::string("\x05\0\0\0nodes", 9), 0, huge, "grid descriptor"},
+        {"grid count", std::string("\x02\0\0\0\x03\0\0\0phi", 11), 0, huge, "grid count"},
+        {"metadata string", std::string("\x06\0\0\0source\x06\0\0\0string", 20), 20, huge,
+         "grid metadata"},
+        {"leaf index count", std::string("__delayedload", 13), 17, huge, "leaf index"},
+    };
+    for (const Case& c : cases) {
+        const size_t at = bytes.find(c.field);
+        ASSERT_NE(at, std::string::npos) << c.what;
+        std::string edited = bytes;
+        edited.replace(at + c.offset, 4, c.replacement);
+        const std::string path = dir.file("edited.vdb");
+        std::ofstream(path, std::ios::binary) << resealed(edited);
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << c.what << ": loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(e.problem().find("not a readable lsdem asset"), std::string::npos)
+                << c.what << ": " << e.what();
+            EXPECT_NE(e.problem().find(c.message), std::string::npos) << c.what << ": " << e.what();
+        }
+    }
 }
 
 TEST(AssetIO, UnsealedFileIsRefused)

@@ -11,7 +11,9 @@
 #include <openvdb/io/File.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include <cstdint>
 #include <fstream>
+#include <limits>
 
 using namespace lsdem;
 
@@ -219,6 +221,46 @@ TEST(AssetIO, HandMadeGridHeadersAreRefusedEvenWhenSealed)
             EXPECT_NE(e.problem().find(c.message), std::string::npos) << c.what << ": " << e.what();
         }
     }
+}
+
+// Found by review while writing the asset fuzzer: values OpenVDB reads fine but lsdem trusted.
+// A node_count of 1e12 made loadAsset allocate for 1e12 nodes (std::bad_alloc escaped), a NaN
+// voxel size passed the transform check (NaN compares false).
+TEST(AssetIO, HandMadeMetadataValuesAreRefusedEvenWhenSealed)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const auto valueOf = [&](const std::string& key, const std::string& type) {
+        const std::string entry = key + char(type.size()) + std::string(3, '\0') + type;
+        const size_t at = bytes.find(entry);
+        EXPECT_NE(at, std::string::npos) << key;
+        return at + entry.size() + 4;  // after the value's size
+    };
+    const auto expectRefused = [&](std::string edited, const std::string& message) {
+        const std::string path = dir.file("edited.vdb");
+        std::ofstream(path, std::ios::binary) << resealed(edited);
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << "loaded: " << message;
+        } catch (const Error& e) {
+            EXPECT_NE(e.problem().find(message), std::string::npos) << e.what();
+        }
+    };
+    std::string manyNodes = bytes;
+    const int64_t trillion = 1000000000000;
+    manyNodes.replace(valueOf("node_count", "int64"), 8,
+                      std::string(reinterpret_cast<const char*>(&trillion), 8));
+    expectRefused(manyNodes, "metadata says 1000000000000");
+    std::string nanVoxel = bytes;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    nanVoxel.replace(valueOf("voxel_size", "double"), 8,
+                     std::string(reinterpret_cast<const char*>(&nan), 8));
+    expectRefused(nanVoxel, "not a finite length");
 }
 
 TEST(AssetIO, UnsealedFileIsRefused)

@@ -19,6 +19,7 @@
 #include <iomanip>
 #include <map>
 #include <ostream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
@@ -81,6 +82,24 @@ void appendTriangles(TriangleMesh& mesh, std::map<Position, int>& index, const a
         }
         mesh.triangles.push_back(tri);
     }
+}
+
+/// assimp 5.2 loops forever on a PLY file whose header never ends (found by fuzzing), so a file
+/// that starts like a PLY file must have its end_header line within the first megabyte.
+void checkPlyHeaderEnds(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    if (!std::getline(in, line) || line.compare(0, 3, "ply") != 0) return;  // not PLY
+    size_t read = line.size() + 1;
+    while (read < (size_t(1) << 20) && std::getline(in, line)) {
+        read += line.size() + 1;
+        std::istringstream words(line);
+        std::string first;
+        if (words >> first && first == "end_header") return;
+    }
+    throw Error(path, "the PLY header has no end_header line (the file is cut short or damaged)",
+                "export the mesh again");
 }
 
 std::string lowerCaseExtension(const std::string& path)
@@ -146,6 +165,8 @@ TriangleMesh readMesh(const std::string& path)
         throw Error(path, "this is a folder, not a mesh file", "give the path of the mesh file");
     if (!std::ifstream(path, std::ios::binary))
         throw Error(path, "the file cannot be read", "check its permissions");
+
+    checkPlyHeaderEnds(path);
 
     // Read first and post-process second, so a file that holds only points or lines is told
     // apart from one assimp cannot parse (post-processing fails on meshes without faces).

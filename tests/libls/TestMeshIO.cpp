@@ -291,6 +291,23 @@ TEST_F(MeshIO, BadIndexInALaterObjectIsAnError)
     EXPECT_NE(message.find("fix:"), std::string::npos) << message;
 }
 
+// Found by fuzzing (fuzz/corpus/mesh_ply/regression-no-end-header.ply): assimp never returns
+// from a PLY file whose header lacks end_header; readMesh checks the header first.
+TEST_F(MeshIO, PlyHeaderWithoutEndIsAnError)
+{
+    const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                               "property float y\nproperty float z\nelement face 1\n"
+                               "property list uchar int vertex_indices\n";
+    const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const std::string path = file("no-end.ply");
+    writeText(path, header + body);
+    const std::string message = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+    EXPECT_NE(message.find("no end_header line"), std::string::npos) << message;
+    // The same file with its end_header is read (it holds an open triangle, not a solid).
+    writeText(path, header + "end_header\n" + body);
+    EXPECT_EQ(lsdem::readMesh(path).triangles.size(), 1u);
+}
+
 TEST_F(MeshIO, FolderIsNotAMeshFile)
 {
     expectErrorNaming([&] { lsdem::readMesh(dir.string()); }, dir.string());

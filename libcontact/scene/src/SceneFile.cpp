@@ -142,7 +142,8 @@ Scene parseScene(const std::string& text, const std::string& path)
 Scene readSceneFile(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
-    if (!in || fs::is_directory(path))
+    std::error_code ec;  // a path the system refuses is unreadable, not a filesystem_error
+    if (!in || fs::is_directory(path, ec))
         throw Error(path, "cannot read the scene file", "check the path and its permissions");
     std::ostringstream text;
     text << in.rdbuf();

@@ -326,3 +326,20 @@ TEST(SceneFile, ManyMaterialsNeedNoTableOfEveryPair)
         EXPECT_NE(e.problem().find("'steel' and 'steel'"), std::string::npos) << e.what();
     }
 }
+
+// Found by fuzzing (fuzz/corpus/scene/regression-file-name-too-long.toml): a mesh path longer
+// than the system allows made the existence check throw std::filesystem_error, which named
+// neither the scene's line nor the key.
+TEST(SceneFile, OverlongAssetPathIsNotFoundWithLineAndKey)
+{
+    const std::string text =
+        edited("shape = \"sphere\"\nradius = 2.0", "mesh = \"" + std::string(5000, 'x') + ".obj\"");
+    try {
+        parseScene(text, "/data/scene.toml");
+        FAIL() << "a 5000-character mesh path accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(lineOf(text, "mesh = ")));
+        EXPECT_NE(e.problem().find("mesh: file not found"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("File name too long"), std::string::npos) << e.what();
+    }
+}

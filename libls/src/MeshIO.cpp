@@ -43,6 +43,28 @@ bool hasPolygons(const aiScene& scene)
     return false;
 }
 
+/// Refuse faces that assimp's own post-processing would trip over (found by fuzzing): a face
+/// with no corners makes the mesh count as polygons, and Triangulate then fails an assertion
+/// that aborts the process (assimp 5.2); an index past the vertices would be read as it is.
+void checkFaces(const aiScene& scene, const std::string& path)
+{
+    for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+        const aiMesh& mesh = *scene.mMeshes[m];
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices == 0)
+                throw Error(path, "the file is corrupt: face " + std::to_string(f) +
+                                      " has no corners",
+                            "export the mesh again");
+            for (unsigned k = 0; k < face.mNumIndices; ++k)
+                if (face.mIndices[k] >= mesh.mNumVertices)
+                    throw Error(path, "the file is corrupt: face " + std::to_string(f) +
+                                          " refers to a missing vertex",
+                                "export the mesh again");
+        }
+    }
+}
+
 /// Index of @a p in @a mesh, adding it if no vertex has exactly this position yet (+0 and -0
 /// count as equal). Non-finite positions are never merged: they cannot be ordered, and
 /// validation reports them by index.
@@ -176,6 +198,7 @@ TriangleMesh readMesh(const std::string& path)
                     std::string("cannot read the mesh (unknown or invalid format): ") +
                         importer.GetErrorString(),
                     "export it as OBJ, STL or PLY");
+    checkFaces(*importer.GetScene(), path);
     if (!hasPolygons(*importer.GetScene()))
         throw Error(path, kNoTriangles, kNoTrianglesFix);
     // PreTransformVertices applies node transforms; nothing here reorders or reorients faces,

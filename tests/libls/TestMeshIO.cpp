@@ -308,6 +308,19 @@ TEST_F(MeshIO, PlyHeaderWithoutEndIsAnError)
     EXPECT_EQ(lsdem::readMesh(path).triangles.size(), 1u);
 }
 
+// Found by fuzzing (fuzz/corpus/mesh_ply/regression-zero-corner-face.ply): a PLY face with no
+// corners made assimp's triangulation fail an assertion and abort the process.
+TEST_F(MeshIO, FaceWithoutCornersIsAnError)
+{
+    const std::string path = file("zero.ply");
+    writeText(path, "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 2\n"
+                    "property list uchar int vertex_indices\nend_header\n"
+                    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0\n");
+    const std::string message = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+    EXPECT_NE(message.find("face 1 has no corners"), std::string::npos) << message;
+}
+
 TEST_F(MeshIO, FolderIsNotAMeshFile)
 {
     expectErrorNaming([&] { lsdem::readMesh(dir.string()); }, dir.string());

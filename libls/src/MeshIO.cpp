@@ -106,22 +106,86 @@ void appendTriangles(TriangleMesh& mesh, std::map<Position, int>& index, const a
     }
 }
 
-/// assimp 5.2 loops forever on a PLY file whose header never ends (found by fuzzing), so a file
-/// that starts like a PLY file must have its end_header line within the first megabyte.
-void checkPlyHeaderEnds(const std::string& path)
+/// Bytes of a PLY scalar type, or 0 if @a type is none.
+size_t plyTypeSize(const std::string& type)
+{
+    static const std::map<std::string, size_t> sizes = {
+        {"char", 1},  {"uchar", 1},  {"int8", 1},  {"uint8", 1},   {"short", 2},   {"ushort", 2},
+        {"int16", 2}, {"uint16", 2}, {"int", 4},   {"uint", 4},    {"int32", 4},   {"uint32", 4},
+        {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+    const auto it = sizes.find(type);
+    return it == sizes.end() ? 0 : it->second;
+}
+
+/// assimp 5.2 trusts a PLY header, and fuzzing found it never returns when end_header is
+/// missing and writes past its buffers when a keyword or a type is misspelt. So a file that
+/// starts like a PLY file has its header read here first: known keywords and types only,
+/// end_header within the first megabyte, and a body at least as long as the elements announced
+/// (one byte per ASCII value, the fixed sizes in binary).
+void checkPlyHeader(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     if (!std::getline(in, line) || line.compare(0, 3, "ply") != 0) return;  // not PLY
+    int lineNumber = 1;
+    const auto fail = [&](const std::string& problem) {
+        throw Error(path, "the PLY header " + problem + " (the file is damaged or not PLY)",
+                    "export the mesh again");
+    };
+    const auto failAtLine = [&](const std::string& problem) {
+        fail("line " + std::to_string(lineNumber) + ": " + problem);
+    };
+    bool binary = false;
+    bool inElement = false;
+    double bodyBytes = 0.0;  // at least this many bytes must follow the header
+    double count = 0.0, bytesPerItem = 0.0;
     size_t read = line.size() + 1;
     while (read < (size_t(1) << 20) && std::getline(in, line)) {
         read += line.size() + 1;
+        ++lineNumber;
         std::istringstream words(line);
-        std::string first;
-        if (words >> first && first == "end_header") return;
+        std::string keyword;
+        words >> keyword;
+        if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
+        if (keyword == "end_header") {
+            bodyBytes += count * bytesPerItem;
+            const std::streamoff header = in.tellg();
+            in.seekg(0, std::ios::end);
+            if (header < 0 || double(in.tellg() - header) < bodyBytes)
+                fail("announces more data than the file holds");
+            return;
+        }
+        if (keyword == "format") {
+            std::string format;
+            words >> format;
+            if (format == "binary_little_endian" || format == "binary_big_endian")
+                binary = true;
+            else if (format != "ascii")
+                failAtLine("unknown format '" + format + "'");
+        } else if (keyword == "element") {
+            std::string name;
+            long long items = -1;
+            if (!(words >> name >> items) || items < 0)
+                failAtLine("an element needs a name and a count");
+            bodyBytes += count * bytesPerItem;
+            count = double(items);
+            bytesPerItem = 0.0;
+            inElement = true;
+        } else if (keyword == "property") {
+            std::string type, countType, itemType, name;
+            words >> type;
+            const bool list = type == "list";
+            if (list) words >> countType >> itemType;
+            words >> name;
+            const size_t size = plyTypeSize(list ? countType : type);
+            if (!inElement || size == 0 || (list && plyTypeSize(itemType) == 0) || name.empty())
+                failAtLine("a property needs an element, a known type and a name");
+            bytesPerItem += binary ? double(size) : 1.0;
+        } else {
+            failAtLine("unknown keyword '" + keyword + "'");
+        }
     }
-    throw Error(path, "the PLY header has no end_header line (the file is cut short or damaged)",
-                "export the mesh again");
+    fail("has no end_header line (the file is cut short or damaged)");
 }
 
 std::string lowerCaseExtension(const std::string& path)
@@ -188,7 +252,7 @@ TriangleMesh readMesh(const std::string& path)
     if (!std::ifstream(path, std::ios::binary))
         throw Error(path, "the file cannot be read", "check its permissions");
 
-    checkPlyHeaderEnds(path);
+    checkPlyHeader(path);
 
     // Read first and post-process second, so a file that holds only points or lines is told
     // apart from one assimp cannot parse (post-processing fails on meshes without faces).

@@ -291,9 +291,11 @@ TEST_F(MeshIO, BadIndexInALaterObjectIsAnError)
     EXPECT_NE(message.find("fix:"), std::string::npos) << message;
 }
 
-// Found by fuzzing (fuzz/corpus/mesh_ply/regression-no-end-header.ply): assimp never returns
-// from a PLY file whose header lacks end_header; readMesh checks the header first.
-TEST_F(MeshIO, PlyHeaderWithoutEndIsAnError)
+// Found by fuzzing (fuzz/corpus/mesh_ply/regression-no-end-header.ply,
+// regression-bad-property-heap.ply): assimp never returns from a PLY file whose header lacks
+// end_header, and writes past its buffers when a keyword or a type is misspelt (heap
+// corruption). readMesh checks the header first.
+TEST_F(MeshIO, BrokenPlyHeaderIsAnError)
 {
     const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
                                "property float y\nproperty float z\nelement face 1\n"
@@ -302,10 +304,23 @@ TEST_F(MeshIO, PlyHeaderWithoutEndIsAnError)
     const std::string path = file("no-end.ply");
     writeText(path, header + body);
     const std::string message = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
-    EXPECT_NE(message.find("no end_header line"), std::string::npos) << message;
+    EXPECT_NE(message.find("the PLY header"), std::string::npos) << message;
     // The same file with its end_header is read (it holds an open triangle, not a solid).
     writeText(path, header + "end_header\n" + body);
     EXPECT_EQ(lsdem::readMesh(path).triangles.size(), 1u);
+    // A misspelt keyword, an unknown type, and more vertices than the file holds.
+    const std::pair<std::string, std::string> broken[] = {
+        {"property float z", "propyre tfloat z"},
+        {"list uchar int", "list ucha{ int"},
+        {"element vertex 3", "element vertex 3000000000"},
+    };
+    for (const auto& [from, to] : broken) {
+        std::string text = header + "end_header\n" + body;
+        text.replace(text.find(from), from.size(), to);
+        writeText(path, text);
+        const std::string refused = expectErrorNaming([&] { lsdem::readMesh(path); }, path);
+        EXPECT_NE(refused.find("the PLY header"), std::string::npos) << to << ": " << refused;
+    }
 }
 
 // Found by fuzzing (fuzz/corpus/mesh_ply/regression-zero-corner-face.ply): a PLY face with no

@@ -185,7 +185,7 @@ void checkPlyHeader(const std::string& path)
             failAtLine("unknown keyword '" + keyword + "'");
         }
     }
-    fail("has no end_header line (the file is cut short or damaged)");
+    fail("has no end_header line");
 }
 
 std::string lowerCaseExtension(const std::string& path)

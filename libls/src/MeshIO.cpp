@@ -126,7 +126,16 @@ void checkPlyHeader(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    if (!std::getline(in, line) || line.compare(0, 3, "ply") != 0) return;  // not PLY
+    std::getline(in, line);
+    // assimp reads a .ply file as PLY whatever it starts with, and recognises the magic word
+    // in any case elsewhere.
+    std::string magic = line.substr(0, 3);
+    std::transform(magic.begin(), magic.end(), magic.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::string extension = fs::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (magic != "ply" && extension != ".ply") return;  // not PLY
     int lineNumber = 1;
     const auto fail = [&](const std::string& problem) {
         throw Error(path, "the PLY header " + problem + " (the file is damaged or not PLY)",
@@ -135,6 +144,7 @@ void checkPlyHeader(const std::string& path)
     const auto failAtLine = [&](const std::string& problem) {
         fail("line " + std::to_string(lineNumber) + ": " + problem);
     };
+    if (line.compare(0, 3, "ply") != 0) fail("does not start with the word 'ply'");
     bool binary = false;
     bool inElement = false;
     double bodyBytes = 0.0;  // at least this many bytes must follow the header

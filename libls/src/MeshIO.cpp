@@ -150,15 +150,27 @@ void checkPlyHeader(const std::string& path)
     double bodyBytes = 0.0;  // at least this many bytes must follow the header
     double count = 0.0, bytesPerItem = 0.0;
     size_t read = line.size() + 1;
+    const auto finishElement = [&] {
+        if (inElement && count > 0.0 && bytesPerItem == 0.0)
+            failAtLine("an element before this line has no properties");
+        bodyBytes += count * bytesPerItem;
+    };
     while (read < (size_t(1) << 20) && std::getline(in, line)) {
         read += line.size() + 1;
         ++lineNumber;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        // Plain text only: assimp splits lines and words its own way, and hung on a header
+        // with a stray control byte that a stream would take for a space.
+        for (const char c : line)
+            if ((c < ' ' && c != '\t') || c > '~')
+                failAtLine("holds a byte that is not plain text");
         std::istringstream words(line);
-        std::string keyword;
+        std::string keyword, extra;
         words >> keyword;
         if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
         if (keyword == "end_header") {
-            bodyBytes += count * bytesPerItem;
+            if (line != "end_header") failAtLine("end_header must be alone on its line");
+            finishElement();
             const std::streamoff header = in.tellg();
             in.seekg(0, std::ios::end);
             if (header < 0 || double(in.tellg() - header) < bodyBytes)
@@ -173,12 +185,12 @@ void checkPlyHeader(const std::string& path)
             else if (format != "ascii")
                 failAtLine("unknown format '" + format + "'");
         } else if (keyword == "element") {
-            std::string name;
-            long long items = -1;
-            if (!(words >> name >> items) || items < 0)
-                failAtLine("an element needs a name and a count");
-            bodyBytes += count * bytesPerItem;
-            count = double(items);
+            std::string name, items;
+            if (!(words >> name >> items) || (words >> extra) || items.size() > 18 ||
+                items.find_first_not_of("0123456789") != std::string::npos)
+                failAtLine("an element needs a name and a count, and nothing more");
+            finishElement();
+            count = std::stod(items);
             bytesPerItem = 0.0;
             inElement = true;
         } else if (keyword == "property") {
@@ -188,7 +200,8 @@ void checkPlyHeader(const std::string& path)
             if (list) words >> countType >> itemType;
             words >> name;
             const size_t size = plyTypeSize(list ? countType : type);
-            if (!inElement || size == 0 || (list && plyTypeSize(itemType) == 0) || name.empty())
+            if (!inElement || size == 0 || (list && plyTypeSize(itemType) == 0) ||
+                name.empty() || (words >> extra))
                 failAtLine("a property needs an element, a known type and a name");
             bytesPerItem += binary ? double(size) : 1.0;
         } else {

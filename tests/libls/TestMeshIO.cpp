@@ -314,6 +314,8 @@ TEST_F(MeshIO, BrokenPlyHeaderIsAnError)
         {"list uchar int", "list ucha{ int"},
         {"element vertex 3", "element vertex 3000000000"},
         {"ply\n", "pLy\n"},  // assimp reads it as PLY all the same, and hung on this one
+        {"face 1\n", "face 1\x8a"},  // a control byte instead of a newline: assimp hung
+        {"face 1\n", "face 1\nelement edge 2\n"},  // an element without properties
     };
     for (const auto& [from, to] : broken) {
         std::string text = header + "end_header\n" + body;

@@ -172,6 +172,15 @@ void checkPlyHeader(const std::string& path)
             if (line != "end_header") failAtLine("end_header must be alone on its line");
             finishElement();
             const std::streamoff header = in.tellg();
+            if (!binary) {
+                // An ASCII body is text too: a NUL in it made assimp allocate all the memory
+                // there was (found by fuzzing).
+                char c;
+                while (in.get(c))
+                    if ((c < ' ' && c != '\t' && c != '\n' && c != '\r') || c > '~')
+                        fail("is followed by an ASCII body that holds a byte that is not text");
+                in.clear();
+            }
             in.seekg(0, std::ios::end);
             if (header < 0 || double(in.tellg() - header) < bodyBytes)
                 fail("announces more data than the file holds");

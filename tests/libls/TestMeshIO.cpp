@@ -292,9 +292,9 @@ TEST_F(MeshIO, BadIndexInALaterObjectIsAnError)
 }
 
 // Found by fuzzing (fuzz/corpus/mesh_ply/regression-no-end-header.ply,
-// regression-bad-property-heap.ply): assimp never returns from a PLY file whose header lacks
-// end_header, and writes past its buffers when a keyword or a type is misspelt (heap
-// corruption). readMesh checks the header first.
+// regression-bad-property-heap.ply, regression-nul-in-ascii-body-oom.ply, ...): assimp never
+// returns from a PLY file whose header lacks end_header, writes past its buffers when a keyword
+// or a type is misspelt, and filled all memory on NULs in an ASCII body. readMesh checks first.
 TEST_F(MeshIO, BrokenPlyHeaderIsAnError)
 {
     const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
@@ -316,6 +316,7 @@ TEST_F(MeshIO, BrokenPlyHeaderIsAnError)
         {"ply\n", "pLy\n"},  // assimp reads it as PLY all the same, and hung on this one
         {"face 1\n", "face 1\x8a"},  // a control byte instead of a newline: assimp hung
         {"face 1\n", "face 1\nelement edge 2\n"},  // an element without properties
+        {"3 0 1 2\n", std::string("3 0 1 2\n\0\0", 10)},  // NULs: assimp took 24 GB
     };
     for (const auto& [from, to] : broken) {
         std::string text = header + "end_header\n" + body;

@@ -13,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -117,6 +118,84 @@ size_t plyTypeSize(const std::string& type)
     return it == sizes.end() ? 0 : it->second;
 }
 
+/// Whether @a word is a whole number in C syntax (what an ASCII PLY value is).
+bool isPlyNumber(const std::string& word, double& value)
+{
+    char* end = nullptr;
+    value = std::strtod(word.c_str(), &end);
+    return !word.empty() && end == word.c_str() + word.size();
+}
+
+/// Each element item of an ASCII PLY body on its own line, with the values its properties
+/// announce (a list: its count, then that many values), and nothing but blank lines after.
+template <typename Property, typename FailAtLine, typename Fail>
+void checkPlyAsciiBody(std::istream& in,
+                       const std::vector<std::pair<long long, std::vector<Property>>>& elements,
+                       int& lineNumber, const FailAtLine& failAtLine, const Fail& fail)
+{
+    std::string line, word;
+    double value = 0.0;
+    for (const auto& [count, properties] : elements)
+        for (long long i = 0; i < count; ++i) {
+            if (!std::getline(in, line)) fail("announces more elements than the file holds");
+            ++lineNumber;
+            for (const char c : line)
+                if ((c < ' ' && c != '\t' && c != '\r') || c > '~')
+                    failAtLine("holds a byte that is not text");
+            std::istringstream words(line);
+            for (const Property& p : properties) {
+                if (!(words >> word) || !isPlyNumber(word, value))
+                    failAtLine("has fewer values than the header announces");
+                if (p.itemSize == 0) continue;
+                if (!(value >= 0.0 && value <= 1e6 && value == std::floor(value)))
+                    failAtLine("has a list of a bad length");
+                const long long length = static_cast<long long>(value);
+                for (long long k = 0; k < length; ++k)
+                    if (!(words >> word) || !isPlyNumber(word, value))
+                        failAtLine("has a list shorter than its length");
+            }
+            if (words >> word) failAtLine("has more values than the header announces");
+        }
+    while (std::getline(in, line)) {
+        ++lineNumber;
+        if (line.find_first_not_of(" \t\r") != std::string::npos)
+            failAtLine("follows the last element the header announces");
+    }
+}
+
+/// The items of a binary PLY body fit the file: scalars at their sizes, lists at the length
+/// they state.
+template <typename Property, typename Fail>
+void checkPlyBinaryBody(std::istream& in,
+                        const std::vector<std::pair<long long, std::vector<Property>>>& elements,
+                        bool bigEndian, const Fail& fail)
+{
+    const std::streamoff start = in.tellg();
+    in.seekg(0, std::ios::end);
+    const double size = double(in.tellg() - start);
+    in.seekg(start);
+    double at = 0.0;
+    for (const auto& [count, properties] : elements)
+        for (long long i = 0; i < count; ++i)
+            for (const Property& p : properties) {
+                if (at + double(p.size) > size) fail("announces more data than it holds");
+                if (p.itemSize == 0) {
+                    at += double(p.size);
+                    continue;
+                }
+                unsigned char bytes[4] = {};
+                in.seekg(start + static_cast<std::streamoff>(at));
+                in.read(reinterpret_cast<char*>(bytes), static_cast<std::streamsize>(p.size));
+                double length = 0.0;
+                for (size_t b = 0; b < p.size; ++b)
+                    length = 256.0 * length + bytes[bigEndian ? b : p.size - 1 - b];
+                if (p.signedCount && (bytes[bigEndian ? 0 : p.size - 1] & 0x80))
+                    fail("has a list of negative length");
+                at += double(p.size) + length * double(p.itemSize);
+            }
+    if (at > size) fail("announces more data than it holds");
+}
+
 /// assimp 5.2 trusts a PLY header, and fuzzing found it never returns when end_header is
 /// missing and writes past its buffers when a keyword or a type is misspelt. So a file that
 /// starts like a PLY file has its header read here first: known keywords and types only,
@@ -138,17 +217,24 @@ void checkPlyHeader(const std::string& path)
     if (magic != "ply" && extension != ".ply") return;  // not PLY
     int lineNumber = 1;
     const auto fail = [&](const std::string& problem) {
-        throw Error(path, "the PLY header " + problem + " (the file is damaged or not PLY)",
+        throw Error(path, "the PLY file " + problem + " (it is damaged or not PLY)",
                     "export the mesh again");
     };
     const auto failAtLine = [&](const std::string& problem) {
-        fail("line " + std::to_string(lineNumber) + ": " + problem);
+        fail("at line " + std::to_string(lineNumber) + ": " + problem);
     };
     if (line.compare(0, 3, "ply") != 0) fail("does not start with the word 'ply'");
-    bool binary = false;
+    bool binary = false, bigEndian = false;
     bool inElement = false;
     double bodyBytes = 0.0;  // at least this many bytes must follow the header
     double count = 0.0, bytesPerItem = 0.0;
+    struct Property
+    {
+        size_t size = 0;      ///< bytes of the scalar, or of a list's count
+        size_t itemSize = 0;  ///< bytes of a list's items; 0 for a scalar
+        bool signedCount = false;  ///< a list's count type is signed
+    };
+    std::vector<std::pair<long long, std::vector<Property>>> elements;
     size_t read = line.size() + 1;
     const auto finishElement = [&] {
         if (inElement && count > 0.0 && bytesPerItem == 0.0)
@@ -172,25 +258,26 @@ void checkPlyHeader(const std::string& path)
             if (line != "end_header") failAtLine("end_header must be alone on its line");
             finishElement();
             const std::streamoff header = in.tellg();
-            if (!binary) {
-                // An ASCII body is text too: a NUL in it made assimp allocate all the memory
-                // there was (found by fuzzing).
-                char c;
-                while (in.get(c))
-                    if ((c < ' ' && c != '\t' && c != '\n' && c != '\r') || c > '~')
-                        fail("is followed by an ASCII body that holds a byte that is not text");
-                in.clear();
-            }
             in.seekg(0, std::ios::end);
             if (header < 0 || double(in.tellg() - header) < bodyBytes)
-                fail("announces more data than the file holds");
+                fail("announces more data than it holds");
+            in.seekg(header);
+            // assimp also trusts the body to match the header: NULs in an ASCII body made it
+            // fill all memory, and short lines made it write past its buffers (found by
+            // fuzzing). So the body is walked element by element as well.
+            if (binary)
+                checkPlyBinaryBody(in, elements, bigEndian, fail);
+            else
+                checkPlyAsciiBody(in, elements, lineNumber, failAtLine, fail);
             return;
         }
         if (keyword == "format") {
             std::string format;
             words >> format;
-            if (format == "binary_little_endian" || format == "binary_big_endian")
+            if (format == "binary_little_endian" || format == "binary_big_endian") {
                 binary = true;
+                bigEndian = format == "binary_big_endian";
+            }
             else if (format != "ascii")
                 failAtLine("unknown format '" + format + "'");
         } else if (keyword == "element") {
@@ -202,6 +289,7 @@ void checkPlyHeader(const std::string& path)
             count = std::stod(items);
             bytesPerItem = 0.0;
             inElement = true;
+            elements.push_back({std::stoll(items), {}});
         } else if (keyword == "property") {
             std::string type, countType, itemType, name;
             words >> type;
@@ -213,6 +301,13 @@ void checkPlyHeader(const std::string& path)
                 name.empty() || (words >> extra))
                 failAtLine("a property needs an element, a known type and a name");
             bytesPerItem += binary ? double(size) : 1.0;
+            const bool integer = list && countType.find("float") == std::string::npos &&
+                                 countType != "double";
+            if (list && !integer) failAtLine("a list's count must be an integer type");
+            const bool isSigned = countType == "char" || countType == "short" ||
+                                  countType == "int" || countType == "int8" ||
+                                  countType == "int16" || countType == "int32";
+            elements.back().second.push_back({size, list ? plyTypeSize(itemType) : 0, isSigned});
         } else {
             failAtLine("unknown keyword '" + keyword + "'");
         }

@@ -319,6 +319,7 @@ TEST_F(MeshIO, BrokenPlyHeaderIsAnError)
         {"face 1\n", "face 1\nelement edge 2\n"},  // an element without properties
         {"3 0 1 2\n", std::string("3 0 1 2\n\0\0", 10)},  // NULs: assimp took 24 GB
         {"1 0 0\n", "1\t\t0\n"},  // a short line: assimp wrote past its buffers
+        {"element face 1\n", "element vertex 0\nelement face 1\n"},  // freed twice by assimp
     };
     for (const auto& [from, to] : broken) {
         std::string text = header + "end_header\n" + body;

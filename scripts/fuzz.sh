@@ -33,7 +33,8 @@ fi
 bash scripts/install-deps.sh
 missing=()
 for p in clang-14 libclang-rt-14-dev; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+        missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
     echo "lsdem fuzz: installing ${missing[*]}"

@@ -1,5 +1,6 @@
 #include "lsdem/ls/AssetIO.h"
 
+#include "AssetChecksum.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetGrid.h"
@@ -9,14 +10,16 @@
 #include <openvdb/points/PointConversion.h>
 #include <openvdb/tools/PointIndexGrid.h>
 
+#include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace lsdem {
 
 namespace {
 
 const char* const kFormatName = "lsdem-grain-asset";
-const int kFormatVersion = 1;
+const int kFormatVersion = 2;  // 2: sealed with a SHA-256 (AssetChecksum.h)
 const char* const kLevelSetGridName = "phi";
 const char* const kNodesGridName = "nodes";
 
@@ -112,6 +115,12 @@ SurfaceNodes readNodesGrid(const openvdb::points::PointDataGrid& grid, size_t co
                            const std::string& path)
 {
     using namespace openvdb;
+    // The count is metadata: check it against the grid before allocating for it.
+    const Index64 stored = points::pointCount(grid.tree());
+    if (stored != count)
+        throw Error(path, "the nodes grid holds " + std::to_string(stored) + " nodes but the " +
+                              "metadata says " + std::to_string(count),
+                    "the file is corrupt; bake the asset again");
     SurfaceNodes nodes;
     nodes.positions.assign(count, Vec3::Zero());
     nodes.normals.assign(count, Vec3::Zero());
@@ -124,21 +133,40 @@ SurfaceNodes readNodesGrid(const openvdb::points::PointDataGrid& grid, size_t co
             if (descriptor.find(name) == points::AttributeSet::INVALID_POS)
                 throw Error(path, std::string("the nodes grid lacks the attribute '") + name + "'",
                             "bake the asset again with lsdem-bake");
-        points::AttributeHandle<Vec3d> position(leaf->constAttributeArray("position"));
-        points::AttributeHandle<Vec3d> normal(leaf->constAttributeArray("normal"));
-        points::AttributeHandle<double> area(leaf->constAttributeArray("area"));
-        points::AttributeHandle<int32_t> id(leaf->constAttributeArray("node_id"));
+        // A handle of the wrong value type throws; a short array would be read past its end.
+        std::unique_ptr<points::AttributeHandle<Vec3d>> position, normal;
+        std::unique_ptr<points::AttributeHandle<double>> area;
+        std::unique_ptr<points::AttributeHandle<int32_t>> id;
+        try {
+            position = std::make_unique<points::AttributeHandle<Vec3d>>(
+                leaf->constAttributeArray("position"));
+            normal = std::make_unique<points::AttributeHandle<Vec3d>>(
+                leaf->constAttributeArray("normal"));
+            area = std::make_unique<points::AttributeHandle<double>>(
+                leaf->constAttributeArray("area"));
+            id = std::make_unique<points::AttributeHandle<int32_t>>(
+                leaf->constAttributeArray("node_id"));
+        } catch (const openvdb::Exception& e) {
+            throw Error(path, std::string("the nodes grid has attributes of the wrong type (") +
+                                  e.what() + ")",
+                        "bake the asset again with lsdem-bake");
+        }
+        const Index64 inLeaf = leaf->pointCount();
+        if (position->size() < inLeaf || normal->size() < inLeaf || area->size() < inLeaf ||
+            id->size() < inLeaf)
+            throw Error(path, "the nodes grid has attribute arrays shorter than its points",
+                        "the file is corrupt; bake the asset again");
         for (auto index = leaf->beginIndexOn(); index; ++index) {
-            const int32_t i = id.get(*index);
+            const int32_t i = id->get(*index);
             if (i < 0 || size_t(i) >= count || seen[i])
                 throw Error(path, "the nodes grid has a bad or repeated node_id " +
                                       std::to_string(i),
                             "the file is corrupt; bake the asset again");
             seen[i] = 1;
             ++found;
-            nodes.positions[i] = fromVdb(position.get(*index));
-            nodes.normals[i] = fromVdb(normal.get(*index));
-            nodes.areas[i] = area.get(*index);
+            nodes.positions[i] = fromVdb(position->get(*index));
+            nodes.normals[i] = fromVdb(normal->get(*index));
+            nodes.areas[i] = area->get(*index);
         }
     }
     if (found != count)
@@ -163,12 +191,16 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     openvdb::GridPtrVec grids{phi, makeNodesGrid(asset)};
     writeFileAtomically(path, [&](const std::string& tmp) {
         try {
+            openvdb::MetaMap fileMeta;
+            fileMeta.insertMeta(kAssetChecksumKey,
+                                openvdb::StringMetadata(unsealedAssetChecksum()));
             openvdb::io::File file(tmp);
-            file.write(grids);
+            file.write(grids, fileMeta);
             file.close();
         } catch (const openvdb::Exception& e) {
             throw Error(path, std::string("OpenVDB could not write the file: ") + e.what());
         }
+        sealAssetFile(tmp, path);
     });
 }
 
@@ -180,6 +212,9 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
         throw Error(path, "no such file", "check the path; bake assets with lsdem-bake");
     if (std::filesystem::is_directory(path, ec))
         throw Error(path, "is a folder, not an asset file");
+    // OpenVDB believes the sizes a file states; only a file that is byte for byte as written
+    // reaches it.
+    verifyAssetFile(path);
 
     openvdb::GridPtrVecPtr grids;
     try {
@@ -224,6 +259,10 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     levelSet->grid = phi;
     levelSet->voxelSize = readMeta<double>(*phi, "voxel_size", path);
     levelSet->origin = readVec3(*phi, "grid_origin", path);
+    if (!(levelSet->voxelSize > 0.0 && std::isfinite(levelSet->voxelSize)) ||
+        !levelSet->origin.allFinite())
+        throw Error(path, "the voxel size or the grid origin is not a finite length",
+                    "the file is corrupt; bake the asset again");
     const Vec3 transformOrigin = fromVdb(xform.indexToWorld(openvdb::Vec3d(0, 0, 0)));
     if (std::abs(xform.voxelSize()[0] - levelSet->voxelSize) > 1e-9 * levelSet->voxelSize ||
         (transformOrigin - levelSet->origin).norm() > 1e-6 * levelSet->voxelSize)

@@ -3,6 +3,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetGrid.h"
+#include "lsdem/ls/Sha256.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,9 @@
 #include <openvdb/io/File.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include <cstdint>
 #include <fstream>
+#include <limits>
 
 using namespace lsdem;
 
@@ -113,6 +116,169 @@ TEST(AssetIO, BadFilesFailCleanlyNamingTheFile)
     EXPECT_THROW(loadAsset(dir.file("garbage.vdb")), Error);
     EXPECT_THROW(loadAsset(dir.file("missing.vdb")), Error);
     EXPECT_THROW(loadAsset(dir.path().string()), Error);
+}
+
+// Found by fuzzing (fuzz/corpus/asset/regression-*): OpenVDB allocates whatever a length field
+// says, so a damaged length made loadAsset take gigabytes before failing. The SHA-256 seal
+// written by saveAsset is checked first, by a parser that bounds each length by the file size.
+TEST(AssetIO, DamagedLengthFieldIsRefusedBeforeOpenVdbReadsIt)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const auto write = [&](const std::string& name, const std::string& content) {
+        std::ofstream(dir.file(name), std::ios::binary) << content;
+        return dir.file(name);
+    };
+    const auto expectRefused = [](const std::string& path, const std::string& message) {
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << path << " loaded";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.where(), path);
+            EXPECT_NE(e.problem().find(message), std::string::npos) << e.what();
+            EXPECT_FALSE(e.fix().empty());
+        }
+    };
+    // The length of the grid name "phi" (after the seal): 4 GiB - 16.
+    const size_t phi = bytes.find(std::string("\x03\0\0\0phi", 7));
+    ASSERT_NE(phi, std::string::npos);
+    std::string longName = bytes;
+    longName.replace(phi, 4, "\xf0\xff\xff\xff");
+    expectRefused(write("long-name.vdb", longName), "damaged");
+    // The length of the seal's own key, within the metadata our parser reads.
+    const size_t key = bytes.find("lsdem_sha256");
+    ASSERT_NE(key, std::string::npos);
+    std::string longKey = bytes;
+    longKey.replace(key - 4, 4, "\xf0\xff\xff\xff");
+    expectRefused(write("long-key.vdb", longKey), "the file ends inside the file metadata");
+    // One flipped bit far inside the grids.
+    std::string flipped = bytes;
+    flipped[bytes.size() / 2] = static_cast<char>(flipped[bytes.size() / 2] ^ 0x10);
+    expectRefused(write("flipped.vdb", flipped), "damaged");
+}
+
+namespace {
+
+/// @a bytes with its seal recomputed, as someone editing a file on purpose would do.
+std::string resealed(std::string bytes)
+{
+    const std::string key = "lsdem_sha256";
+    const size_t digits = bytes.find(key) + key.size() + 4 + 6 + 4;  // "string", its size
+    bytes.replace(digits, 64, std::string(64, '0'));
+    bytes.replace(digits, 64, sha256Hex(bytes));
+    return bytes;
+}
+
+} // namespace
+
+// Found by fuzzing (fuzz/corpus/asset/regression-sealed-*): libFuzzer forges the seal (it sees
+// both sides of the comparison), and the next damaged length OpenVDB trusted was in the grid
+// descriptors. The headers of every grid are checked after the seal, the same way.
+TEST(AssetIO, HandMadeGridHeadersAreRefusedEvenWhenSealed)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    EXPECT_EQ(resealed(bytes), bytes);  // the helper computes the seal saveAsset wrote
+    struct Case
+    {
+        const char* what;
+        std::string field;        ///< bytes to find
+        size_t offset;            ///< where in them the length starts
+        std::string replacement;  ///< 4 bytes
+        const char* message;
+    };
+    const std::string huge("\xf0\xff\xff\x7f", 4);
+    const Case cases[] = {
+        {"grid name", std::string("\x05\0\0\0nodes", 9), 0, huge, "grid descriptor"},
+        {"grid count", std::string("\x02\0\0\0\x03\0\0\0phi", 11), 0, huge, "grid count"},
+        {"metadata string", std::string("\x06\0\0\0source\x06\0\0\0string", 20), 20, huge,
+         "grid metadata"},
+        {"leaf index count", std::string("__delayedload", 13), 17, huge, "leaf index"},
+    };
+    for (const Case& c : cases) {
+        const size_t at = bytes.find(c.field);
+        ASSERT_NE(at, std::string::npos) << c.what;
+        std::string edited = bytes;
+        edited.replace(at + c.offset, 4, c.replacement);
+        const std::string path = dir.file("edited.vdb");
+        std::ofstream(path, std::ios::binary) << resealed(edited);
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << c.what << ": loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(e.problem().find("not a readable lsdem asset"), std::string::npos)
+                << c.what << ": " << e.what();
+            EXPECT_NE(e.problem().find(c.message), std::string::npos) << c.what << ": " << e.what();
+        }
+    }
+}
+
+// Found by review while writing the asset fuzzer: values OpenVDB reads fine but lsdem trusted.
+// A node_count of 1e12 made loadAsset allocate for 1e12 nodes (std::bad_alloc escaped), a NaN
+// voxel size passed the transform check (NaN compares false).
+TEST(AssetIO, HandMadeMetadataValuesAreRefusedEvenWhenSealed)
+{
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("good.vdb"));
+    std::string bytes;
+    {
+        std::ifstream in(dir.file("good.vdb"), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const auto valueOf = [&](const std::string& key, const std::string& type) {
+        const std::string entry = key + char(type.size()) + std::string(3, '\0') + type;
+        const size_t at = bytes.find(entry);
+        EXPECT_NE(at, std::string::npos) << key;
+        return at + entry.size() + 4;  // after the value's size
+    };
+    const auto expectRefused = [&](std::string edited, const std::string& message) {
+        const std::string path = dir.file("edited.vdb");
+        std::ofstream(path, std::ios::binary) << resealed(edited);
+        try {
+            loadAsset(path);
+            ADD_FAILURE() << "loaded: " << message;
+        } catch (const Error& e) {
+            EXPECT_NE(e.problem().find(message), std::string::npos) << e.what();
+        }
+    };
+    std::string manyNodes = bytes;
+    const int64_t trillion = 1000000000000;
+    manyNodes.replace(valueOf("node_count", "int64"), 8,
+                      std::string(reinterpret_cast<const char*>(&trillion), 8));
+    expectRefused(manyNodes, "metadata says 1000000000000");
+    std::string nanVoxel = bytes;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    nanVoxel.replace(valueOf("voxel_size", "double"), 8,
+                     std::string(reinterpret_cast<const char*>(&nan), 8));
+    expectRefused(nanVoxel, "not a finite length");
+}
+
+TEST(AssetIO, UnsealedFileIsRefused)
+{
+    // The grids of an asset written by OpenVDB alone, as lsdem before format 2 did.
+    test::ScratchDir dir;
+    saveAsset(smallAsset(), dir.file("sealed.vdb"));
+    openvdb::io::File sealed(dir.file("sealed.vdb"));
+    sealed.open();
+    openvdb::io::File(dir.file("unsealed.vdb")).write(*sealed.getGrids());
+    sealed.close();
+    try {
+        loadAsset(dir.file("unsealed.vdb"));
+        FAIL() << "an unsealed asset loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(e.problem().find("no checksum"), std::string::npos) << e.what();
+        EXPECT_NE(e.fix().find("lsdem-bake"), std::string::npos) << e.what();
+    }
 }
 
 TEST(AssetIO, ForeignLevelSetIsNotMistakenForAnAsset)

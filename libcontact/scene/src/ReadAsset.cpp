@@ -32,8 +32,11 @@ AssetSpec readAsset(const std::string& name, const toml::table& table, const Sce
                "shape = \"sphere\" | \"box\" | \"ellipsoid\"");
     auto existing = [&](const std::string& key) {
         const std::string p = resolvePath(scene.directory, t.string(key));
-        if (!fs::is_regular_file(p))
-            t.fail(key, "file not found: " + p,
+        // The error_code form: a path the system refuses (too long, say) is not found either,
+        // rather than a filesystem_error without the scene's line (found by fuzzing).
+        std::error_code ec;
+        if (!fs::is_regular_file(p, ec))
+            t.fail(key, "file not found: " + p + (ec ? " (" + ec.message() + ")" : ""),
                    "give a path relative to the scene's folder or an absolute one");
         return p;
     };

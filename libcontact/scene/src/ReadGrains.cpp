@@ -80,8 +80,15 @@ void readLattice(TableReader& t, Scene& scene)
             t.fail("count", "must hold three positive integers", "write e.g. count = [3, 3, 3]");
         count[d] = static_cast<long long>(c[d]);
     }
-    if (count[0] * count[1] * count[2] > 10000000)
-        t.fail("count", "asks for more than 10 million grains", "use a smaller lattice");
+    // Checked before any grain is made: a short file must not fill the memory.
+    const long long wanted = count[0] * count[1] * count[2];
+    const long long before = static_cast<long long>(scene.grains.size());
+    if (wanted > kMaxSceneGrains - before)
+        t.fail("count",
+               "asks for " + std::to_string(wanted) + " grains, which would bring the scene to " +
+                   std::to_string(before + wanted) + ", over the limit of " +
+                   std::to_string(kMaxSceneGrains),
+               "use a smaller lattice");
     const Vec3 spacing = t.vec3("spacing");
     for (int d = 0; d < 3; ++d)
         if (count[d] > 1 && !(spacing[d] > 0.0))
@@ -95,6 +102,7 @@ void readLattice(TableReader& t, Scene& scene)
     readMotion(t, model);
     t.rejectUnknownKeys();
 
+    scene.grains.reserve(static_cast<size_t>(before + wanted));
     std::mt19937_64 rng(static_cast<uint64_t>(seed));
     for (long long k = 0; k < count[2]; ++k)
         for (long long j = 0; j < count[1]; ++j)

@@ -2,42 +2,50 @@
 // meet, and distinct names.
 #include "SceneSections.h"
 
+#include <algorithm>
 #include <map>
+#include <utility>
+#include <vector>
 
 namespace lsdem::scenefile {
 
-/// Every pair of materials that can meet needs a [[contacts]] entry, and only one.
+/// Every pair of materials that can meet needs a [[contacts]] entry, and only one. The laws are
+/// kept by pair and each material with grains is checked once: a table of every pair, or a
+/// check per grain, would grow with the square of the file.
 void checkContactPairs(const Scene& scene)
 {
-    const size_t m = scene.materials.size();
-    std::vector<const ContactSpec*> table(m * m, nullptr);
+    std::map<std::pair<int, int>, const ContactSpec*> laws;
     for (const ContactSpec& c : scene.contacts) {
-        const size_t ab = static_cast<size_t>(c.materialA) * m + static_cast<size_t>(c.materialB);
-        const size_t ba = static_cast<size_t>(c.materialB) * m + static_cast<size_t>(c.materialA);
-        if (table[ab])
+        const auto [it, fresh] = laws.emplace(std::minmax(c.materialA, c.materialB), &c);
+        if (!fresh)
             throw Error(c.where,
                         "[[contacts]]: a second entry for materials '" +
                             scene.materials[static_cast<size_t>(c.materialA)].name + "' and '" +
                             scene.materials[static_cast<size_t>(c.materialB)].name + "'",
-                        "the first is at " + table[ab]->where + "; keep one");
-        table[ab] = table[ba] = &c;
+                        "the first is at " + it->second->where + "; keep one");
     }
+    const size_t m = scene.materials.size();
     std::vector<int> grainsOf(m, 0);
     for (const GrainSpec& g : scene.grains) ++grainsOf[static_cast<size_t>(g.material)];
+    std::vector<int> grainMaterials;  // in index order, so the first missing law is reported
+    for (size_t i = 0; i < m; ++i)
+        if (grainsOf[i] > 0) grainMaterials.push_back(static_cast<int>(i));
     auto require = [&](int a, int b, const std::string& where) {
-        if (table[static_cast<size_t>(a) * m + static_cast<size_t>(b)]) return;
+        if (laws.count(std::minmax(a, b))) return;
         const std::string na = scene.materials[static_cast<size_t>(a)].name;
         const std::string nb = scene.materials[static_cast<size_t>(b)].name;
         throw Error(where, "no contact law between materials '" + na + "' and '" + nb + "'",
                     "add [[contacts]] with materials = [\"" + na + "\", \"" + nb +
                         "\"] and its normal_stiffness");
     };
+    std::vector<char> checked(m, 0);
     for (const GrainSpec& g : scene.grains) {
-        for (size_t other = 0; other < m; ++other) {
-            const bool meets = static_cast<int>(other) == g.material ? grainsOf[other] >= 2
-                                                                     : grainsOf[other] >= 1;
-            if (meets) require(g.material, static_cast<int>(other), g.where);
-        }
+        // What a grain must meet depends only on its material: the first grain speaks for all.
+        if (checked[static_cast<size_t>(g.material)]) continue;
+        checked[static_cast<size_t>(g.material)] = 1;
+        for (int other : grainMaterials)
+            if (other != g.material || grainsOf[static_cast<size_t>(other)] >= 2)
+                require(g.material, other, g.where);
         for (const BoundarySpec& b : scene.boundaries) require(g.material, b.material, b.where);
     }
 }

@@ -115,6 +115,9 @@ Scene parseScene(const std::string& text, const std::string& path)
     n = 0;
     for (const toml::table* t : arrayOfTables(root, "grains", path)) {
         TableReader r(*t, "[[grains]] #" + std::to_string(++n), path);
+        if (static_cast<long long>(scene.grains.size()) >= kMaxSceneGrains)
+            r.fail("", "is one grain more than the limit of " + std::to_string(kMaxSceneGrains),
+                   "split the scene");
         scene.grains.push_back(readGrain(r, scene));
     }
     n = 0;
@@ -139,7 +142,8 @@ Scene parseScene(const std::string& text, const std::string& path)
 Scene readSceneFile(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
-    if (!in || fs::is_directory(path))
+    std::error_code ec;  // a path the system refuses is unreadable, not a filesystem_error
+    if (!in || fs::is_directory(path, ec))
         throw Error(path, "cannot read the scene file", "check the path and its permissions");
     std::ostringstream text;
     text << in.rdbuf();

@@ -19,6 +19,10 @@ UnitSystem readUnits(const toml::table* table, const std::string& path);
 /// [assets.NAME]: a baked file, or a mesh or shape baked at load with its options.
 AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene);
 
+/// The most grains a scene may hold (single grains and lattices together): far more than lsdem
+/// can simulate on one machine, and a bound on what a few bytes of [[lattices]] can ask for.
+constexpr long long kMaxSceneGrains = 1000000;
+
 /// [[grains]]: one grain.
 GrainSpec readGrain(TableReader& t, const Scene& scene);
 /// [[lattices]]: a block of grains, appended to @a scene.

@@ -280,3 +280,66 @@ TEST(SceneFile, MissingFileIsNamed)
         EXPECT_EQ(e.where(), "/nonexistent/scene.toml");
     }
 }
+
+// Found while writing the scene fuzzer (fuzz/corpus/scene/regression-lattice-*): a lattice of a
+// few bytes asked for ten million grains, which took 4 GB and 46 s before anything was checked.
+// The whole scene is now held to kMaxSceneGrains (one million), checked before grains are made.
+TEST(SceneFile, LatticesCannotAskForMoreGrainsThanTheSceneLimit)
+{
+    const auto lattice = [](const std::string& count) {
+        return "\n[[lattices]]\nasset = \"ball\"\nmaterial = \"steel\"\norigin = [0, 0, 0]\n"
+               "count = " + count + "\nspacing = [5, 5, 5]\n";
+    };
+    // kGood has two grains already: a million more is two too many.
+    const std::string text = kGood + lattice("[1000, 1000, 1]");
+    try {
+        parseScene(text, "/data/scene.toml");
+        FAIL() << "a scene of 1000002 grains accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(lineOf(text, "count = [1000")));
+        EXPECT_NE(e.problem().find("1000002"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("limit of 1000000"), std::string::npos) << e.what();
+        EXPECT_FALSE(e.fix().empty());
+    }
+    // Lattices add up: each alone is fine, together they are not.
+    const std::string two = kGood + lattice("[1000, 500, 1]") + lattice("[1000, 500, 1]");
+    EXPECT_THROW(parseScene(two, "/data/scene.toml"), Error);
+    EXPECT_EQ(parseScene(kGood + lattice("[10, 10, 10]"), "s.toml").grains.size(), 1002u);
+}
+
+// Found by review at the same time: the contact-law check kept a table of every pair of
+// materials, so a file of 20000 one-line materials asked for 3.2 GB. Laws are now kept by pair.
+TEST(SceneFile, ManyMaterialsNeedNoTableOfEveryPair)
+{
+    std::string text = kGood;
+    for (int i = 0; i < 20000; ++i) text += "[materials.m" + std::to_string(i) + "]\n";
+    const Scene s = parseScene(text, "s.toml");
+    EXPECT_EQ(s.materials.size(), 20002u);
+    // A missing law is still found, and named by the first grain that needs it.
+    const std::string missing = edited("materials = [\"steel\", \"steel\"]",
+                                       "materials = [\"wall\", \"wall\"]");
+    try {
+        parseScene(missing, "/data/scene.toml");
+        FAIL() << "steel grains without a steel-steel law accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(lineOf(missing, "[[grains]]")));
+        EXPECT_NE(e.problem().find("'steel' and 'steel'"), std::string::npos) << e.what();
+    }
+}
+
+// Found by fuzzing (fuzz/corpus/scene/regression-file-name-too-long.toml): a mesh path longer
+// than the system allows made the existence check throw std::filesystem_error, which named
+// neither the scene's line nor the key.
+TEST(SceneFile, OverlongAssetPathIsNotFoundWithLineAndKey)
+{
+    const std::string text =
+        edited("shape = \"sphere\"\nradius = 2.0", "mesh = \"" + std::string(5000, 'x') + ".obj\"");
+    try {
+        parseScene(text, "/data/scene.toml");
+        FAIL() << "a 5000-character mesh path accepted";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(lineOf(text, "mesh = ")));
+        EXPECT_NE(e.problem().find("mesh: file not found"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("File name too long"), std::string::npos) << e.what();
+    }
+}

@@ -111,7 +111,14 @@ std::shared_ptr<const LevelSetGrid> wrapLevelSet(const openvdb::FloatGrid::Ptr& 
 /// Shared by both bake paths once nodes and the level set exist.
 void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::string>& warnings)
 {
-    sortNodesSpatially(asset.nodes, 8.0 * o.voxelSize);  // one OpenVDB leaf is 8 voxels wide
+    // Z-order at about half the node spacing, so runs of consecutive nodes are compact patches
+    // (the culling blocks) at every scale; the cell is the 8-voxel leaf halved until it is that
+    // fine, so the nodes within one leaf's width still come together.
+    const double patch = std::sqrt(std::max(asset.nodes.totalArea(), 1e-300) /
+                                   double(std::max<size_t>(asset.nodes.size(), 1)));
+    double cell = 8.0 * o.voxelSize;
+    while (cell > 0.5 * patch) cell *= 0.5;
+    sortNodesSpatially(asset.nodes, cell);
     asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
     insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
     asset.areaRule = o.areaRule;

@@ -85,8 +85,8 @@ void writeSlabScene(const Scene& scene, const SlabStudyOptions& o, const std::st
            << "slab-run/boundary_indenter.csv then holds P (fz) against the indenter's "
               "displacement.\n"
            << "Units: mm, tonne, s, N. kn* = E/L = " << k.knStar << " N/mm^3 (E = "
-           << o.material.youngModulus << " MPa); the time step is safety x the stability limit\n"
-           << "of a block between two neighbours.";
+           << o.material.youngModulus << " MPa).\n"
+           << "The time step is safety x the stability limit of a block between two neighbours.";
     writeSceneFile(scene, path, header.str());
 }
 

@@ -1,5 +1,6 @@
 #include "lsdem/contact/ContactLaw.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lsdem {
@@ -17,8 +18,10 @@ double effectiveMass(const ContactGrain& a, const ContactGrain& b)
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
-                          double dt, std::vector<PointForce>* allForces)
+                          double dt, std::vector<PointForce>* allForces, ContactScratch* scratch)
 {
+    ContactScratch temporary;
+    ContactScratch& work = scratch ? *scratch : temporary;
     PairForces result;
     const ContactGrain* first = sides[0].tester;
 
@@ -26,9 +29,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     // stiffness K (both directions of symmetric testing together).
     const NormalModel& normalLaw = model.normal();
     const ShearSpringModel shearSprings = model.tangential();
-    std::vector<std::vector<PointForce>> normal(sideCount);
+    std::vector<PointForce>* normal = work.forces;
     double totalStiffness = 0.0;
     for (int s = 0; s < sideCount; ++s) {
+        normal[s].clear();
         normalLaw.forces(sides[s].contacts, model.normalStiffness, sides[s].weight, normal[s]);
         for (const PointForce& f : normal[s]) totalStiffness += f.stiffness;
         result.contactNodes += static_cast<int>(sides[s].contacts.size());
@@ -41,7 +45,26 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
         std::vector<PointForce>& forces = normal[s];
-        std::map<int, Vec3> nextHistory;
+        std::vector<ShearHistory::Entry>& nextHistory = work.nextHistory;
+        nextHistory.clear();
+        // The stored shear of each node, found by walking the sorted history alongside the
+        // nodes (in node order; a binary search if a caller gave them otherwise).
+        const std::vector<ShearHistory::Entry>* stored =
+            side.history ? &side.history->entries() : nullptr;
+        size_t cursor = 0;
+        int lastNode = -1;
+        bool inOrder = true;
+        auto storedShear = [&](int node) -> Vec3 {
+            if (node < lastNode) {
+                inOrder = false;
+                cursor = 0;
+            }
+            lastNode = node;
+            while (cursor < stored->size() && (*stored)[cursor].node < node) ++cursor;
+            return cursor < stored->size() && (*stored)[cursor].node == node
+                       ? (*stored)[cursor].force
+                       : Vec3::Zero();
+        };
         for (size_t k = 0; k < forces.size(); ++k) {
             PointForce& f = forces[k];
             const double size = f.force.norm();
@@ -58,19 +81,23 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                 // Per-node laws give forces[k] for contacts[k]. Nodes that left contact lose
                 // their history; nodes that entered start from zero.
                 const NodeContact& c = side.contacts[k];
-                const auto found = side.history->find(c.node);
-                const Vec3 stored = found == side.history->end() ? Vec3::Zero() : found->second;
                 const double shearStiffness =
                     shearSprings.nodeStiffness(normalLaw, c.area, side.weight);
-                const Vec3 shear = updateShearForce(stored, c.normal, relativeVelocity * dt,
-                                                    shearStiffness, shearSprings.friction * size);
-                nextHistory.emplace(c.node, shear);
+                const Vec3 shear = updateShearForce(storedShear(c.node), c.normal,
+                                                    relativeVelocity * dt, shearStiffness,
+                                                    shearSprings.friction * size);
+                nextHistory.push_back({c.node, shear});
                 total += shear;
                 result.elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
             }
             f.force = total;
         }
-        if (side.history) side.history->swap(nextHistory);
+        if (side.history) {
+            if (!inOrder)
+                std::sort(nextHistory.begin(), nextHistory.end(),
+                          [](const auto& a, const auto& b) { return a.node < b.node; });
+            side.history->replaceWith(nextHistory);
+        }
 
         const bool testerIsFirst = side.tester == first;
         Vec3& forceOnTester = testerIsFirst ? result.forceOnFirst : result.forceOnSecond;

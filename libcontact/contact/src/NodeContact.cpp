@@ -43,30 +43,34 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
 
     // An unregistered accessor costs next to nothing, but only when some node gets near B.
     std::optional<LevelSetSampler> sampler;
-    auto visit = [&](int i) {
-        const Vec3 inB = rotation * a.nodes.positions[i] + translation;
-        if (inB.squaredNorm() > reach2 ||                                   // outside B's sphere
-            (inB - b.insideBoxMin).minCoeff() < 0.0 || (b.insideBoxMax - inB).minCoeff() < 0.0) {
-            ++stats.nodesCulled;  // φ_B > 0 there
-            return;
+    const Vec3* positions = a.nodes.positions.data();
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 inB = rotation * positions[i] + translation;
+            if (inB.squaredNorm() > reach2 ||  // outside B's sphere, or its inside box
+                (inB - b.insideBoxMin).minCoeff() < 0.0 ||
+                (b.insideBoxMax - inB).minCoeff() < 0.0) {
+                ++stats.nodesCulled;  // φ_B > 0 there
+                continue;
+            }
+            ++stats.nodesSampled;
+            if (!sampler) sampler.emplace(*b.levelSet);
+            const LevelSetSample s = sampler->sample(inB);
+            if (!(s.phi < 0.0)) continue;
+            const double gradientLength = s.gradient.norm();
+            if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
+            ++stats.nodesInContact;
+            NodeContact c;
+            c.node = i;
+            c.depth = -s.phi;
+            c.normal = bToWorld * (s.gradient / gradientLength);
+            const Vec3 nodeWorld = poseB.position + bToWorld * inB;
+            c.point = nodeWorld + 0.5 * c.depth * c.normal;
+            c.area = a.nodes.areas[i];
+            out.push_back(c);
         }
-        ++stats.nodesSampled;
-        if (!sampler) sampler.emplace(*b.levelSet);
-        const LevelSetSample s = sampler->sample(inB);
-        if (!(s.phi < 0.0)) return;
-        const double gradientLength = s.gradient.norm();
-        if (gradientLength == 0.0) return;  // no direction to push (degenerate level set)
-        ++stats.nodesInContact;
-        NodeContact c;
-        c.node = i;
-        c.depth = -s.phi;
-        c.normal = bToWorld * (s.gradient / gradientLength);
-        const Vec3 nodeWorld = poseB.position + bToWorld * inB;
-        c.point = nodeWorld + 0.5 * c.depth * c.normal;
-        c.area = a.nodes.areas[i];
-        out.push_back(c);
     };
-    forEachNodeNotClear(a, isClear, visit, stats);
+    forEachBlockNotClear(a, isClear, visit, stats);
 }
 
 } // namespace lsdem

@@ -6,8 +6,11 @@ namespace lsdem {
 
 PairForces computePairContact(const ContactGrain& first, const ContactGrain& second,
                               const ContactModel& model, double dt, PairHistory* history,
-                              NodeCheckStats& stats, std::vector<PointForce>* forces)
+                              NodeCheckStats& stats, std::vector<PointForce>* forces,
+                              ContactScratch* scratch)
 {
+    ContactScratch temporary;
+    ContactScratch& work = scratch ? *scratch : temporary;
     bool testFirst = true, testSecond = true;
     double weight = 0.5;
     if (model.testing == NodeTesting::OneWay) {
@@ -30,6 +33,8 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.other = &second;
         s.weight = weight;
         s.history = history ? &history->shearOnFirstNodes : nullptr;
+        s.contacts.swap(work.contacts[count - 1]);  // reuse the thread's buffer
+        s.contacts.clear();
         findNodeContacts(*first.asset, first.pose, *second.asset, second.pose, s.contacts, stats);
     }
     if (testSecond) {
@@ -38,10 +43,13 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.other = &first;
         s.weight = weight;
         s.history = history ? &history->shearOnSecondNodes : nullptr;
+        s.contacts.swap(work.contacts[count - 1]);
+        s.contacts.clear();
         findNodeContacts(*second.asset, second.pose, *first.asset, first.pose, s.contacts,
                          stats);
     }
-    PairForces result = resolveContact(sides, count, model, dt, forces);
+    PairForces result = resolveContact(sides, count, model, dt, forces, &work);
+    for (int k = 0; k < count; ++k) sides[k].contacts.swap(work.contacts[k]);  // hand back
     if (!testFirst) {
         // resolveContact names the first side's tester "first": swap back to the caller's.
         std::swap(result.forceOnFirst, result.forceOnSecond);

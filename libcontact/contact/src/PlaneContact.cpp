@@ -2,6 +2,8 @@
 
 #include "lsdem/contact/NodeBlockWalk.h"
 
+#include <cmath>
+
 namespace lsdem {
 
 void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& plane,
@@ -14,25 +16,35 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
         return;
     }
     const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
-    auto visit = [&](int i) {
-        const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
-        ++stats.nodesSampled;
-        const double distance = plane.signedDistance(x);
-        if (!(distance < 0.0) || !plane.withinPatch(x, distance)) return;
-        ++stats.nodesInContact;
-        NodeContact c;
-        c.node = i;
-        c.depth = -distance;
-        c.normal = plane.normal;
-        c.point = x + 0.5 * c.depth * plane.normal;
-        c.area = a.nodes.areas[i];
-        out.push_back(c);
+    // The plane in the grain's frame: a node's distance there costs a dot product and no
+    // rotation. With a hair of slack for round-off it only rules nodes out; the distance that
+    // decides (and makes the depth) is the world one, as before.
+    const Vec3 normalInGrain = rotation.transpose() * plane.normal;
+    const double offset = plane.signedDistance(pose.position);
+    const double slack = 1e-9 * (a.boundingRadius + std::abs(offset));
+    const Vec3* positions = a.nodes.positions.data();
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            ++stats.nodesSampled;
+            if (positions[i].dot(normalInGrain) + offset > slack) continue;  // in front
+            const Vec3 x = rotation * positions[i] + pose.position;
+            const double distance = plane.signedDistance(x);
+            if (!(distance < 0.0) || !plane.withinPatch(x, distance)) continue;
+            ++stats.nodesInContact;
+            NodeContact c;
+            c.node = i;
+            c.depth = -distance;
+            c.normal = plane.normal;
+            c.point = x + 0.5 * c.depth * plane.normal;
+            c.area = a.nodes.areas[i];
+            out.push_back(c);
+        }
     };
     // A grain touching a wall has most of its nodes wholly in front of it: skip those.
     auto isClear = [&](const NodeBlock& run) {
-        return plane.signedDistance(rotation * run.center + pose.position) > run.radius;
+        return run.center.dot(normalInGrain) + offset > run.radius + slack;
     };
-    forEachNodeNotClear(a, isClear, visit, stats);
+    forEachBlockNotClear(a, isClear, visit, stats);
 }
 
 } // namespace lsdem

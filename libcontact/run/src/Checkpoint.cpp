@@ -33,10 +33,10 @@ public:
         pod<uint64_t>(v.size());
         for (double d : v) pod(d);
     }
-    void shear(const std::map<int, Vec3>& m)
+    void shear(const ShearHistory& h)
     {
-        pod<uint64_t>(m.size());
-        for (const auto& [node, f] : m) pod<int32_t>(node), vec(f);
+        pod<uint64_t>(h.size());
+        for (const ShearHistory::Entry& e : h.entries()) pod<int32_t>(e.node), vec(e.force);
     }
 
 private:
@@ -94,15 +94,17 @@ public:
         for (double& d : v) d = pod<double>();
         return v;
     }
-    std::map<int, Vec3> shear()
+    ShearHistory shear()
     {
-        std::map<int, Vec3> m;
+        ShearHistory h;
         const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
         for (uint64_t k = 0; k < n; ++k) {
             const int node = pod<int32_t>();
-            m.emplace(node, vec());
+            const Vec3 force = vec();
+            if (!h.empty() && node <= h.entries().back().node) fail();  // written sorted
+            h.append(node, force);
         }
-        return m;
+        return h;
     }
     [[noreturn]] void fail() const
     {

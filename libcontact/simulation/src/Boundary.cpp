@@ -31,27 +31,29 @@ void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& 
         return;
     }
     const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
-    auto visit = [&](int i) {
-        const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
-        ++stats.nodesSampled;
-        const Vec3 offset = x - c;
-        const double distance = offset.norm();
-        if (!(distance < r) || distance == 0.0) return;
-        ++stats.nodesInContact;
-        NodeContact nc;
-        nc.node = i;
-        nc.depth = r - distance;
-        nc.normal = offset / distance;
-        nc.point = x + 0.5 * nc.depth * nc.normal;
-        nc.area = a.nodes.areas[i];
-        out.push_back(nc);
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+            ++stats.nodesSampled;
+            const Vec3 offset = x - c;
+            const double distance = offset.norm();
+            if (!(distance < r) || distance == 0.0) continue;
+            ++stats.nodesInContact;
+            NodeContact nc;
+            nc.node = i;
+            nc.depth = r - distance;
+            nc.normal = offset / distance;
+            nc.point = x + 0.5 * nc.depth * nc.normal;
+            nc.area = a.nodes.areas[i];
+            out.push_back(nc);
+        }
     };
     // An indenter touches a small patch of the grain: skip the nodes clear of it.
     auto isClear = [&](const NodeBlock& run) {
         const double reach = r + run.radius;
         return (rotation * run.center + pose.position - c).squaredNorm() > reach * reach;
     };
-    forEachNodeNotClear(a, isClear, visit, stats);
+    forEachBlockNotClear(a, isClear, visit, stats);
 }
 
 } // namespace

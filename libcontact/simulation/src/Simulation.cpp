@@ -44,7 +44,7 @@ struct ContactSlot
 {
     int first = 0, second = -1, boundary = -1;
     PairHistory* pairHistory = nullptr;
-    std::map<int, Vec3>* boundaryHistory = nullptr;
+    ShearHistory* boundaryHistory = nullptr;
     PairForces result;
     NodeCheckStats stats;
     std::vector<PointForce> forces;
@@ -188,7 +188,7 @@ void Simulation::evaluateForces(double slipStep)
     for (const auto& p : boundaryPairs) {
         while (bit != w.boundaryHistory.end() && bit->first < p) bit = w.boundaryHistory.erase(bit);
         if (bit == w.boundaryHistory.end() || bit->first != p)
-            bit = w.boundaryHistory.emplace_hint(bit, p, std::map<int, Vec3>{});
+            bit = w.boundaryHistory.emplace_hint(bit, p, ShearHistory{});
         ContactSlot& s = slots.emplace_back();
         s.first = p.first;
         s.boundary = p.second;
@@ -207,20 +207,25 @@ void Simulation::evaluateForces(double slipStep)
     const bool record = mRecordForces;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
         ContactSlot& s = slots[k];
+        ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
         std::vector<PointForce>* out = record ? &s.forces : nullptr;
         const Grain& gi = w.grains[s.first];
         if (s.boundary < 0) {
             const ContactModel& m = w.model(gi.material, w.grains[s.second].material);
             s.result = computePairContact(views[s.first], views[s.second], m, slipStep,
-                                          s.pairHistory, s.stats, out);
+                                          s.pairHistory, s.stats, out, &scratch);
         } else {
             const Boundary& b = w.boundaries[s.boundary];
             ContactSide side;
             side.tester = &views[s.first];
             side.other = &boundaryViews[s.boundary];
             side.history = s.boundaryHistory;
+            side.contacts.swap(scratch.contacts[0]);
+            side.contacts.clear();
             findBoundaryContacts(*gi.asset, gi.body.pose, b, side.contacts, s.stats);
-            s.result = resolveContact(&side, 1, w.model(gi.material, b.material), slipStep, out);
+            s.result = resolveContact(&side, 1, w.model(gi.material, b.material), slipStep, out,
+                                      &scratch);
+            side.contacts.swap(scratch.contacts[0]);
         }
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);

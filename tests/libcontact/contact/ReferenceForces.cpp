@@ -121,7 +121,7 @@ Boundary movedBoundary(const Case& c, const Evaluation& e)
 std::vector<Outcome> evaluate(const Case& c)
 {
     PairHistory pairHistory;
-    std::map<int, Vec3> boundaryHistory;
+    ShearHistory boundaryHistory;
     std::vector<Outcome> outcomes;
     for (const Evaluation& e : c.evaluations) {
         const ContactGrain first = grainView(c.firstAsset, e.first, c.firstMass, 0);

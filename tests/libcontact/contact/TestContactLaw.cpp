@@ -229,8 +229,8 @@ TEST(ContactLaw, ShearHistoryIsReplacedByTheNodesNowInContact)
     g.a.velocity = Vec3(3.0, -1.0, 0.0);
     g.b.velocity = Vec3(-1.0, 1.0, 0.0);
     const double ks = 400.0, mu = 0.5, dt = 1e-3;
-    std::map<int, Vec3> history = {{1, Vec3(0.01, 0.0, 0.0)},   // left contact
-                                   {2, Vec3(0.02, -0.01, 0.0)}}; // stays (tangent to -z)
+    ShearHistory history = {{1, Vec3(0.01, 0.0, 0.0)},   // left contact
+                             {2, Vec3(0.02, -0.01, 0.0)}}; // stays (tangent to -z)
     ContactSide side;
     side.tester = &g.a;
     side.other = &g.b;
@@ -239,16 +239,16 @@ TEST(ContactLaw, ShearHistoryIsReplacedByTheNodesNowInContact)
     const PairForces r = resolveContact(&side, 1, adapted(ks, mu), dt, nullptr);
 
     ASSERT_EQ(history.size(), 2u);
-    ASSERT_TRUE(history.count(2));
-    ASSERT_TRUE(history.count(6));
+    ASSERT_TRUE(history.contains(2));
+    ASSERT_TRUE(history.contains(6));
     const Vec3 slip = (g.a.velocity - g.b.velocity) * dt;  // no spin: uniform
     // Node 2, normal -z: tangential slip (4e-3, -2e-3, 0), k_t = 400·0.5 = 200.
     const Vec3 shear2 = Vec3(0.02, -0.01, 0.0) - 200.0 * Vec3(4e-3, -2e-3, 0.0);
-    expectVecNear(history[2], shear2, 1e-15);
+    expectVecNear(history.force(2), shear2, 1e-15);
     // Node 6 from zero: k_t = 400·0.25 = 100 times the slip minus its normal part.
     const Vec3 n6 = g.aInB[1].normal;
     const Vec3 shear6 = -100.0 * (slip - slip.dot(n6) * n6);
-    expectVecNear(history[6], shear6, 1e-15);
+    expectVecNear(history.force(6), shear6, 1e-15);
     EXPECT_LT(shear2.norm(), mu * 50.0);  // below the cap μ·kn*·d·A
     EXPECT_LT(shear6.norm(), mu * 12.5);
 
@@ -265,12 +265,12 @@ TEST(ContactLaw, ShearHistoryIsReplacedByTheNodesNowInContact)
     side.contacts = {g.aInB[0]};
     resolveContact(&side, 1, adapted(ks, mu), dt, nullptr);
     const Vec3 unlimited = Vec3(30.0, 40.0, 0.0) - 200.0 * Vec3(4e-3, -2e-3, 0.0);
-    expectVecNear(history[2], 25.0 * unlimited.normalized(), 1e-13);
+    expectVecNear(history.force(2), 25.0 * unlimited.normalized(), 1e-13);
 
     // No step (dt = 0): a stored tangential shear is carried over unchanged.
     history = {{2, Vec3(0.5, 0.25, 0.0)}};
     resolveContact(&side, 1, adapted(ks, mu), 0.0, nullptr);
-    EXPECT_EQ(history[2], Vec3(0.5, 0.25, 0.0));
+    EXPECT_EQ(history.force(2), Vec3(0.5, 0.25, 0.0));
 
     // Nodes out of contact: the history empties.
     side.contacts.clear();
@@ -294,7 +294,7 @@ TEST(ContactLaw, NoShearWithoutHistoryOrPerNodeForces)
     expectVecNear(resolveContact(&side, 1, adapted(400, 0.5), 1e-3, nullptr).forceOnFirst,
                   normal, 1e-13);
 
-    std::map<int, Vec3> history = {{2, Vec3(1.0, 0.0, 0.0)}};
+    ShearHistory history = {{2, Vec3(1.0, 0.0, 0.0)}};
     side.history = &history;
     ContactModel volume = adapted(400, 0.5);
     volume.formulation = Formulation::Volume;

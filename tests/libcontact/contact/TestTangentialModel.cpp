@@ -66,7 +66,8 @@ TEST(ShearSpring, SlidingSpheresReachCoulombAndKeepHistoryPerNode)
     const double dt = 1e-6;  // slip 1e-6 mm per step: elastic for the first steps
     PairForces r = computePairContact(g0, g1, m, dt, &history, stats);
     double contactArea = 0;
-    for (const auto& [node, shear] : history.shearOnFirstNodes) contactArea += ball.nodes.areas[node];
+    for (const ShearHistory::Entry& e : history.shearOnFirstNodes.entries())
+        contactArea += ball.nodes.areas[size_t(e.node)];
     ASSERT_GT(history.shearOnFirstNodes.size(), 10u);
     EXPECT_TRUE(history.shearOnSecondNodes.empty());  // one-way: only grain 0's nodes tested
     // Grain 0's nodes slip by -1e-6 relative to grain 1: shear on grain 0 is +ks*·A·1e-6 in y.

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <type_traits>
+
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -446,6 +448,7 @@ Scene sphereStack()
 
 template <typename T> bool sameBits(const T& a, const T& b)
 {
+    static_assert(std::is_arithmetic_v<T>, "compare numbers bit for bit; give other types their own");
     return std::memcmp(&a, &b, sizeof(T)) == 0;
 }
 
@@ -459,11 +462,13 @@ bool sameBits(const Quat& a, const Quat& b)
     return sameBits(a.w(), b.w()) && sameBits(a.vec(), Vec3(b.vec()));
 }
 
-bool sameBits(const std::map<int, Vec3>& a, const std::map<int, Vec3>& b)
+bool sameBits(const ShearHistory& a, const ShearHistory& b)
 {
     if (a.size() != b.size()) return false;
-    for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j)
-        if (i->first != j->first || !sameBits(i->second, j->second)) return false;
+    for (size_t k = 0; k < a.size(); ++k)
+        if (a.entries()[k].node != b.entries()[k].node ||
+            !sameBits(a.entries()[k].force, b.entries()[k].force))
+            return false;
     return true;
 }
 

@@ -100,12 +100,15 @@ private:
         fraction = index - cell;
         const openvdb::Coord base(static_cast<int>(cell.x()), static_cast<int>(cell.y()),
                                   static_cast<int>(cell.z()));
-        // Fast path: the 2x2x2 stencil lies inside one 8^3 leaf (7 times in 8 per axis), so
-        // read the leaf's buffer directly; offsets are x*64 + y*8 + z within a leaf.
+        // Read the corners straight from the buffers of the leaves (8^3 voxels) that hold
+        // them: one leaf 7 times in 8 per axis, otherwise 2, 4 or 8 neighbouring leaves, each
+        // looked up once. Offsets within a leaf are x*64 + y*8 + z. A corner whose leaf does
+        // not exist (a tile, or outside the band) asks the accessor for its value.
         using Leaf = openvdb::FloatTree::LeafNodeType;
         constexpr int kLast = Leaf::DIM - 1;
-        if ((base.x() & kLast) != kLast && (base.y() & kLast) != kLast &&
-            (base.z() & kLast) != kLast) {
+        const int crossX = (base.x() & kLast) == kLast, crossY = (base.y() & kLast) == kLast,
+                  crossZ = (base.z() & kLast) == kLast;
+        if (!(crossX | crossY | crossZ)) {
             if (const Leaf* leaf = mAccessor.probeConstLeaf(base)) {
                 const float* data = leaf->buffer().data() + Leaf::coordToOffset(base);
                 constexpr int dx = 1 << (2 * Leaf::LOG2DIM), dy = 1 << Leaf::LOG2DIM;
@@ -120,9 +123,18 @@ private:
                 return;
             }
         }
+        const Leaf* leaves[8] = {};
+        bool probed[8] = {};
         for (int corner = 0; corner < 8; ++corner) {
-            const openvdb::Coord c = base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
-            value[corner] = mAccessor.getValue(c);
+            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
+            const openvdb::Coord c = base.offsetBy(ox, oy, oz);
+            const int which = ((oz & crossZ) << 2) | ((oy & crossY) << 1) | (ox & crossX);
+            if (!probed[which]) {
+                leaves[which] = mAccessor.probeConstLeaf(c);
+                probed[which] = true;
+            }
+            value[corner] = leaves[which] ? leaves[which]->buffer().data()[Leaf::coordToOffset(c)]
+                                          : mAccessor.getValue(c);
         }
     }
 

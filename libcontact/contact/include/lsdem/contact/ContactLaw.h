@@ -7,8 +7,9 @@
 
 #include "lsdem/contact/ContactModel.h"
 #include "lsdem/contact/NodeContact.h"
+#include "lsdem/contact/PointForce.h"
+#include "lsdem/contact/ShearHistory.h"
 
-#include <map>
 #include <vector>
 
 namespace lsdem {
@@ -35,9 +36,18 @@ struct ContactSide
 {
     const ContactGrain* tester = nullptr;
     const ContactGrain* other = nullptr;
-    std::vector<NodeContact> contacts;
+    std::vector<NodeContact> contacts;   ///< in node order (as the narrow phase finds them)
     double weight = 1.0;                 ///< 1/2 per side in symmetric testing
-    std::map<int, Vec3>* history = nullptr;  ///< per-node shear; null: no shear carried over
+    ShearHistory* history = nullptr;     ///< per-node shear; null: no shear carried over
+};
+
+/// Working memory of the contact laws, kept by each thread and reused from contact to
+/// contact, so that computing a contact allocates nothing once the buffers have grown.
+struct ContactScratch
+{
+    std::vector<NodeContact> contacts[2];
+    std::vector<PointForce> forces[2];
+    std::vector<ShearHistory::Entry> nextHistory;
 };
 
 /// The result of one contact, for the two bodies it joins (first = the first side's tester).
@@ -58,7 +68,9 @@ struct PairForces
 /// replaced by the shear of the nodes now in contact. @a dt is the step over which the
 /// relative motion slipped (0: no shear update).
 /// @param allForces if not null, receives each point force as it acts on its side's tester
+/// @param scratch   working memory to reuse (null: a temporary one)
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
-                          double dt, std::vector<PointForce>* allForces);
+                          double dt, std::vector<PointForce>* allForces,
+                          ContactScratch* scratch = nullptr);
 
 } // namespace lsdem

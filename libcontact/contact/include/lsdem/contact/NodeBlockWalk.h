@@ -11,18 +11,19 @@
 
 namespace lsdem {
 
-/// Call @a visit(i) for every node i of @a a that lies in a cluster and a block for which
-/// @a isClear(run) is false, in node order; the others count as culled in @a stats.
-/// @a isClear(const NodeBlock&) must only answer true when no node within the run's sphere can
-/// touch (it is asked of clusters and of blocks alike).
+/// Call @a visit(begin, end) for every run of nodes [begin, end) of @a a that lies in a
+/// cluster and a block for which @a isClear(run) is false, in node order; the others count as
+/// culled in @a stats. @a isClear(const NodeBlock&) must only answer true when no node within
+/// the run's sphere can touch (it is asked of clusters and of blocks alike). The visitor takes
+/// a whole block, so its loop over the nodes is compiled inline.
 template <typename IsClear, typename Visit>
-void forEachNodeNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
-                         NodeCheckStats& stats)
+void forEachBlockNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
+                          NodeCheckStats& stats)
 {
     const int count = static_cast<int>(a.nodes.size());
     const NodeBlocks& groups = a.nodeBlocks;
     if (groups.empty()) {
-        for (int i = 0; i < count; ++i) visit(i);
+        visit(0, count);
         return;
     }
     // Blocks left over from other nodes would silently drop contacts: refuse them.
@@ -41,7 +42,7 @@ void forEachNodeNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
                 stats.nodesCulled += block.end - block.begin;
                 continue;
             }
-            for (int i = block.begin; i < block.end; ++i) visit(i);
+            visit(block.begin, block.end);
         }
     }
 }

@@ -6,28 +6,19 @@
 
 #include "lsdem/contact/ContactLaw.h"
 
-#include <map>
 #include <vector>
 
 namespace lsdem {
-
-/// Shear forces carried over between steps, per node, for each direction of testing.
-/// std::map keeps iteration (and so any output) in node order.
-struct PairHistory
-{
-    std::map<int, Vec3> shearOnFirstNodes;   ///< nodes of the pair's first grain in the second
-    std::map<int, Vec3> shearOnSecondNodes;  ///< nodes of the second grain in the first
-
-    bool empty() const { return shearOnFirstNodes.empty() && shearOnSecondNodes.empty(); }
-};
 
 /// Compute the contact of @a first and @a second.
 /// @param dt       the step, for the slip increment of the shear springs (0: no shear update)
 /// @param history  shear history of this pair, updated in place (may be null when μ = 0)
 /// @param forces   if not null, receives every point force (normal + shear) as it acts on
 ///                 the grain whose node produced it (for output of contact forces)
+/// @param scratch  working memory to reuse (null: a temporary one)
 PairForces computePairContact(const ContactGrain& first, const ContactGrain& second,
                               const ContactModel& model, double dt, PairHistory* history,
-                              NodeCheckStats& stats, std::vector<PointForce>* forces = nullptr);
+                              NodeCheckStats& stats, std::vector<PointForce>* forces = nullptr,
+                              ContactScratch* scratch = nullptr);
 
 } // namespace lsdem

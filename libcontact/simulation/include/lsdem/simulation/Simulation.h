@@ -7,6 +7,8 @@
 
 #include "lsdem/simulation/World.h"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <vector>
 
 namespace lsdem {
@@ -80,6 +82,8 @@ private:
     double mStabilityLimit = 0.0;
     std::vector<Mat3> mGrainStiffness;  ///< Σ k n nᵀ per grain at the last evaluation
     StepCounters mCounters;
+    /// Each thread's working memory for the contact laws (no allocation in the hot loop).
+    tbb::enumerable_thread_specific<ContactScratch> mScratch;
 };
 
 /// The automatic time step: safety · 2·sqrt(m / k) for the stiffest single node (original,

@@ -60,7 +60,7 @@ struct World
     long long step = 0;
     /// Shear history per grain pair (i < j) and per (grain, boundary).
     std::map<std::pair<int, int>, PairHistory> pairHistory;
-    std::map<std::pair<int, int>, std::map<int, Vec3>> boundaryHistory;
+    std::map<std::pair<int, int>, ShearHistory> boundaryHistory;
     EnergyBook energy;
 
     const ContactModel& model(int materialA, int materialB) const

@@ -196,14 +196,21 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         }
         w.pod<uint64_t>(world.boundaries.size());
         for (const Boundary& b : world.boundaries) w.vec(b.displacement), w.vec(b.force);
-        w.pod<uint64_t>(world.pairHistory.size());
+        // Only histories that hold shear are state: the empty ones are bookkeeping of the
+        // contact list, which a restarted run rebuilds.
+        uint64_t pairs = 0, boundaryContacts = 0;
+        for (const auto& [pair, h] : world.pairHistory) pairs += h.empty() ? 0 : 1;
+        for (const auto& [key, h] : world.boundaryHistory) boundaryContacts += h.empty() ? 0 : 1;
+        w.pod<uint64_t>(pairs);
         for (const auto& [pair, h] : world.pairHistory) {
+            if (h.empty()) continue;
             w.pod<int32_t>(pair.first), w.pod<int32_t>(pair.second);
             w.shear(h.shearOnFirstNodes);
             w.shear(h.shearOnSecondNodes);
         }
-        w.pod<uint64_t>(world.boundaryHistory.size());
+        w.pod<uint64_t>(boundaryContacts);
         for (const auto& [key, h] : world.boundaryHistory) {
+            if (h.empty()) continue;
             w.pod<int32_t>(key.first), w.pod<int32_t>(key.second);
             w.shear(h);
         }

@@ -39,17 +39,6 @@ ContactGrain contactView(const Boundary& b)
     return c;
 }
 
-/// One contact to evaluate: a grain pair (boundary < 0) or a grain and a boundary.
-struct ContactSlot
-{
-    int first = 0, second = -1, boundary = -1;
-    PairHistory* pairHistory = nullptr;
-    ShearHistory* boundaryHistory = nullptr;
-    PairForces result;
-    NodeCheckStats stats;
-    std::vector<PointForce> forces;
-};
-
 /// Turn a prescribed grain by ω·dt (exact rotation about a fixed world axis).
 void rotateBy(Quat& orientation, const Vec3& omega, double dt)
 {
@@ -142,62 +131,14 @@ void Simulation::evaluateForces(double slipStep)
     World& w = mWorld;
     const int n = static_cast<int>(w.grains.size());
     const auto broadStart = SteadyClock::now();
-
-    std::vector<Vec3> centers(n);
-    std::vector<double> radii(n);
-    std::vector<ContactGrain> views(n);
-    // Per grain, in parallel: its bounding sphere, its view for the contact laws and the
-    // boundaries it may touch (joined in grain order below, so sorted as if found serially).
-    const int boundaryCount = static_cast<int>(w.boundaries.size());
-    std::vector<std::vector<int>> nearBoundaries(static_cast<size_t>(n));
-    tbb::parallel_for(0, n, [&](int i) {
-        const Grain& g = w.grains[i];
-        centers[i] = g.body.pose.position;
-        radii[i] = g.asset->boundingRadius;
-        views[i] = contactView(g, i);
-        // Fixed and prescribed grains too: they do not move by forces, but they feel and
-        // record them (a prescribed grain pushed into a wall, and the wall, get the reaction).
-        for (int b = 0; b < boundaryCount; ++b)
-            if (w.boundaries[b].mayTouch(centers[i], radii[i]))
-                nearBoundaries[static_cast<size_t>(i)].push_back(b);
-    });
-    std::vector<ContactSlot> slots;
-    // Grain pairs: candidates whose bounding spheres overlap (kinematic pairs too, so their
-    // forces are recorded).
-    std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
-    std::vector<std::pair<int, int>> boundaryPairs;  // (grain, boundary), sorted
-    for (int i = 0; i < n; ++i)
-        for (int b : nearBoundaries[static_cast<size_t>(i)]) boundaryPairs.emplace_back(i, b);
-    slots.reserve(pairs.size() + boundaryPairs.size());
-    // Walk the sorted candidates and the sorted history together: history of pairs that
-    // drifted apart is dropped, new pairs start empty. std::map nodes do not move, so the
-    // slots can point into the maps while the threads work.
-    auto it = w.pairHistory.begin();
-    for (const auto& p : pairs) {
-        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
-        if (it == w.pairHistory.end() || it->first != p) it = w.pairHistory.emplace_hint(it, p, PairHistory{});
-        ContactSlot& s = slots.emplace_back();
-        s.first = p.first;
-        s.second = p.second;
-        s.pairHistory = &it->second;
-        ++it;
-    }
-    w.pairHistory.erase(it, w.pairHistory.end());
-    const size_t pairSlots = slots.size();
-    auto bit = w.boundaryHistory.begin();
-    for (const auto& p : boundaryPairs) {
-        while (bit != w.boundaryHistory.end() && bit->first < p) bit = w.boundaryHistory.erase(bit);
-        if (bit == w.boundaryHistory.end() || bit->first != p)
-            bit = w.boundaryHistory.emplace_hint(bit, p, ShearHistory{});
-        ContactSlot& s = slots.emplace_back();
-        s.first = p.first;
-        s.boundary = p.second;
-        s.boundaryHistory = &bit->second;
-        ++bit;
-    }
-    w.boundaryHistory.erase(bit, w.boundaryHistory.end());
-    std::vector<ContactGrain> boundaryViews;
-    for (const Boundary& b : w.boundaries) boundaryViews.push_back(contactView(b));
+    if (mContacts.update(w)) ++mCounters.listRebuilds;
+    std::vector<ContactSlot>& slots = mContacts.slots();
+    const size_t pairSlots = mContacts.pairSlotCount();
+    // Each body as the contact laws see it (pose, velocities), in parallel.
+    mViews.resize(size_t(n));
+    tbb::parallel_for(0, n, [&](int i) { mViews[size_t(i)] = contactView(w.grains[size_t(i)], i); });
+    mBoundaryViews.clear();
+    for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));
     mCounters.broadSeconds += secondsSince(broadStart);
     mCounters.candidatePairs += static_cast<long long>(pairSlots);
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
@@ -205,9 +146,13 @@ void Simulation::evaluateForces(double slipStep)
     // Narrow phase and contact laws, one slot per task; nothing shared is written.
     const auto narrowStart = SteadyClock::now();
     const bool record = mRecordForces;
+    const std::vector<ContactGrain>& views = mViews;
+    const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
         ContactSlot& s = slots[k];
         ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
+        s.stats = NodeCheckStats();
+        s.forces.clear();
         std::vector<PointForce>* out = record ? &s.forces : nullptr;
         const Grain& gi = w.grains[s.first];
         if (s.boundary < 0) {
@@ -230,44 +175,47 @@ void Simulation::evaluateForces(double slipStep)
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);
 
-    // Sum in slot order: the same numbers whatever the thread count.
+    // Sum each grain's slots in list order, grains in parallel: the same numbers whatever the
+    // thread count (and the same as one pass over the slots in order).
     const auto reduceStart = SteadyClock::now();
-    for (Grain& g : w.grains) {
-        g.force = Vec3::Zero();
-        g.torque = Vec3::Zero();
-    }
+    mGrainStiffness.resize(size_t(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        Grain& g = w.grains[size_t(i)];
+        Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+        Mat3 stiffness = Mat3::Zero();
+        for (const GrainSlotRef* r = mContacts.grainSlotsBegin(size_t(i));
+             r != mContacts.grainSlotsBegin(size_t(i) + 1); ++r) {
+            const PairForces& f = slots[size_t(r->slot)].result;
+            force += r->first ? f.forceOnFirst : f.forceOnSecond;
+            torque += r->first ? f.torqueOnFirst : f.torqueOnSecond;
+            stiffness += f.normalStiffness;
+        }
+        if (g.isFree()) {
+            force += g.body.mass * w.gravity;
+            if (w.globalDamping > 0.0) {
+                force = dampComponents(force, g.body.velocity, w.globalDamping);
+                torque = dampComponents(torque, g.body.angularVelocity(), w.globalDamping);
+            }
+        }
+        g.force = force;
+        g.torque = torque;
+        mGrainStiffness[size_t(i)] = stiffness;
+    });
     for (Boundary& b : w.boundaries) b.force = Vec3::Zero();
-    mGrainStiffness.assign(n, Mat3::Zero());
     mForces.clear();
     mContactNodes = 0;
     mElastic = 0.0;
-    for (ContactSlot& s : slots) {
+    for (size_t k = 0; k < slots.size(); ++k) {
+        const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         mCounters.nodes += s.stats;
         mContactNodes += r.contactNodes;
         mElastic += r.elasticEnergy;
-        w.grains[s.first].force += r.forceOnFirst;
-        w.grains[s.first].torque += r.torqueOnFirst;
-        mGrainStiffness[s.first] += r.normalStiffness;
-        if (s.boundary < 0) {
-            w.grains[s.second].force += r.forceOnSecond;
-            w.grains[s.second].torque += r.torqueOnSecond;
-            mGrainStiffness[s.second] += r.normalStiffness;
-        } else {
-            w.boundaries[s.boundary].force += r.forceOnSecond;
-        }
+        if (s.boundary >= 0) w.boundaries[s.boundary].force += r.forceOnSecond;
         for (size_t f = 0; f < s.forces.size(); ++f) {
             const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
             mForces.push_back({s.forces[f].point, s.forces[f].force,
                                onFirst ? s.first : s.second});
-        }
-    }
-    for (Grain& g : w.grains) {
-        if (!g.isFree()) continue;
-        g.force += g.body.mass * w.gravity;
-        if (w.globalDamping > 0.0) {
-            g.force = dampComponents(g.force, g.body.velocity, w.globalDamping);
-            g.torque = dampComponents(g.torque, g.body.angularVelocity(), w.globalDamping);
         }
     }
     mCounters.integrateSeconds += secondsSince(reduceStart);

@@ -5,6 +5,7 @@
 ///        contact and summed in a fixed order, so results are identical for any thread count.
 #pragma once
 
+#include "lsdem/simulation/ContactList.h"
 #include "lsdem/simulation/World.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -25,7 +26,8 @@ struct StepCounters
 {
     double broadSeconds = 0.0, narrowSeconds = 0.0, integrateSeconds = 0.0;
     long long steps = 0;
-    long long candidatePairs = 0;    ///< summed over steps
+    long long candidatePairs = 0;    ///< summed over steps (grain pairs on the contact list)
+    long long listRebuilds = 0;      ///< times the contact list was rebuilt
     long long boundaryCandidates = 0;
     NodeCheckStats nodes;             ///< summed over steps
 };
@@ -55,7 +57,12 @@ public:
 
     double timeStep() const { return mDt; }
     const World& world() const { return mWorld; }
+    /// The world, to change between steps. Moved grains and boundaries are noticed by the
+    /// contact list; after changing anything else that it holds (grains added or removed,
+    /// assets, the shear histories), call invalidateContacts().
     World& world() { return mWorld; }
+    /// Rebuild the contact list at the next step.
+    void invalidateContacts() { mContacts.markStale(); }
     Energies energies() const;
     const StepCounters& counters() const { return mCounters; }
 
@@ -81,6 +88,8 @@ private:
     double mElastic = 0.0;
     double mStabilityLimit = 0.0;
     std::vector<Mat3> mGrainStiffness;  ///< Σ k n nᵀ per grain at the last evaluation
+    ContactList mContacts;
+    std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
     StepCounters mCounters;
     /// Each thread's working memory for the contact laws (no allocation in the hot loop).
     tbb::enumerable_thread_specific<ContactScratch> mScratch;

@@ -58,7 +58,10 @@ struct World
 
     double time = 0.0;
     long long step = 0;
-    /// Shear history per grain pair (i < j) and per (grain, boundary).
+    /// Shear history per grain pair (i < j) and per (grain, boundary). A running Simulation's
+    /// contact list points into these maps: change them only before it is made (as a restart
+    /// does) or call Simulation::invalidateContacts() afterwards. Empty histories are
+    /// bookkeeping of that list, not state.
     std::map<std::pair<int, int>, PairHistory> pairHistory;
     std::map<std::pair<int, int>, ShearHistory> boundaryHistory;
     EnergyBook energy;

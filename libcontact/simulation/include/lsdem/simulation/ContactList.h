@@ -1,0 +1,78 @@
+/// @file ContactList.h
+/// @brief The contacts a simulation evaluates each step: grain pairs and grain–boundary pairs
+///        within reach, kept over many steps with a skin (a Verlet list). The list is rebuilt
+///        only when some grain or boundary has moved more than half the skin since the last
+///        build; until then every pair whose bounding spheres can overlap is already on it, so
+///        the forces are exactly those of a list rebuilt every step (pairs further apart get
+///        no contact nodes and add nothing). It also knows, for each grain, its slots in list
+///        order, so forces can be summed per grain in parallel and in a fixed order.
+#pragma once
+
+#include "lsdem/contact/ContactLaw.h"
+#include "lsdem/simulation/World.h"
+
+#include <utility>
+#include <vector>
+
+namespace lsdem {
+
+/// One contact to evaluate: a grain pair (boundary < 0) or a grain and a boundary, with its
+/// shear history (in the world's maps, which do not move it while the list stands) and the
+/// result of its last evaluation.
+struct ContactSlot
+{
+    int first = 0, second = -1, boundary = -1;
+    PairHistory* pairHistory = nullptr;
+    ShearHistory* boundaryHistory = nullptr;
+    PairForces result;
+    NodeCheckStats stats;
+    std::vector<PointForce> forces;  ///< point forces, when they are recorded
+};
+
+/// A grain's part in a slot: which slot, and whether the grain is its first body.
+struct GrainSlotRef
+{
+    int slot = 0;
+    bool first = true;
+};
+
+class ContactList
+{
+public:
+    /// @param skinFraction the skin as a fraction of the median grain bounding radius
+    explicit ContactList(double skinFraction = 0.25) : mSkinFraction(skinFraction) {}
+
+    /// Rebuild if the list is stale (never built, marked stale, or a grain or boundary moved
+    /// more than half the skin since the build). Histories of pairs that left the list are
+    /// dropped (they are empty: such pairs had no contact nodes); new pairs start empty.
+    /// @return whether it was rebuilt
+    bool update(World& world);
+    /// Force a rebuild at the next update (the world was changed from outside).
+    void markStale() { mBuilt = false; }
+
+    std::vector<ContactSlot>& slots() { return mSlots; }
+    const std::vector<ContactSlot>& slots() const { return mSlots; }
+    size_t pairSlotCount() const { return mPairSlots; }
+    /// Grain @a g's slots in list order: [grainSlotsBegin(g), grainSlotsBegin(g + 1)).
+    const GrainSlotRef* grainSlotsBegin(size_t g) const
+    {
+        return mGrainSlots.data() + mGrainSlotStart[g];
+    }
+    long long rebuilds() const { return mRebuilds; }
+    double skin() const { return mSkin; }
+
+private:
+    void rebuild(World& world);
+
+    double mSkinFraction;
+    double mSkin = 0.0;
+    bool mBuilt = false;
+    long long mRebuilds = 0;
+    std::vector<Vec3> mGrainPositionsAtBuild, mBoundaryDisplacementsAtBuild;
+    std::vector<ContactSlot> mSlots;  ///< grain pairs (sorted), then grain–boundary (sorted)
+    size_t mPairSlots = 0;
+    std::vector<size_t> mGrainSlotStart;     ///< per grain, into mGrainSlots (n + 1 entries)
+    std::vector<GrainSlotRef> mGrainSlots;
+};
+
+} // namespace lsdem

@@ -1,0 +1,112 @@
+#include "lsdem/simulation/ContactList.h"
+
+#include "lsdem/simulation/BroadPhase.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace lsdem {
+
+bool ContactList::update(World& world)
+{
+    bool stale = !mBuilt || mGrainPositionsAtBuild.size() != world.grains.size() ||
+                 mBoundaryDisplacementsAtBuild.size() != world.boundaries.size();
+    // Two bodies within reach now were within reach plus the skin at the build as long as
+    // neither moved more than half of it.
+    const double half2 = 0.25 * mSkin * mSkin;
+    for (size_t i = 0; !stale && i < world.grains.size(); ++i)
+        stale = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i]).squaredNorm() >
+                half2;
+    for (size_t b = 0; !stale && b < world.boundaries.size(); ++b)
+        stale = (world.boundaries[b].displacement - mBoundaryDisplacementsAtBuild[b])
+                    .squaredNorm() > half2;
+    if (stale) rebuild(world);
+    return stale;
+}
+
+void ContactList::rebuild(World& w)
+{
+    const int n = static_cast<int>(w.grains.size());
+    std::vector<Vec3> centers(static_cast<size_t>(n));
+    std::vector<double> radii(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+        centers[size_t(i)] = w.grains[size_t(i)].body.pose.position;
+        radii[size_t(i)] = w.grains[size_t(i)].asset->boundingRadius;
+    }
+    // The skin: a fraction of the median grain, so a polydisperse packing rebuilds when its
+    // typical grain, not its largest, has moved a fraction of its size.
+    if (n > 0) {
+        std::vector<double> sorted = radii;
+        std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+        mSkin = mSkinFraction * sorted[size_t(n / 2)];
+    }
+
+    // Grain pairs whose spheres come within the skin (kinematic pairs too, so their forces
+    // are recorded), and the boundaries each grain may touch within the skin, found in
+    // parallel and joined in grain order (sorted as if found serially).
+    const std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii, mSkin);
+    const int boundaryCount = static_cast<int>(w.boundaries.size());
+    std::vector<std::vector<int>> nearBoundaries(static_cast<size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+        for (int b = 0; b < boundaryCount; ++b)
+            if (w.boundaries[size_t(b)].mayTouch(centers[size_t(i)], radii[size_t(i)] + mSkin))
+                nearBoundaries[size_t(i)].push_back(b);
+    });
+
+    // Walk the sorted list and the sorted histories together: histories of pairs no longer on
+    // the list are dropped, new pairs start empty. std::map nodes do not move, so the slots
+    // can point into the maps until the next rebuild.
+    mSlots.clear();
+    auto it = w.pairHistory.begin();
+    for (const auto& p : pairs) {
+        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
+        if (it == w.pairHistory.end() || it->first != p)
+            it = w.pairHistory.emplace_hint(it, p, PairHistory{});
+        ContactSlot& s = mSlots.emplace_back();
+        s.first = p.first;
+        s.second = p.second;
+        s.pairHistory = &it->second;
+        ++it;
+    }
+    w.pairHistory.erase(it, w.pairHistory.end());
+    mPairSlots = mSlots.size();
+    auto bit = w.boundaryHistory.begin();
+    for (int i = 0; i < n; ++i)
+        for (int b : nearBoundaries[size_t(i)]) {
+            const std::pair<int, int> key(i, b);
+            while (bit != w.boundaryHistory.end() && bit->first < key)
+                bit = w.boundaryHistory.erase(bit);
+            if (bit == w.boundaryHistory.end() || bit->first != key)
+                bit = w.boundaryHistory.emplace_hint(bit, key, ShearHistory{});
+            ContactSlot& s = mSlots.emplace_back();
+            s.first = i;
+            s.boundary = b;
+            s.boundaryHistory = &bit->second;
+            ++bit;
+        }
+    w.boundaryHistory.erase(bit, w.boundaryHistory.end());
+
+    // Each grain's slots in list order (a grain's forces are summed in this order).
+    mGrainSlotStart.assign(size_t(n) + 1, 0);
+    for (const ContactSlot& s : mSlots) {
+        ++mGrainSlotStart[size_t(s.first) + 1];
+        if (s.boundary < 0) ++mGrainSlotStart[size_t(s.second) + 1];
+    }
+    for (int i = 0; i < n; ++i) mGrainSlotStart[size_t(i) + 1] += mGrainSlotStart[size_t(i)];
+    mGrainSlots.resize(mGrainSlotStart.back());
+    std::vector<size_t> fill(mGrainSlotStart.begin(), mGrainSlotStart.end() - 1);
+    for (size_t k = 0; k < mSlots.size(); ++k) {
+        const ContactSlot& s = mSlots[k];
+        mGrainSlots[fill[size_t(s.first)]++] = {static_cast<int>(k), true};
+        if (s.boundary < 0) mGrainSlots[fill[size_t(s.second)]++] = {static_cast<int>(k), false};
+    }
+
+    mGrainPositionsAtBuild = centers;
+    mBoundaryDisplacementsAtBuild.clear();
+    for (const Boundary& b : w.boundaries) mBoundaryDisplacementsAtBuild.push_back(b.displacement);
+    mBuilt = true;
+    ++mRebuilds;
+}
+
+} // namespace lsdem

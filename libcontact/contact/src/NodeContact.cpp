@@ -1,6 +1,7 @@
 #include "lsdem/contact/NodeContact.h"
 
 #include "lsdem/contact/NodeBlockWalk.h"
+#include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <optional>
@@ -9,7 +10,7 @@ namespace lsdem {
 
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
                       const RigidPose& poseB, std::vector<NodeContact>& out,
-                      NodeCheckStats& stats)
+                      NodeCheckStats& stats, CandidateBlocks* candidates)
 {
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
@@ -32,12 +33,13 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     // a node they let through still meets the exact tests below, so they only save work.
     const Vec3 centerOfB = -(rotation.transpose() * translation);  // B's origin in A's frame
     const double slack = 1.0 + 1e-9;
-    auto isClear = [&](const NodeBlock& run) {
-        const double reach = (reachB + run.radius) * slack;
+    // With a margin m > 0 the test answers for every pose of A within m of this one.
+    auto isClearWithin = [&](const NodeBlock& run, double m) {
+        const double reach = (reachB + run.radius + m) * slack;
         if ((run.center - centerOfB).squaredNorm() > reach * reach) return true;
         const Vec3 c = rotation * run.center + translation;
         const Vec3 outside = (b.insideBoxMin - c).cwiseMax(0.0) + (c - b.insideBoxMax).cwiseMax(0.0);
-        const double r = run.radius * slack;
+        const double r = (run.radius + m) * slack;
         return outside.squaredNorm() > r * r;
     };
 
@@ -70,7 +72,40 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             out.push_back(c);
         }
     };
-    forEachBlockNotClear(a, isClear, visit, stats);
+    const NodeBlocks& groups = a.nodeBlocks;
+    if (!candidates || groups.empty() || !groups.matches(a.nodes.size())) {
+        forEachBlockNotClear(a, [&](const NodeBlock& run) { return isClearWithin(run, 0.0); },
+                             visit, stats);
+        return;
+    }
+    if (!candidates->holds(toB, translation, a.boundingRadius)) {
+        // Walk every cluster and block with the margin, and remember the blocks let through.
+        candidates->valid = true;
+        candidates->rotation = toB;
+        candidates->translation = translation;
+        candidates->margin = CandidateBlocks::kMarginFraction * a.boundingRadius;
+        candidates->runs.clear();
+        const double m = candidates->margin;
+        NodeCheckStats ignored;
+        forEachBlockNotClear(
+            a, [&](const NodeBlock& run) { return isClearWithin(run, m); },
+            [&](int begin, int end) {
+                // Adjacent blocks join into one run of nodes: the same nodes, fewer loops.
+                std::vector<std::pair<int, int>>& runs = candidates->runs;
+                if (!runs.empty() && runs.back().second == begin)
+                    runs.back().second = end;
+                else
+                    runs.emplace_back(begin, end);
+            },
+            ignored);
+    }
+    // The remembered nodes, each tested as a full walk would.
+    long long visited = 0;
+    for (const auto& [begin, end] : candidates->runs) {
+        visited += end - begin;
+        visit(begin, end);
+    }
+    stats.nodesCulled += count - visited;
 }
 
 } // namespace lsdem

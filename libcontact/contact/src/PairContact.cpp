@@ -7,7 +7,7 @@ namespace lsdem {
 PairForces computePairContact(const ContactGrain& first, const ContactGrain& second,
                               const ContactModel& model, double dt, PairHistory* history,
                               NodeCheckStats& stats, std::vector<PointForce>* forces,
-                              ContactScratch* scratch)
+                              ContactScratch* scratch, PairCandidates* candidates)
 {
     ContactScratch temporary;
     ContactScratch& work = scratch ? *scratch : temporary;
@@ -35,7 +35,8 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.history = history ? &history->shearOnFirstNodes : nullptr;
         s.contacts.swap(work.contacts[count - 1]);  // reuse the thread's buffer
         s.contacts.clear();
-        findNodeContacts(*first.asset, first.pose, *second.asset, second.pose, s.contacts, stats);
+        findNodeContacts(*first.asset, first.pose, *second.asset, second.pose, s.contacts, stats,
+                         candidates ? &candidates->ofFirst : nullptr);
     }
     if (testSecond) {
         ContactSide& s = sides[count++];
@@ -46,7 +47,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.contacts.swap(work.contacts[count - 1]);
         s.contacts.clear();
         findNodeContacts(*second.asset, second.pose, *first.asset, first.pose, s.contacts,
-                         stats);
+                         stats, candidates ? &candidates->ofSecond : nullptr);
     }
     PairForces result = resolveContact(sides, count, model, dt, forces, &work);
     for (int k = 0; k < count; ++k) sides[k].contacts.swap(work.contacts[k]);  // hand back

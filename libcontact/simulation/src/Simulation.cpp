@@ -158,7 +158,7 @@ void Simulation::evaluateForces(double slipStep)
         if (s.boundary < 0) {
             const ContactModel& m = w.model(gi.material, w.grains[s.second].material);
             s.result = computePairContact(views[s.first], views[s.second], m, slipStep,
-                                          s.pairHistory, s.stats, out, &scratch);
+                                          s.pairHistory, s.stats, out, &scratch, &s.candidates);
         } else {
             const Boundary& b = w.boundaries[s.boundary];
             ContactSide side;

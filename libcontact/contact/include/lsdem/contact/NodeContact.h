@@ -10,6 +10,8 @@
 
 namespace lsdem {
 
+struct CandidateBlocks;
+
 /// One penetrating node of grain A inside grain B (world frame).
 struct NodeContact
 {
@@ -40,8 +42,11 @@ struct NodeCheckStats
 
 /// Append to @a out every node of grain A (asset @a a at @a poseA) with φ_B < 0, in node order.
 /// Nodes outside B's bounding sphere are culled without sampling.
+/// @param candidates  if not null, the blocks of A near B found at an earlier call for the
+///                    same pair, used while they hold and refreshed when they do not: the
+///                    contacts are the same as without it (see CandidateBlocks.h)
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
                       const RigidPose& poseB, std::vector<NodeContact>& out,
-                      NodeCheckStats& stats);
+                      NodeCheckStats& stats, CandidateBlocks* candidates = nullptr);
 
 } // namespace lsdem

@@ -4,6 +4,7 @@
 ///        opposite forces; torques about each grain's centroid).
 #pragma once
 
+#include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/contact/ContactLaw.h"
 
 #include <vector>
@@ -16,9 +17,12 @@ namespace lsdem {
 /// @param forces   if not null, receives every point force (normal + shear) as it acts on
 ///                 the grain whose node produced it (for output of contact forces)
 /// @param scratch  working memory to reuse (null: a temporary one)
+/// @param candidates  the node blocks near the other grain from earlier calls for this pair,
+///                 kept up to date (null: found afresh); the result is the same either way
 PairForces computePairContact(const ContactGrain& first, const ContactGrain& second,
                               const ContactModel& model, double dt, PairHistory* history,
                               NodeCheckStats& stats, std::vector<PointForce>* forces = nullptr,
-                              ContactScratch* scratch = nullptr);
+                              ContactScratch* scratch = nullptr,
+                              PairCandidates* candidates = nullptr);
 
 } // namespace lsdem

@@ -8,6 +8,7 @@
 ///        order, so forces can be summed per grain in parallel and in a fixed order.
 #pragma once
 
+#include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/contact/ContactLaw.h"
 #include "lsdem/simulation/World.h"
 
@@ -27,6 +28,7 @@ struct ContactSlot
     PairForces result;
     NodeCheckStats stats;
     std::vector<PointForce> forces;  ///< point forces, when they are recorded
+    PairCandidates candidates;       ///< node blocks near the other grain, kept over steps
 };
 
 /// A grain's part in a slot: which slot, and whether the grain is its first body.

@@ -1,0 +1,97 @@
+// Remembered candidate blocks (CandidateBlocks.h): along a trajectory of small random moves
+// and turns of grain A against grain B, the contacts found with the remembered list equal,
+// node for node and bit for bit, those of a full walk; the list is reused over many steps and
+// refreshed when A has moved by more than its margin.
+#include "lsdem/contact/CandidateBlocks.h"
+#include "lsdem/contact/NodeContact.h"
+#include "lsdem/ls/Bake.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <map>
+#include <random>
+
+using namespace lsdem;
+
+namespace {
+
+/// A bumpy grain with a few thousand nodes in Z-ordered blocks, baked coarsely.
+const GrainAsset& grain(double halfLength)
+{
+    BakeOptions o;
+    o.voxelSize = 0.08;
+    o.nodeSpacing = 0.06;
+    std::vector<std::string> warnings;
+    static std::map<double, GrainAsset> assets;
+    auto it = assets.find(halfLength);
+    if (it == assets.end())
+        it = assets.emplace(halfLength, bakeAnalytic(AnalyticShape::ellipsoid(halfLength, 1.0, 0.7),
+                                                     o, warnings)).first;
+    return it->second;
+}
+
+double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53 - 0.5; }
+
+} // namespace
+
+TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
+{
+    const GrainAsset& a = grain(1.4);
+    const GrainAsset& b = grain(1.0);
+    ASSERT_FALSE(a.nodeBlocks.empty());
+    RigidPose poseA, poseB;
+    poseA.position = Vec3(2.2, 0.1, 0.0);  // overlapping B by about 0.2 along x
+    poseB.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
+    std::mt19937_64 rng(11);
+    CandidateBlocks remembered;
+    int refreshes = 0, steps = 400, stepsInContact = 0;
+    for (int step = 0; step < steps; ++step) {
+        // Steps of up to 1 % of A's bounding radius and 0.6° per axis: the list (margin 2 %)
+        // lasts a few steps, then must be refreshed.
+        poseA.position += 0.01 * a.boundingRadius * Vec3(uniform(rng), uniform(rng), uniform(rng));
+        poseA.position.x() = std::clamp(poseA.position.x(), 1.9, 2.5);
+        poseA.orientation = (Quat(Eigen::AngleAxisd(0.02 * uniform(rng), Vec3::UnitX())) *
+                             Quat(Eigen::AngleAxisd(0.02 * uniform(rng), Vec3::UnitY())) *
+                             poseA.orientation).normalized();
+        std::vector<NodeContact> full, withList;
+        NodeCheckStats fullStats, listStats;
+        const bool wasValid = remembered.valid;
+        const Quat before = remembered.rotation;
+        findNodeContacts(a, poseA, b, poseB, full, fullStats);
+        findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
+        if (!wasValid || !remembered.rotation.coeffs().isApprox(before.coeffs(), 0.0)) ++refreshes;
+        stepsInContact += full.empty() ? 0 : 1;
+        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
+        for (size_t k = 0; k < full.size(); ++k) {
+            ASSERT_EQ(full[k].node, withList[k].node);
+            ASSERT_EQ(full[k].depth, withList[k].depth);
+            ASSERT_EQ(full[k].normal, withList[k].normal);
+            ASSERT_EQ(full[k].point, withList[k].point);
+        }
+        // The counters add up the same way: every node is either culled or sampled.
+        EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
+        EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
+        EXPECT_EQ(listStats.nodesCulled, fullStats.nodesCulled);
+    }
+    EXPECT_GT(stepsInContact, steps * 9 / 10);  // the trajectory stays in contact
+    EXPECT_GT(refreshes, 5);                    // the list had to follow the motion
+    EXPECT_LT(refreshes, steps / 2);            // and was reused most of the time
+}
+
+TEST(CandidateBlocks, HoldsOnlyWhileEveryNodeMovedLessThanTheMargin)
+{
+    CandidateBlocks c;
+    EXPECT_FALSE(c.holds(Quat::Identity(), Vec3::Zero(), 1.0));  // never made
+    c.valid = true;
+    c.margin = 0.1;
+    EXPECT_TRUE(c.holds(Quat::Identity(), Vec3(0.099, 0, 0), 1.0));
+    EXPECT_FALSE(c.holds(Quat::Identity(), Vec3(0.101, 0, 0), 1.0));
+    // A turn by θ moves a node at distance r by 2 r sin(θ/2): 0.0999 for θ = 0.1, r = 1.
+    const Quat turn(Eigen::AngleAxisd(0.1, Vec3::UnitZ()));
+    EXPECT_TRUE(c.holds(turn, Vec3::Zero(), 1.0));
+    EXPECT_FALSE(c.holds(turn, Vec3::Zero(), 1.002));
+    EXPECT_FALSE(c.holds(turn, Vec3(0.001, 0, 0), 1.0));
+}

@@ -43,6 +43,16 @@ class ContactList
 public:
     /// @param skinFraction the skin as a fraction of the median grain bounding radius
     explicit ContactList(double skinFraction = 0.25) : mSkinFraction(skinFraction) {}
+    /// A copy (of a Simulation, say) starts unbuilt: the slots point into the shear
+    /// histories of the world they were built for, not into the copy's.
+    ContactList(const ContactList& other) : mSkinFraction(other.mSkinFraction) {}
+    ContactList& operator=(const ContactList& other)
+    {
+        *this = ContactList(other.mSkinFraction);
+        return *this;
+    }
+    ContactList(ContactList&&) = default;
+    ContactList& operator=(ContactList&&) = default;
 
     /// Rebuild if the list is stale (never built, marked stale, or a grain or boundary moved
     /// more than half the skin since the build). Histories of pairs that left the list are

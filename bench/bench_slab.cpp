@@ -1,0 +1,89 @@
+// Step time of the interlocked slab (issue: flat, face-to-face contacts, the expensive case).
+// Run:
+//   build/bench/bench_slab --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// The study's 5×5 panel (adapted, symmetric node testing) with its block baked at two
+// discretizations: the quick study's finest (SDP 0.25 mm, VDP 0.05 mm, ~4,100 nodes per
+// block) and --full's finest (SDP 0.125 mm, VDP 0.035 mm, ~16,500 nodes per block). Before
+// timing, the indenter is driven to δ = 0.5 mm, so every face carries load; one iteration
+// is one time step from there. Args: discretization (0, 1), threads.
+
+#include "studies/SlabModel.h"
+#include "studies/SlabOptions.h"
+#include "studies/SlabScene.h"
+
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <benchmark/benchmark.h>
+
+#include <tbb/global_control.h>
+
+#include <map>
+#include <memory>
+
+using namespace lsdem;
+
+namespace {
+
+struct Discretization
+{
+    double sdp, vdp;
+};
+constexpr Discretization kDiscretizations[] = {{0.25, 0.05}, {0.125, 0.035}};
+constexpr double kPreloadDelta = 0.5;  // mm
+
+/// The loaded panel of a discretization, made once: baking the fine block takes seconds.
+const Simulation& loadedPanel(int which)
+{
+    static std::map<int, std::unique_ptr<Simulation>> made;
+    std::unique_ptr<Simulation>& sim = made[which];
+    if (!sim) {
+        const SlabStudyOptions o;
+        const SlabPanel panel(o.panel);
+        const Discretization d = kDiscretizations[which];
+        const auto block = bakeSlabBlock(panel, d.vdp, d.sdp);
+        const double dt = slabTimeStep(o, panel, *block, Formulation::Adapted);
+        std::vector<std::string> warnings;
+        World world = buildWorld(makeSlabScene(o, Formulation::Adapted, block, dt), warnings);
+        sim = std::make_unique<Simulation>(std::move(world), dt);
+        const Boundary& indenter = sim->world().boundaries.back();
+        while (-indenter.displacement.z() < kPreloadDelta) sim->step();
+    }
+    return *sim;
+}
+
+void BM_SlabStep(benchmark::State& state)
+{
+    const int which = static_cast<int>(state.range(0));
+    const Simulation& loaded = loadedPanel(which);
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                static_cast<size_t>(state.range(1)));
+    Simulation sim = loaded;  // every repetition steps on from the same loaded state
+    const StepCounters before = sim.counters();
+    for (auto _ : state) sim.step();
+    const StepCounters& after = sim.counters();
+    const double steps = static_cast<double>(after.steps - before.steps);
+    const World& w = sim.world();
+    double nodes = 0.0;
+    for (const Grain& g : w.grains) nodes += static_cast<double>(g.asset->nodes.size());
+    state.counters["sdp_mm"] = kDiscretizations[which].sdp;
+    state.counters["nodes_per_block"] = nodes / static_cast<double>(w.grains.size());
+    state.counters["nodes_sampled/step"] =
+        static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled) / steps;
+    state.counters["contact_nodes"] = static_cast<double>(sim.contactNodes());
+    state.counters["narrow_ms/step"] = 1e3 * (after.narrowSeconds - before.narrowSeconds) / steps;
+    state.counters["ns/node_sampled"] =
+        1e9 * (after.narrowSeconds - before.narrowSeconds) /
+        static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled);
+}
+
+} // namespace
+
+BENCHMARK(BM_SlabStep)
+    ->ArgsProduct({{0, 1}, {1, 2}})
+    ->ArgNames({"fine", "threads"})
+    ->Iterations(20)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+BENCHMARK_MAIN();

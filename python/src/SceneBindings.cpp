@@ -66,6 +66,13 @@ GrainMotion parseMotion(const std::string& motion)
     throw Error("", "motion wants 'free', 'fixed' or 'prescribed', got '" + motion + "'");
 }
 
+/// A scene changed in Python no longer matches its file's text: drop it, so checkpoints store
+/// the scene as it is now (its TOML) rather than as it was read.
+void markChanged(Scene& s)
+{
+    s.text.clear();
+}
+
 /// The folder a scene's relative paths are read from and written to.
 std::string sceneFolder(const Scene& s)
 {
@@ -131,7 +138,8 @@ void bindScenes(py::module_& m)
              "Write the scene as a TOML file (atomically) that lsdem-run and from_toml read.")
         .def_readonly("path", &Scene::path, "The scene file, as given ('' if built in Python).")
         .def_readonly("directory", &Scene::directory, "The folder relative paths start from.")
-        .def_readonly("text", &Scene::text, "The file's text ('' if built in Python).")
+        .def_readonly("text", &Scene::text, "The file's text; '' if built or changed in Python (to_toml() gives the "
+                       "current scene).")
         .def_property_readonly(
             "units",
             [](const Scene& s) {
@@ -153,11 +161,15 @@ void bindScenes(py::module_& m)
         .def("__len__", [](const Scene& s) { return s.grains.size(); }, "The number of grains.")
         .def_property(
             "gravity", [](const Scene& s) { return toArray(s.gravity); },
-            [](Scene& s, const py::object& g) { s.gravity = toVec3(g, "gravity"); },
+            [](Scene& s, const py::object& g) {
+                markChanged(s);
+                s.gravity = toVec3(g, "gravity");
+            },
             "Gravity (3,), length/time².")
         .def_property(
             "global_damping", [](const Scene& s) { return s.globalDamping; },
             [](Scene& s, double d) {
+                markChanged(s);
                 if (!(d >= 0.0 && d < 1.0)) throw Error("", "global_damping must be in [0, 1)");
                 s.globalDamping = d;
             },
@@ -165,6 +177,7 @@ void bindScenes(py::module_& m)
         .def_property(
             "time_step", [](const Scene& s) { return s.timeStep.fixed; },
             [](Scene& s, double dt) {
+                markChanged(s);
                 if (!(dt >= 0.0) || !std::isfinite(dt))
                     throw Error("", "time_step must be >= 0 (0: automatic)");
                 s.timeStep.fixed = dt;
@@ -172,14 +185,21 @@ void bindScenes(py::module_& m)
             "The fixed time step, or 0 for automatic (safety · 2·sqrt(m/k)).")
         .def_property(
             "end_time", [](const Scene& s) { return s.end.time; },
-            [](Scene& s, double t) { s.end.time = std::max(0.0, finite(t, "end_time")); },
+            [](Scene& s, double t) {
+                markChanged(s);
+                s.end.time = std::max(0.0, finite(t, "end_time"));
+            },
             "Stop at this simulated time (0: no time limit).")
         .def_property(
             "end_steps", [](const Scene& s) { return s.end.steps; },
-            [](Scene& s, long long n) { s.end.steps = std::max(0LL, n); },
+            [](Scene& s, long long n) {
+                markChanged(s);
+                s.end.steps = std::max(0LL, n);
+            },
             "Stop after this many steps (0: no step limit).")
         .def("set_end_displacement",
              [](Scene& s, const std::string& boundary, double value) {
+                 markChanged(s);
                  if (!(value > 0.0) || !std::isfinite(value))
                      throw Error("", "end displacement must be > 0");
                  s.end.boundary = indexOf(s.boundaries, boundary, "boundary");
@@ -189,6 +209,7 @@ void bindScenes(py::module_& m)
              "Stop when the named (moving) boundary has moved this far (length).")
         .def("add_asset",
              [](Scene& s, const std::string& name, const AssetHandle& asset) {
+                 markChanged(s);
                  checkNewName(s.assets, name, "asset");
                  AssetSpec spec;
                  spec.name = name;
@@ -202,6 +223,7 @@ void bindScenes(py::module_& m)
              "file it was loaded from or saved to.")
         .def("add_material",
              [](Scene& s, const std::string& name, double density) {
+                 markChanged(s);
                  checkNewName(s.materials, name, "material");
                  if (!(density >= 0.0) || !std::isfinite(density))
                      throw Error("", "material '" + name + "': density must be >= 0");
@@ -213,6 +235,7 @@ void bindScenes(py::module_& m)
              [](Scene& s, const std::string& a, const std::string& b,
                 const std::string& formulation, double normalStiffness, double shearStiffness,
                 double friction, double restitution, const std::string& testing) {
+                 markChanged(s);
                  ContactSpec c;
                  c.materialA = indexOf(s.materials, a, "material");
                  c.materialB = indexOf(s.materials, b, "material");
@@ -244,6 +267,7 @@ void bindScenes(py::module_& m)
                 const py::object& position, const py::object& orientation,
                 const py::object& velocity, const py::object& angularVelocity, double mass,
                 const std::string& motion, const std::string& name) {
+                 markChanged(s);
                  GrainSpec g;
                  g.asset = indexOf(s.assets, asset, "asset");
                  g.material = indexOf(s.materials, material, "material");
@@ -275,6 +299,7 @@ void bindScenes(py::module_& m)
         .def("add_plane",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& point, const py::object& normal, const py::object& velocity) {
+                 markChanged(s);
                  checkNewName(s.boundaries, name, "boundary");
                  BoundarySpec b;
                  b.name = name;
@@ -295,6 +320,7 @@ void bindScenes(py::module_& m)
         .def("add_sphere_boundary",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& velocity) {
+                 markChanged(s);
                  checkNewName(s.boundaries, name, "boundary");
                  if (!(radius > 0.0) || !std::isfinite(radius))
                      throw Error("", "boundary '" + name + "': radius must be > 0");

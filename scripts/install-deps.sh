@@ -10,6 +10,7 @@ packages=(
     libpng-dev zlib1g-dev libtomlplusplus-dev libssl-dev libcli11-dev nlohmann-json3-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     python3 python3-matplotlib
+    pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

@@ -14,16 +14,6 @@ long long stepsPer(double period, double dt)
                                           : static_cast<long long>(steps);
 }
 
-bool endReached(const Scene& scene, const World& w, double dt)
-{
-    const EndCondition& end = scene.end;
-    if (end.steps > 0 && w.step >= end.steps) return true;
-    if (end.time > 0.0 && w.time >= end.time - 1e-9 * dt) return true;
-    if (end.boundary >= 0 && w.boundaries[end.boundary].displacement.norm() >= end.displacement)
-        return true;
-    return false;
-}
-
 double plannedSteps(const Scene& scene, const World& w, double dt)
 {
     double planned = -1.0;

@@ -2,6 +2,7 @@
 // periods (private to the run library).
 #pragma once
 
+#include "lsdem/run/RunEnd.h"
 #include "lsdem/scene/Scene.h"
 #include "lsdem/simulation/World.h"
 
@@ -12,8 +13,8 @@ namespace lsdem::runplan {
 /// Steps between outputs for a period in time units (at least one step).
 long long stepsPer(double period, double dt);
 
-/// Whether @a w has met the first of the scene's end conditions.
-bool endReached(const Scene& scene, const World& w, double dt);
+/// The end check is public (lsdem/run/RunEnd.h); the run driver finds it here too.
+using lsdem::endReached;
 
 /// The number of steps the end condition implies (a double: an absurd end_time must not
 /// overflow), or -1 if it cannot be known in advance.

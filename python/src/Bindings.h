@@ -1,0 +1,47 @@
+/// @file Bindings.h
+/// @brief What the binding files of the Python module share: one bind function per concept
+///        (errors, assets, sampling, scenes, simulation), the Python-side asset handle, and
+///        the conversions between lsdem's Eigen vectors and numpy arrays.
+#pragma once
+
+#include "lsdem/ls/GrainAsset.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lsdem::python {
+
+namespace py = pybind11;
+
+void bindErrors(py::module_& m);
+void bindAssets(py::module_& m);
+void bindSampling(py::module_& m);  ///< adds Asset.sample (after bindAssets)
+void bindScenes(py::module_& m);
+void bindSimulation(py::module_& m);
+
+/// A grain asset as Python sees it: shared and read-only (many grains, one asset), with the
+/// file it was loaded from or saved to, so a scene holding it can be written as TOML.
+struct AssetHandle
+{
+    std::shared_ptr<const GrainAsset> asset;
+    std::string path;  ///< "" while it lives only in memory
+};
+
+/// A read-only (count, 3) float64 view of @a count vectors starting at @a first, each
+/// @a strideBytes apart; @a owner is kept alive as long as the view (numpy's base).
+py::array vectorView(const Vec3* first, size_t count, size_t strideBytes, py::handle owner);
+/// A read-only (count,) float64 view of @a count doubles starting at @a first.
+py::array scalarView(const double* first, size_t count, size_t strideBytes, py::handle owner);
+/// A fresh (n, 3) float64 array holding @a vectors.
+py::array_t<double> vectorCopy(const std::vector<Vec3>& vectors);
+/// A fresh (3,) float64 array; a fresh (3, 3) one.
+py::array_t<double> toArray(const Vec3& v);
+py::array_t<double> toArray(const Mat3& m);
+/// A vector from any Python sequence of three numbers. @throw lsdem::Error naming @a what.
+Vec3 toVec3(const py::handle& value, const std::string& what);
+
+} // namespace lsdem::python

@@ -1,0 +1,347 @@
+// Scenes in Python: read from TOML (file or text), written back as TOML, inspected, or built
+// step by step from assets made in Python.
+#include "Bindings.h"
+
+#include "lsdem/ls/Error.h"
+#include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/SceneWriter.h"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace lsdem::python {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Index of the entry called @a name in @a items; Error naming the kind and the choices.
+template <typename Items>
+int indexOf(const Items& items, const std::string& name, const std::string& kind)
+{
+    std::string known;
+    for (size_t i = 0; i < items.size(); ++i) {
+        if (items[i].name == name) return static_cast<int>(i);
+        known += (known.empty() ? "'" : ", '") + items[i].name + "'";
+    }
+    throw Error("", "no " + kind + " called '" + name + "'",
+                known.empty() ? "add one first" : "use one of " + known);
+}
+
+template <typename Items>
+void checkNewName(const Items& items, const std::string& name, const std::string& kind)
+{
+    if (name.empty()) throw Error("", "a " + kind + " needs a name");
+    for (const auto& item : items)
+        if (item.name == name)
+            throw Error("", "there is already a " + kind + " called '" + name + "'",
+                        "give each " + kind + " its own name");
+}
+
+double finite(double value, const std::string& what)
+{
+    if (!std::isfinite(value)) throw Error("", what + " must be finite");
+    return value;
+}
+
+/// A unit quaternion (w, x, y, z) from Python; Error if it is not about unit length.
+Quat toQuat(const py::handle& value)
+{
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+    if (!a || a.ndim() != 1 || a.shape(0) != 4)
+        throw Error("", "orientation must be four numbers [w, x, y, z]");
+    const Quat q(a.at(0), a.at(1), a.at(2), a.at(3));
+    if (!(std::abs(q.norm() - 1.0) < 1e-6))
+        throw Error("", "orientation must be a unit quaternion", "normalize [w, x, y, z]");
+    return q.normalized();
+}
+
+GrainMotion parseMotion(const std::string& motion)
+{
+    if (motion == "free") return GrainMotion::Free;
+    if (motion == "fixed") return GrainMotion::Fixed;
+    if (motion == "prescribed") return GrainMotion::Prescribed;
+    throw Error("", "motion wants 'free', 'fixed' or 'prescribed', got '" + motion + "'");
+}
+
+/// A scene changed in Python no longer matches its file's text: drop it, so checkpoints store
+/// the scene as it is now (its TOML) rather than as it was read.
+void markChanged(Scene& s)
+{
+    s.text.clear();
+}
+
+/// The folder a scene's relative paths are read from and written to.
+std::string sceneFolder(const Scene& s)
+{
+    return s.directory.empty() ? fs::current_path().string() : s.directory;
+}
+
+template <typename Items>
+std::vector<std::string> namesOf(const Items& items)
+{
+    std::vector<std::string> names;
+    for (const auto& item : items) names.push_back(item.name);
+    return names;
+}
+
+} // namespace
+
+void bindScenes(py::module_& m)
+{
+    py::class_<Scene>(
+        m, "Scene",
+        "A simulation scene: assets, materials, contact laws, grains, boundaries, time "
+        "stepping and the end condition (docs/scenes.md is the reference).\n\n"
+        "Read one with Scene.from_toml(path) or Scene.from_text(text); build one with Scene() "
+        "and the add_* methods; write it with to_toml() or save(path). Relative paths in a "
+        "scene are resolved from its folder (the file's, or the current one for a scene built "
+        "in Python). Changing a scene does not change simulations made from it.")
+        .def(py::init([] {
+                 Scene s;
+                 s.directory = fs::current_path().string();
+                 return s;
+             }),
+             "An empty scene (units mm, tonne, s, N) whose relative paths are read from the "
+             "current folder. Add assets, materials, contacts, grains and boundaries, and an "
+             "end condition, before simulating it.")
+        .def_static("from_toml",
+                    [](const std::string& path) {
+                        py::gil_scoped_release release;
+                        return readSceneFile(path);
+                    },
+                    py::arg("path"),
+                    "Read and check a scene file. Raises lsdem.Error with the file, line, key "
+                    "and a fix for anything wrong.")
+        .def_static("from_text",
+                    [](const std::string& text, const std::string& path) {
+                        return parseScene(text, path);
+                    },
+                    py::arg("text"), py::arg("path") = "scene.toml",
+                    "Parse scene TOML text as if it were the file `path` (messages name it; "
+                    "relative paths are resolved from its folder).")
+        .def("to_toml",
+             [](const Scene& s, std::optional<std::string> directory, const std::string& header) {
+                 return sceneToToml(s, directory ? *directory : sceneFolder(s), header);
+             },
+             py::arg("directory") = py::none(), py::arg("header") = "",
+             "The scene as TOML text that from_text reads back to the same scene. Asset paths "
+             "below `directory` (default: the scene's folder) are written relative to it. "
+             "Assets made in Python must be saved first (Asset.save).")
+        .def("save",
+             [](const Scene& s, const std::string& path, const std::string& header) {
+                 writeSceneFile(s, path, header);
+             },
+             py::arg("path"), py::arg("header") = "",
+             "Write the scene as a TOML file (atomically) that lsdem-run and from_toml read.")
+        .def_readonly("path", &Scene::path, "The scene file, as given ('' if built in Python).")
+        .def_readonly("directory", &Scene::directory, "The folder relative paths start from.")
+        .def_readonly("text", &Scene::text, "The file's text; '' if built or changed in Python (to_toml() gives the "
+                       "current scene).")
+        .def_property_readonly(
+            "units",
+            [](const Scene& s) {
+                py::dict d;
+                d["length"] = s.units.length;
+                d["mass"] = s.units.mass;
+                d["time"] = s.units.time;
+                d["force"] = s.units.force;
+                return d;
+            },
+            "The declared unit system: dict of length, mass, time, force.")
+        .def_property_readonly("asset_names", [](const Scene& s) { return namesOf(s.assets); })
+        .def_property_readonly("material_names",
+                               [](const Scene& s) { return namesOf(s.materials); })
+        .def_property_readonly("grain_names", [](const Scene& s) { return namesOf(s.grains); },
+                               "Grain names, '' for grains named by their index.")
+        .def_property_readonly("boundary_names",
+                               [](const Scene& s) { return namesOf(s.boundaries); })
+        .def("__len__", [](const Scene& s) { return s.grains.size(); }, "The number of grains.")
+        .def_property(
+            "gravity", [](const Scene& s) { return toArray(s.gravity); },
+            [](Scene& s, const py::object& g) {
+                markChanged(s);
+                s.gravity = toVec3(g, "gravity");
+            },
+            "Gravity (3,), length/time².")
+        .def_property(
+            "global_damping", [](const Scene& s) { return s.globalDamping; },
+            [](Scene& s, double d) {
+                markChanged(s);
+                if (!(d >= 0.0 && d < 1.0)) throw Error("", "global_damping must be in [0, 1)");
+                s.globalDamping = d;
+            },
+            "Non-viscous damping λ in [0, 1) (as YADE's NewtonIntegrator).")
+        .def_property(
+            "time_step", [](const Scene& s) { return s.timeStep.fixed; },
+            [](Scene& s, double dt) {
+                markChanged(s);
+                if (!(dt >= 0.0) || !std::isfinite(dt))
+                    throw Error("", "time_step must be >= 0 (0: automatic)");
+                s.timeStep.fixed = dt;
+            },
+            "The fixed time step, or 0 for automatic (safety · 2·sqrt(m/k)).")
+        .def_property(
+            "end_time", [](const Scene& s) { return s.end.time; },
+            [](Scene& s, double t) {
+                markChanged(s);
+                s.end.time = std::max(0.0, finite(t, "end_time"));
+            },
+            "Stop at this simulated time (0: no time limit).")
+        .def_property(
+            "end_steps", [](const Scene& s) { return s.end.steps; },
+            [](Scene& s, long long n) {
+                markChanged(s);
+                s.end.steps = std::max(0LL, n);
+            },
+            "Stop after this many steps (0: no step limit).")
+        .def("set_end_displacement",
+             [](Scene& s, const std::string& boundary, double value) {
+                 markChanged(s);
+                 if (!(value > 0.0) || !std::isfinite(value))
+                     throw Error("", "end displacement must be > 0");
+                 s.end.boundary = indexOf(s.boundaries, boundary, "boundary");
+                 s.end.displacement = value;
+             },
+             py::arg("boundary"), py::arg("value"),
+             "Stop when the named (moving) boundary has moved this far (length).")
+        .def("add_asset",
+             [](Scene& s, const std::string& name, const AssetHandle& asset) {
+                 markChanged(s);
+                 checkNewName(s.assets, name, "asset");
+                 AssetSpec spec;
+                 spec.name = name;
+                 spec.loaded = asset.asset;
+                 if (!asset.path.empty()) spec.file = fs::absolute(asset.path).string();
+                 spec.where = "asset '" + name + "'";
+                 s.assets.push_back(spec);
+             },
+             py::arg("name"), py::arg("asset"),
+             "Use an Asset (baked or loaded in Python) under this name. to_toml writes the "
+             "file it was loaded from or saved to.")
+        .def("add_material",
+             [](Scene& s, const std::string& name, double density) {
+                 markChanged(s);
+                 checkNewName(s.materials, name, "material");
+                 if (!(density >= 0.0) || !std::isfinite(density))
+                     throw Error("", "material '" + name + "': density must be >= 0");
+                 s.materials.push_back({name, density});
+             },
+             py::arg("name"), py::arg("density") = 0.0,
+             "A material: density in mass/length³ (> 0 for free grains; boundaries need none).")
+        .def("add_contact",
+             [](Scene& s, const std::string& a, const std::string& b,
+                const std::string& formulation, double normalStiffness, double shearStiffness,
+                double friction, double restitution, const std::string& testing) {
+                 markChanged(s);
+                 ContactSpec c;
+                 c.materialA = indexOf(s.materials, a, "material");
+                 c.materialB = indexOf(s.materials, b, "material");
+                 c.model.formulation = parseFormulation(formulation);
+                 c.model.testing = parseNodeTesting(testing);
+                 if (!(normalStiffness > 0.0) || !std::isfinite(normalStiffness))
+                     throw Error("", "normal_stiffness must be > 0");
+                 if (!(shearStiffness >= 0.0) || !(friction >= 0.0))
+                     throw Error("", "shear_stiffness and friction must be >= 0");
+                 if (!(restitution > 0.0 && restitution <= 1.0))
+                     throw Error("", "restitution must be in (0, 1]");
+                 c.model.normalStiffness = normalStiffness;
+                 c.model.shearStiffness = shearStiffness;
+                 c.model.friction = friction;
+                 c.restitution = restitution;
+                 c.where = "contact " + a + "-" + b;
+                 s.contacts.push_back(c);
+             },
+             py::arg("material_a"), py::arg("material_b"), py::kw_only(),
+             py::arg("formulation") = "adapted", py::arg("normal_stiffness"),
+             py::arg("shear_stiffness") = 0.0, py::arg("friction") = 0.0,
+             py::arg("restitution") = 1.0, py::arg("testing") = "symmetric",
+             "The contact law between two materials: formulation ('adapted', 'original', "
+             "'single-node', 'volume'), normal_stiffness (kn or kn*, see docs/contact.md), "
+             "shear springs, friction, restitution in (0, 1] (1: no damping) and node testing "
+             "('symmetric' or 'one-way').")
+        .def("add_grain",
+             [](Scene& s, const std::string& asset, const std::string& material,
+                const py::object& position, const py::object& orientation,
+                const py::object& velocity, const py::object& angularVelocity, double mass,
+                const std::string& motion, const std::string& name) {
+                 markChanged(s);
+                 GrainSpec g;
+                 g.asset = indexOf(s.assets, asset, "asset");
+                 g.material = indexOf(s.materials, material, "material");
+                 g.pose.position = toVec3(position, "position");
+                 g.pose.orientation = toQuat(orientation);
+                 g.velocity = toVec3(velocity, "velocity");
+                 g.angularVelocity = toVec3(angularVelocity, "angular_velocity");
+                 g.mass = std::max(0.0, finite(mass, "mass"));
+                 g.motion = parseMotion(motion);
+                 if (g.motion == GrainMotion::Fixed &&
+                     (g.velocity.norm() > 0.0 || g.angularVelocity.norm() > 0.0))
+                     throw Error("", "a fixed grain may not have a velocity",
+                                 "use motion='prescribed' to move it at that velocity");
+                 if (!name.empty()) checkNewName(s.grains, name, "grain");
+                 g.name = name;
+                 g.where = "grain " + std::to_string(s.grains.size());
+                 s.grains.push_back(g);
+                 return s.grains.size() - 1;
+             },
+             py::arg("asset"), py::arg("material"), py::arg("position"), py::kw_only(),
+             py::arg("orientation") = py::make_tuple(1.0, 0.0, 0.0, 0.0),
+             py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             py::arg("angular_velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             py::arg("mass") = 0.0, py::arg("motion") = "free", py::arg("name") = "",
+             "Place a grain of a named asset and material: position of its centroid, "
+             "orientation as a unit quaternion [w, x, y, z] (asset frame to world), initial "
+             "velocity and angular velocity (world), mass (> 0 overrides density × volume), "
+             "motion ('free', 'fixed', 'prescribed'). Returns its index.")
+        .def("add_plane",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const py::object& point, const py::object& normal, const py::object& velocity) {
+                 markChanged(s);
+                 checkNewName(s.boundaries, name, "boundary");
+                 BoundarySpec b;
+                 b.name = name;
+                 b.shape = BoundaryShape::Plane;
+                 b.material = indexOf(s.materials, material, "material");
+                 b.point = toVec3(point, "point");
+                 b.normal = toVec3(normal, "normal");
+                 if (!(b.normal.norm() > 0.0)) throw Error("", "the normal must not be zero");
+                 b.normal.normalize();
+                 b.velocity = toVec3(velocity, "velocity");
+                 b.where = "boundary '" + name + "'";
+                 s.boundaries.push_back(b);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("point"),
+             py::arg("normal"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "An unbounded wall through `point`; grains live on the side `normal` points to. "
+             "It moves at `velocity` whatever the forces (zero: fixed).")
+        .def("add_sphere_boundary",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const py::object& center, double radius, const py::object& velocity) {
+                 markChanged(s);
+                 checkNewName(s.boundaries, name, "boundary");
+                 if (!(radius > 0.0) || !std::isfinite(radius))
+                     throw Error("", "boundary '" + name + "': radius must be > 0");
+                 BoundarySpec b;
+                 b.name = name;
+                 b.shape = BoundaryShape::Sphere;
+                 b.material = indexOf(s.materials, material, "material");
+                 b.center = toVec3(center, "center");
+                 b.radius = radius;
+                 b.velocity = toVec3(velocity, "velocity");
+                 b.where = "boundary '" + name + "'";
+                 s.boundaries.push_back(b);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
+             py::arg("radius"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "A rigid sphere (an indenter); grains live outside it.")
+        .def("__repr__", [](const Scene& s) {
+            return "<lsdem.Scene '" + s.path + "': " + std::to_string(s.assets.size()) +
+                   " assets, " + std::to_string(s.grains.size()) + " grains, " +
+                   std::to_string(s.boundaries.size()) + " boundaries>";
+        });
+}
+
+} // namespace lsdem::python

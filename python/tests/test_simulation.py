@@ -1,0 +1,165 @@
+"""Simulations from Python: bit-for-bit equality with lsdem-run, thread independence,
+checkpoints, views, callbacks and errors."""
+
+import csv
+import subprocess
+
+import numpy as np
+import pytest
+
+import lsdem
+from conftest import SCENES
+
+
+def read_grains_csv(path):
+    """Positions and velocities from lsdem-run's grains.csv (numbers read back exactly)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    positions = np.array([[float(r[k]) for k in ("x", "y", "z")] for r in rows])
+    velocities = np.array([[float(r[k]) for k in ("vx", "vy", "vz")] for r in rows])
+    return [r["name"] for r in rows], positions, velocities
+
+
+def test_equals_lsdem_run_bit_for_bit(lsdem_run, tmp_path):
+    # The 27-sphere stack: 3001 steps with walls, many contacts and friction.
+    scene_path = SCENES / "cube27.toml"
+    subprocess.run([lsdem_run, str(scene_path), "--out", str(tmp_path), "--threads", "2", "-q"],
+                   check=True, stdout=subprocess.DEVNULL)
+    names, positions, velocities = read_grains_csv(tmp_path / "grains.csv")
+
+    sim = lsdem.Simulation(lsdem.Scene.from_toml(str(scene_path)), threads=2)
+    sim.run()
+    assert sim.done
+    assert sim.grains.names == names
+    assert np.array_equal(sim.grains.positions, positions)  # exact, not approximate
+    assert np.array_equal(sim.grains.velocities, velocities)
+
+
+def short_bounce(steps):
+    scene = lsdem.Scene.from_toml(str(SCENES / "bounce.toml"))
+    scene.end_time = 0.0
+    scene.end_steps = steps
+    return scene
+
+
+def test_threads_do_not_change_results():
+    # Start low so the ball hits the floor within a few hundred steps.
+    text = (SCENES / "bounce.toml").read_text().replace("position = [0, 0, 20]",
+                                                        "position = [0, 0, 5.2]")
+    scene = lsdem.Scene.from_text(text, str(SCENES / "bounce-low.toml"))
+    scene.end_time = 0.0
+    scene.end_steps = 600
+    one = lsdem.Simulation(scene, threads=1)
+    two = lsdem.Simulation(scene, threads=2)
+    one.run()
+    two.run()
+    assert one.threads == 1 and two.threads == 2
+    assert np.array_equal(one.grains.positions, two.grains.positions)
+    assert np.array_equal(one.grains.orientations, two.grains.orientations)
+    assert one.boundaries["floor"].displacement.tolist() == [0.0, 0.0, 0.0]
+    assert one.energies == two.energies
+
+
+def test_checkpoint_continues_bit_identically(tmp_path):
+    straight = lsdem.Simulation(short_bounce(300), threads=2)
+    straight.run()
+
+    first = lsdem.Simulation(short_bounce(300), threads=2)
+    assert first.run(steps=120) == 120
+    first.checkpoint(str(tmp_path / "c.lsdem"))
+    resumed = lsdem.Simulation.from_checkpoint(str(tmp_path / "c.lsdem"), threads=1)
+    assert resumed.step == 120 and resumed.time == first.time
+    assert resumed.run() == 180
+    assert np.array_equal(resumed.grains.positions, straight.grains.positions)
+    assert np.array_equal(resumed.grains.velocities, straight.grains.velocities)
+
+
+def test_lsdem_run_restarts_a_python_checkpoint(lsdem_run, tmp_path):
+    sim = lsdem.Simulation(short_bounce(200), threads=2)
+    sim.run(steps=50)
+    sim.checkpoint(str(tmp_path / "checkpoint.lsdem"))
+    subprocess.run([lsdem_run, "--restart", str(tmp_path / "checkpoint.lsdem"), "-q"],
+                   check=True, stdout=subprocess.DEVNULL)
+    sim.run()
+    _, positions, _ = read_grains_csv(tmp_path / "grains.csv")
+    assert np.array_equal(sim.grains.positions, positions)
+
+
+def test_views_callbacks_and_state():
+    sim = lsdem.Simulation(short_bounce(100), threads=2)
+    positions = sim.grains.positions
+    assert positions.shape == (1, 3) and positions.dtype == np.float64
+    assert not positions.flags.writeable
+    start = positions.copy()
+    seen = []
+    assert sim.run(steps=40, callback=lsdem.every(10, lambda s: seen.append(
+        (s.step, s.time, s.kinetic_energy)))) == 40
+    assert [step for step, _, _ in seen] == [10, 20, 30, 40]
+    assert seen[-1][2] > seen[0][2] > 0.0  # falling faster
+    assert positions[0, 2] < start[0, 2]   # the view follows the running world
+    assert sim.step == 40 and sim.time == pytest.approx(40 * sim.time_step)
+    g = sim.grains
+    assert g.velocities.shape == (1, 3) and g.forces.shape == (1, 3)
+    assert g.orientations.shape == (1, 4) and g.masses.shape == (1,)
+    assert g.angular_velocities.shape == (1, 3)
+    contacts = sim.contacts
+    assert contacts.points.shape == (0, 3) and contacts.grains.dtype == np.int32
+    assert "floor" in sim.boundaries and list(sim.boundaries) == ["floor"]
+    assert sim.boundaries["floor"].reaction.shape == (3,)
+    with pytest.raises(KeyError, match="floor"):
+        sim.boundaries["ceiling"]
+
+
+def test_contacts_of_a_resting_ball():
+    text = (SCENES / "bounce.toml").read_text().replace("position = [0, 0, 20]",
+                                                        "position = [0, 0, 4.99]")
+    scene = lsdem.Scene.from_text(text, str(SCENES / "resting.toml"))
+    scene.gravity = [0, 0, 0]
+    sim = lsdem.Simulation(scene, threads=2)
+    sim.run(steps=1)
+    contacts = sim.contacts
+    assert len(contacts.points) > 0 and contacts.forces.shape == contacts.points.shape
+    assert np.all(contacts.points[:, 2] < 0.01)
+    assert np.all(contacts.grains == 0)
+    # The floor's reaction balances the point forces on the ball (walls are not listed).
+    assert np.allclose(sim.boundaries["floor"].reaction, -contacts.forces.sum(axis=0))
+
+
+def test_callback_errors_and_bad_runs():
+    sim = lsdem.Simulation(short_bounce(100), threads=1)
+
+    def fail(_):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        sim.run(steps=5, callback=fail)
+    assert sim.step == 1
+    with pytest.raises(lsdem.Error, match="steps"):
+        sim.run(steps=-1)
+    with pytest.raises(lsdem.Error, match="threads"):
+        lsdem.Simulation(short_bounce(1), threads=0)
+    endless = short_bounce(1)
+    endless.end_steps = 0
+    with pytest.raises(lsdem.Error, match="end condition"):
+        lsdem.Simulation(endless, threads=1).run()
+    with pytest.raises(lsdem.Error, match="checkpoint|missing|no such"):
+        lsdem.Simulation.from_checkpoint("/nonexistent/c.lsdem")
+
+
+def test_unstable_time_step_raises():
+    scene = short_bounce(2000)
+    text = (SCENES / "bounce.toml").read_text().replace("position = [0, 0, 20]",
+                                                        "position = [0, 0, 4.9]")
+    scene = lsdem.Scene.from_text(text, str(SCENES / "unstable.toml"))
+    scene.time_step = 1e-3  # far above the stable step of this contact
+    with pytest.raises(lsdem.Error, match="step"):
+        lsdem.Simulation(scene, threads=1).run(steps=50)
+
+
+def test_help_is_useful():
+    doc = lsdem.Simulation.__doc__
+    assert "lsdem-run" in doc and "bit for bit" in doc
+    for name in ("run", "checkpoint", "grains", "contacts", "boundaries", "from_checkpoint"):
+        assert getattr(lsdem.Simulation, name).__doc__
+    for function in (lsdem.bake_mesh, lsdem.bake_sphere, lsdem.load, lsdem.every):
+        assert function.__doc__

@@ -21,6 +21,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <malloc.h>
+
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -227,6 +229,7 @@ const Tile& settledTile()
             g.angularVelocity = grain.body.angularVelocity();
             t.grains.push_back(g);
         }
+        if (getenv("SCALE_DEBUG")) fprintf(stderr, "tile settled\n");
         return t;
     }();
     return tile;
@@ -287,8 +290,35 @@ const Settled& settled(int grains)
     }
     kept.grains = grains;
     kept.peakMiB = statusKiB("VmHWM") / 1024.0;
+    malloc_trim(0);  // hand freed memory (the scene, the first contact list) back first
     kept.heldBytesPerGrain = (statusKiB("VmRSS") - before) * 1024.0 / grains;
     return kept;
+}
+
+/// Where the memory of a simulation goes, from the sizes of its parts: per grain (the grain,
+/// its view for the contact laws, its stiffness, its position at the list build, its slot
+/// index and stability limit) and per pair on the contact list (its slot, its two
+/// per-grain references, its history map node), plus the shear histories' entries.
+struct MemoryShares
+{
+    double perGrain = 0.0, perListPair = 0.0, historyBytes = 0.0;
+};
+
+MemoryShares memoryShares(const World& w)
+{
+    MemoryShares m;
+    m.perGrain = double(sizeof(Grain) + sizeof(ContactGrain) + sizeof(Mat3) + sizeof(Vec3) +
+                        sizeof(size_t) + sizeof(double));
+    // A std::map node: the value and a red-black tree header (colour, parent, left, right).
+    constexpr size_t kTreeNodeHeader = 32;
+    m.perListPair = double(sizeof(ContactSlot) + 2 * sizeof(GrainSlotRef) +
+                           sizeof(std::pair<const std::pair<int, int>, PairHistory>) +
+                           kTreeNodeHeader);
+    for (const auto& [pair, h] : w.pairHistory)
+        m.historyBytes += double((h.shearOnFirstNodes.entries().capacity() +
+                                  h.shearOnSecondNodes.entries().capacity()) *
+                                 sizeof(ShearHistory::Entry));
+    return m;
 }
 
 void BM_ScaleStep(benchmark::State& state)
@@ -318,31 +348,85 @@ void BM_ScaleStep(benchmark::State& state)
         1e3 * (after.integrateSeconds - before.integrateSeconds) / steps;
     state.counters["peak_RSS_MiB"] = start.peakMiB;
     state.counters["held_B/grain"] = start.heldBytesPerGrain;
+    const MemoryShares shares = memoryShares(sim.world());
+    state.counters["struct_B/grain"] = shares.perGrain;
+    state.counters["struct_B/list_pair"] = shares.perListPair;
+    state.counters["history_B/grain"] = shares.historyBytes / n;
+}
+
+/// Rebuilding the contact list alone (broad phase, slots, histories, per-grain slot lists),
+/// as the state after the prefix stands.
+void BM_ListRebuild(benchmark::State& state)
+{
+    const int grains = static_cast<int>(state.range(0));
+    World world = settled(grains).sim->world();
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                static_cast<size_t>(state.range(1)));
+    ContactList list;
+    list.update(world);
+    for (auto _ : state) {
+        list.markStale();
+        list.update(world);
+    }
+    state.counters["list_pairs/grain"] = double(list.pairSlotCount()) / grains;
+    state.counters["ns/grain"] = benchmark::Counter(
+        1e-9 * grains * double(state.iterations()),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+/// A step that starts with a rebuilt contact list (as when some grain has moved half the
+/// skin): the rebuild and whatever the slots had to find again.
+void BM_StepAfterRebuild(benchmark::State& state)
+{
+    const int grains = static_cast<int>(state.range(0));
+    tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                static_cast<size_t>(state.range(1)));
+    Simulation sim = *settled(grains).sim;
+    sim.step();
+    for (auto _ : state) {
+        sim.invalidateContacts();
+        sim.step();
+    }
+}
+
+// One grain count after the other (each settles its own state once); fewer steps for more
+// grains: a repetition at 100,000 grains takes seconds.
+void registerScale(int grains, int steps)
+{
+    benchmark::RegisterBenchmark("BM_ScaleStep", BM_ScaleStep)
+        ->Args({grains, 1})
+        ->Args({grains, 2})
+        ->ArgNames({"grains", "threads"})
+        ->Iterations(steps)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MeasureProcessCPUTime();
+    benchmark::RegisterBenchmark("BM_StepAfterRebuild", BM_StepAfterRebuild)
+        ->Args({grains, 2})
+        ->ArgNames({"grains", "threads"})
+        ->Iterations(steps)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MeasureProcessCPUTime();
+    benchmark::RegisterBenchmark("BM_ListRebuild", BM_ListRebuild)
+        ->Args({grains, 2})
+        ->ArgNames({"grains", "threads"})
+        ->Iterations(steps)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MeasureProcessCPUTime();
 }
 
 } // namespace
 
-// Fewer steps for more grains: each repetition of 100,000 grains takes seconds.
-BENCHMARK(BM_ScaleStep)
-    ->Args({1000, 1})
-    ->Args({1000, 2})
-    ->ArgNames({"grains", "threads"})
-    ->Iterations(100)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_ScaleStep)
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->ArgNames({"grains", "threads"})
-    ->Iterations(20)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK(BM_ScaleStep)
-    ->Args({100000, 1})
-    ->Args({100000, 2})
-    ->ArgNames({"grains", "threads"})
-    ->Iterations(5)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-
-BENCHMARK_MAIN();
+int main(int argc, char** argv)
+{
+    registerScale(1000, 100);
+    registerScale(10000, 20);
+    registerScale(100000, 5);
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -2,7 +2,9 @@
 
 #include "lsdem/simulation/BroadPhase.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 
@@ -16,9 +18,17 @@ bool ContactList::update(World& world)
     // Two bodies within reach now were within reach plus the skin at the build as long as
     // neither moved more than half of it.
     const double half2 = 0.25 * mSkin * mSkin;
-    for (size_t i = 0; !stale && i < world.grains.size(); ++i)
-        stale = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i]).squaredNorm() >
-                half2;
+    // Checked for every grain every step: in parallel (any one moved too far decides).
+    if (!stale)
+        stale = tbb::parallel_reduce(
+            tbb::blocked_range<size_t>(0, world.grains.size(), 4096), false,
+            [&](const tbb::blocked_range<size_t>& r, bool moved) {
+                for (size_t i = r.begin(); !moved && i != r.end(); ++i)
+                    moved = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i])
+                                .squaredNorm() > half2;
+                return moved;
+            },
+            [](bool a, bool b) { return a || b; });
     for (size_t b = 0; !stale && b < world.boundaries.size(); ++b)
         stale = (world.boundaries[b].displacement - mBoundaryDisplacementsAtBuild[b])
                     .squaredNorm() > half2;

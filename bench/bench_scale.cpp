@@ -1,18 +1,29 @@
 // Step time and memory at scale (issue: 100,000 grains on one machine). Run:
 //   build/bench/bench_scale --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// 1,000, 10,000 and 100,000 sand-like grains: ten ellipsoids of different semi-axes (about
-// 0.5 mm, aspect ratios 0.6-0.95, ~500 nodes each, adapted formulation, symmetric testing),
-// randomly oriented on a loose cubic lattice (no two bounding spheres touch) in a box of
-// walls (floor and four sides), under gravity, each grain thrown in a random direction so
-// that the lattice collapses into a settling heap within a few hundred steps. A settling
-// prefix (kPrefixSteps) is stepped once per grain count and kept; every repetition steps on
-// from a copy of that state, so all repetitions and thread counts time the same steps. One
-// iteration is one time step. Args: grains, threads.
+// (a filter such as --benchmark_filter='grains:10000/' runs one grain count).
 //
-// Counters: grain_steps/s; contacts (grain pairs and grain-wall pairs with a node in contact)
-// per grain; pairs on the contact list per grain; the phases' ms per step; peak RSS of the
-// process while the state was built and settled (VmHWM, reset before each grain count), and
-// the memory the simulation holds per grain (resident growth over that build).
+// 1,000, 10,000 and 100,000 sand-like grains: ten ellipsoids of different semi-axes (volume-
+// equivalent radius 0.4-0.6 mm, elongation and flatness 0.6-0.95, ~500 nodes and voxels of
+// c/8 each; adapted formulation, symmetric testing, friction, restitution 0.5, global damping
+// 0.3), settled under gravity in a box of walls (floor and four sides).
+//
+// Settling a heap from a loose packing takes ~10⁵ steps of ~1 µs, too many to repeat at
+// 100,000 grains, so the heap is built from tiles: once per process a tile of 250 grains
+// (5 × 5 × 10, randomly turned, packed by their bounding boxes 0.02 mm apart: a loose
+// lattice) settles in its own box for 8,000 steps under 100 g; tiles of that settled state
+// then stand side by side (2 × 2, 8 × 5, 20 × 20) in one box under plain gravity, and step
+// kPrefixSteps more before anything is timed. That state is kept for its grain count; every
+// repetition steps on from a copy of it (so all repetitions and thread counts time the same
+// steps, and the copy's first step, which rebuilds its contact list, is not timed). One
+// iteration is one time step; fewer iterations for more grains. Args: grains, threads.
+//
+// BM_ScaleStep counters: grain_steps/s; contacts (grain–grain and grain–wall pairs with a node
+// in contact), contact nodes and pairs on the contact list, per grain; the phases' ms per step
+// (wall clock); peak RSS while the state was built and settled (VmHWM, reset before each grain
+// count); the resident memory the state holds per grain, and its shares from the sizes of the
+// data structures. The CPU column is the process's CPU time (all threads): on a shared machine
+// it is the steadier figure. BM_ListRebuild rebuilds the contact list alone;
+// BM_StepAfterRebuild is a step that starts by rebuilding it from scratch.
 
 #include "lsdem/ls/Bake.h"
 #include "lsdem/scene/BuildWorld.h"
@@ -40,10 +51,10 @@ constexpr int kAssetCount = 10;
 constexpr int kNodesPerAsset = 500;
 constexpr double kMeanSemiAxis = 0.5;     // mm
 constexpr double kGap = 0.02;             // mm, between bounding boxes of neighbours
-const long long kPrefixSteps = getenv("SCALE_PREFIX") ? atoll(getenv("SCALE_PREFIX")) : 50;   // at full size, before anything is timed
-const Eigen::Vector3i kTile(5, 5, 10);   // grains per row, rows, layers of the settled tile
-const long long kTileSettleSteps = getenv("SCALE_SETTLE") ? atoll(getenv("SCALE_SETTLE")) : 8000;
-const double kSettlingGravityFactor = getenv("SCALE_G") ? atof(getenv("SCALE_G")) : 100.0;
+const Eigen::Vector3i kTile(5, 5, 10);   // grains per row, rows and layers of the tile
+constexpr long long kTileSettleSteps = 8000;
+constexpr double kSettlingGravityFactor = 100.0;  // while the tile settles
+constexpr long long kPrefixSteps = 50;   // at full size, before anything is timed
 
 /// Kilobytes of a field of /proc/self/status ("VmRSS", "VmHWM"); -1 if unreadable.
 double statusKiB(const std::string& field)
@@ -213,12 +224,7 @@ const Tile& settledTile()
         world.gravity = kSettlingGravityFactor * gravity;
         const double dt = automaticTimeStep(world, 0.2);
         Simulation sim(std::move(world), dt);
-        for (long long s = 0; s < kTileSettleSteps; ++s) {
-            sim.step();
-            if (getenv("SCALE_DEBUG") && s % 500 == 0)
-                fprintf(stderr, "tile step %lld contacts %g nodes %lld KE %g\n", s,
-                        contactsNow(sim.world()), sim.contactNodes(), sim.energies().kinetic);
-        }
+        for (long long s = 0; s < kTileSettleSteps; ++s) sim.step();
         for (const Grain& grain : sim.world().grains) {
             GrainSpec g;
             g.asset = static_cast<int>(std::find(sandAssets().begin(), sandAssets().end(),
@@ -229,7 +235,6 @@ const Tile& settledTile()
             g.angularVelocity = grain.body.angularVelocity();
             t.grains.push_back(g);
         }
-        if (getenv("SCALE_DEBUG")) fprintf(stderr, "tile settled\n");
         return t;
     }();
     return tile;
@@ -275,19 +280,15 @@ const Settled& settled(int grains)
     static Settled kept;
     if (kept.grains == grains) return kept;
     kept = Settled();
-    sandAssets();  // baked before the memory is measured: shared by every grain count
+    settledTile();  // the assets and the tile are made before the memory is measured
+    malloc_trim(0);
     resetPeakRss();
     const double before = statusKiB("VmRSS");
     std::vector<std::string> warnings;
     World world = buildWorld(sandBoxScene(grains), warnings);
     const double dt = automaticTimeStep(world, 0.2);
     kept.sim = std::make_unique<Simulation>(std::move(world), dt);
-    for (long long s = 0; s < kPrefixSteps; ++s) {
-        kept.sim->step();
-        if (getenv("SCALE_DEBUG") && s % 100 == 0)
-            fprintf(stderr, "step %lld dt %g contacts %g nodes %lld\n", s, dt,
-                    contactsNow(kept.sim->world()), kept.sim->contactNodes());
-    }
+    for (long long s = 0; s < kPrefixSteps; ++s) kept.sim->step();
     kept.grains = grains;
     kept.peakMiB = statusKiB("VmHWM") / 1024.0;
     malloc_trim(0);  // hand freed memory (the scene, the first contact list) back first

@@ -339,6 +339,8 @@ void BM_ScaleStep(benchmark::State& state)
         benchmark::Counter(n * steps, benchmark::Counter::kIsRate);
     state.counters["contacts/grain"] = contactsNow(sim.world()) / n;
     state.counters["contact_nodes/grain"] = static_cast<double>(sim.contactNodes()) / n;
+    state.counters["nodes_sampled/grain"] =
+        static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled) / steps / n;
     state.counters["list_pairs/grain"] =
         static_cast<double>(after.candidatePairs - before.candidatePairs) / steps / n;
     state.counters["rebuilds/step"] =

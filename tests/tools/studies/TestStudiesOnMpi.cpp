@@ -61,6 +61,15 @@ size_t count(const std::string& text, const std::string& what)
     return n;
 }
 
+/// How many lines of @a text are exactly @a line.
+size_t countLines(const std::string& text, const std::string& line)
+{
+    std::istringstream in(text);
+    size_t n = 0;
+    for (std::string l; std::getline(in, l);) n += l == line;
+    return n;
+}
+
 /// The CSV text without the columns named in @a drop (run timings).
 std::string withoutColumns(const std::string& csv, const std::set<std::string>& drop)
 {
@@ -154,4 +163,74 @@ TEST(StudiesOnMpi, BadInputIsReportedOnceAndNothingIsWritten)
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_EQ(count(r.output, "--radius must be positive"), 1u) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+// The distributor itself (tests/tools/studies/RunDistributorProbe.cpp: run i costs i and
+// returns i², rank 0 prints each result as it arrives).
+namespace {
+
+struct ProbeResult
+{
+    size_t index;
+    long long square, doneBy;
+    int reportedRank;
+};
+
+std::vector<ProbeResult> probeResults(const std::string& output)
+{
+    std::vector<ProbeResult> results;
+    std::istringstream in(output);
+    for (std::string word; in >> word;)
+        if (word == "result") {
+            ProbeResult r{};
+            in >> r.index >> r.square >> r.doneBy >> r.reportedRank;
+            results.push_back(r);
+        }
+    return results;
+}
+
+} // namespace
+
+// One rank under mpirun: rank 0's own thread takes the runs one by one, largest cost first.
+TEST(StudiesOnMpi, OneRankDoesTheLargestRunsFirst)
+{
+    SKIP_WITHOUT_MPI();
+    const auto r = runCommand(kMpiexec + " -n 1 " + std::string(LSDEM_PROBE_EXE) + " 5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<size_t> order;
+    for (const ProbeResult& p : probeResults(r.output)) order.push_back(p.index);
+    EXPECT_EQ(order, (std::vector<size_t>{4, 3, 2, 1, 0})) << r.output;
+}
+
+// Three ranks, more runs than ranks: every run done exactly once, its result whole and
+// credited to the rank that did it, every rank used, rank 0 alone printing.
+TEST(StudiesOnMpi, EveryRunOnceOnSomeRank)
+{
+    SKIP_WITHOUT_MPI();
+    const auto r = runCommand(kMpiexec + " --oversubscribe -n 3 " + std::string(LSDEM_PROBE_EXE) + " 12");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<int> seen(12, 0);
+    std::set<long long> ranksUsed;
+    for (const ProbeResult& p : probeResults(r.output)) {
+        ASSERT_LT(p.index, 12u);
+        ++seen[p.index];
+        EXPECT_EQ(p.square, static_cast<long long>(p.index * p.index));
+        EXPECT_EQ(p.doneBy, p.reportedRank);
+        ranksUsed.insert(p.doneBy);
+    }
+    EXPECT_EQ(seen, std::vector<int>(12, 1)) << r.output;
+    EXPECT_EQ(ranksUsed.size(), 3u) << r.output;  // each run takes 20 ms: all ranks get some
+    EXPECT_EQ(countLines(r.output, "done"), 1u) << r.output;
+}
+
+// A run that fails on whichever rank: the job ends (no rank waits for ever) with the tools'
+// exit code for bad input, and rank 0 says which run failed and why, once.
+TEST(StudiesOnMpi, AFailedRunEndsTheJobWithItsMessage)
+{
+    SKIP_WITHOUT_MPI();
+    const auto r = runCommand(kMpiexec + " --oversubscribe -n 3 " + std::string(LSDEM_PROBE_EXE) + " 12 7");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_EQ(count(r.output, "probe: error: run 8 of 12 (on rank "), 1u) << r.output;
+    EXPECT_NE(r.output.find("run 7 cannot be done"), std::string::npos) << r.output;
+    EXPECT_EQ(countLines(r.output, "done"), 0u) << r.output;
 }

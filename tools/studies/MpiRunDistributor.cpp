@@ -206,8 +206,18 @@ public:
             if (s->MPI_TAG == kTagStop) return;
             RecordReader in(message);
             const size_t index = size_t(in.integer());
-            const Outcome o = runOne(job, index, in.text(), mRank);
-            send(RecordWriter().integer(static_cast<long long>(o.index)).integer(static_cast<long long>(o.status)).text(o.bytes).bytes(),
+            Outcome o = runOne(job, index, in.text(), mRank);
+            if (o.bytes.size() > size_t(INT_MAX) - 64) {
+                // Rank 0 waits for every result: it must hear of this one too.
+                o.status = Status::Failed;
+                o.bytes = "its result of " + std::to_string(o.bytes.size()) +
+                          " bytes is too large for one MPI message";
+            }
+            send(RecordWriter()
+                     .integer(static_cast<long long>(o.index))
+                     .integer(static_cast<long long>(o.status))
+                     .text(o.bytes)
+                     .bytes(),
                  0, kTagResult);
         }
     }

@@ -175,20 +175,21 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
     result.runs = planCube27(o);
     const bool live = ranks.ranks() == 1;
 
-    // One job per run of the plan; a rank keeps its last sphere, so the runs of one node count
-    // share a bake where they meet on the same rank (always, serially: the plan's order).
-    std::shared_ptr<const GrainAsset> sphere;
-    int sphereNodes = -1;
+    // One job per run of the plan. Under MPI a rank keeps the spheres it baked (tens of MB
+    // each), so each node count is baked once per rank that runs it; serially the plan's order
+    // needs one sphere at a time.
+    std::map<int, std::shared_ptr<const GrainAsset>> spheres;
     const RunDistributor::Job job = [&](const std::string& description) {
         Cube27Run run = result.runs.at(size_t(RecordReader(description).integer()));
         RecordWriter out;
         std::string log;
         double bakeSeconds = 0.0;
-        if (sphereNodes != run.nodes) {
+        if (live && !spheres.count(run.nodes)) spheres.clear();
+        std::shared_ptr<const GrainAsset>& sphere = spheres[run.nodes];
+        if (!sphere) {
             const auto bakeStart = SteadyClock::now();
             std::vector<std::string> warnings;
             sphere = std::make_shared<const GrainAsset>(bakeSeriesSphere(o, run.nodes, warnings));
-            sphereNodes = run.nodes;
             bakeSeconds = secondsSince(bakeStart);
             if (!o.quiet) {
                 char line[160];

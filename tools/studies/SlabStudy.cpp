@@ -170,6 +170,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
             done[todo[i]] = std::move(r);
             enterFinished();
         });
+        enterFinished();  // runs all made before: nothing arrived to enter them
         std::vector<int> indices;
         for (const Listed& l : listed) indices.push_back(indexOf.at(l.run));
         return indices;

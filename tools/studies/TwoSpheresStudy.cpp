@@ -139,8 +139,8 @@ std::string partRecord(const TwoSpheresResult& part, const std::string& log)
     return out.bytes();
 }
 
-/// Adds the part in @a record to @a result; returns its progress text.
-std::string addPartRecord(const std::string& record, TwoSpheresResult& result)
+/// The part in @a record into @a part; returns its progress text.
+std::string readPartRecord(const std::string& record, TwoSpheresResult& part)
 {
     RecordReader in(record);
     for (long long n = in.integer(); n > 0; --n) {
@@ -155,16 +155,15 @@ std::string addPartRecord(const std::string& record, TwoSpheresResult& result)
         r.forceMin = in.number();
         r.forceMax = in.number();
         r.forceExact = in.number();
-        result.rows.push_back(r);
+        part.rows.push_back(r);
     }
-    NodeCheckStats s;
+    NodeCheckStats& s = part.stats;
     s.nodesConsidered = in.integer();
     s.nodesCulled = in.integer();
     s.nodesSampled = in.integer();
     s.nodesInContact = in.integer();
-    result.stats += s;
-    result.bakeSeconds += in.number();
-    result.contactSeconds += in.number();
+    part.bakeSeconds = in.number();
+    part.contactSeconds = in.number();
     return in.text();
 }
 
@@ -198,20 +197,22 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o, RunDistributor& ranks
                                                       : 1;
         costs.push_back(double(nodes) * double(series) * o.orientations * (o.steps + 1));
     }
-    std::vector<std::string> parts(descriptions.size());
+    std::vector<TwoSpheresResult> parts(descriptions.size());
     RunShares shares(ranks.ranks());
     ranks.runAll(descriptions, costs, job, [&](size_t i, int rank, const std::string& record) {
-        parts[i] = record;
         shares.add(rank);
-        TwoSpheresResult ignored;
-        const std::string log = addPartRecord(record, ignored);
-        if (!log.empty()) std::printf("%s", log.c_str());
+        std::printf("%s", readPartRecord(record, parts[i]).c_str());
         std::fflush(stdout);
     });
     ranks.finish();
 
     TwoSpheresResult result;  // in the order of the node counts, wherever each was run
-    for (const std::string& record : parts) addPartRecord(record, result);
+    for (const TwoSpheresResult& part : parts) {
+        result.rows.insert(result.rows.end(), part.rows.begin(), part.rows.end());
+        result.stats += part.stats;
+        result.bakeSeconds += part.bakeSeconds;
+        result.contactSeconds += part.contactSeconds;
+    }
     if (ranks.ranks() > 1) std::printf("%s\n", shares.text().c_str());
     return result;
 }

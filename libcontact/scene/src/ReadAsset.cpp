@@ -6,18 +6,14 @@
 
 namespace lsdem::scenefile {
 
-namespace {
-
 namespace fs = std::filesystem;
 
-std::string resolvePath(const std::string& directory, const std::string& file)
+std::string resolveScenePath(const std::string& directory, const std::string& file)
 {
     fs::path p(file);
     if (p.is_relative()) p = fs::path(directory) / p;
     return fs::absolute(p).lexically_normal().string();
 }
-
-} // namespace
 
 AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene)
 {
@@ -31,7 +27,7 @@ AssetSpec readAsset(const std::string& name, const toml::table& table, const Sce
                "give exactly one of file = \"grain.vdb\", mesh = \"grain.stl\" or "
                "shape = \"sphere\" | \"box\" | \"ellipsoid\"");
     auto existing = [&](const std::string& key) {
-        const std::string p = resolvePath(scene.directory, t.string(key));
+        const std::string p = resolveScenePath(scene.directory, t.string(key));
         // The error_code form: a path the system refuses (too long, say) is not found either,
         // rather than a filesystem_error without the scene's line (found by fuzzing).
         std::error_code ec;

@@ -276,7 +276,14 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
     t.string("mass", scene.units.mass);
     t.string("time", scene.units.time);
     t.string("force", scene.units.force);
-    for (const AssetSpec& a : scene.assets) writeAsset(t, a, sceneDirectory);
+    for (const AssetSpec& a : scene.assets)
+        if (a.set.empty()) writeAsset(t, a, sceneDirectory);
+    // A set's assets are written as the set: the reader lists them again, after the others.
+    for (const AssetSetSpec& s : scene.assetSets) {
+        t.table("asset_sets." + TomlText::key(s.name));
+        if (!s.catalog.empty()) t.string("catalog", pathFrom(sceneDirectory, s.catalog));
+        else t.string("glob", pathFrom(sceneDirectory, s.glob));
+    }
     for (const MaterialSpec& m : scene.materials) {
         t.table("materials." + TomlText::key(m.name));
         t.number("density", m.density);

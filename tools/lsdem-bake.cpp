@@ -288,8 +288,12 @@ int runBatch(const BakeCommandLine& c)
     if (report.failures.empty()) return 0;
     std::fprintf(stderr, "lsdem-bake: %zu of %zu files failed and were skipped:\n",
                  report.failures.size(), c.meshPaths.size());
-    for (const BatchFailure& f : report.failures)
-        std::fprintf(stderr, "  %s\n", f.message.c_str());
+    for (const BatchFailure& f : report.failures) {
+        std::string text = f.message;  // its fix line indented under it
+        for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1))
+            text.insert(at + 1, "    ");
+        std::fprintf(stderr, "  %s\n", text.c_str());
+    }
     return 4;
 }
 

@@ -1,4 +1,5 @@
-// [asset_sets.NAME]: many baked assets at once, from a catalogue or a glob.
+// [asset_sets.NAME]: many assets at once, from a catalogue or a glob (of baked assets, or of
+// meshes baked at load).
 #include "SceneSections.h"
 
 #include "lsdem/ls/GrainCatalog.h"
@@ -6,6 +7,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 namespace lsdem::scenefile {
@@ -13,6 +15,14 @@ namespace lsdem::scenefile {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// A .vdb file (any case): an asset to load rather than a mesh to bake.
+bool isBakedAsset(const fs::path& file)
+{
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".vdb";
+}
 
 bool hasWildcard(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
 
@@ -87,15 +97,31 @@ void readAssetSet(const std::string& name, const toml::table& table, Scene& scen
         }
     } else {
         set.glob = resolveScenePath(scene.directory, t.string("glob"));
-        for (const fs::path& file : globFiles(set.glob, t))
+        size_t baked = 0;
+        for (const fs::path& file : globFiles(set.glob, t)) {
             members.emplace_back(file.stem().string(), file.string());
+            baked += isBakedAsset(file);
+        }
+        if (baked > 0 && baked < members.size())
+            t.fail("glob", "matches both baked assets (.vdb) and other files",
+                   "narrow the pattern, e.g. \"*.vdb\" or \"*.stl\"");
+        set.meshes = baked == 0;
+    }
+    if (set.meshes) {
+        readBakeKeys(t, set.bake, false, "scene " + scene.path + " asset set " + name);
+    } else {
+        for (const char* key : {"voxel", "node_spacing", "nodes", "mesh_nodes", "areas"})
+            if (t.has(key))
+                t.fail(key, "has no effect on baked assets",
+                       "remove it, or use glob = \"meshes/*.stl\" to bake meshes at load");
     }
     t.rejectUnknownKeys();
 
     for (const auto& [member, file] : members) {
         AssetSpec a;
         a.name = name + "/" + member;
-        a.file = file;
+        (set.meshes ? a.meshFile : a.file) = file;
+        a.bake = set.bake;
         a.set = name;
         a.where = set.where;
         if (indexByName(scene.assets, a.name) >= 0)

@@ -19,6 +19,10 @@ UnitSystem readUnits(const toml::table* table, const std::string& path);
 /// [assets.NAME]: a baked file, or a mesh or shape baked at load with its options.
 AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene);
 
+/// The baking keys of an asset or set (voxel, node_spacing | nodes | mesh_nodes, areas) into
+/// @a bake; @a analytic refuses mesh_nodes; @a provenance starts the options text.
+void readBakeKeys(TableReader& t, BakeOptions& bake, bool analytic, const std::string& provenance);
+
 /// @a file (as written in the scene) resolved from the scene's @a directory, absolute.
 std::string resolveScenePath(const std::string& directory, const std::string& file);
 

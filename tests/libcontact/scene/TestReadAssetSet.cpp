@@ -8,6 +8,9 @@
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
+#include "lsdem/ls/GrainGenerator.h"
+#include "lsdem/ls/MassProperties.h"
+#include "lsdem/ls/MeshIO.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneWriter.h"
@@ -107,6 +110,54 @@ TEST_F(AssetSetTest, GlobTakesTheMatchingFilesInNameOrder)
     EXPECT_EQ(s.assets[1].file, dir.file("sand/egg.vdb"));
     EXPECT_EQ(s.assetSets[0].glob, dir.file("sand/*.vdb"));
     EXPECT_EQ(s.grains[0].asset, 1);
+}
+
+TEST_F(AssetSetTest, GlobOfMeshesIsBakedAtLoadWithTheSetsOptions)
+{
+    std::filesystem::create_directories(dir.file("scans"));
+    GrainShapeOptions g;
+    g.triangles = 320;
+    g.maxDegree = 6;
+    g.size = 2.0;
+    for (uint64_t i = 0; i < 2; ++i)
+        writeGrainMesh(generateGrain(g, 1, i), dir.file("scans/g" + std::to_string(i) + ".obj"));
+    const std::string table = "glob = \"scans/*.obj\"\nvoxel = 0.2\nnodes = 120";
+    const Scene s = parseScene(scene(table, {"sand/g1", "sand/g0"}), dir.file("scene.toml"));
+    ASSERT_EQ(s.assets.size(), 2u);
+    EXPECT_EQ(s.assets[0].meshFile, dir.file("scans/g0.obj"));
+    EXPECT_TRUE(s.assets[0].file.empty());
+    EXPECT_EQ(s.assets[1].bake.voxelSize, 0.2);
+    EXPECT_EQ(s.assets[1].bake.nodeCount, 120);
+    EXPECT_TRUE(s.assetSets[0].meshes);
+
+    std::vector<std::string> warnings;
+    const World w = buildWorld(s, warnings);
+    for (int i = 0; i < 2; ++i) {
+        // Grain 0 uses g1, grain 1 uses g0: each baked from its own mesh.
+        const std::string mesh = dir.file("scans/g" + std::to_string(1 - i) + ".obj");
+        EXPECT_NEAR(w.grains[i].asset->mass.volume, computeMassProperties(readMesh(mesh)).volume,
+                    1e-12);
+        EXPECT_EQ(w.grains[i].asset->voxelSize, 0.2);
+    }
+
+    // The writer keeps the baking keys.
+    const Scene back = parseScene(sceneToToml(s, dir.path().string()), dir.file("again.toml"));
+    ASSERT_EQ(back.assets.size(), 2u);
+    EXPECT_EQ(back.assets[1].meshFile, s.assets[1].meshFile);
+    EXPECT_EQ(back.assets[1].bake.voxelSize, 0.2);
+    EXPECT_EQ(back.assets[1].bake.nodePlacement, NodePlacement::Count);
+    EXPECT_EQ(back.assets[1].bake.nodeCount, 120);
+
+    // Bad: no baking keys for meshes, baking keys for baked assets, a mixed glob.
+    EXPECT_NE(errorOf(scene("glob = \"scans/*.obj\"", {"sand/g0"})).find("missing key 'voxel'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(scene("glob = \"sand/*.vdb\"\nvoxel = 0.1", {"sand/egg"}))
+                  .find("voxel: has no effect on baked assets"),
+              std::string::npos);
+    std::filesystem::copy_file(dir.file("sand/egg.vdb"), dir.file("scans/egg.vdb"));
+    EXPECT_NE(errorOf(scene("glob = \"scans/*\"\nvoxel = 0.2\nnodes = 100", {"sand/g0"}))
+                  .find("both baked assets (.vdb) and other files"),
+              std::string::npos);
 }
 
 TEST_F(AssetSetTest, WriterWritesTheSetBackAndItReadsToTheSameScene)

@@ -40,15 +40,18 @@ struct AssetSpec
     std::string set;                   ///< the [asset_sets] entry it came from ("" if none)
 };
 
-/// [asset_sets.NAME]: many baked assets at once, from a catalogue (lsdem-bake --out-dir writes
-/// DIR/catalog.csv) or from the files a glob matches. Each becomes an AssetSpec named
-/// "NAME/ASSET" (ASSET: the catalogue's name column, or the file's stem), appended to
-/// Scene::assets in the catalogue's row order or the matches' name order.
+/// [asset_sets.NAME]: many assets at once, from a catalogue (lsdem-bake --out-dir writes
+/// DIR/catalog.csv) or from the files a glob matches (baked .vdb files, or meshes baked at load
+/// with the set's options). Each becomes an AssetSpec named "NAME/ASSET" (ASSET: the
+/// catalogue's name column, or the file's stem), appended to Scene::assets in the catalogue's
+/// row order or the matches' name order.
 struct AssetSetSpec
 {
     std::string name;
     std::string catalog;  ///< the catalogue, absolute path ("" if glob)
     std::string glob;     ///< the pattern, absolute ("" if catalog); wildcards in the file name
+    bool meshes = false;  ///< the glob matches meshes, baked at load with @a bake
+    BakeOptions bake;
     std::string where;
 };
 

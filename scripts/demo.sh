@@ -29,6 +29,8 @@ echo "== 27-sphere stack study (Fig. 4; about 15 s)"
 build/tools/lsdem-study cube27 --out results/cube27-study
 echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cube27.toml)"
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27
+echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; about 25 s)"
+build/tools/lsdem-run assets/scenes/sand.toml --out results/sand
 echo "== interlocked slab study (Fig. 5 and 6; about 6 minutes on 2 cores)"
 build/tools/lsdem-study slab --out results/slab
 echo "== done: assets in $out (open the .png slices; the .obj isosurfaces load in any viewer;"
@@ -36,4 +38,5 @@ echo "   $out/sand holds the baked sand grains and their catalog.csv),"
 echo "   two-sphere study in results/two-spheres (two_spheres.csv and *.png),"
 echo "   the stack study in results/cube27-study (cube27.csv and *.png),"
 echo "   the stack in results/cube27 (boundary_top.csv: P-δ of the top wall; frames.pvd for ParaView),"
+echo "   the sand grains in results/sand (frames.pvd for ParaView),"
 echo "   the slab study in results/slab (slab_failure.txt, slab.csv, slab_*.png; slab_scene.toml for lsdem-run)"

@@ -224,3 +224,26 @@ TEST_F(AssetSetTest, BadSetsAreRefusedWithThePlaceAndAFix)
     // The set's table is named in the scene: its line for keys of the table.
     EXPECT_NE(errorOf(scene("", {"sand/ball"})).find("scene.toml:1"), std::string::npos);
 }
+
+// The bundled example: the 16 generated grains of assets/meshes/sand, one grain each, baked at
+// load; it reads, and reads back from the writer, to the same assets.
+TEST(AssetSets, BundledSandSceneUsesEveryGrainOnce)
+{
+    const std::string path = std::string(LSDEM_SOURCE_DIR) + "/assets/scenes/sand.toml";
+    const Scene s = readSceneFile(path);
+    ASSERT_EQ(s.assets.size(), 16u);
+    ASSERT_EQ(s.grains.size(), 16u);
+    for (size_t i = 0; i < s.grains.size(); ++i) {
+        EXPECT_EQ(s.grains[i].asset, static_cast<int>(i));
+        EXPECT_TRUE(std::filesystem::is_regular_file(s.assets[i].meshFile));
+    }
+    test::ScratchDir dir;
+    writeSceneFile(s, dir.file("sand.toml"));
+    const Scene back = readSceneFile(dir.file("sand.toml"));
+    ASSERT_EQ(back.assets.size(), 16u);
+    for (size_t i = 0; i < s.assets.size(); ++i) {
+        EXPECT_EQ(back.assets[i].name, s.assets[i].name);
+        EXPECT_EQ(back.assets[i].meshFile, s.assets[i].meshFile);
+        EXPECT_EQ(back.assets[i].bake.voxelSize, s.assets[i].bake.voxelSize);
+    }
+}

@@ -60,8 +60,8 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
     using lsdem::cli::addNumbers;
     const std::string input = "Input (one of)";
     app.add_option("mesh", c.meshPaths,
-                   "closed triangle mesh file (OBJ, STL, PLY, or any format assimp reads);\n"
-                   "several with --out-dir")
+                   "closed triangle mesh file (OBJ, STL, PLY, or any format assimp\n"
+                   "reads); several with --out-dir")
         ->type_name("MESH")
         ->group(input);
     c.sphereOption = addNumber(app, "--sphere", c.sphereRadius, "analytic sphere of radius R")

@@ -37,7 +37,7 @@ void addOptions(CLI::App& app, GrainsCommandLine& c)
         ->type_name("S")
         ->group(set);
     addInteger(app, "--first", c.first,
-               "index of the first grain (grain i is the same in every run of a seed)")
+               "index of the first grain (grain i is the same in every run)")
         ->type_name("I")
         ->group(set);
 
@@ -55,7 +55,7 @@ void addOptions(CLI::App& app, GrainsCommandLine& c)
         ->type_name("R")
         ->group(shape);
     addNumber(app, "--decay", c.shape.decay,
-              "spectral decay: degree-l amplitude ~ l^-decay (small: angular)")
+              "degree-l amplitude ~ l^-decay (small: angular grains)")
         ->type_name("D")
         ->group(shape);
     addInteger(app, "--max-degree", c.shape.maxDegree, "highest spherical-harmonic degree")
@@ -64,11 +64,11 @@ void addOptions(CLI::App& app, GrainsCommandLine& c)
 
     const std::string size = "Size and mesh";
     addNumber(app, "--size", c.shape.size,
-              "median equivalent diameter (of the sphere of equal volume), length")
+              "median equivalent diameter (sphere of equal volume), length")
         ->type_name("D")
         ->group(size);
     addNumber(app, "--size-spread", c.shape.sizeSpread,
-              "standard deviation of ln(diameter) (log-normal sizes; 0: all equal)")
+              "standard deviation of ln(diameter); 0: all equal")
         ->type_name("S")
         ->group(size);
     addInteger(app, "--triangles", c.shape.triangles, "about this many triangles per grain")

@@ -192,8 +192,15 @@ std::vector<CatalogEntry> readCatalog(const std::string& path)
             const auto found = position.find(c.name);
             if (found == position.end()) continue;
             const std::string& value = fields[found->second];
-            if (c.setText) c.setText(e, value);
-            else c.setNumber(e, parseFinite(value, where, c.name));
+            if (c.setText) {
+                c.setText(e, value);
+                continue;
+            }
+            const double number = parseFinite(value, where, c.name);
+            if (c.name == "nodes" && !(number >= 0.0 && number == std::floor(number)))
+                throw Error(where, "column 'nodes': '" + value + "' is not a whole count",
+                            "fix the value, or bake the set again with lsdem-bake --out-dir");
+            c.setNumber(e, number);
         }
         if (e.name.empty())
             throw Error(where, "column 'name' is empty", "give every asset a name");

@@ -28,10 +28,13 @@ void realSphericalHarmonics(int maxDegree, double theta, double phi, std::vector
         }
     const double root2 = std::sqrt(2.0);
     for (int l = 0; l <= L; ++l) {
-        values[static_cast<size_t>(harmonicIndex(l, 0))] = at(l, 0);
+        auto value = [&](int m) -> double& {
+            return values[static_cast<size_t>(harmonicIndex(l, m))];
+        };
+        value(0) = at(l, 0);
         for (int m = 1; m <= l; ++m) {
-            values[static_cast<size_t>(harmonicIndex(l, m))] = root2 * at(l, m) * std::cos(m * phi);
-            values[static_cast<size_t>(harmonicIndex(l, -m))] = root2 * at(l, m) * std::sin(m * phi);
+            value(m) = root2 * at(l, m) * std::cos(m * phi);
+            value(-m) = root2 * at(l, m) * std::sin(m * phi);
         }
     }
 }

@@ -93,6 +93,7 @@ TEST(GrainCatalog, BadCataloguesNameTheLineAndColumn)
         {"name,asset\na,a.vdb\na,b.vdb\n", ":3: a second asset named 'a'"},
         {"name,asset\n,a.vdb\n", ":2: column 'name' is empty"},
         {"name,asset,name\na,a.vdb,b\n", "column 'name' appears twice"},
+        {"name,asset,nodes\na,a.vdb,2.5\n", ":2: column 'nodes': '2.5' is not a whole count"},
     };
     for (const Case& c : cases) {
         writeTextFileAtomically(dir.file("catalog.csv"), c.text);

@@ -27,7 +27,8 @@ TEST(SphericalHarmonics, AreOrthonormalOnTheSphere)
             realSphericalHarmonics(L, std::acos(x[i]), 2.0 * kPi * j / nPhi, y);
             const double weight = w[i] * 2.0 * kPi / nPhi;
             for (int a = 0; a < count; ++a)
-                for (int b = 0; b < count; ++b) gram[static_cast<size_t>(a * count + b)] += weight * y[a] * y[b];
+                for (int b = 0; b < count; ++b)
+                    gram[static_cast<size_t>(a * count + b)] += weight * y[a] * y[b];
         }
     for (int a = 0; a < count; ++a)
         for (int b = 0; b < count; ++b)

@@ -90,7 +90,8 @@ TEST(BatchTools, BatchBakesTheGoodFilesListsTheCorruptOneAndExits4)
     const auto rows = readCatalog(dir.file("assets/catalog.csv"));
     ASSERT_EQ(rows.size(), 2u);
     for (const CatalogEntry& row : rows) {
-        const auto inspect = runCommand(kInspect + " " + dir.file("assets/" + row.asset) + " --json");
+        const std::string asset = dir.file("assets/" + row.asset);
+        const auto inspect = runCommand(kInspect + " " + asset + " --json");
         ASSERT_EQ(inspect.exitCode, 0) << inspect.output;
         const nlohmann::json j = nlohmann::json::parse(inspect.output);
         // Both print doubles to round-trip: equal bit for bit.

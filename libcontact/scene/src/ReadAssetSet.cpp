@@ -72,6 +72,11 @@ void readAssetSet(const std::string& name, const toml::table& table, Scene& scen
     std::vector<std::pair<std::string, std::string>> members;  // asset name, file
     if (t.has("catalog")) {
         set.catalog = resolveScenePath(scene.directory, t.string("catalog"));
+        std::error_code notFound;  // a regular file only: a device or a folder is no catalogue
+        if (!fs::is_regular_file(set.catalog, notFound))
+            t.fail("catalog", "file not found: " + set.catalog,
+                   "give a path relative to the scene's folder or an absolute one; "
+                   "lsdem-bake --out-dir DIR writes DIR/catalog.csv");
         std::vector<CatalogEntry> entries;
         try {
             entries = readCatalog(set.catalog);

@@ -47,9 +47,8 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     std::optional<LevelSetSampler> sampler;
     const Vec3* positions = a.nodes.positions.data();
     // With remembered candidates, each sampled node's cell from the last step is looked up by
-    // walking the last step's cells alongside the nodes (both ascending), and this step's are
-    // written to a buffer that is swapped in at the end (its old storage is reused by this
-    // thread's next pair).
+    // walking the last step's cells alongside the nodes (both ascending); this step's are
+    // gathered in this thread's buffer and copied in at the end.
     thread_local std::vector<CandidateBlocks::SampledCell> nextCells;
     const std::vector<CandidateBlocks::SampledCell>* lastCells = nullptr;
     size_t cursor = 0;
@@ -123,7 +122,9 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         visited += end - begin;
         visit(begin, end);
     }
-    candidates->cells.swap(nextCells);
+    // Copied, not swapped: a swap would hand this pair the thread's buffer, grown by the
+    // largest pair it served, and thousands of pairs would each end up that large.
+    candidates->cells.assign(nextCells.begin(), nextCells.end());
     stats.nodesCulled += count - visited;
 }
 

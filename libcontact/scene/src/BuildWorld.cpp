@@ -62,6 +62,7 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
     b.shape = spec.shape;
     b.material = spec.material;
     b.velocity = spec.velocity;
+    b.servo = spec.servo;
     b.plane.point = spec.point;
     b.plane.normal = spec.normal.normalized();
     b.plane.axisU = spec.axisU;

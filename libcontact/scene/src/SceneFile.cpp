@@ -135,6 +135,7 @@ Scene parseScene(const std::string& text, const std::string& path)
     readSimulation(root["simulation"].as_table(), scene);
     readOutput(root["output"].as_table(), scene);
     checkUniqueNames(scene);
+    resolveServoAreaWalls(scene);
     checkContactPairs(scene);
     return scene;
 }

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 namespace lsdem {
 
@@ -58,7 +59,14 @@ public:
     void vec3(const std::string& key, const Vec3& v) { numbers(key, {v.x(), v.y(), v.z()}); }
     void strings(const std::string& key, const std::string& a, const std::string& b)
     {
-        mOut << key << " = [" << quoted(a) << ", " << quoted(b) << "]\n";
+        strings(key, {a, b});
+    }
+    void strings(const std::string& key, const std::vector<std::string>& values)
+    {
+        mOut << key << " = [";
+        const char* separator = "";
+        for (const std::string& v : values) mOut << separator << quoted(v), separator = ", ";
+        mOut << "]\n";
     }
     /// key = { name = "...", value = ... } (the end displacement).
     void inlineTable(const std::string& key, const std::string& nameKey, const std::string& name,
@@ -202,6 +210,20 @@ void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
     if (g.mass > 0.0) t.number("mass", g.mass);
 }
 
+void writeServo(TomlText& t, const Scene& scene, const StressServo& s)
+{
+    t.number("stress", s.targetStress);
+    if (s.areaFromWalls()) {
+        std::vector<std::string> names;
+        for (int w : s.areaWalls) names.push_back(scene.boundaries[size_t(w)].name);
+        t.strings("area_walls", names);
+    } else {
+        t.number("area", s.area);
+    }
+    t.number("max_speed", s.maxSpeed);
+    t.number("servo_gain", s.gain);
+}
+
 void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
 {
     t.arrayTable("boundaries");
@@ -217,6 +239,7 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
             t.vec3("axis_u", b.axisU);
         }
         if (b.thickness > 0.0) t.number("thickness", b.thickness);
+        if (b.servo.active()) writeServo(t, scene, b.servo);
         break;
     case BoundaryShape::Sphere:
         t.string("type", "sphere");

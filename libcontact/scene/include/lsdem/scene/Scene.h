@@ -10,6 +10,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/simulation/BoundaryShape.h"
 #include "lsdem/simulation/GrainMotion.h"
+#include "lsdem/simulation/StressServo.h"
 
 #include <memory>
 #include <optional>
@@ -89,6 +90,10 @@ struct BoundarySpec
     RigidPose pose;
     /// Prescribed velocity (zero: fixed). The reaction force on the boundary is recorded.
     Vec3 velocity = Vec3::Zero();
+    /// Plane: keep a target normal stress instead (StressServo.h); its areaWalls are the
+    /// boundaries named by areaWallNames, resolved once every boundary is read.
+    StressServo servo;
+    std::vector<std::string> areaWallNames;
     std::string where;
 };
 

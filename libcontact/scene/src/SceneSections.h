@@ -27,6 +27,8 @@ constexpr long long kMaxSceneGrains = 1000000;
 GrainSpec readGrain(TableReader& t, const Scene& scene);
 /// [[lattices]]: a block of grains, appended to @a scene.
 void readLattice(TableReader& t, Scene& scene);
+/// [[grain_files]]: the grains of a CSV table (GrainsCsv.h), appended to @a scene.
+void readGrainFile(TableReader& t, Scene& scene);
 /// orientation = [w, x, y, z] or axis_angle = [ax, ay, az, degrees]; identity if neither.
 Quat readOrientation(TableReader& t);
 

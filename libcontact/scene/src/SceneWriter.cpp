@@ -305,7 +305,19 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
         t.number("density", m.density);
     }
     for (const ContactSpec& c : scene.contacts) writeContact(t, scene, c);
-    for (const GrainSpec& g : scene.grains) writeGrain(t, scene, g);
+    // Grains read from a CSV file are written as a reference to it (after the others, where
+    // the reader puts them).
+    std::vector<char> fromFile(scene.grains.size(), 0);
+    for (const GrainFileSpec& f : scene.grainFiles)
+        for (size_t i = f.first; i < f.first + f.count && i < fromFile.size(); ++i) fromFile[i] = 1;
+    for (size_t i = 0; i < scene.grains.size(); ++i)
+        if (!fromFile[i]) writeGrain(t, scene, scene.grains[i]);
+    for (const GrainFileSpec& f : scene.grainFiles) {
+        t.arrayTable("grain_files");
+        t.string("file", pathFrom(sceneDirectory, f.file));
+        t.string("material", scene.materials[size_t(f.material)].name);
+        if (f.maxOverlap >= 0.0) t.number("max_overlap", f.maxOverlap);
+    }
     for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
     writeSimulation(t, scene);
     writeOutput(t, scene.output);

@@ -69,6 +69,20 @@ struct GrainSpec
     std::string where;
 };
 
+/// Grains read from a CSV table (GrainsCsv.h) by [[grain_files]]: they are
+/// Scene::grains[first, first + count), and the writer refers to the file instead of listing them.
+struct GrainFileSpec
+{
+    std::string file;          ///< absolute path
+    int material = 0;          ///< for rows without a material column
+    size_t first = 0, count = 0;
+    /// Largest overlap (penetration depth of a node into another grain's level set, length)
+    /// allowed between a grain of the file and any other grain; < 0: 5 % of the smaller
+    /// grain's bounding radius.
+    double maxOverlap = -1.0;
+    std::string where;
+};
+
 struct BoundarySpec
 {
     std::string name;
@@ -131,6 +145,7 @@ struct Scene
     std::vector<MaterialSpec> materials;
     std::vector<ContactSpec> contacts;
     std::vector<GrainSpec> grains;
+    std::vector<GrainFileSpec> grainFiles;  ///< which grains came from CSV files
     std::vector<BoundarySpec> boundaries;
     Vec3 gravity = Vec3::Zero();
     /// Global non-viscous damping λ in [0, 1): each force component on a free grain is

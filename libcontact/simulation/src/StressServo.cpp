@@ -31,7 +31,8 @@ double servoArea(const World& world, const Boundary& b)
 double normalStress(const Boundary& b, double area)
 {
     // The grains push the wall against its normal (which points towards them).
-    return area > 0.0 ? -b.force.dot(b.plane.normal) / area : 0.0;
+    const double stress = area > 0.0 ? -b.force.dot(b.plane.normal) / area : 0.0;
+    return stress == 0.0 ? 0.0 : stress;  // +0 without contact (a CSV shows "-0" otherwise)
 }
 
 Vec3 servoVelocity(const World& world, const Boundary& b, double dt)

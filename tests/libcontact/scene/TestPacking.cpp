@@ -94,6 +94,7 @@ TEST(Packing, SameSeedSamePackingBitForBit)
     auto pack = [](uint64_t seed) {
         PackingOptions o = smallPacking(seed);
         o.count = 6;
+        o.settleTolerance = 1e-3;  // rest is not the point here: keep it short
         return generatePacking(o);
     };
     const PackingResult a = pack(11), b = pack(11), c = pack(12);

@@ -28,7 +28,7 @@ int main(int argc, char** argv)
         "  lsdem-pack A.vdb [B.vdb ...] --count N --box X0 Y0 Z0 X1 Y1 Z1 -o packing.csv "
         "[options]\n\n"
         "Grains are inserted at random in layers and deposited under gravity (along -z) until "
-        "at rest;\nthe same seed gives the same file on any machine and thread count. Lengths "
+        "at rest;\nthe same seed gives the same file on any thread count. Lengths "
         "are the assets'.",
         "lsdem-pack");
     lsdem::cli::applyConventions(app);
@@ -45,7 +45,7 @@ int main(int argc, char** argv)
     app.add_option("--names", names,
                    "asset names written in the CSV, as the scene's [assets.NAME]\n(default: "
                    "the file names without .vdb)")
-        ->type_name("NAME ...");
+        ->type_name("NAME");
     lsdem::cli::addInteger(app, "--count", count, "grains to pack");
     lsdem::cli::addNumbers(app, "--box", box, "the inside of the box: min and max corners", 6);
     lsdem::cli::addInteger(app, "--seed", seed, "random seed (positions, orientations, order)");

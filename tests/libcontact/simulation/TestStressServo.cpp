@@ -114,8 +114,9 @@ const std::shared_ptr<const GrainAsset>& sphereAsset()
     return asset;
 }
 
-/// One free sphere on a fixed floor (z = 0), a servo wall touching its top, no gravity.
-Scene pressedSphereScene(double stress, double area, double maxSpeed)
+/// One free sphere on a fixed floor (z = 0), a servo wall touching its top, no gravity; damped
+/// globally (non-viscous) or, if @a restitution < 1, by viscous contact dashpots.
+Scene pressedSphereScene(double stress, double area, double maxSpeed, double restitution)
 {
     Scene s;
     AssetSpec a;
@@ -129,6 +130,7 @@ Scene pressedSphereScene(double stress, double area, double maxSpeed)
     ContactSpec c;
     c.model.formulation = Formulation::Adapted;
     c.model.normalStiffness = kKnStar;
+    c.restitution = restitution;
     s.contacts.push_back(c);
     GrainSpec g;
     g.pose.position = Vec3(0, 0, kRadius);
@@ -145,7 +147,7 @@ Scene pressedSphereScene(double stress, double area, double maxSpeed)
     top.servo.area = area;
     top.servo.maxSpeed = maxSpeed;
     s.boundaries.push_back(top);
-    s.globalDamping = 0.3;
+    s.globalDamping = restitution < 1.0 ? 0.0 : 0.3;
     return s;
 }
 
@@ -155,37 +157,44 @@ Scene pressedSphereScene(double stress, double area, double maxSpeed)
 // 8000 in contact on each side). At rest the wall carries σ·A, the floor the same, and the
 // sphere is pressed into each by δ: the gap between the walls is 2R − 2δ. The node quadrature
 // of the cap is good to ~2 % in force at N = 8000 (TestPlaneContact), so to ~1 % in δ ∝ √P:
-// the band is 1 % of 2δ (measured: 0.04 %). Once settled the wall holds its stress to 0.1 % (what is left of the
-// damped vibration); its force is within 0.1 % of σ·A too, and so is the floor's.
+// the band is 1 % of 2δ (measured: 0.04 %). Once settled the wall holds its stress to 0.1 %
+// (what is left of the damped vibration); its force is within 0.1 % of σ·A too, and so is the
+// floor's. The same with viscous contact damping instead of global damping: the dashpots
+// respond to the wall's own speed at once, which the gain accounts for (K·Δt + C).
 TEST(StressServo, SpherePressedBetweenAServoWallAndAFloorSettlesAtTheClosedForm)
 {
-    const double delta = 0.15;
-    const double force = kPi * kKnStar * kRadius * delta * delta;
-    const double area = 100.0;
-    const double stress = force / area;
-    std::vector<std::string> warnings;
-    World w = buildWorld(pressedSphereScene(stress, area, 20.0), warnings);
-    // The step: a twentieth of the period of the sphere between the two contacts at δ.
-    const double contactStiffness = 2.0 * kPi * kKnStar * kRadius * delta;
-    const double period = 2.0 * kPi * std::sqrt(w.grains[0].body.mass / (2.0 * contactStiffness));
-    Simulation sim(std::move(w), period / 20.0);
-    const Boundary& top = sim.world().boundaries[1];
-    const Boundary& floor = sim.world().boundaries[0];
-    const int settle = 6000, hold = 3000;
-    for (int k = 0; k < settle; ++k) sim.step();
-    double worst = 0.0;
-    for (int k = 0; k < hold; ++k) {
-        sim.step();
-        worst = std::max(worst, std::abs(normalStress(top, area) / stress - 1.0));
+    for (const double restitution : {1.0, 0.5}) {
+        SCOPED_TRACE(restitution < 1.0 ? "contact dashpots" : "global damping");
+        const double delta = 0.15;
+        const double force = kPi * kKnStar * kRadius * delta * delta;
+        const double area = 100.0;
+        const double stress = force / area;
+        std::vector<std::string> warnings;
+        World w = buildWorld(pressedSphereScene(stress, area, 20.0, restitution), warnings);
+        // The step: a twentieth of the period of the sphere between the two contacts at δ.
+        const double contactStiffness = 2.0 * kPi * kKnStar * kRadius * delta;
+        const double period =
+            2.0 * kPi * std::sqrt(w.grains[0].body.mass / (2.0 * contactStiffness));
+        Simulation sim(std::move(w), period / 20.0);
+        const Boundary& top = sim.world().boundaries[1];
+        const Boundary& floor = sim.world().boundaries[0];
+        const int settle = 6000, hold = 3000;
+        for (int k = 0; k < settle; ++k) sim.step();
+        double worst = 0.0;
+        for (int k = 0; k < hold; ++k) {
+            sim.step();
+            worst = std::max(worst, std::abs(normalStress(top, area) / stress - 1.0));
+        }
+        const double gap = top.referencePoint().z() - floor.referencePoint().z();
+        const double penetration = 2.0 * kRadius - gap;
+        std::cout << "[ measured ] servo sphere (restitution " << restitution
+                  << "): stress/target = " << normalStress(top, area) / stress << " (worst over "
+                  << hold << " steps " << worst << "), floor force/σA = "
+                  << -floor.force.z() / force
+                  << ", penetration/closed form = " << penetration / (2.0 * delta) << "\n";
+        EXPECT_LT(worst, 1e-3);
+        EXPECT_NEAR(top.force.z() / force, 1.0, 1e-3);  // the grain pushes it up
+        EXPECT_NEAR(-floor.force.z() / force, 1.0, 1e-3);
+        EXPECT_NEAR(penetration / (2.0 * delta), 1.0, 0.01);
     }
-    const double gap = top.referencePoint().z() - floor.referencePoint().z();
-    const double penetration = 2.0 * kRadius - gap;
-    std::cout << "[ measured ] servo sphere: stress/target = " << normalStress(top, area) / stress
-              << " (worst over " << hold << " steps " << worst << "), floor force/σA = "
-              << -floor.force.z() / force << ", penetration/closed form = "
-              << penetration / (2.0 * delta) << "\n";
-    EXPECT_LT(worst, 1e-3);
-    EXPECT_NEAR(top.force.z() / force, 1.0, 1e-3);  // the grain pushes it up
-    EXPECT_NEAR(-floor.force.z() / force, 1.0, 1e-3);
-    EXPECT_NEAR(penetration / (2.0 * delta), 1.0, 0.01);
 }

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -152,6 +153,16 @@ TEST(SceneFile, BundledExamplesParse)
         EXPECT_NEAR(g.pose.orientation.norm(), 1.0, 1e-14);
     }
     EXPECT_EQ(xs, (std::set<double>{5.0, 15.0, 25.0}));
+
+    // The servo lid's area is bounded by the four side walls.
+    const Scene servo = readSceneFile(kScenes + "servo.toml");
+    ASSERT_EQ(servo.boundaries.size(), 6u);
+    const StressServo& lid = servo.boundaries[1].servo;
+    EXPECT_EQ(lid.targetStress, 0.6067);
+    ASSERT_TRUE(lid.areaFromWalls());
+    for (int k = 0; k < 4; ++k)
+        EXPECT_EQ(servo.boundaries[size_t(lid.areaWalls[size_t(k)])].name,
+                  (std::array<const char*, 4>{"west", "east", "south", "north"})[size_t(k)]);
 
     const Scene settle = readSceneFile(kScenes + "settle.toml");
     EXPECT_EQ(settle.grains.size(), 36u + 16u);

@@ -263,7 +263,7 @@ Scene everyFeature(const ScratchDir& dir)
 
 TEST(SceneWriter, BundledScenesReadBackTheSame)
 {
-    for (const char* name : {"bounce.toml", "settle.toml", "cube27.toml"}) {
+    for (const char* name : {"bounce.toml", "settle.toml", "cube27.toml", "servo.toml"}) {
         SCOPED_TRACE(name);
         const Scene original = readSceneFile(kScenes + name);
         // Written beside the original, so relative asset paths stay what they were.

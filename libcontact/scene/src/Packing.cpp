@@ -43,6 +43,9 @@ void checkOptions(const PackingOptions& o)
         throw Error("", "the box is empty (its max corner must exceed its min corner)",
                     "give --box X0 Y0 Z0 X1 Y1 Z1 with X1 > X0, Y1 > Y0, Z1 > Z0");
     if (o.count < 1) throw Error("", "the grain count must be >= 1", "give --count N");
+    if (o.count > 1000000)  // a scene's limit (SceneSections.h): checked before any memory is taken
+        throw Error("", "the grain count " + std::to_string(o.count) +
+                            " is over the limit of a scene (1000000)", "split the packing");
     for (const PackingComponent& c : o.mixture) {
         const double d = 2.0 * c.asset->boundingRadius;
         if (c.fraction > 0.0 && d >= (o.boxMax - o.boxMin).minCoeff()) {

@@ -127,6 +127,8 @@ TEST(Packing, BadOptionsAreRefused)
     o = smallPacking(1);
     o.count = 0;
     EXPECT_THROW(generatePacking(o), Error);
+    o.count = 1000000000000;
+    EXPECT_THROW(generatePacking(o), Error);
     o = smallPacking(1);
     o.boxMax = Vec3(1.5, 6, 7);  // narrower than a ball
     try {

@@ -33,7 +33,7 @@ set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
 
 run("install" out ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
-foreach(file bin/lsdem-bake bin/lsdem-grains bin/lsdem-inspect bin/lsdem-run bin/lsdem-study
+foreach(file bin/lsdem-bake bin/lsdem-grains bin/lsdem-inspect bin/lsdem-pack bin/lsdem-run bin/lsdem-study
         include/lsdem/ls/Bake.h include/lsdem/contact/PairContact.h include/lsdem/run/Checkpoint.h
         share/lsdem/plots/two_spheres.py share/lsdem/plots/plotting.py)
     if(NOT EXISTS ${prefix}/${file})
@@ -64,7 +64,7 @@ run("installed lsdem-bake" out ${prefix}/bin/lsdem-bake --sphere 1 --voxel 0.1
     --node-spacing 0.25 -o ${WORK_DIR}/sphere.vdb)
 run("installed lsdem-inspect" out ${prefix}/bin/lsdem-inspect ${WORK_DIR}/sphere.vdb)
 expectContains("installed lsdem-inspect" "${out}" "lsdem grain asset")
-foreach(program lsdem-grains lsdem-run lsdem-study)
+foreach(program lsdem-grains lsdem-pack lsdem-run lsdem-study)
     run("installed ${program} --help" out ${prefix}/bin/${program} --help)
 endforeach()
 

@@ -13,7 +13,9 @@ namespace lsdem {
 namespace {
 
 const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
-const uint32_t kVersion = 1;
+/// 2: each boundary also keeps its contact stiffness and dashpot (a servo wall's gain).
+const uint32_t kVersion = 2;
+const uint32_t kOldestVersion = 1;
 
 /// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
 class Writer
@@ -145,8 +147,9 @@ RunRecord readRecord(Reader& r)
     return rec;
 }
 
-/// Open @a path and read past the header into @a checkpoint.
-std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint)
+/// Open @a path and read past the header into @a checkpoint; @a version receives the file's.
+std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
+                                uint32_t& version)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -157,8 +160,8 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint)
     if (!in || std::memcmp(magic, kMagic, sizeof magic) != 0)
         throw Error(path, "not an lsdem checkpoint", "give a file written by lsdem-run");
     Reader r(in, path);
-    const uint32_t version = r.pod<uint32_t>();
-    if (version != kVersion)
+    version = r.pod<uint32_t>();
+    if (version < kOldestVersion || version > kVersion)
         throw Error(path, "checkpoint version " + std::to_string(version) + " is not supported",
                     "restart it with the lsdem version that wrote it");
     checkpoint.scenePath = r.text();
@@ -195,7 +198,8 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
             w.vec(g.torque);
         }
         w.pod<uint64_t>(world.boundaries.size());
-        for (const Boundary& b : world.boundaries) w.vec(b.displacement), w.vec(b.force);
+        for (const Boundary& b : world.boundaries)
+            w.vec(b.displacement), w.vec(b.force), w.pod(b.normalStiffness), w.pod(b.normalDashpot);
         // Only histories that hold shear are state: the empty ones are bookkeeping of the
         // contact list, which a restarted run rebuilds.
         uint64_t pairs = 0, boundaryContacts = 0;
@@ -221,14 +225,16 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
 Checkpoint readCheckpoint(const std::string& path)
 {
     Checkpoint c;
-    openAndReadHeader(path, c);
+    uint32_t version = 0;
+    openAndReadHeader(path, c, version);
     return c;
 }
 
 void restoreWorldState(const std::string& path, World& world)
 {
     Checkpoint header;
-    std::ifstream in = openAndReadHeader(path, header);
+    uint32_t version = 0;
+    std::ifstream in = openAndReadHeader(path, header, version);
     Reader r(in, path);
     World w = world;  // fill a copy: a failed read leaves @a world untouched
     w.time = r.pod<double>();
@@ -247,10 +253,15 @@ void restoreWorldState(const std::string& path, World& world)
         g.force = r.vec();
         g.torque = r.vec();
     }
-    if (r.count(6 * sizeof(double)) != w.boundaries.size())
+    const bool hasStiffness = version >= 2;
+    if (r.count((hasStiffness ? 8 : 6) * sizeof(double)) != w.boundaries.size())
         throw Error(path, "the checkpoint's boundary count does not match its scene",
                     "start the run again");
-    for (Boundary& b : w.boundaries) b.displacement = r.vec(), b.force = r.vec();
+    for (Boundary& b : w.boundaries) {
+        b.displacement = r.vec(), b.force = r.vec();
+        b.normalStiffness = hasStiffness ? r.pod<double>() : 0.0;
+        b.normalDashpot = hasStiffness ? r.pod<double>() : 0.0;
+    }
     w.pairHistory.clear();
     const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
     for (uint64_t k = 0; k < pairs; ++k) {

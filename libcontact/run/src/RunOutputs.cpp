@@ -42,10 +42,18 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
     record.boundaryRows.resize(w.boundaries.size());
     for (size_t b = 0; b < w.boundaries.size(); ++b) {
         const Boundary& bd = w.boundaries[b];
-        record.boundaryRows[b].push_back({static_cast<double>(w.step), w.time,
-                                          bd.displacement.x(), bd.displacement.y(),
-                                          bd.displacement.z(), bd.force.x(), bd.force.y(),
-                                          bd.force.z()});
+        std::vector<double> row = {static_cast<double>(w.step), w.time,
+                                   bd.displacement.x(),         bd.displacement.y(),
+                                   bd.displacement.z(),         bd.force.x(),
+                                   bd.force.y(),                bd.force.z()};
+        if (bd.servo.active()) {
+            const double area = servoArea(w, bd);
+            const Vec3 point = bd.referencePoint();
+            row.insert(row.end(), {point.x(), point.y(), point.z(), area,
+                                   normalStress(bd, area), bd.servo.targetStress,
+                                   bd.velocity.dot(bd.plane.normal)});
+        }
+        record.boundaryRows[b].push_back(std::move(row));
     }
 }
 
@@ -68,7 +76,10 @@ void writeHistoryFiles(const std::string& directory, const World& world,
     for (size_t b = 0; b < world.boundaries.size() && b < record.boundaryRows.size(); ++b)
         writeTextFileAtomically(
             (dir / boundaryHistoryFileName(world.boundaries[b].name)).string(),
-            rowsToCsv("step,time,ux,uy,uz,fx,fy,fz", record.boundaryRows[b]));
+            rowsToCsv(world.boundaries[b].servo.active()
+                          ? "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed"
+                          : "step,time,ux,uy,uz,fx,fy,fz",
+                      record.boundaryRows[b]));
 }
 
 void writeGrainsFile(const std::string& path, const World& world,

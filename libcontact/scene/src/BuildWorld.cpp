@@ -2,6 +2,11 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/simulation/GrainOverlaps.h"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
 
 namespace lsdem {
 
@@ -53,6 +58,48 @@ Grain makeGrain(const GrainSpec& spec, const Scene& scene,
     return g;
 }
 
+/// Grains read from files may not overlap (beyond their file's max_overlap) with any other:
+/// measured with the level sets (GrainOverlaps.h); the deepest offending pair is reported.
+void checkGrainFileOverlaps(const Scene& scene, const World& w)
+{
+    if (scene.grainFiles.empty()) return;
+    std::vector<const GrainFileSpec*> fileOf(w.grains.size(), nullptr);
+    for (const GrainFileSpec& f : scene.grainFiles)
+        for (size_t i = f.first; i < f.first + f.count; ++i) fileOf[i] = &f;
+    const GrainOverlap* worst = nullptr;
+    double worstTolerance = 0.0;
+    long long offending = 0;
+    const std::vector<GrainOverlap> overlaps = findGrainOverlaps(w);
+    for (const GrainOverlap& o : overlaps) {
+        const GrainFileSpec* fa = fileOf[size_t(o.first)];
+        const GrainFileSpec* fb = fileOf[size_t(o.second)];
+        if (!fa && !fb) continue;
+        const double fallback = 0.05 * std::min(w.grains[size_t(o.first)].asset->boundingRadius,
+                                                w.grains[size_t(o.second)].asset->boundingRadius);
+        double tolerance = std::numeric_limits<double>::infinity();
+        for (const GrainFileSpec* f : {fa, fb})
+            if (f) tolerance = std::min(tolerance, f->maxOverlap >= 0.0 ? f->maxOverlap : fallback);
+        if (!(o.depth > tolerance)) continue;
+        ++offending;
+        if (!worst || o.depth - tolerance > worst->depth - worstTolerance)
+            worst = &o, worstTolerance = tolerance;
+    }
+    if (!worst) return;
+    const GrainSpec& a = scene.grains[size_t(worst->first)];
+    const GrainSpec& b = scene.grains[size_t(worst->second)];
+    const GrainFileSpec& file = *(fileOf[size_t(worst->first)] ? fileOf[size_t(worst->first)]
+                                                               : fileOf[size_t(worst->second)]);
+    std::ostringstream problem;
+    problem << "grains '" << w.grains[size_t(worst->first)].name << "' (" << a.where << ") and '"
+            << w.grains[size_t(worst->second)].name << "' (" << b.where << ") overlap by "
+            << worst->depth << " (the deepest node of one inside the other's level set), more than "
+            << worstTolerance;
+    if (offending > 1) problem << "; " << offending - 1 << " other pair(s) overlap too much";
+    throw Error(fileOf[size_t(worst->first)] ? a.where : b.where, problem.str(),
+                "move them apart, or allow it with max_overlap in the [[grain_files]] table at " +
+                    file.where + " (default: 5 % of the smaller grain's bounding radius)");
+}
+
 } // namespace
 
 Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset> asset)
@@ -62,6 +109,7 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
     b.shape = spec.shape;
     b.material = spec.material;
     b.velocity = spec.velocity;
+    b.servo = spec.servo;
     b.plane.point = spec.point;
     b.plane.normal = spec.normal.normalized();
     b.plane.axisU = spec.axisU;
@@ -94,6 +142,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
         w.grains.push_back(makeGrain(spec, scene, w.assets.at(spec.asset)));
     for (size_t i = 0; i < w.grains.size(); ++i)
         if (w.grains[i].name.empty()) w.grains[i].name = "grain" + std::to_string(i);
+    checkGrainFileOverlaps(scene, w);
     for (const BoundarySpec& spec : scene.boundaries)
         w.boundaries.push_back(
             makeBoundary(spec, spec.asset >= 0 ? w.assets.at(spec.asset) : nullptr));

@@ -1,7 +1,9 @@
-// [[boundaries]]: planes, spheres and level-set obstacles.
+// [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres and level-set obstacles.
 #include "SceneSections.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 
 namespace lsdem::scenefile {
 
@@ -16,7 +18,101 @@ bool isFileNameSafe(const std::string& s)
     return true;
 }
 
+/// A plane's stress servo: stress, its area (a number or four walls) and the servo's gain and
+/// limit speed (StressServo.h). Nothing unless stress is given.
+void readServo(TableReader& t, BoundarySpec& b)
+{
+    if (!t.has("stress")) {
+        for (const char* key : {"area", "area_walls", "max_speed", "servo_gain"})
+            if (t.has(key))
+                t.fail(key, "only makes sense for a servo wall",
+                       "add stress = σ (the target normal stress) or remove " + std::string(key));
+        return;
+    }
+    StressServo& s = b.servo;
+    s.targetStress = t.number("stress");
+    if (!(s.targetStress > 0.0))
+        t.fail("stress",
+               "must be > 0 (got " + TableReader::show(s.targetStress) +
+                   "): a wall can only push on the grains, so its stress is compressive",
+               "give the compressive stress as a positive number (force/length²)");
+    if (t.has("velocity"))
+        t.fail("velocity", "a servo wall chooses its own velocity",
+               "remove velocity, or remove stress for a wall moving at a fixed velocity");
+    if (t.has("area") && t.has("area_walls"))
+        t.fail("area_walls", "both area and area_walls are given", "keep one of them");
+    if (t.has("area")) {
+        s.area = t.positive("area");
+    } else if (t.has("area_walls")) {
+        const toml::node& n = t.node("area_walls");
+        const toml::array* a = n.as_array();
+        if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
+                return e.is_string();
+            }))
+            t.fail("area_walls", "expected the names of four walls (two opposite pairs)",
+                   "write e.g. area_walls = [\"left\", \"right\", \"front\", \"back\"]");
+        for (const toml::node& e : *a) b.areaWallNames.push_back(e.as_string()->get());
+    } else {
+        t.fail("stress", "a servo wall needs the area its stress acts on",
+               "add area = A (length²) or area_walls = [\"left\", \"right\", \"front\", "
+               "\"back\"] (two pairs of opposite walls around it)");
+    }
+    if (!t.has("max_speed"))
+        t.fail("stress", "a servo wall needs a limit speed",
+               "add max_speed = v (length/time): how fast it may move towards its stress");
+    s.maxSpeed = t.positive("max_speed");
+    if (t.has("servo_gain")) {
+        s.gain = t.positive("servo_gain");
+        if (s.gain > 1.0)
+            t.fail("servo_gain", "must be in (0, 1] (got " + TableReader::show(s.gain) + ")",
+                   "a gain above 1 overshoots the target every step; 0.5 is the default");
+    }
+}
+
 } // namespace
+
+void resolveServoAreaWalls(Scene& scene)
+{
+    const double parallel = 1e-6;  // |cos| tolerance: the walls of a cuboid cell are exact
+    for (BoundarySpec& b : scene.boundaries) {
+        if (b.areaWallNames.empty()) continue;
+        const std::string label = "[[boundaries]] '" + b.name + "' area_walls: ";
+        for (size_t k = 0; k < 4; ++k) {
+            const std::string& name = b.areaWallNames[k];
+            const int i = indexByName(scene.boundaries, name);
+            if (i < 0)
+                throw Error(b.where, label + "no boundary named '" + name + "'",
+                            "name four plane walls of the scene");
+            const BoundarySpec& w = scene.boundaries[static_cast<size_t>(i)];
+            if (&w == &b || w.shape != BoundaryShape::Plane)
+                throw Error(b.where, label + "'" + name + "' " +
+                                         (&w == &b ? "is the wall itself" : "is not a plane"),
+                            "name the plane walls around it, two opposite pairs");
+            if (std::abs(w.normal.dot(b.normal)) > parallel)
+                throw Error(b.where, label + "'" + name + "' is not perpendicular to the wall",
+                            "name the walls that bound it sideways");
+            b.servo.areaWalls[k] = i;
+        }
+        for (size_t pair = 0; pair < 2; ++pair) {
+            const BoundarySpec& w0 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair])];
+            const BoundarySpec& w1 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair + 1])];
+            if (w0.normal.dot(w1.normal) > -1.0 + parallel)
+                throw Error(b.where,
+                            label + "'" + w0.name + "' and '" + w1.name + "' are not opposite walls",
+                            "list two pairs of walls whose normals point at each other");
+            if (!((w1.point - w0.point).dot(w0.normal) > 0.0))
+                throw Error(b.where,
+                            label + "'" + w0.name + "' and '" + w1.name + "' enclose no space",
+                            "each wall's normal points towards the grains, so towards the other");
+        }
+        const BoundarySpec& u = scene.boundaries[size_t(b.servo.areaWalls[0])];
+        const BoundarySpec& v = scene.boundaries[size_t(b.servo.areaWalls[2])];
+        if (std::abs(u.normal.dot(v.normal)) > parallel)
+            throw Error(b.where, label + "the pairs '" + u.name + "' and '" + v.name +
+                                     "' are not perpendicular",
+                        "list the x pair and then the y pair (or any two perpendicular pairs)");
+    }
+}
 
 BoundarySpec readBoundary(TableReader& t, const Scene& scene)
 {
@@ -30,6 +126,11 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
     if (type.empty()) t.fail("", "missing key 'type'", "add type = \"plane\" | \"sphere\" | \"level-set\"");
     b.material = lookUpMaterial(t, scene);
     b.velocity = t.vec3("velocity", Vec3::Zero());
+    if (type != "plane")
+        for (const char* key : {"stress", "area", "area_walls", "max_speed", "servo_gain"})
+            if (t.has(key))
+                t.fail(key, "only a plane can keep a stress",
+                       "use type = \"plane\" or remove " + std::string(key));
     if (type == "plane") {
         b.shape = BoundaryShape::Plane;
         b.point = t.vec3("point");
@@ -50,6 +151,7 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
             t.fail("axis_u", "only makes sense with extent", "add extent = [wu, wv] or remove it");
         }
         b.thickness = t.has("thickness") ? t.positive("thickness") : 0.0;
+        readServo(t, b);
     } else if (type == "sphere") {
         b.shape = BoundaryShape::Sphere;
         b.center = t.vec3("center");

@@ -73,10 +73,10 @@ Scene parseScene(const std::string& text, const std::string& path)
                     "see docs/scenes.md and the examples in assets/scenes/");
     }
 
-    const std::vector<std::string> sections = {"units",      "assets",     "asset_sets",
-                                               "materials",  "contacts",   "grains",
-                                               "lattices",   "boundaries", "simulation",
-                                               "output"};
+    const std::vector<std::string> sections = {"units",      "assets",      "asset_sets",
+                                               "materials",  "contacts",    "grains",
+                                               "lattices",   "grain_files", "boundaries",
+                                               "simulation", "output"};
     for (auto&& [key, value] : root) {
         const std::string k(key.str());
         if (std::find(sections.begin(), sections.end(), k) == sections.end())
@@ -130,8 +130,13 @@ Scene parseScene(const std::string& text, const std::string& path)
         TableReader r(*t, "[[lattices]] #" + std::to_string(++n), path);
         readLattice(r, scene);
     }
+    n = 0;
+    for (const toml::table* t : arrayOfTables(root, "grain_files", path)) {
+        TableReader r(*t, "[[grain_files]] #" + std::to_string(++n), path);
+        readGrainFile(r, scene);
+    }
     if (scene.grains.empty())
-        throw Error(path, "no grains", "add [[grains]] or [[lattices]] entries");
+        throw Error(path, "no grains", "add [[grains]], [[lattices]] or [[grain_files]] entries");
     n = 0;
     for (const toml::table* t : arrayOfTables(root, "boundaries", path)) {
         TableReader r(*t, "[[boundaries]] #" + std::to_string(++n), path);
@@ -140,6 +145,7 @@ Scene parseScene(const std::string& text, const std::string& path)
     readSimulation(root["simulation"].as_table(), scene);
     readOutput(root["output"].as_table(), scene);
     checkUniqueNames(scene);
+    resolveServoAreaWalls(scene);
     checkContactPairs(scene);
     return scene;
 }

@@ -38,6 +38,8 @@ constexpr long long kMaxSceneGrains = 1000000;
 GrainSpec readGrain(TableReader& t, const Scene& scene);
 /// [[lattices]]: a block of grains, appended to @a scene.
 void readLattice(TableReader& t, Scene& scene);
+/// [[grain_files]]: the grains of a CSV table (GrainsCsv.h), appended to @a scene.
+void readGrainFile(TableReader& t, Scene& scene);
 /// orientation = [w, x, y, z] or axis_angle = [ax, ay, az, degrees]; identity if neither.
 Quat readOrientation(TableReader& t);
 
@@ -46,6 +48,8 @@ ContactSpec readContact(TableReader& t, const Scene& scene);
 
 /// [[boundaries]]: a plane, a sphere or a level-set obstacle.
 BoundarySpec readBoundary(TableReader& t, const Scene& scene);
+/// Servo walls' area_walls: the named walls exist and bound a rectangle around the wall.
+void resolveServoAreaWalls(Scene& scene);
 
 /// [simulation]: gravity, damping, time step and the end condition (required).
 void readSimulation(const toml::table* table, Scene& scene);

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <vector>
 
 namespace lsdem {
 
@@ -58,7 +59,14 @@ public:
     void vec3(const std::string& key, const Vec3& v) { numbers(key, {v.x(), v.y(), v.z()}); }
     void strings(const std::string& key, const std::string& a, const std::string& b)
     {
-        mOut << key << " = [" << quoted(a) << ", " << quoted(b) << "]\n";
+        strings(key, {a, b});
+    }
+    void strings(const std::string& key, const std::vector<std::string>& values)
+    {
+        mOut << key << " = [";
+        const char* separator = "";
+        for (const std::string& v : values) mOut << separator << quoted(v), separator = ", ";
+        mOut << "]\n";
     }
     /// key = { name = "...", value = ... } (the end displacement).
     void inlineTable(const std::string& key, const std::string& nameKey, const std::string& name,
@@ -206,6 +214,20 @@ void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
     if (g.mass > 0.0) t.number("mass", g.mass);
 }
 
+void writeServo(TomlText& t, const Scene& scene, const StressServo& s)
+{
+    t.number("stress", s.targetStress);
+    if (s.areaFromWalls()) {
+        std::vector<std::string> names;
+        for (int w : s.areaWalls) names.push_back(scene.boundaries[size_t(w)].name);
+        t.strings("area_walls", names);
+    } else {
+        t.number("area", s.area);
+    }
+    t.number("max_speed", s.maxSpeed);
+    t.number("servo_gain", s.gain);
+}
+
 void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
 {
     t.arrayTable("boundaries");
@@ -221,6 +243,7 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
             t.vec3("axis_u", b.axisU);
         }
         if (b.thickness > 0.0) t.number("thickness", b.thickness);
+        if (b.servo.active()) writeServo(t, scene, b.servo);
         break;
     case BoundaryShape::Sphere:
         t.string("type", "sphere");
@@ -294,7 +317,19 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
         t.number("density", m.density);
     }
     for (const ContactSpec& c : scene.contacts) writeContact(t, scene, c);
-    for (const GrainSpec& g : scene.grains) writeGrain(t, scene, g);
+    // Grains read from a CSV file are written as a reference to it (after the others, where
+    // the reader puts them).
+    std::vector<char> fromFile(scene.grains.size(), 0);
+    for (const GrainFileSpec& f : scene.grainFiles)
+        for (size_t i = f.first; i < f.first + f.count && i < fromFile.size(); ++i) fromFile[i] = 1;
+    for (size_t i = 0; i < scene.grains.size(); ++i)
+        if (!fromFile[i]) writeGrain(t, scene, scene.grains[i]);
+    for (const GrainFileSpec& f : scene.grainFiles) {
+        t.arrayTable("grain_files");
+        t.string("file", pathFrom(sceneDirectory, f.file));
+        t.string("material", scene.materials[size_t(f.material)].name);
+        if (f.maxOverlap >= 0.0) t.number("max_overlap", f.maxOverlap);
+    }
     for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
     writeSimulation(t, scene);
     writeOutput(t, scene.output);

@@ -81,6 +81,8 @@ void Simulation::step()
 {
     const double dt = mDt;
     const auto integrateStart = SteadyClock::now();
+    // Servo walls choose this step's velocity from the state it starts from.
+    updateServoVelocities(mWorld, dt);
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
     double workBefore = 0.0;
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
@@ -201,7 +203,7 @@ void Simulation::evaluateForces(double slipStep)
         g.torque = torque;
         mGrainStiffness[size_t(i)] = stiffness;
     });
-    for (Boundary& b : w.boundaries) b.force = Vec3::Zero();
+    for (Boundary& b : w.boundaries) b.force = Vec3::Zero(), b.normalStiffness = b.normalDashpot = 0.0;
     mForces.clear();
     mContactNodes = 0;
     mElastic = 0.0;
@@ -211,7 +213,18 @@ void Simulation::evaluateForces(double slipStep)
         mCounters.nodes += s.stats;
         mContactNodes += r.contactNodes;
         mElastic += r.elasticEnergy;
-        if (s.boundary >= 0) w.boundaries[s.boundary].force += r.forceOnSecond;
+        if (s.boundary >= 0) {
+            Boundary& b = w.boundaries[s.boundary];
+            b.force += r.forceOnSecond;
+            if (b.shape == BoundaryShape::Plane) {  // what a servo wall's gain is based on
+                const double stiffness = b.plane.normal.dot(r.normalStiffness * b.plane.normal);
+                const ViscousDamping damping =
+                    w.model(w.grains[s.first].material, b.material).damping();
+                b.normalStiffness += stiffness;
+                b.normalDashpot +=
+                    damping.dashpotPerStiffness(mViews[s.first].mass, stiffness) * stiffness;
+            }
+        }
         for (size_t f = 0; f < s.forces.size(); ++f) {
             const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
             mForces.push_back({s.forces[f].point, s.forces[f].force,

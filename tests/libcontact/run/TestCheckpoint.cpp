@@ -146,6 +146,8 @@ void expectSameState(const World& a, const World& b)
     for (size_t k = 0; k < a.boundaries.size(); ++k) {
         EXPECT_TRUE(sameBits(a.boundaries[k].displacement, b.boundaries[k].displacement)) << k;
         EXPECT_TRUE(sameBits(a.boundaries[k].force, b.boundaries[k].force)) << k;
+        EXPECT_TRUE(sameBits(a.boundaries[k].normalStiffness, b.boundaries[k].normalStiffness));
+        EXPECT_TRUE(sameBits(a.boundaries[k].normalDashpot, b.boundaries[k].normalDashpot));
     }
     // The histories that hold shear (empty ones are the contact list's bookkeeping).
     std::vector<std::pair<std::pair<int, int>, const PairHistory*>> pairsA, pairsB;
@@ -267,6 +269,46 @@ TEST(Checkpoint, RestartContinuesBitIdentically)
     EXPECT_TRUE(sameBits(a.potential, b.potential));
     EXPECT_TRUE(sameBits(a.boundaryWork, b.boundaryWork));
     EXPECT_TRUE(sameBits(a.dissipated, b.dissipated));
+}
+
+// A lid keeping a stress on the stack (a servo wall: its velocity follows from its force, its
+// contact stiffness and the walls' positions, so its stiffness is part of the checkpoint): cut,
+// restored and continued, it moves exactly as in the run that never stopped.
+TEST(Checkpoint, ServoWallRestartContinuesBitIdentically)
+{
+    const int n = 300;
+    Scene scene = stackScene(2);
+    BoundarySpec lid;
+    lid.name = "lid";
+    lid.point = Vec3(0, 0, 4.0 * kRadius);  // 0.015 mm into the top spheres
+    lid.normal = -Vec3::UnitZ();
+    lid.servo.targetStress = 0.04;  // 16 N over 400 mm², about what it starts with
+    lid.servo.area = 400.0;
+    lid.servo.maxSpeed = 1000.0;  // so the proportional law, not the limit, sets its speed
+    scene.boundaries.push_back(lid);
+
+    Simulation straight(build(scene), kDt);
+    for (int k = 0; k < n; ++k) straight.step();
+    Simulation first(build(scene), kDt);
+    for (int k = 0; k < n / 2; ++k) first.step();
+    const Boundary& moving = first.world().boundaries.back();
+    ASSERT_GT(moving.normalStiffness, 0.0);  // pressing on the stack, under servo control
+    ASSERT_GT(moving.normalDashpot, 0.0);    // (the contacts are damped: restitution 0.5)
+    ASSERT_NE(moving.velocity.z(), 0.0);
+    ASSERT_LT(moving.velocity.norm(), lid.servo.maxSpeed);
+
+    lsdem::test::ScratchDir dir;
+    const std::string path = dir.file("run.lsdem");
+    saveCheckpoint(path, first.world(), sampleHeader());
+    World fresh = build(scene);
+    restoreWorldState(path, fresh);
+    expectSameState(fresh, first.world());
+    Simulation second(std::move(fresh), kDt, /*evaluateInitialForces=*/false);
+    for (int k = 0; k < n / 2; ++k) second.step();
+    expectSameState(second.world(), straight.world());
+    EXPECT_TRUE(sameBits(second.world().boundaries.back().velocity,
+                         straight.world().boundaries.back().velocity));
+    EXPECT_NE(straight.world().boundaries.back().velocity, moving.velocity);
 }
 
 // A checkpoint cut anywhere (inside the magic, inside the header, in the middle of the grains,

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -153,6 +154,16 @@ TEST(SceneFile, BundledExamplesParse)
     }
     EXPECT_EQ(xs, (std::set<double>{5.0, 15.0, 25.0}));
 
+    // The servo lid's area is bounded by the four side walls.
+    const Scene servo = readSceneFile(kScenes + "servo.toml");
+    ASSERT_EQ(servo.boundaries.size(), 6u);
+    const StressServo& lid = servo.boundaries[1].servo;
+    EXPECT_EQ(lid.targetStress, 0.6067);
+    ASSERT_TRUE(lid.areaFromWalls());
+    for (int k = 0; k < 4; ++k)
+        EXPECT_EQ(servo.boundaries[size_t(lid.areaWalls[size_t(k)])].name,
+                  (std::array<const char*, 4>{"west", "east", "south", "north"})[size_t(k)]);
+
     const Scene settle = readSceneFile(kScenes + "settle.toml");
     EXPECT_EQ(settle.grains.size(), 36u + 16u);
     ASSERT_FALSE(settle.assets[0].meshFile.empty());
@@ -226,6 +237,10 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         const char* message;  ///< must appear in the message
     };
     const std::string noEnd = edited("end_time = 0.01\n", "");
+    // The floor with servo keys added.
+    auto servo = [](const std::string& keys) {
+        return edited("normal = [0, 0, 2]", "normal = [0, 0, 2]\n" + keys);
+    };
     const Case cases[] = {
         {"unknown key", edited("vtk_period", "vtk_every"), "vtk_every", "unknown key 'vtk_every'"},
         {"unknown section", kGood + "[solver]\nx = 1\n", "[solver]", "unknown top-level"},
@@ -254,6 +269,18 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"bad boundary name", edited("name = \"floor\"", "name = \"floor/1\""), "name = \"floor/1\"", "cannot name a file"},
         {"duplicate grain name", edited("position = [5, 0, 2]", "position = [5, 0, 2]\nname = \"a\""), "[[grains]]\nasset", "a second grain named 'a'"},
         {"not TOML", edited("radius = 2.0", "radius = = 2.0"), "radius = = 2.0", "not valid TOML"},
+        {"servo stress of the wrong sign", servo("stress = -1.5\narea = 4.0\nmax_speed = 1.0"), "stress = -1.5", "must be > 0"},
+        {"servo without area", servo("stress = 1.5\nmax_speed = 1.0"), "stress = 1.5", "needs the area"},
+        {"servo with zero area", servo("stress = 1.5\narea = 0.0\nmax_speed = 1.0"), "area = 0.0", "must be > 0"},
+        {"servo without limit speed", servo("stress = 1.5\narea = 4.0"), "stress = 1.5", "limit speed"},
+        {"servo with zero limit speed", servo("stress = 1.5\narea = 4.0\nmax_speed = 0"), "max_speed = 0", "must be > 0"},
+        {"servo with zero gain", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nservo_gain = 0.0"), "servo_gain", "must be > 0"},
+        {"servo with gain above 1", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nservo_gain = 1.5"), "servo_gain", "(0, 1]"},
+        {"servo with a velocity", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nvelocity = [0, 0, 1]"), "velocity = [0, 0, 1]", "chooses its own velocity"},
+        {"servo area and walls", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\", \"d\"]"), "area_walls", "both area and area_walls"},
+        {"servo area from unknown walls", servo("stress = 1.5\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\", \"d\"]"), "[[boundaries]]", "no boundary named 'a'"},
+        {"servo area from three walls", servo("stress = 1.5\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\"]"), "area_walls", "four walls"},
+        {"area without a servo", servo("area = 4.0"), "area = 4.0", "only makes sense for a servo wall"},
         {"non-unit quaternion", edited("axis_angle = [0, 0, 1, 90]", "orientation = [1, 1, 0, 0]"), "orientation", "not a unit quaternion"},
     };
     static_assert(sizeof(cases) / sizeof(cases[0]) >= 20);

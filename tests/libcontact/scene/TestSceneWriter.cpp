@@ -104,6 +104,11 @@ void expectSameScene(const Scene& a, const Scene& b)
         expectSameDirection<Eigen::Vector4d>(x.pose.orientation.coeffs(), y.pose.orientation.coeffs(),
                             "orientation of " + x.name);
         EXPECT_EQ(x.velocity, y.velocity);
+        EXPECT_EQ(x.servo.targetStress, y.servo.targetStress) << x.name;
+        EXPECT_EQ(x.servo.area, y.servo.area) << x.name;
+        EXPECT_EQ(x.servo.areaWalls, y.servo.areaWalls) << x.name;
+        EXPECT_EQ(x.servo.gain, y.servo.gain) << x.name;
+        EXPECT_EQ(x.servo.maxSpeed, y.servo.maxSpeed) << x.name;
     }
     EXPECT_EQ(a.gravity, b.gravity);
     EXPECT_EQ(a.globalDamping, b.globalDamping);
@@ -219,7 +224,27 @@ Scene everyFeature(const ScratchDir& dir)
     obstacle.asset = 0;
     obstacle.pose.position = Vec3(3, 0, 0);
     obstacle.pose.orientation = Quat(Eigen::AngleAxisd(0.25, Vec3::UnitZ()));
-    s.boundaries = {floor, patch, indenter, obstacle};
+    // Servo walls: one over a given area, one whose area is bounded by two pairs of walls
+    // perpendicular to it (and to each other).
+    BoundarySpec lid = floor;
+    lid.name = "lid";
+    lid.point = Vec3(0, 1.2, 1.6);
+    lid.normal = Vec3(0, -0.6, -0.8);
+    lid.servo.targetStress = 1e5;
+    lid.servo.area = 0.25;
+    lid.servo.maxSpeed = 0.01;
+    BoundarySpec press = lid;
+    press.name = "press";
+    press.servo.area = 0.0;
+    press.servo.gain = 0.3;
+    BoundarySpec x0 = floor, x1 = floor, w0 = floor, w1 = floor;
+    x0.name = "x0", x0.point = Vec3(-1, 0, 0), x0.normal = Vec3(1, 0, 0);
+    x1.name = "x1", x1.point = Vec3(1, 0, 0), x1.normal = Vec3(-1, 0, 0);
+    w0.name = "w0", w0.point = Vec3(0, -0.8, 0.6), w0.normal = Vec3(0, 0.8, -0.6);
+    w1.name = "w1", w1.point = Vec3(0, 0.8, -0.6), w1.normal = Vec3(0, -0.8, 0.6);
+    press.servo.areaWalls = {4, 5, 6, 7};
+    press.areaWallNames = {"x0", "x1", "w0", "w1"};
+    s.boundaries = {floor, patch, indenter, obstacle, x0, x1, w0, w1, lid, press};
     s.gravity = Vec3(0, 0, -9.81);
     s.globalDamping = 0.2;
     s.timeStep.safety = 0.15;
@@ -238,7 +263,7 @@ Scene everyFeature(const ScratchDir& dir)
 
 TEST(SceneWriter, BundledScenesReadBackTheSame)
 {
-    for (const char* name : {"bounce.toml", "settle.toml", "cube27.toml"}) {
+    for (const char* name : {"bounce.toml", "settle.toml", "cube27.toml", "servo.toml"}) {
         SCOPED_TRACE(name);
         const Scene original = readSceneFile(kScenes + name);
         // Written beside the original, so relative asset paths stay what they were.

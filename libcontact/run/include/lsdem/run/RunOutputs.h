@@ -1,7 +1,8 @@
 /// @file RunOutputs.h
 /// @brief The text outputs of a run, each written whole and atomically: `energy.csv` (global
 ///        energies per history step), `boundary_<name>.csv` (displacement and reaction force of
-///        each boundary) and `grains.csv` (every grain's final state and displacement).
+///        each boundary; for a servo wall also the current point of its plane, its area, stress,
+///        target stress and speed along its normal) and `grains.csv` (every grain's final state and displacement).
 ///        Numbers are printed with 17 significant digits so they read back exactly.
 #pragma once
 

@@ -10,6 +10,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/simulation/BoundaryShape.h"
 #include "lsdem/simulation/GrainMotion.h"
+#include "lsdem/simulation/StressServo.h"
 
 #include <memory>
 #include <optional>
@@ -84,6 +85,20 @@ struct GrainSpec
     std::string where;
 };
 
+/// Grains read from a CSV table (GrainsCsv.h) by [[grain_files]]: they are
+/// Scene::grains[first, first + count), and the writer refers to the file instead of listing them.
+struct GrainFileSpec
+{
+    std::string file;          ///< absolute path
+    int material = 0;          ///< for rows without a material column
+    size_t first = 0, count = 0;
+    /// Largest overlap (penetration depth of a node into another grain's level set, length)
+    /// allowed between a grain of the file and any other grain; < 0: 5 % of the smaller
+    /// grain's bounding radius.
+    double maxOverlap = -1.0;
+    std::string where;
+};
+
 struct BoundarySpec
 {
     std::string name;
@@ -105,6 +120,10 @@ struct BoundarySpec
     RigidPose pose;
     /// Prescribed velocity (zero: fixed). The reaction force on the boundary is recorded.
     Vec3 velocity = Vec3::Zero();
+    /// Plane: keep a target normal stress instead (StressServo.h); its areaWalls are the
+    /// boundaries named by areaWallNames, resolved once every boundary is read.
+    StressServo servo;
+    std::vector<std::string> areaWallNames;
     std::string where;
 };
 
@@ -143,6 +162,7 @@ struct Scene
     std::vector<MaterialSpec> materials;
     std::vector<ContactSpec> contacts;
     std::vector<GrainSpec> grains;
+    std::vector<GrainFileSpec> grainFiles;  ///< which grains came from CSV files
     std::vector<BoundarySpec> boundaries;
     Vec3 gravity = Vec3::Zero();
     /// Global non-viscous damping λ in [0, 1): each force component on a free grain is

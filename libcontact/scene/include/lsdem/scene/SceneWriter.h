@@ -2,7 +2,8 @@
 /// @brief Write a scene as a TOML file that readSceneFile reads back to the same scene: every
 ///        grain, boundary, contact law and setting, numbers in their shortest exact decimal
 ///        form, strings and names escaped. The counterpart of SceneFile.h, for programs that
-///        build scenes (the studies, scripts) and hand them to lsdem-run.
+///        build scenes (the studies, scripts) and hand them to lsdem-run. Grains read from a
+///        CSV file ([[grain_files]]) are written as a reference to that file, which is kept.
 #pragma once
 
 #include "lsdem/scene/Scene.h"

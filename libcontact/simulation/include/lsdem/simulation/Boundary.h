@@ -1,13 +1,15 @@
 /// @file Boundary.h
 /// @brief Rigid boundaries of a simulation: planes (walls, optionally finite patches), a sphere
 ///        (an indenter) and level-set obstacles (an asset used as a rigid body). Each moves at a
-///        prescribed velocity (zero: fixed); grains touch it with their nodes, through the same
+///        prescribed velocity (zero: fixed) or, for a servo plane, at the velocity that keeps
+///        a target stress (StressServo.h); grains touch it with their nodes, through the same
 ///        contact laws as grain–grain contacts.
 #pragma once
 
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/contact/PlaneContact.h"
 #include "lsdem/simulation/BoundaryShape.h"
+#include "lsdem/simulation/StressServo.h"
 
 #include <memory>
 #include <string>
@@ -28,6 +30,12 @@ struct Boundary
     Vec3 velocity = Vec3::Zero();                 ///< prescribed, world
     Vec3 displacement = Vec3::Zero();             ///< moved so far
     Vec3 force = Vec3::Zero();                    ///< reaction: the grains' force on it
+    /// Σ k n·n of its contacts at the last force evaluation (force/length, along its normal;
+    /// planes only, 0 for the others): what a servo wall's gain is based on.
+    double normalStiffness = 0.0;
+    /// Σ c of the viscous dashpots of its contacts, likewise (force·time/length).
+    double normalDashpot = 0.0;
+    StressServo servo;                            ///< Plane: keeps a target stress if active
 
     /// Its reference point now (plane point, sphere centre or obstacle centroid).
     Vec3 referencePoint() const;

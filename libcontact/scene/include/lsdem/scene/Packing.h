@@ -1,0 +1,67 @@
+/// @file Packing.h
+/// @brief A packing generator: fill a box with a mixture of grain assets, without overlaps,
+///        reproducibly from a seed. Grains are inserted at random (random position and
+///        orientation, their bounding spheres clear of each other) in a layer above the bed,
+///        then deposited under gravity with lsdem's own Simulation until they are at rest;
+///        layer after layer until the count is reached or the box is full.
+///
+///        The deposition is a numerical device: only the geometry is kept. It runs in its own
+///        consistent units, with the user's lengths (those of the assets): density 1, gravity 1
+///        along −z, global damping 0.3, and an adapted contact stiffness kn* chosen so that the
+///        weight of the whole column presses a grain into its neighbours by about 0.2 % of its
+///        bounding radius. A layer is at rest when its kinetic energy is below
+///        settleTolerance · Σ m_i·g·d_i (d_i: bounding diameter), i.e. the grains' mean speed is
+///        below ~sqrt(2·tolerance·g·d), checked after at least twice the time to fall through
+///        the layer; layers that later ones will cover settle to 100 times the tolerance.
+#pragma once
+
+#include "lsdem/scene/Scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+struct PackingComponent
+{
+    std::string name;                          ///< the asset's name in the grains CSV
+    std::shared_ptr<const GrainAsset> asset;
+    double fraction = 1.0;                     ///< share of the grain count (normalised)
+};
+
+struct PackingOptions
+{
+    std::vector<PackingComponent> mixture;
+    Vec3 boxMin = Vec3::Zero(), boxMax = Vec3::Ones();  ///< the inside of the box, length
+    long long count = 0;                       ///< grains wanted
+    uint64_t seed = 1;
+    double friction = 0.0;                     ///< Coulomb μ during deposition (0: densest)
+    double settleTolerance = 1e-5;             ///< kinetic energy / Σ m·g·d at rest
+    long long maxStepsPerLayer = 200000;       ///< a layer not at rest by then is taken as it is
+    int insertionAttempts = 200;               ///< random tries per grain before a layer is full
+};
+
+struct PackingResult
+{
+    /// The packed grains (assets named as in the mixture, one material "grains"), all free:
+    /// write them with writeGrainsCsv(scene, 0, scene.grains.size(), path).
+    Scene scene;
+    bool complete = false;       ///< all of options.count fitted
+    double solidFraction = 0.0;  ///< Σ grain volumes / box volume
+    double maxOverlap = 0.0;     ///< deepest grain–grain overlap / smaller bounding radius
+    int layers = 0;
+    long long steps = 0;
+    int unsettledLayers = 0;     ///< layers that hit maxStepsPerLayer
+    double seconds = 0.0;
+};
+
+/// Fill the box of @a options. @a progress (may be empty) is told after each layer.
+/// @throw Error for bad options (no assets, a fraction < 0, an empty box, a count < 1, a grain
+///        larger than the box).
+PackingResult generatePacking(const PackingOptions& options,
+                              const std::function<void(const PackingResult&)>& progress = {});
+
+} // namespace lsdem

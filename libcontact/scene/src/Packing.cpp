@@ -1,0 +1,274 @@
+// The packing generator: random insertion layer by layer, each layer deposited under gravity
+// with the Simulation until it is at rest (see Packing.h for the numerical set-up).
+#include "lsdem/scene/Packing.h"
+
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/RandomRotation.h"
+#include "lsdem/simulation/GrainOverlaps.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <sstream>
+
+namespace lsdem {
+
+namespace {
+
+constexpr double kDensity = 1.0;      // the deposition's own units (Packing.h)
+constexpr double kGravity = 1.0;
+constexpr double kDamping = 0.3;
+constexpr double kRestOverlap = 0.01;  // static overlap / bounding radius under the column
+constexpr double kLayerDiameters = 3.0;  // insertion layer height, in largest grain diameters
+
+void checkOptions(const PackingOptions& o)
+{
+    if (o.mixture.empty())
+        throw Error("", "no grain assets to pack", "give at least one asset");
+    double total = 0.0;
+    for (const PackingComponent& c : o.mixture) {
+        if (!c.asset) throw Error("", "asset '" + c.name + "' is not loaded");
+        if (!(c.fraction >= 0.0) || !std::isfinite(c.fraction))
+            throw Error("", "the fraction of '" + c.name + "' must be a number >= 0",
+                        "give fractions such as 0.7 0.3");
+        total += c.fraction;
+    }
+    if (!(total > 0.0)) throw Error("", "the fractions add up to 0", "give a positive fraction");
+    if (!((o.boxMax - o.boxMin).minCoeff() > 0.0) || !o.boxMin.allFinite() || !o.boxMax.allFinite())
+        throw Error("", "the box is empty (its max corner must exceed its min corner)",
+                    "give --box X0 Y0 Z0 X1 Y1 Z1 with X1 > X0, Y1 > Y0, Z1 > Z0");
+    if (o.count < 1) throw Error("", "the grain count must be >= 1", "give --count N");
+    if (o.count > 1000000)  // a scene's limit (SceneSections.h): checked before any memory is taken
+        throw Error("", "the grain count " + std::to_string(o.count) +
+                            " is over the limit of a scene (1000000)", "split the packing");
+    for (const PackingComponent& c : o.mixture) {
+        const double d = 2.0 * c.asset->boundingRadius;
+        if (c.fraction > 0.0 && d >= (o.boxMax - o.boxMin).minCoeff()) {
+            std::ostringstream s;
+            s << "grain '" << c.name << "' (bounding diameter " << d
+              << ") does not fit in the box";
+            throw Error("", s.str(), "enlarge the box");
+        }
+    }
+}
+
+/// Grains per component: the floor of fraction·count, plus one for the largest remainders
+/// (the earlier component on a tie), so they add up to count.
+std::vector<long long> componentCounts(const PackingOptions& o)
+{
+    double total = 0.0;
+    for (const PackingComponent& c : o.mixture) total += c.fraction;
+    std::vector<long long> counts;
+    std::vector<std::pair<double, size_t>> remainders;
+    long long sum = 0;
+    for (size_t k = 0; k < o.mixture.size(); ++k) {
+        const double exact = static_cast<double>(o.count) * o.mixture[k].fraction / total;
+        counts.push_back(static_cast<long long>(std::floor(exact)));
+        sum += counts.back();
+        remainders.emplace_back(-(exact - std::floor(exact)), k);
+    }
+    std::stable_sort(remainders.begin(), remainders.end());
+    for (size_t k = 0; sum < o.count; ++k, ++sum) ++counts[remainders[k % remainders.size()].second];
+    return counts;
+}
+
+/// The components in insertion order: shuffled (Fisher–Yates on lsdem's own uniform
+/// numbers, so a seed gives the same order with any standard library).
+std::vector<int> insertionOrder(const std::vector<long long>& counts, std::mt19937_64& rng)
+{
+    std::vector<int> order;
+    for (size_t k = 0; k < counts.size(); ++k) order.insert(order.end(), size_t(counts[k]), int(k));
+    for (size_t i = order.size(); i > 1; --i) {
+        const size_t j = std::min(i - 1, static_cast<size_t>(uniform01(rng) * double(i)));
+        std::swap(order[i - 1], order[j]);
+    }
+    return order;
+}
+
+/// The scene the deposition runs: the mixture's assets, one material, the adapted law with
+/// @a knStar, a floor and four side walls, gravity and damping.
+Scene depositionScene(const PackingOptions& o, double knStar)
+{
+    Scene s;
+    for (const PackingComponent& c : o.mixture) {
+        AssetSpec a;
+        a.name = c.name;
+        a.loaded = c.asset;
+        s.assets.push_back(a);
+    }
+    s.materials.push_back({"grains", kDensity});
+    ContactSpec law;
+    law.model.formulation = Formulation::Adapted;
+    law.model.normalStiffness = knStar;
+    if (o.friction > 0.0) {
+        law.model.friction = o.friction;
+        law.model.shearStiffness = 0.5 * knStar;
+    }
+    s.contacts.push_back(law);
+    auto wall = [&](const char* name, const Vec3& point, const Vec3& normal) {
+        BoundarySpec b;
+        b.name = name;
+        b.point = point;
+        b.normal = normal;
+        s.boundaries.push_back(b);
+    };
+    wall("floor", o.boxMin, Vec3::UnitZ());
+    wall("x0", o.boxMin, Vec3::UnitX());
+    wall("x1", o.boxMax, -Vec3::UnitX());
+    wall("y0", o.boxMin, Vec3::UnitY());
+    wall("y1", o.boxMax, -Vec3::UnitY());
+    s.gravity = Vec3(0, 0, -kGravity);
+    s.globalDamping = kDamping;
+    return s;
+}
+
+/// Random sequential insertion in the layer [zLow, zHigh] of the box: each grain of @a order
+/// from @a next gets up to @a attempts random centres (its bounding sphere inside the layer and
+/// the box, clear of every other bounding sphere) and a random orientation. Stops at the first
+/// grain that finds no room. @return how many were placed.
+size_t insertLayer(const PackingOptions& o, const std::vector<int>& order, size_t next,
+                   double zLow, double zHigh, std::mt19937_64& rng, Scene& scene)
+{
+    // Only grains reaching into the layer can be in the way.
+    std::vector<std::pair<Vec3, double>> near;
+    for (const GrainSpec& g : scene.grains) {
+        const double r = o.mixture[size_t(g.asset)].asset->boundingRadius;
+        if (g.pose.position.z() + r > zLow) near.emplace_back(g.pose.position, r);
+    }
+    size_t placed = 0;
+    for (size_t i = next; i < order.size(); ++i) {
+        const int component = order[i];
+        const double r = o.mixture[size_t(component)].asset->boundingRadius;
+        const Vec3 lo(o.boxMin.x() + r, o.boxMin.y() + r, zLow + r);
+        const Vec3 hi(o.boxMax.x() - r, o.boxMax.y() - r, zHigh - r);
+        if (!((hi - lo).minCoeff() >= 0.0)) break;
+        bool found = false;
+        Vec3 c;
+        for (int attempt = 0; attempt < o.insertionAttempts && !found; ++attempt) {
+            for (int d = 0; d < 3; ++d) c[d] = lo[d] + (hi[d] - lo[d]) * uniform01(rng);
+            found = std::none_of(near.begin(), near.end(), [&](const auto& other) {
+                const double reach = r + other.second;
+                return (c - other.first).squaredNorm() < reach * reach;
+            });
+        }
+        if (!found) break;
+        GrainSpec g;
+        g.asset = component;
+        g.material = 0;
+        g.pose.position = c;
+        g.pose.orientation = randomRotation(rng);
+        scene.grains.push_back(g);
+        near.emplace_back(c, r);
+        ++placed;
+    }
+    return placed;
+}
+
+} // namespace
+
+PackingResult generatePacking(const PackingOptions& o,
+                              const std::function<void(const PackingResult&)>& progress)
+{
+    checkOptions(o);
+    const Stopwatch clock;
+    std::mt19937_64 rng(o.seed);
+    const std::vector<int> order = insertionOrder(componentCounts(o), rng);
+
+    // Scales of the mixture (by count): mean bounding radius and volume, largest diameter.
+    double meanRadius = 0.0, meanVolume = 0.0, largest = 0.0, lightest = 1e300;
+    for (int k : order) {
+        const GrainAsset& a = *o.mixture[size_t(k)].asset;
+        meanRadius += a.boundingRadius / double(order.size());
+        meanVolume += a.mass.volume / double(order.size());
+        largest = std::max(largest, 2.0 * a.boundingRadius);
+        lightest = std::min(lightest, kDensity * a.mass.volume);
+    }
+    const double height = o.boxMax.z() - o.boxMin.z();
+    // kn* so that the weight of the column (height / mean diameter grains) presses a grain by
+    // kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane), δ = ε·R.
+    const double layers = std::max(1.0, height / (2.0 * meanRadius));
+    const double knStar = layers * kDensity * meanVolume * kGravity /
+                          (kPi * kRestOverlap * kRestOverlap * std::pow(meanRadius, 3));
+    // The step: a fifth of sqrt(m/k) for the lightest grain held by four contacts, each
+    // pressed by three times the rest overlap of the largest grain (a landing): k = 2π·kn*·R·δ.
+    // A step the stability check refuses is halved and the layer deposited again.
+    const double rMax = 0.5 * largest;
+    const double contactStiffness = 2.0 * kPi * knStar * rMax * 3.0 * kRestOverlap * rMax;
+    double dt = 0.2 * std::sqrt(lightest / (4.0 * contactStiffness));
+    const double layerHeight = kLayerDiameters * largest;
+    const double fallTime = std::sqrt(2.0 * layerHeight / kGravity);
+
+    PackingResult result;
+    result.scene = depositionScene(o, knStar);
+    size_t next = 0;
+    double bedTop = o.boxMin.z();
+    while (next < order.size()) {
+        const double zHigh = std::min(o.boxMax.z(), bedTop + layerHeight);
+        const size_t placed = insertLayer(o, order, next, bedTop, zHigh, rng, result.scene);
+        if (placed == 0) break;  // the box is full
+        next += placed;
+        ++result.layers;
+
+        // Deposit: every grain so far, from rest, until the kinetic energy is small (a layer
+        // that more will cover only needs to be roughly at rest: 100 times the tolerance).
+        const double tolerance =
+            next == order.size() ? o.settleTolerance : 100.0 * o.settleTolerance;
+        std::vector<std::string> warnings;
+        std::unique_ptr<Simulation> sim;
+        long long steps = 0;
+        bool atRest = false;
+        for (int attempt = 0; !sim; ++attempt) {
+            try {
+                sim = std::make_unique<Simulation>(buildWorld(result.scene, warnings), dt);
+                double restEnergy = 0.0;
+                for (const Grain& g : sim->world().grains)
+                    restEnergy += g.body.mass * kGravity * 2.0 * g.asset->boundingRadius;
+                steps = 0;
+                atRest = false;
+                while (!atRest && steps < o.maxStepsPerLayer) {
+                    for (int k = 0; k < 100; ++k) sim->step();
+                    steps += 100;
+                    atRest = sim->world().time > 2.0 * fallTime &&
+                             sim->energies().kinetic < tolerance * restEnergy;
+                }
+            } catch (const Error&) {
+                if (attempt >= 5) throw;  // not a matter of the step
+                sim.reset();
+                dt *= 0.5;
+            }
+        }
+        result.steps += steps;
+        result.unsettledLayers += atRest ? 0 : 1;
+        bedTop = o.boxMin.z();
+        for (size_t i = 0; i < result.scene.grains.size(); ++i) {
+            const Grain& g = sim->world().grains[i];
+            result.scene.grains[i].pose = g.body.pose;
+            bedTop = std::max(bedTop, g.body.pose.position.z() + g.asset->boundingRadius);
+        }
+        double volume = 0.0;
+        for (const GrainSpec& g : result.scene.grains)
+            volume += o.mixture[size_t(g.asset)].asset->mass.volume;
+        result.solidFraction = volume / (o.boxMax - o.boxMin).prod();
+        result.seconds = clock.seconds();
+        if (progress) progress(result);
+    }
+    result.complete = next == order.size();
+    if (!result.scene.grains.empty()) {
+        std::vector<std::string> warnings;
+        const World w = buildWorld(result.scene, warnings);
+        for (const GrainOverlap& v : findGrainOverlaps(w))
+            result.maxOverlap =
+                std::max(result.maxOverlap,
+                         v.depth / std::min(w.grains[size_t(v.first)].asset->boundingRadius,
+                                            w.grains[size_t(v.second)].asset->boundingRadius));
+    }
+    result.seconds = clock.seconds();
+    return result;
+}
+
+} // namespace lsdem

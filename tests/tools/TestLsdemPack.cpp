@@ -1,0 +1,135 @@
+// lsdem-pack through the real program, and its packing used as a user would: read by a scene
+// ([[grain_files]]) with a servo wall on top, run by lsdem-run, whose boundary CSV then holds
+// the wall's stress. A count that cannot fit and bad options exit 1 and write nothing.
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+using namespace lsdem::test;
+
+namespace {
+
+const std::string kPack = LSDEM_PACK_EXE;
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+struct Assets
+{
+    ScratchDir dir;
+    Assets()
+    {
+        const CommandResult bake = runCommand(std::string(LSDEM_BAKE_EXE) +
+                                              " --sphere 1 --voxel 0.1 --nodes 150 -o " +
+                                              dir.file("ball.vdb"));
+        EXPECT_EQ(bake.exitCode, 0) << bake.output;
+    }
+};
+
+} // namespace
+
+TEST(LsdemPack, PacksAndTheSceneRunsWithAServoLid)
+{
+    const Assets a;
+    const std::string csv = a.dir.file("packing.csv");
+    const CommandResult pack = runCommand(kPack + " " + a.dir.file("ball.vdb") +
+                                          " --count 4 --box 0 0 0 4.5 4.5 5 --seed 2 -o " + csv);
+    ASSERT_EQ(pack.exitCode, 0) << pack.output;
+    EXPECT_NE(pack.output.find("packed 4 grains"), std::string::npos) << pack.output;
+    EXPECT_EQ(readFile(csv).rfind("asset,x,y,z,qw,qx,qy,qz\nball,", 0), 0u) << readFile(csv);
+
+    // The lid starts above the packing and comes down at its limit speed until it presses.
+    std::ofstream(a.dir.file("scene.toml")) << R"([assets.ball]
+file = "ball.vdb"
+[materials.sand]
+density = 2.65e-9
+[[contacts]]
+materials = ["sand", "sand"]
+normal_stiffness = 1e3
+restitution = 0.5
+[[grain_files]]
+file = "packing.csv"
+material = "sand"
+[[boundaries]]
+name = "floor"
+type = "plane"
+material = "sand"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+[[boundaries]]
+name = "lid"
+type = "plane"
+material = "sand"
+point = [0, 0, 5]
+normal = [0, 0, -1]
+stress = 0.01
+area = 20.25
+max_speed = 100
+[simulation]
+time_step = 1e-6
+end_steps = 400
+[output]
+history_every = 100
+)";
+    const CommandResult run = runCommand(std::string(LSDEM_RUN_EXE) + " " +
+                                         a.dir.file("scene.toml") + " --out " +
+                                         a.dir.file("out") + " --quiet");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    std::istringstream lid(readFile(a.dir.file("out/boundary_lid.csv")));
+    std::string header, row;
+    std::getline(lid, header);
+    EXPECT_EQ(header, "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed");
+    ASSERT_TRUE(std::getline(lid, row) && std::getline(lid, row));  // step 100
+    // Not touching yet: it moves at the limit speed, 100·1e-6 per step, towards the grains.
+    std::vector<double> v;
+    std::istringstream fields(row);
+    for (std::string f; std::getline(fields, f, ',');) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), 15u) << row;
+    EXPECT_EQ(v[0], 100.0);
+    EXPECT_NEAR(v[4], -0.01, 1e-12) << row;       // uz
+    EXPECT_NEAR(v[10], 5.0 - 0.01, 1e-12) << row;  // pz
+    EXPECT_EQ(v[11], 20.25);                       // area
+    EXPECT_EQ(v[12], 0.0);                         // stress: not touching
+    EXPECT_EQ(v[13], 0.01);                        // target
+    EXPECT_EQ(v[14], 100.0);                       // speed towards the grains
+    EXPECT_EQ(readFile(a.dir.file("out/boundary_floor.csv")).substr(0, 28),
+              "step,time,ux,uy,uz,fx,fy,fz\n");
+}
+
+TEST(LsdemPack, ACountThatCannotFitExitsWithWhatDid)
+{
+    const Assets a;
+    const std::string csv = a.dir.file("packing.csv");
+    const CommandResult r = runCommand(kPack + " " + a.dir.file("ball.vdb") +
+                                       " --count 5 --box 0 0 0 2.5 2.5 3 -o " + csv);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("only 1 of 5 grains fit"), std::string::npos) << r.output;
+    // One ball of radius 1 in 2.5 × 2.5 × 3: (4π/3)/18.75 = 0.2234.
+    EXPECT_NE(r.output.find("solid fraction 0.223 "), std::string::npos) << r.output;
+    EXPECT_FALSE(std::ifstream(csv).good());
+}
+
+TEST(LsdemPack, BadOptionsExitOne)
+{
+    const Assets a;
+    const std::string ball = a.dir.file("ball.vdb");
+    for (const std::string& args :
+         {ball + " --count 4 -o x.csv", ball + " --box 0 0 0 5 5 5 --count 4",
+          ball + " --box 0 0 0 5 5 5 --count 0 -o x.csv",
+          ball + " --box 0 0 0 5 5 5 --count 4 --fractions 1 2 -o x.csv",
+          a.dir.file("missing.vdb") + " --box 0 0 0 5 5 5 --count 4 -o x.csv"}) {
+        const CommandResult r = runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("lsdem-pack: error:"), std::string::npos) << r.output;
+    }
+    EXPECT_FALSE(std::ifstream(a.dir.file("x.csv")).good());
+}

@@ -10,6 +10,7 @@
 
 #include <openvdb/tools/Dense.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <cmath>
 #include <limits>
@@ -73,9 +74,10 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
 
 } // namespace
 
-TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o)
+TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool keepFineInput)
 {
     RemeshOptions remesh;
+    remesh.keepFineInput = keepFineInput;
     if (o.nodePlacement == NodePlacement::Spacing) {
         remesh.targetEdgeLength = o.nodeSpacing;
         return remeshIsotropic(surface, remesh);
@@ -182,11 +184,24 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
     asset.mass.inertia = asset.inputFrame.moments.asDiagonal();
     asset.provenance.source = sourceName;
 
-    // Level set of the input surface (the geometric truth), interior filled.
-    asset.levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
-
-    const TriangleMesh surface =
-        options.nodePlacement == NodePlacement::MeshVertices ? mesh : nodeSurface(mesh, options);
+    // The level set of the input surface (the geometric truth) and the node surface are
+    // independent: made side by side, the bake takes about as long as the slower of the two.
+    std::shared_ptr<LevelSetGrid> levelSet;
+    tbb::task_group levelSetTask;
+    levelSetTask.run([&] {
+        levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
+    });
+    TriangleMesh surface;
+    try {
+        surface = options.nodePlacement == NodePlacement::MeshVertices
+                      ? mesh
+                      : nodeSurface(mesh, options, /*keepFineInput=*/true);
+    } catch (...) {
+        levelSetTask.wait();
+        throw;
+    }
+    levelSetTask.wait();  // rethrows what the level set threw
+    asset.levelSet = std::move(levelSet);
     asset.nodes = nodesFromMesh(surface, options.areaRule);
     finishAsset(asset, options, warnings);
     for (const Vec3& v : mesh.vertices)
@@ -247,7 +262,7 @@ GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
         const double h = options.nodePlacement == NodePlacement::Count
                              ? edgeLengthForNodeCount(shape.surfaceArea(), options.nodeCount)
                              : options.nodeSpacing;
-        surface = nodeSurface(shape.surfaceMesh(0.5 * h), options);  // fine seed
+        surface = nodeSurface(shape.surfaceMesh(0.5 * h), options, false);  // fine seed
         for (Vec3& v : surface.vertices) v = shape.closestSurfacePoint(v);
     }
     asset.nodes = nodesFromMesh(surface, options.areaRule);

@@ -40,8 +40,10 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
                     std::vector<std::string>& warnings);
 
 /// The mesh whose vertices become the nodes: @a surface remeshed isotropically to the node
-/// spacing or count of @a options (NodePlacement::Spacing or Count). One stage of bakeMesh.
-TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options);
+/// spacing or count of @a options (NodePlacement::Spacing or Count). One stage of bakeMesh,
+/// which remeshes fine scans as they are (@a keepFineInput, see RemeshOptions).
+TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options,
+                         bool keepFineInput);
 
 /// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
 /// surface. NodePlacement::MeshVertices is refused (there is no input mesh).

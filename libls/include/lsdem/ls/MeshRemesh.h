@@ -12,6 +12,11 @@ struct RemeshOptions
     double targetEdgeLength = 0.0;  ///< wanted mean edge length (the SDP), > 0
     double featureAngleDeg = 30.0;  ///< dihedral angle above which an edge is a sharp feature
     int iterations = 5;             ///< CGAL remeshing iterations
+    /// Remesh an input whose mean edge is below about 0.77 of the target nearly as it is
+    /// (only its edges longer than that are split), instead of refining it to 0.44 of the
+    /// target first: about 5x faster on a 100k-triangle scan, with a mean edge up to about
+    /// 4 % further from the target (the result then depends a little on the input's edges).
+    bool keepFineInput = false;
 };
 
 /// Remesh @a input (closed, consistently oriented) so its edges are about

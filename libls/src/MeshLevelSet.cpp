@@ -56,9 +56,13 @@ public:
             for (size_t i = 0; i < layer.size(); ++i)
                 closest.setValueOnly(layer[i], seedTriangles[i]);
         }
+        // OpenVDB grows its band from neighbours' closest triangles in float index space,
+        // measured up to 7 % of a voxel off; one pass over the band's own candidates in double
+        // brings it to the exact distance nearly everywhere.
+        solveLayer(layer, /*keepSign=*/true);
         while (!layer.empty()) {
             layer = nextLayer(layer);
-            solveLayer(layer);
+            solveLayer(layer, /*keepSign=*/false);
         }
     }
 
@@ -84,9 +88,10 @@ private:
         return next;
     }
 
-    /// Each voxel of @a layer takes the nearest of the triangles closest to its 26 known
-    /// neighbours (ties to the lower index); the voxels of one layer are independent.
-    void solveLayer(const std::vector<openvdb::Coord>& layer)
+    /// Each voxel of @a layer takes the nearest of the triangles closest to itself and its 26
+    /// neighbours (ties to the lower index), as minus its distance or (@a keepSign) with the
+    /// sign it has; the voxels of one layer are independent.
+    void solveLayer(const std::vector<openvdb::Coord>& layer, bool keepSign)
     {
         std::vector<float> depth(layer.size());
         std::vector<openvdb::Int32> nearest(layer.size());
@@ -126,7 +131,8 @@ private:
         openvdb::tree::ValueAccessor<openvdb::FloatTree> distance(mDistance);
         for (size_t i = 0; i < layer.size(); ++i) {
             closest.setValueOnly(layer[i], nearest[i]);
-            distance.setValueOnly(layer[i], -depth[i]);
+            const bool outside = keepSign && distance.getValue(layer[i]) > 0.0f;
+            distance.setValueOnly(layer[i], outside ? depth[i] : -depth[i]);
         }
     }
 

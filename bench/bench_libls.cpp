@@ -149,6 +149,7 @@ void BM_BakeStageLevelSet(benchmark::State& state)
         active = double(levelSet->grid->activeVoxelCount());
     }
     state.counters["grid_MiB"] = grid / kMiB;
+    state.counters["peak_MiB"] = peak / kMiB;
     state.counters["peak_over_grid"] = peak / grid;
     state.counters["active_voxels"] = active;
 }
@@ -159,8 +160,15 @@ void BM_BakeStageRemesh(benchmark::State& state)
     const TriangleMesh& mesh = framedPebble();
     const BakeOptions o = pebbleOptions();
     size_t vertices = 0;
-    for (auto _ : state) vertices = nodeSurface(mesh, o, true).vertices.size();
+    double peak = 0;
+    for (auto _ : state) {
+        resetPeakRss();
+        const double before = statusBytes("VmRSS");
+        vertices = nodeSurface(mesh, o, true).vertices.size();
+        peak = statusBytes("VmHWM") - before;
+    }
     state.counters["nodes"] = double(vertices);
+    state.counters["peak_MiB"] = peak / kMiB;
 }
 BENCHMARK(BM_BakeStageRemesh)->Unit(benchmark::kMillisecond)->Iterations(1);
 

@@ -108,7 +108,7 @@ std::shared_ptr<const LevelSetGrid> wrapLevelSet(const openvdb::FloatGrid::Ptr& 
 {
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = grid;
+    levelSet->grid = toLevelSetGrid(*grid);
     levelSet->origin = origin;
     levelSet->voxelSize = voxelSize;
     return levelSet;

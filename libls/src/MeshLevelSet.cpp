@@ -204,7 +204,7 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
 
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = grid;
+    levelSet->grid = toLevelSetGrid(*grid);
     levelSet->origin = origin;
     levelSet->voxelSize = vox;
     return levelSet;

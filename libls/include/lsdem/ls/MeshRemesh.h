@@ -21,7 +21,8 @@ struct RemeshOptions
 
 /// Remesh @a input (closed, consistently oriented) so its edges are about
 /// options.targetEdgeLength long. Sharp edges stay sharp, corners stay put. The input is first
-/// refined by midpoint splits so the result does not depend on its resolution; the mean edge
+/// refined by midpoint splits so the result does not depend on its resolution (but see
+/// keepFineInput); the mean edge
 /// of the result is within about 3 % of the target. Cost: about 0.3 s for 2,000 nodes and
 /// 30 s for 100,000 on one core.
 /// @throw Error if CGAL rejects the mesh or the result is not a closed mesh.

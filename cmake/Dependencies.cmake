@@ -19,3 +19,5 @@ find_package(tomlplusplus CONFIG REQUIRED)
 find_package(OpenSSL REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
+# Optional: MPI for lsdem-study (cmake/Mpi.cmake).
+include(${CMAKE_CURRENT_LIST_DIR}/Mpi.cmake)

@@ -11,6 +11,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     python3 python3-matplotlib
     pybind11-dev python3-dev python3-numpy python3-pytest
+    libopenmpi-dev openmpi-bin
 )
 
 missing=()

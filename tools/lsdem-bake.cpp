@@ -5,6 +5,7 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/BatchBake.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/Stopwatch.h"
 
@@ -13,6 +14,8 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+
+#include <unistd.h>
 
 namespace {
 
@@ -37,9 +40,16 @@ struct BakeCommandLine
     std::string areas = "mesh";
     std::string outputPath;
     bool quiet = false;
+    // Batch mode (--out-dir): many files, sizes relative to each grain.
+    std::string outDir;
+    double voxelPerSize = 0.0, nodeSpacingPerSize = 0.0;
+    int threads = 0;
+    bool rebake = false;
     // The options whose presence matters (which shape, which node placement).
     CLI::Option *sphereOption = nullptr, *boxOption = nullptr, *ellipsoidOption = nullptr;
     CLI::Option *spacingOption = nullptr, *countOption = nullptr, *meshNodesOption = nullptr;
+    CLI::Option *voxelOption = nullptr, *voxelPerSizeOption = nullptr,
+                *spacingPerSizeOption = nullptr;
 };
 
 /// Every option of lsdem-bake, its default and its help.
@@ -50,7 +60,8 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
     using lsdem::cli::addNumbers;
     const std::string input = "Input (one of)";
     app.add_option("mesh", c.meshPaths,
-                   "closed triangle mesh file (OBJ, STL, PLY, or any format assimp reads)")
+                   "closed triangle mesh file (OBJ, STL, PLY, or any format assimp\n"
+                   "reads); several with --out-dir")
         ->type_name("MESH")
         ->group(input);
     c.sphereOption = addNumber(app, "--sphere", c.sphereRadius, "analytic sphere of radius R")
@@ -66,11 +77,11 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
             ->group(input);
 
     const std::string levelSet = "Level set";
-    addNumber(app, "--voxel", c.options.voxelSize,
-              "level-set voxel size (volume discretization parameter)")
-        ->type_name("VDP")
-        ->default_str("")
-        ->group(levelSet);
+    c.voxelOption = addNumber(app, "--voxel", c.options.voxelSize,
+                              "level-set voxel size (volume discretization parameter)")
+                        ->type_name("VDP")
+                        ->default_str("")
+                        ->group(levelSet);
     addInteger(app, "--band", c.options.exteriorBandVoxels, "exterior narrow-band width, voxels")
         ->type_name("VOXELS")
         ->group(levelSet);
@@ -97,6 +108,30 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
         ->type_name("RULE")
         ->capture_default_str()
         ->group(nodes);
+
+    const std::string batch = "Batch (several files, one asset each, and catalog.csv)";
+    app.add_option("--out-dir", c.outDir,
+                   "bake every MESH into DIR/NAME.vdb (NAME: the file's stem) and\n"
+                   "write DIR/catalog.csv; unchanged files are not baked again")
+        ->type_name("DIR")
+        ->group(batch);
+    c.voxelPerSizeOption =
+        addNumber(app, "--voxel-per-size", c.voxelPerSize,
+                  "voxel = F x each grain's equivalent diameter (instead of --voxel)")
+            ->type_name("F")
+            ->default_str("")
+            ->group(batch);
+    c.spacingPerSizeOption =
+        addNumber(app, "--node-spacing-per-size", c.nodeSpacingPerSize,
+                  "node spacing = F x each grain's equivalent diameter")
+            ->type_name("F")
+            ->default_str("")
+            ->group(batch);
+    lsdem::cli::addInteger(app, "--threads", c.threads, "files baked at once; 0: all cores")
+        ->type_name("N")
+        ->group(batch);
+    app.add_flag("--rebake", c.rebake, "bake every file, even those unchanged since the catalogue")
+        ->group(batch);
 
     const std::string output = "Output";
     app.add_option("-o,--output", c.outputPath, "the asset to write (written atomically)")
@@ -125,13 +160,21 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
 {
     using lsdem::Error;
     lsdem::BakeOptions& o = c.options;
-    if (c.meshPaths.size() > 1)
+    const bool batch = !c.outDir.empty();
+    if (c.meshPaths.size() > 1 && !batch)
         throw Error("", "more than one input mesh ('" + c.meshPaths[0] + "', '" +
-                            c.meshPaths[1] + "')");
+                            c.meshPaths[1] + "')",
+                    "bake several files with --out-dir DIR");
+    if (!batch && (c.voxelPerSizeOption->count() || c.spacingPerSizeOption->count()))
+        throw Error("", "--voxel-per-size and --node-spacing-per-size need --out-dir",
+                    "give --out-dir DIR, or --voxel and --node-spacing for one file");
     const size_t placements = c.spacingOption->count() + c.countOption->count() +
-                              c.meshNodesOption->count();
-    if (placements > 1) throw Error("", "give only one of --node-spacing, --nodes, --mesh-nodes");
-    if (c.spacingOption->count()) o.nodePlacement = lsdem::NodePlacement::Spacing;
+                              c.meshNodesOption->count() + c.spacingPerSizeOption->count();
+    if (placements > 1)
+        throw Error("", "give only one of --node-spacing, --node-spacing-per-size, --nodes, "
+                        "--mesh-nodes");
+    if (c.spacingOption->count() || c.spacingPerSizeOption->count())
+        o.nodePlacement = lsdem::NodePlacement::Spacing;
     if (c.meshNodesOption->count()) o.nodePlacement = lsdem::NodePlacement::MeshVertices;
     if (c.countOption->count()) {
         o.nodePlacement = lsdem::NodePlacement::Count;
@@ -149,6 +192,27 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
     if (c.meshPaths.empty() && !shape)
         throw Error("", "no input: give a mesh file or --sphere/--box/--ellipsoid",
                     "see lsdem-bake --help");
+    if (batch) {
+        if (shape) throw Error("", "--out-dir bakes mesh files, not analytic shapes",
+                               "bake a shape alone with -o OUT.vdb");
+        if (!c.outputPath.empty())
+            throw Error("", "give either -o (one file) or --out-dir (a batch), not both");
+        if (c.voxelOption->count() + c.voxelPerSizeOption->count() != 1)
+            throw Error("", "give exactly one of --voxel and --voxel-per-size",
+                        "e.g. --voxel-per-size 0.03");
+        if (c.voxelPerSizeOption->count() && !(c.voxelPerSize > 0.0 && c.voxelPerSize < 1.0))
+            throw Error("", "--voxel-per-size wants a fraction in (0, 1), e.g. 0.03");
+        if (c.spacingPerSizeOption->count() &&
+            !(c.nodeSpacingPerSize > 0.0 && c.nodeSpacingPerSize < 1.0))
+            throw Error("", "--node-spacing-per-size wants a fraction in (0, 1), e.g. 0.05");
+        if (c.threads < 0 || c.threads > 4096)
+            throw Error("", "--threads wants 0 (all cores) to 4096");
+        if (placements == 0)
+            throw Error("", "say how to place surface nodes",
+                        "add --node-spacing SDP, --node-spacing-per-size F, --nodes N or "
+                        "--mesh-nodes");
+        return;
+    }
     if (!c.meshPaths.empty() && shape)
         throw Error("", "give either a mesh file or an analytic shape, not both");
     if (placements == 0)
@@ -156,6 +220,81 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
                     "add --node-spacing SDP, --nodes N or --mesh-nodes");
     if (o.voxelSize == 0.0) throw Error("", "the voxel size is missing", "add --voxel VDP");
     if (c.outputPath.empty()) throw Error("", "no output file", "add -o OUT.vdb");
+}
+
+/// "1 h 02 min", "3 min 20 s", "12 s".
+std::string showDuration(double seconds)
+{
+    const long long s = static_cast<long long>(seconds + 0.5);
+    char text[64];
+    if (s >= 3600) std::snprintf(text, sizeof text, "%lld h %02lld min", s / 3600, s / 60 % 60);
+    else if (s >= 60) std::snprintf(text, sizeof text, "%lld min %02lld s", s / 60, s % 60);
+    else std::snprintf(text, sizeof text, "%lld s", s);
+    return text;
+}
+
+/// The progress line on stderr: redrawn in place on a terminal, else a line every few seconds.
+class ProgressLine
+{
+public:
+    explicit ProgressLine(bool enabled) : mEnabled(enabled), mTerminal(::isatty(2) != 0) {}
+
+    void update(size_t done, size_t total, const std::string& file)
+    {
+        if (!mEnabled) return;
+        const double elapsed = mClock.seconds();
+        if (!mTerminal && done < total && elapsed - mLastPrint < 5.0) return;
+        mLastPrint = elapsed;
+        const double rate = done / std::max(elapsed, 1e-9);
+        const double eta = (total - done) / std::max(rate, 1e-9);
+        std::fprintf(stderr, "%s[%zu/%zu] %3.0f %%  %.2f files/s  ETA %s  %s%s",
+                     mTerminal ? "\r\033[K" : "", done, total, 100.0 * done / total, rate,
+                     showDuration(eta).c_str(), file.c_str(), mTerminal ? "" : "\n");
+        if (mTerminal && done == total) std::fputc('\n', stderr);
+        std::fflush(stderr);
+    }
+
+private:
+    bool mEnabled, mTerminal;
+    lsdem::Stopwatch mClock;
+    double mLastPrint = -1e9;
+};
+
+/// lsdem-bake --out-dir: every file, the catalogue, a summary; exit 4 if some file failed.
+int runBatch(const BakeCommandLine& c)
+{
+    using namespace lsdem;
+    BatchBakeOptions batch;
+    batch.bake = c.options;
+    batch.voxelPerSize = c.voxelPerSize;
+    batch.nodeSpacingPerSize = c.nodeSpacingPerSize;
+    batch.outDir = c.outDir;
+    batch.threads = c.threads;
+    batch.rebake = c.rebake;
+    const Stopwatch clock;
+    ProgressLine progress(!c.quiet);
+    const BatchBakeReport report =
+        bakeBatch(c.meshPaths, batch, [&](size_t done, size_t total, const std::string& file) {
+            progress.update(done, total, file);
+        });
+    const double seconds = clock.seconds();
+    for (const auto& w : report.warnings) std::cerr << "lsdem-bake: warning: " << w << "\n";
+    if (!c.quiet)
+        std::printf("baked %d, unchanged %d, failed %zu of %zu files in %.2f s (%.3g baked/s); "
+                    "catalogue %s (%zu assets)\n",
+                    report.baked, report.unchanged, report.failures.size(), c.meshPaths.size(),
+                    seconds, report.baked / std::max(seconds, 1e-9), report.catalogPath.c_str(),
+                    report.entries.size());
+    if (report.failures.empty()) return 0;
+    std::fprintf(stderr, "lsdem-bake: %zu of %zu files failed and were skipped:\n",
+                 report.failures.size(), c.meshPaths.size());
+    for (const BatchFailure& f : report.failures) {
+        std::string text = f.message;  // its fix line indented under it
+        for (size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1))
+            text.insert(at + 1, "    ");
+        std::fprintf(stderr, "  %s\n", text.c_str());
+    }
+    return 4;
 }
 
 } // namespace
@@ -169,12 +308,15 @@ int main(int argc, char** argv)
         "unit-density mass properties, all in the grain's principal frame (centroid at the "
         "origin).\n\n"
         "  lsdem-bake (MESH | --sphere R | --box A B C | --ellipsoid A B C) --voxel VDP\n"
-        "             (--node-spacing SDP | --nodes N | --mesh-nodes) -o OUT.vdb",
+        "             (--node-spacing SDP | --nodes N | --mesh-nodes) -o OUT.vdb\n"
+        "  lsdem-bake MESH... --out-dir DIR (--voxel VDP | --voxel-per-size F)\n"
+        "             (--node-spacing SDP | --node-spacing-per-size F | --nodes N) [--threads N]",
         "lsdem-bake");
     cli::applyConventions(app);
     app.footer("All lengths are in the mesh's own unit (e.g. mm); lsdem never converts units.\n"
                "Exit codes: 0 baked, 1 bad input, 2 no arguments (this help on stderr), "
-               "3 internal error.");
+               "3 internal error,\n4 some files of a batch failed (the others are baked and in "
+               "the catalogue).");
     BakeCommandLine c;
     addOptions(app, c);
     if (argc < 2) {
@@ -185,6 +327,7 @@ int main(int argc, char** argv)
         if (const auto exitCode = cli::parse(app, argc, argv)) return *exitCode;
         const std::optional<AnalyticShape> shape = chosenShape(c);
         checkAndResolve(c, shape);
+        if (!c.outDir.empty()) return runBatch(c);
         const BakeOptions& options = c.options;
         const std::string& outputPath = c.outputPath;
         c.options.optionsText = quoteArgs(argc, argv);

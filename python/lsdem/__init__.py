@@ -2,7 +2,8 @@
 
 Grain assets (bake_mesh, bake_sphere, bake_box, bake_ellipsoid, load; Asset.sample),
 scenes (Scene.from_toml, Scene.to_toml, or built with Scene.add_*), simulations
-(Simulation.run, .grains, .contacts, .boundaries, .checkpoint). Arrays are numpy; errors are
+(Simulation.run, .grains, .contacts, .boundaries, .checkpoint), whole runs as lsdem-run
+performs them (run_scene) and the paper's studies (study.two_spheres). Arrays are numpy; errors are
 lsdem.Error with lsdem's message (where, problem, fix). Units are yours: lsdem never converts.
 See docs/python.md.
 """
@@ -21,11 +22,14 @@ from ._lsdem import (  # noqa: F401  (re-exported)
     bake_mesh,
     bake_sphere,
     load,
+    run_scene,
+    study,
 )
 
 __all__ = [
     "Asset", "Boundaries", "Boundary", "Error", "Grains", "Nodes", "Scene", "Simulation",
-    "bake_box", "bake_ellipsoid", "bake_mesh", "bake_sphere", "load", "every",
+    "bake_box", "bake_ellipsoid", "bake_mesh", "bake_sphere", "load", "every", "run_scene",
+    "study",
 ]
 
 # Show the public classes as lsdem.X (not lsdem._lsdem.X) in help() and reprs.

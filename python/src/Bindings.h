@@ -1,6 +1,6 @@
 /// @file Bindings.h
 /// @brief What the binding files of the Python module share: one bind function per concept
-///        (errors, assets, sampling, scenes, simulation), the Python-side asset handle, and
+///        (errors, assets, sampling, scenes, simulation, whole runs), the Python-side asset handle, and
 ///        the conversions between lsdem's Eigen vectors and numpy arrays.
 #pragma once
 
@@ -22,6 +22,7 @@ void bindAssets(py::module_& m);
 void bindSampling(py::module_& m);  ///< adds Asset.sample (after bindAssets)
 void bindScenes(py::module_& m);
 void bindSimulation(py::module_& m);
+void bindRuns(py::module_& m);      ///< run_scene (lsdem-run) and the study submodule
 
 /// A grain asset as Python sees it: shared and read-only (many grains, one asset), with the
 /// file it was loaded from or saved to, so a scene holding it can be written as TOML.

@@ -86,4 +86,5 @@ PYBIND11_MODULE(_lsdem, m)
     bindSampling(m);
     bindScenes(m);
     bindSimulation(m);
+    bindRuns(m);
 }

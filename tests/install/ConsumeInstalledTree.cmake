@@ -33,7 +33,7 @@ set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
 
 run("install" out ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix} --config ${CONFIG})
-foreach(file bin/lsdem-bake bin/lsdem-inspect bin/lsdem-run bin/lsdem-study
+foreach(file bin/lsdem-bake bin/lsdem-grains bin/lsdem-inspect bin/lsdem-run bin/lsdem-study
         include/lsdem/ls/Bake.h include/lsdem/contact/PairContact.h include/lsdem/run/Checkpoint.h
         share/lsdem/plots/two_spheres.py share/lsdem/plots/plotting.py)
     if(NOT EXISTS ${prefix}/${file})
@@ -64,6 +64,25 @@ run("installed lsdem-bake" out ${prefix}/bin/lsdem-bake --sphere 1 --voxel 0.1
     --node-spacing 0.25 -o ${WORK_DIR}/sphere.vdb)
 run("installed lsdem-inspect" out ${prefix}/bin/lsdem-inspect ${WORK_DIR}/sphere.vdb)
 expectContains("installed lsdem-inspect" "${out}" "lsdem grain asset")
-foreach(program lsdem-run lsdem-study)
+foreach(program lsdem-grains lsdem-run lsdem-study)
     run("installed ${program} --help" out ${prefix}/bin/${program} --help)
 endforeach()
+
+# The installed Python package (when the build has one), imported from the prefix with no
+# LD_LIBRARY_PATH: its RPATH must find the installed libraries too.
+file(GLOB installedPackage ${prefix}/lib*/python3*/*-packages/lsdem/__init__.py)
+if(installedPackage)
+    get_filename_component(packageDir ${installedPackage} DIRECTORY)
+    get_filename_component(sitePackages ${packageDir} DIRECTORY)
+    find_program(python NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+    if(NOT python)
+        find_program(python NAMES python3 REQUIRED)
+    endif()
+    # A script file, not -c: the argument list would split the code at its semicolons.
+    file(WRITE ${WORK_DIR}/import_lsdem.py
+        "import lsdem\nasset = lsdem.load(r'${WORK_DIR}/sphere.vdb')\n"
+        "print('lsdem from', lsdem.__file__, len(asset.nodes.positions), 'nodes')\n")
+    run("installed Python package" out ${CMAKE_COMMAND} -E env PYTHONPATH=${sitePackages}
+        ${python} ${WORK_DIR}/import_lsdem.py)
+    expectContains("installed Python package" "${out}" "lsdem from ${packageDir}")
+endif()

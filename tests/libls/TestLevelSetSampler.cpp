@@ -39,6 +39,36 @@ TEST(LevelSetSampler, ReproducesTrilinearFunctionsAndTheirGradients)
     }
 }
 
+// A point that walks in small steps (as a node does over a run) and keeps its cell gets the
+// same bits as a fresh sample each time, whether it stayed in its cell or moved on.
+TEST(LevelSetSampler, ACellKeptBetweenSamplesGivesTheSameBits)
+{
+    initializeOpenVdb();
+    BakeOptions options;
+    options.voxelSize = 0.1;
+    options.nodeSpacing = 0.5;
+    std::vector<std::string> warnings;
+    const GrainAsset sphere = bakeAnalytic(AnalyticShape::sphere(1.0), options, warnings);
+    const LevelSetGrid& ls = *sphere.levelSet;
+    LevelSetSampler sampler(ls);
+    LevelSetCell cell;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Vec3 p(0.93, 0.05, -0.2);
+    int reused = 0, moved = 0;
+    for (int n = 0; n < 2000; ++n) {
+        p += 0.01 * Vec3(u(rng), u(rng), u(rng));  // a tenth of a voxel per axis at most
+        const std::array<int, 3> before = cell.base;
+        const LevelSetSample kept = sampler.sample(p, cell);
+        const LevelSetSample fresh = sampler.sample(p);
+        ASSERT_EQ(kept.phi, fresh.phi) << n;
+        ASSERT_EQ(kept.gradient, fresh.gradient) << n;
+        (cell.base == before ? reused : moved) += 1;
+    }
+    EXPECT_GT(reused, 1000);  // mostly in the cell of the last sample ...
+    EXPECT_GT(moved, 20);     // ... but crossing into others too
+}
+
 TEST(LevelSetSampler, ManyThreadsSeeTheSameValuesAsOne)
 {
     std::vector<std::string> warnings;

@@ -2,6 +2,7 @@
 
 #include "studies/SphereSeriesCommand.h"
 #include "studies/StudyCommandOptions.h"
+#include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
@@ -94,15 +95,21 @@ bool Cube27Command::chosen() const
     return mCommand->parsed();
 }
 
-int Cube27Command::run() const
+int Cube27Command::run(RunDistributor& ranks) const
 {
     const Cube27Options& o = mOptions;
     checkCube27Options(o);
     planCube27(o);  // refuses a --steps too few for any run, before anything is written
+    const ThreadLimit threads(0, ranks);
+    if (!ranks.isRoot()) {
+        runCube27(o, ranks);  // the runs rank 0 hands out; rank 0 writes everything
+        return 0;
+    }
     cli::prepareOutputFolder(o.outDir);
+    if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const Stopwatch wall;
-    const Cube27Result result = runCube27(o);
+    const Cube27Result result = runCube27(o, ranks);
     const std::string csv = o.outDir + "/cube27.csv";
     writeCube27Csv(result, o, csv);
     const double seconds = wall.seconds();

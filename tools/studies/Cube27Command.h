@@ -23,9 +23,10 @@ public:
     bool chosen() const;
 
     /// Check the options and the loading plan, run the study, write DIR/cube27.csv, print the
-    /// summary and draw the plots. Returns the exit code (4: the plots failed).
-    /// @throw Error for bad options, before anything is written.
-    int run() const;
+    /// summary and draw the plots (rank 0; the other ranks of @a ranks only do runs). Returns
+    /// the exit code (4: the plots failed). @throw Error for bad options, before anything is
+    /// written.
+    int run(RunDistributor& ranks) const;
 
 private:
     CLI::App* mCommand = nullptr;

@@ -1,5 +1,8 @@
 #include "studies/Cube27Study.h"
 
+#include "studies/RunRecord.h"
+#include "studies/RunSchedule.h"
+
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Constants.h"
@@ -38,7 +41,8 @@ struct Samples
 };
 
 /// The plan, printed before the first run: what each run costs and the total.
-void printPlan(const std::vector<Cube27Run>& runs, double totalNodeSteps)
+void printPlan(const std::vector<Cube27Run>& runs, double totalNodeSteps, int ranks,
+               const std::vector<double>& costs)
 {
     std::printf("cube27 plan: %zu runs (27 grains each); cost = grains x nodes x steps\n",
                 runs.size());
@@ -51,6 +55,9 @@ void printPlan(const std::vector<Cube27Run>& runs, double totalNodeSteps)
                     27.0 * run.nodes * double(run.steps));
     std::printf("  total %.3g node-steps, about %.0f s at %.2g node-steps/s (2 cores)\n",
                 totalNodeSteps, totalNodeSteps / kNodeStepsPerSecond, kNodeStepsPerSecond);
+    if (ranks > 1)
+        std::printf("  on %d ranks, largest runs first: about %.0f s if each rank has 2 cores\n", ranks,
+                    largestFirstMakespan(costs, ranks) / kNodeStepsPerSecond);
     std::fflush(stdout);
 }
 
@@ -161,58 +168,113 @@ void appendRows(const Cube27Options& o, const Key& key, const std::vector<Sample
 
 } // namespace
 
-Cube27Result runCube27(const Cube27Options& o)
+Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
 {
     checkCube27Options(o);
     Cube27Result result;
     result.runs = planCube27(o);
+    const bool live = ranks.ranks() == 1;
 
-    double totalNodeSteps = 0.0;
-    for (const Cube27Run& run : result.runs) totalNodeSteps += 27.0 * run.nodes * double(run.steps);
-    if (!o.quiet) printPlan(result.runs, totalNodeSteps);
-
-    // Samples per run, grouped by (formulation, N, k) in plan order.
-    std::map<Key, std::vector<Samples>> samples;
-    std::map<int, double> nodesActual;
-    std::vector<Key> order;
-    double doneNodeSteps = 0.0;
-    size_t index = 0;
-    for (int nodes : o.nodeCounts) {
-        const auto bakeStart = SteadyClock::now();
-        std::vector<std::string> warnings;
-        const auto sphere =
-            std::make_shared<const GrainAsset>(bakeSeriesSphere(o, nodes, warnings));
-        nodesActual[nodes] = double(sphere->nodes.size());
-        result.bakeSeconds += secondsSince(bakeStart);
-        if (!o.quiet) {
-            std::printf("N = %d: baked %zu nodes (spacing %.3g mm), voxel %g mm\n", nodes,
-                        sphere->nodes.size(), sphere->spacing.mean, o.voxel);
-            for (const std::string& w : warnings) std::printf("  warning: %s\n", w.c_str());
-        }
-
-        for (; index < result.runs.size() && result.runs[index].nodes == nodes; ++index) {
-            Cube27Run& run = result.runs[index];
-            const auto start = SteadyClock::now();
-            Samples s = simulateRun(o, run, sphere);
-            run.seconds = secondsSince(start);
-            result.simulateSeconds += run.seconds;
-            doneNodeSteps += 27.0 * nodes * double(run.steps);
+    // One job per run of the plan. Under MPI a rank keeps the spheres it baked (tens of MB
+    // each), so each node count is baked once per rank that runs it; serially the plan's order
+    // needs one sphere at a time.
+    std::map<int, std::shared_ptr<const GrainAsset>> spheres;
+    const RunDistributor::Job job = [&](const std::string& description) {
+        Cube27Run run = result.runs.at(size_t(RecordReader(description).integer()));
+        RecordWriter out;
+        std::string log;
+        double bakeSeconds = 0.0;
+        if (live && !spheres.count(run.nodes)) spheres.clear();
+        std::shared_ptr<const GrainAsset>& sphere = spheres[run.nodes];
+        if (!sphere) {
+            const auto bakeStart = SteadyClock::now();
+            std::vector<std::string> warnings;
+            sphere = std::make_shared<const GrainAsset>(bakeSeriesSphere(o, run.nodes, warnings));
+            bakeSeconds = secondsSince(bakeStart);
             if (!o.quiet) {
-                const double rate = doneNodeSteps / std::max(result.simulateSeconds, 1e-9);
-                std::printf("  [%zu/%zu] %-8s N=%-6d k=%-8s m=%d: %lld steps, %.2f s; "
-                            "P(δmax) = %.5g N; stability margin %.1fx; ETA %.0f s\n",
-                            index + 1, result.runs.size(), formulationName(run.formulation).c_str(),
-                            nodes, formatNumber(run.stiffness).c_str(), run.orientation, run.steps,
-                            run.seconds, s.top.back(), run.stabilityLimitSeen / run.timeStep,
-                            (totalNodeSteps - doneNodeSteps) / rate);
-                std::fflush(stdout);
+                char line[160];
+                std::snprintf(line, sizeof line, "N = %d: baked %zu nodes (spacing %.3g mm), voxel %g mm\n",
+                              run.nodes, sphere->nodes.size(), sphere->spacing.mean, o.voxel);
+                log += line;
+                for (const std::string& w : warnings) log += "  warning: " + w + "\n";
             }
-            const Key key{int(run.formulation), nodes, run.stiffness};
-            if (!samples.count(key)) order.push_back(key);
-            samples[key].push_back(std::move(s));
+            if (live) {
+                std::fputs(log.c_str(), stdout);
+                log.clear();
+            }
         }
+        const auto start = SteadyClock::now();
+        const Samples s = simulateRun(o, run, sphere);
+        out.number(secondsSince(start)).number(run.stabilityLimitSeen).integer(run.contactNodes);
+        out.number(double(sphere->nodes.size())).number(bakeSeconds);
+        out.numbers(s.delta).numbers(s.top).numbers(s.floor).numbers(s.side).text(log);
+        return out.bytes();
+    };
+    if (!ranks.isRoot()) {
+        ranks.serve(job);
+        return {};
     }
 
+    double totalNodeSteps = 0.0;
+    std::vector<std::string> descriptions;
+    std::vector<double> costs;
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const Cube27Run& run = result.runs[i];
+        costs.push_back(27.0 * run.nodes * double(run.steps));
+        totalNodeSteps += costs.back();
+        descriptions.push_back(RecordWriter().integer(static_cast<long long>(i)).bytes());
+    }
+    if (!o.quiet) printPlan(result.runs, totalNodeSteps, ranks.ranks(), costs);
+
+    std::vector<Samples> samplesOf(result.runs.size());
+    std::map<int, double> nodesActual;
+    double doneNodeSteps = 0.0;
+    size_t done = 0;
+    RunShares shares(ranks.ranks());
+    ranks.runAll(descriptions, costs, job, [&](size_t index, int rank, const std::string& record) {
+        Cube27Run& run = result.runs[index];
+        RecordReader in(record);
+        run.seconds = in.number();
+        run.stabilityLimitSeen = in.number();
+        run.contactNodes = in.integer();
+        nodesActual[run.nodes] = in.number();
+        result.bakeSeconds += in.number();
+        Samples& s = samplesOf[index];
+        s.delta = in.numbers();
+        s.top = in.numbers();
+        s.floor = in.numbers();
+        s.side = in.numbers();
+        const std::string log = in.text();
+        result.simulateSeconds += run.seconds;
+        doneNodeSteps += costs[index];
+        shares.add(rank);
+        ++done;
+        if (!o.quiet) {
+            // Node-steps per second of one rank, so the time left is shared among the ranks.
+            const double rate = doneNodeSteps / std::max(result.simulateSeconds, 1e-9);
+            std::printf("%s  [%zu/%zu] %-8s N=%-6d k=%-8s m=%d: %lld steps, %.2f s; "
+                        "P(δmax) = %.5g N; stability margin %.1fx; ETA %.0f s",
+                        log.c_str(), done, result.runs.size(), formulationName(run.formulation).c_str(),
+                        run.nodes, formatNumber(run.stiffness).c_str(), run.orientation, run.steps,
+                        run.seconds, s.top.back(), run.stabilityLimitSeen / run.timeStep,
+                        (totalNodeSteps - doneNodeSteps) / rate / ranks.ranks());
+            if (!live) std::printf(" (rank %d)", rank);
+            std::printf("\n");
+            std::fflush(stdout);
+        }
+    });
+    ranks.finish();
+    if (!live) std::printf("%s\n", shares.text().c_str());
+
+    // Rows grouped by (formulation, N, k) in plan order, wherever each run was done.
+    std::map<Key, std::vector<Samples>> samples;
+    std::vector<Key> order;
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const Cube27Run& run = result.runs[i];
+        const Key key{int(run.formulation), run.nodes, run.stiffness};
+        if (!samples.count(key)) order.push_back(key);
+        samples[key].push_back(std::move(samplesOf[i]));
+    }
     std::map<double, double> unitForce;
     for (const Key& key : order)
         appendRows(o, key, samples[key], nodesActual[std::get<1>(key)], unitForce, result.rows);

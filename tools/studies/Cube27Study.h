@@ -24,6 +24,7 @@
 #include "studies/Cube27Options.h"
 #include "studies/Cube27Plan.h"
 #include "studies/Cube27Scene.h"
+#include "studies/RunDistributor.h"
 
 #include <string>
 #include <vector>
@@ -52,8 +53,10 @@ struct Cube27Result
     double bakeSeconds = 0, simulateSeconds = 0;
 };
 
-/// Run the study (no files written). Prints the plan and each run's wall time unless quiet.
-Cube27Result runCube27(const Cube27Options& o);
+/// Run the study (no files written), its runs spread by @a ranks. Prints the plan and each
+/// run's wall time unless quiet. On rank 0 the result, the same on any number of ranks; the
+/// other ranks do the runs rank 0 hands them and get an empty result.
+Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks = serialRunDistributor());
 
 /// Write @a result as CSV to @a path (atomically).
 void writeCube27Csv(const Cube27Result& result, const Cube27Options& o, const std::string& path);

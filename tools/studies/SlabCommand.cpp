@@ -2,6 +2,7 @@
 
 #include "studies/SlabPanel.h"
 #include "studies/StudyCommandOptions.h"
+#include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
@@ -9,12 +10,12 @@
 #include "lsdem/ls/Error.h"
 
 #include <CLI/CLI.hpp>
-#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 namespace lsdem {
 
@@ -35,10 +36,17 @@ SlabCommand::SlabCommand(CLI::App& study)
     SlabStudyOptions& o = mOptions;
     // First: CLI11 applies options in the order they are added, so --full sets the lists that
     // the other options then override, wherever it stands on the command line.
-    mCommand->add_flag_callback("--full", [&o] { o = slabFullOptions(); },
-                                "the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original "
-                                "to\n0.25) at VDP 0.035, then VDP 0.4 0.28 0.2 ... 0.035 (steps "
-                                "of\nsqrt 2); other options refine it");
+    CLI::Option* full =
+        mCommand->add_flag_callback("--full", [&o] { o = slabFullOptions(); },
+                                    "the full study: SDP 1 0.7 0.5 0.35 0.25 0.18 0.125 (original "
+                                    "to\n0.25) at VDP 0.035, then VDP 0.4 0.28 0.2 ... 0.035 (steps "
+                                    "of\nsqrt 2); other options refine it");
+    mCommand
+        ->add_flag_callback("--seed", [&o] { o = slabSeedOptions(); },
+                            "the seed's resolution, adapted only: SDP 1 0.7 ... 0.09 0.06 at\n"
+                            "VDP 0.025, then VDP 0.4 0.28 ... 0.035 0.025 (steps of sqrt 2);\n"
+                            "hours on 2 cores: see --estimate, and run it under mpirun")
+        ->excludes(full);
 
     const std::string panel = "Panel";
     addInteger(*mCommand, "--blocks", o.panel.blocksPerSide, "blocks per side, odd")
@@ -173,13 +181,23 @@ bool SlabCommand::chosen() const
     return mCommand->parsed();
 }
 
-int SlabCommand::run() const
+int SlabCommand::run(RunDistributor& ranks) const
 {
     const SlabStudyOptions& o = mOptions;
     checkSlabStudyOptions(o);
     const SlabPanel panel(o.panel);
+    const ThreadLimit threads(mThreads, ranks);
+    if (!ranks.isRoot()) {
+        // The runs rank 0 hands out (their lines go to rank 0 with their results); rank 0
+        // prints and writes everything.
+        if (!mEstimateOnly) runSlabStudy(o, o.quiet ? nullptr : &std::cout, {}, ranks);
+        return 0;
+    }
     const SlabStiffness k = slabStiffness(o);
-    const SlabCostEstimate cost = estimateSlabCost(o);
+    const double coresPerRank = threads.threads() > 0
+                                    ? double(threads.threads())
+                                    : double(std::max(1u, std::thread::hardware_concurrency()));
+    const SlabCostEstimate cost = estimateSlabCost(o, ranks.ranks(), coresPerRank);
     std::printf("slab: %dx%d blocks, L = %g mm, t = %g mm, angle %g deg; indenter R = %g mm at "
                 "%g mm/s to delta = %g mm\n"
                 "      kn* = %g N/mm^3, ks* = %g N/mm^3 (adapted), kn = %g N/mm (original), mu = %g\n"
@@ -191,14 +209,12 @@ int SlabCommand::run() const
     if (mEstimateOnly) return 0;
 
     cli::prepareOutputFolder(o.outDir);
+    if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
-    std::unique_ptr<tbb::global_control> limit;
-    if (mThreads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      static_cast<size_t>(mThreads));
     const SlabStudyResult result =
         runSlabStudy(o, o.quiet ? nullptr : &std::cout,
-                     [&](const SlabStudyResult& sofar) { writeSlabOutputs(sofar, o, panel); });
+                     [&](const SlabStudyResult& sofar) { writeSlabOutputs(sofar, o, panel); },
+                     ranks);
     writeSlabOutputs(result, o, panel);
 
     std::printf("\n%-9s %-6s %6s %6s %7s %8s %10s %10s %9s\n", "stage", "formul.", "SDP", "VDP",

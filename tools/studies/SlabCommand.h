@@ -22,10 +22,11 @@ public:
     /// Whether the parsed command line chose this study.
     bool chosen() const;
 
-    /// Check the options, print the cost (and stop there with --estimate), run the study,
-    /// write the outputs, print the summary and draw the plots. Returns the exit code (4: the
-    /// plots failed). @throw Error for bad options, before anything is written.
-    int run() const;
+    /// Check the options, print the cost (and stop there with --estimate), run the study with
+    /// its runs spread by @a ranks, write the outputs, print the summary and draw the plots
+    /// (rank 0; the other ranks only do runs). Returns the exit code (4: the plots failed).
+    /// @throw Error for bad options, before anything is written.
+    int run(RunDistributor& ranks) const;
 
 private:
     CLI::App* mCommand = nullptr;

@@ -1,5 +1,6 @@
 #include "studies/SlabCost.h"
 
+#include "studies/RunSchedule.h"
 #include "studies/SlabModel.h"
 
 #include <algorithm>
@@ -15,15 +16,24 @@ namespace {
 /// triangles, two per vertex).
 double nodesForSpacing(double area, double sdp) { return 2.0 * area / (std::sqrt(3.0) * sdp * sdp); }
 
-double blockSurfaceArea(const SlabPanel& panel) { return surfaceArea(panel.referenceMesh()); }
+/// "a to b min" or "a min".
+std::string minutes(double least, double most)
+{
+    std::ostringstream t;
+    t << std::setprecision(3);
+    if (least < 0.99 * most)
+        t << least / 60.0 << " to " << most / 60.0 << " min";
+    else
+        t << most / 60.0 << " min";
+    return t.str();
+}
 
 } // namespace
 
-SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
+SlabRunCost slabRunCost(const SlabStudyOptions& o, const SlabCase& run)
 {
-    SlabCostEstimate e;
     const SlabPanel panel(o.panel);
-    const double area = blockSurfaceArea(panel);
+    const double area = surfaceArea(panel.referenceMesh());
     const double blocks = double(panel.n()) * panel.n();
     const SlabStiffness k = slabStiffness(o);
     const double mass = o.material.density * panel.blockVolume();
@@ -31,56 +41,72 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     // per block node and step, both directions of symmetric testing and the shear history
     // included.
     const double secondsPerNodeStep = 75e-9;
-    struct RunCost
-    {
-        double seconds = 0.0, nodes = 0.0, bytes = 0.0;
-        long long steps = 0;
-    };
-    auto runCost = [&](Formulation f, double sdp, double vdp) {
-        RunCost c;
-        c.nodes = nodesForSpacing(area, sdp);
-        const ContactModel model = slabContactModel(o, f);
-        const double face = model.normal().patchStiffness(
-            model.normalStiffness, panel.sharedFaceArea(), area / c.nodes);
-        const double dt =
-            o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
-        // Clamped before the cast: absurd inputs are refused by the caller, not undefined here.
-        c.steps = static_cast<long long>(std::min(std::ceil(slabDeltaMax(o) / (o.speed * dt)), 1e15));
-        c.seconds = c.steps * blocks * c.nodes * secondsPerNodeStep;
-        // The peak is the bake: measured 816 MB resident for the block at VDP 0.025 mm (a
-        // 58 MiB asset), about 48 bytes per voxel of the block's padded bounding box. Then
-        // the run: nodes (position, normal, area) and the shear history per node in contact
-        // (a std::map entry, ~80 bytes) for about half the nodes of every block.
-        const double box = (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
-                           (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
-                           (o.panel.thickness + 10 * vdp);
-        c.bytes = 48.0 * box / (vdp * vdp * vdp) + c.nodes * 56.0 + blocks * c.nodes * 0.5 * 80.0;
-        return c;
-    };
+    SlabRunCost c;
+    c.nodes = nodesForSpacing(area, run.sdp);
+    const ContactModel model = slabContactModel(o, run.formulation);
+    const double face =
+        model.normal().patchStiffness(model.normalStiffness, panel.sharedFaceArea(), area / c.nodes);
+    const double dt =
+        o.timeStepSafety * 2.0 * std::sqrt(mass / (2.0 * face * std::max(1.0, k.ksStar / k.knStar)));
+    // Clamped before the cast: absurd inputs are refused by the caller, not undefined here.
+    c.steps = static_cast<long long>(std::min(std::ceil(slabDeltaMax(o) / (o.speed * dt)), 1e15));
+    c.seconds = c.steps * blocks * c.nodes * secondsPerNodeStep;
+    // The peak is the bake: measured 816 MB resident for the block at VDP 0.025 mm (a
+    // 58 MiB asset), about 48 bytes per voxel of the block's padded bounding box. Then
+    // the run: nodes (position, normal, area) and the shear history per node in contact
+    // (a std::map entry, ~80 bytes) for about half the nodes of every block.
+    const double vdp = run.vdp;
+    const double box = (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
+                       (o.panel.blockSize + 2 * panel.overhang() + 10 * vdp) *
+                       (o.panel.thickness + 10 * vdp);
+    c.bytes = 48.0 * box / (vdp * vdp * vdp) + c.nodes * 56.0 + blocks * c.nodes * 0.5 * 80.0;
+    return c;
+}
+
+double slabSecondsOnRanks(const SlabCostEstimate& e, int ranks, double coresPerRank, bool most)
+{
+    const double slowdown = 2.0 / std::max(coresPerRank, 1e-9);
+    return slowdown * (largestFirstMakespan(e.stageOne, ranks) +
+                       largestFirstMakespan(most ? e.stageTwoMost : e.stageTwoLeast, ranks));
+}
+
+SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o, int ranks, double coresPerRank)
+{
+    SlabCostEstimate e;
+    const double blocks = double(o.panel.blocksPerSide) * o.panel.blocksPerSide;
     // Counted runs: the upper bound's (stage 2 at the finest SDP).
-    auto count = [&](const RunCost& c) {
+    auto count = [&](const SlabRunCost& c) {
         ++e.runs;
         e.steps += c.steps;
         e.seconds += c.seconds;
         e.nodesPerBlockFinest = std::max(e.nodesPerBlockFinest, c.nodes);
         e.memoryBytes = std::max(e.memoryBytes, c.bytes);
     };
-    const std::vector<double> sdps = slabCoarseToFine(o.sdps);
-    for (double s : sdps)
-        for (Formulation f : o.formulations)
-            if (slabStageOneRuns(o, f, s)) count(runCost(f, s, o.fixedVdp));
+    for (const SlabCase& c : slabStageOneCases(o)) {
+        const SlabRunCost cost = slabRunCost(o, c);
+        count(cost);
+        e.stageOne.push_back(cost.seconds);
+    }
     e.secondsAtLeast = e.seconds;
     if (o.twoWay) {
         // Stage 2 runs at the converged SDP, not known yet: it costs least at the coarsest SDP
         // and most at the finest.
-        const std::vector<double> vdps = slabCoarseToFine(o.vdps);
-        for (double v : vdps) {
-            if (std::abs(v - o.fixedVdp) <= 1e-12) continue;  // shared with stage 1
-            e.secondsAtLeast += runCost(Formulation::Adapted, sdps.front(), v).seconds;
-            count(runCost(Formulation::Adapted, sdps.back(), v));
+        const std::vector<double> sdps = slabCoarseToFine(o.sdps);
+        const std::vector<SlabCase> most = slabStageTwoCases(o, sdps.back());
+        const std::vector<SlabCase> least = slabStageTwoCases(o, sdps.front());
+        for (size_t i = 0; i < most.size(); ++i) {
+            if (std::abs(most[i].vdp - o.fixedVdp) <= 1e-12) continue;  // shared with stage 1
+            const double leastSeconds = slabRunCost(o, least[i]).seconds;
+            e.secondsAtLeast += leastSeconds;
+            e.stageTwoLeast.push_back(leastSeconds);
+            const SlabRunCost cost = slabRunCost(o, most[i]);
+            count(cost);
+            e.stageTwoMost.push_back(cost.seconds);
         }
-        const RunCost coarse = runCost(Formulation::Adapted, sdps.front(), vdps.front());  // snapshots
+        const SlabRunCost coarse = slabRunCost(o, slabCoarseCase(o));  // snapshots
         e.secondsAtLeast += coarse.seconds;
+        e.stageTwoLeast.push_back(coarse.seconds);
+        e.stageTwoMost.push_back(coarse.seconds);
         count(coarse);
     }
     std::ostringstream t;
@@ -92,6 +118,20 @@ SlabCostEstimate estimateSlabCost(const SlabStudyOptions& o)
     else
         t << e.seconds / 60.0 << " min on 2 cores, ";
     t << "peak memory about " << e.memoryBytes / 1048576.0 << " MiB";
+    if (ranks > 1) {
+        t << "; on " << ranks << " MPI ranks x " << coresPerRank
+          << (coresPerRank == 1.0 ? " core" : " cores") << ", largest runs first: about "
+          << minutes(slabSecondsOnRanks(e, ranks, coresPerRank, false),
+                     slabSecondsOnRanks(e, ranks, coresPerRank, true))
+          << ", peak memory per rank the same";
+    } else {
+        // What MPI could do: one rank of 2 cores per run of the larger stage.
+        const int enough = int(std::max(e.stageOne.size(), e.stageTwoMost.size()));
+        if (enough > 1)
+            t << "; under mpirun, " << enough << " ranks of 2 cores (one per run): about "
+              << minutes(slabSecondsOnRanks(e, enough, 2.0, false),
+                         slabSecondsOnRanks(e, enough, 2.0, true));
+    }
     e.text = t.str();
     return e;
 }

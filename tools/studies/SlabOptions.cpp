@@ -120,6 +120,17 @@ SlabStudyOptions slabFullOptions()
     return o;
 }
 
+SlabStudyOptions slabSeedOptions()
+{
+    SlabStudyOptions o;
+    o.formulations = {Formulation::Adapted};
+    o.sdps = {1.0, 0.7, 0.5, 0.35, 0.25, 0.18, 0.125, 0.09, 0.06};
+    o.originalSdps.clear();
+    o.fixedVdp = 0.025;
+    o.vdps = {0.4, 0.28, 0.2, 0.14, 0.1, 0.07, 0.05, 0.035, 0.025};
+    return o;
+}
+
 std::vector<double> slabCoarseToFine(std::vector<double> v)
 {
     std::sort(v.begin(), v.end(), std::greater<double>());

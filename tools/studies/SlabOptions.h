@@ -75,6 +75,11 @@ constexpr double kMaxSlabMemoryBytes = 20.0 * 1073741824.0;
 /// The quick default and the `--full` lists of the two-way study.
 SlabStudyOptions slabFullOptions();
 
+/// `--seed`: the adapted formulation's two-way study down to the seed's resolution
+/// (SDP 0.06 mm, VDP 0.025 mm; Feldfogel et al. 2024): SDP 1 ... 0.06 mm in steps of about
+/// sqrt 2 at VDP 0.025 mm, then VDP 0.4 ... 0.025 mm likewise at the converged SDP.
+SlabStudyOptions slabSeedOptions();
+
 /// The indenter's travel: o.deltaMax, or twice the thickness when that is 0.
 double slabDeltaMax(const SlabStudyOptions& o);
 

@@ -19,10 +19,12 @@
 #pragma once
 
 #include "studies/SlabConvergence.h"
+#include "studies/RunDistributor.h"
 #include "studies/SlabCost.h"
 #include "studies/SlabFailure.h"
 #include "studies/SlabModel.h"
 #include "studies/SlabOptions.h"
+#include "studies/SlabPlan.h"
 #include "studies/SlabRun.h"
 #include "studies/SlabScene.h"
 
@@ -49,12 +51,17 @@ struct SlabStudyResult
     double wallSeconds = 0.0;
 };
 
-/// The whole study. Writes only the baked blocks (o.outDir/assets/block_sdp*_vdp*.vdb, for
-/// lsdem-run; the runs use them from memory); progress goes to @a log if not null; @a afterEachRun, if set, sees the
-/// result so far after every run (lsdem-study writes the outputs there, so that a study cut
-/// short keeps its finished runs). See writeSlabOutputs.
+/// The whole study, its runs spread by @a ranks (each stage's runs largest first; stage 2
+/// starts when stage 1 is done). Writes only the baked blocks (o.outDir/assets/
+/// block_sdp*_vdp*.vdb, for lsdem-run; the runs use them from memory); progress goes to @a log
+/// if not null; @a afterEachRun, if set, sees the result so far after every run (lsdem-study
+/// writes the outputs there, so that a study cut short keeps its finished runs). See
+/// writeSlabOutputs. The result is the same on any number of ranks, in the same order; it is
+/// rank 0's, and only rank 0 writes (blocks made elsewhere come to it as bytes); the other
+/// ranks do the runs rank 0 hands them and get an empty result.
 SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
-                             const std::function<void(const SlabStudyResult&)>& afterEachRun = {});
+                             const std::function<void(const SlabStudyResult&)>& afterEachRun = {},
+                             RunDistributor& ranks = serialRunDistributor());
 
 /// Write slab.csv, slab_runs.csv, slab_snapshots.csv and slab_failure.txt into o.outDir
 /// (each atomically).

@@ -2,6 +2,7 @@
 
 #include "studies/SphereSeriesCommand.h"
 #include "studies/StudyCommandOptions.h"
+#include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
@@ -44,14 +45,20 @@ bool TwoSpheresCommand::chosen() const
     return mCommand->parsed();
 }
 
-int TwoSpheresCommand::run() const
+int TwoSpheresCommand::run(RunDistributor& ranks) const
 {
     const TwoSpheresOptions& o = mOptions;
     checkTwoSpheresOptions(o);
+    const ThreadLimit threads(0, ranks);
+    if (!ranks.isRoot()) {
+        runTwoSpheres(o, ranks);  // the runs rank 0 hands out; rank 0 writes everything
+        return 0;
+    }
     cli::prepareOutputFolder(o.outDir);
+    if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const Stopwatch wall;
-    const TwoSpheresResult result = runTwoSpheres(o);
+    const TwoSpheresResult result = runTwoSpheres(o, ranks);
     const std::string csv = o.outDir + "/two_spheres.csv";
     writeTwoSpheresCsv(result, o, csv);
     const double seconds = wall.seconds();

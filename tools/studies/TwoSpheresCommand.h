@@ -22,9 +22,10 @@ public:
     /// Whether the parsed command line chose this study.
     bool chosen() const;
 
-    /// Check the options, run the study, write DIR/two_spheres.csv, print the summary and draw
-    /// the plots. Returns the exit code (4: the plots failed). @throw Error for bad options.
-    int run() const;
+    /// Check the options, run the study with its runs spread by @a ranks, write
+    /// DIR/two_spheres.csv, print the summary and draw the plots (rank 0; the other ranks only
+    /// do runs). Returns the exit code (4: the plots failed). @throw Error for bad options.
+    int run(RunDistributor& ranks) const;
 
 private:
     CLI::App* mCommand = nullptr;

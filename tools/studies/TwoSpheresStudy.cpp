@@ -1,5 +1,8 @@
 #include "studies/TwoSpheresStudy.h"
 
+#include "studies/RunRecord.h"
+#include "studies/RunSchedule.h"
+
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/scene/RandomRotation.h"
 #include "lsdem/contact/SphereContactReference.h"
@@ -31,85 +34,186 @@ struct Series
     double stiffness;
 };
 
+/// One node count of the study (bake, every series and orientation) into @a part; its
+/// progress line goes to stdout if @a live, else into @a log.
+void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresResult& part,
+                  std::string& log)
+{
+    const int kSeriesCount = stiffnessSeriesNodes(o);
+    const Stopwatch bake;
+    std::vector<std::string> warnings;
+    const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
+    part.bakeSeconds += bake.seconds();
+    const Stopwatch contact;
+    if (!o.quiet) {
+        char line[160];
+        std::snprintf(line, sizeof line, "  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes,
+                      sphere.nodes.size(), sphere.spacing.mean);
+        if (live)
+            std::fputs(line, stdout);
+        else
+            log += line;
+    }
+
+    std::vector<Series> series;
+    for (Formulation f : o.formulations) {
+        if (!o.stiffness.empty()) {
+            for (double k : o.stiffness) series.push_back({f, k});
+        } else if (nodes == kSeriesCount) {
+            for (double factor : o.stiffnessFactors)
+                series.push_back({f, factor * defaultStiffness(f)});
+        } else {
+            series.push_back({f, defaultStiffness(f)});
+        }
+    }
+    // P[series][step][orientation]
+    std::vector<std::vector<std::vector<double>>> force(
+        series.size(), std::vector<std::vector<double>>(o.steps + 1));
+    for (int m = 0; m < o.orientations; ++m) {
+        std::mt19937_64 rng(o.seed * 7919u + unsigned(m));
+        ContactGrain fixed, moved;
+        fixed.asset = moved.asset = &sphere;
+        fixed.index = 0;
+        moved.index = 1;
+        fixed.pose.orientation = randomRotation(rng);
+        moved.pose.orientation = randomRotation(rng);
+        for (int step = 0; step <= o.steps; ++step) {
+            const double delta = o.deltaMax * step / o.steps;
+            moved.pose.position = Vec3(2 * o.radius - delta, 0, 0);
+            for (size_t s = 0; s < series.size(); ++s) {
+                ContactModel model;
+                model.formulation = series[s].formulation;
+                model.normalStiffness = series[s].stiffness;
+                model.testing = o.testing;
+                const PairForces f =
+                    computePairContact(fixed, moved, model, 0.0, nullptr, part.stats);
+                force[s][step].push_back(f.forceOnSecond.x());  // along the centre line
+            }
+        }
+    }
+    for (size_t s = 0; s < series.size(); ++s)
+        for (int step = 0; step <= o.steps; ++step) {
+            const std::vector<double>& p = force[s][step];
+            TwoSpheresRow row;
+            row.formulation = series[s].formulation;
+            row.nodesRequested = nodes;
+            row.nodesActual = double(sphere.nodes.size());
+            row.stiffness = series[s].stiffness;
+            row.delta = o.deltaMax * step / o.steps;
+            double sum = 0, sum2 = 0;
+            row.forceMin = p.front();
+            row.forceMax = p.front();
+            for (double v : p) {
+                sum += v;
+                sum2 += v * v;
+                row.forceMin = std::min(row.forceMin, v);
+                row.forceMax = std::max(row.forceMax, v);
+            }
+            row.forceMean = sum / p.size();
+            row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
+            row.forceExact = exactSphereContactForce(o.radius, row.delta, row.stiffness);
+            part.rows.push_back(row);
+        }
+    part.contactSeconds += contact.seconds();
+}
+
+/// A node count's part of the result as a run record, and back.
+std::string partRecord(const TwoSpheresResult& part, const std::string& log)
+{
+    RecordWriter out;
+    out.integer(static_cast<long long>(part.rows.size()));
+    for (const TwoSpheresRow& r : part.rows)
+        out.integer(static_cast<long long>(r.formulation))
+            .integer(r.nodesRequested)
+            .number(r.nodesActual)
+            .number(r.stiffness)
+            .number(r.delta)
+            .number(r.forceMean)
+            .number(r.forceStd)
+            .number(r.forceMin)
+            .number(r.forceMax)
+            .number(r.forceExact);
+    const NodeCheckStats& s = part.stats;
+    out.integer(s.nodesConsidered).integer(s.nodesCulled).integer(s.nodesSampled).integer(s.nodesInContact);
+    out.number(part.bakeSeconds).number(part.contactSeconds).text(log);
+    return out.bytes();
+}
+
+/// The part in @a record into @a part; returns its progress text.
+std::string readPartRecord(const std::string& record, TwoSpheresResult& part)
+{
+    RecordReader in(record);
+    for (long long n = in.integer(); n > 0; --n) {
+        TwoSpheresRow r;
+        r.formulation = Formulation(in.integer());
+        r.nodesRequested = int(in.integer());
+        r.nodesActual = in.number();
+        r.stiffness = in.number();
+        r.delta = in.number();
+        r.forceMean = in.number();
+        r.forceStd = in.number();
+        r.forceMin = in.number();
+        r.forceMax = in.number();
+        r.forceExact = in.number();
+        part.rows.push_back(r);
+    }
+    NodeCheckStats& s = part.stats;
+    s.nodesConsidered = in.integer();
+    s.nodesCulled = in.integer();
+    s.nodesSampled = in.integer();
+    s.nodesInContact = in.integer();
+    part.bakeSeconds = in.number();
+    part.contactSeconds = in.number();
+    return in.text();
+}
+
 } // namespace
 
-TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o)
+TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o, RunDistributor& ranks)
 {
     checkTwoSpheresOptions(o);
-    TwoSpheresResult result;
-    const int kSeriesCount = stiffnessSeriesNodes(o);
-
-    for (int nodes : o.nodeCounts) {
-        const Stopwatch bake;
-        std::vector<std::string> warnings;
-        const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
-        result.bakeSeconds += bake.seconds();
-        const Stopwatch contact;
-        if (!o.quiet)
-            std::printf("  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes, sphere.nodes.size(),
-                        sphere.spacing.mean);
-
-        std::vector<Series> series;
-        for (Formulation f : o.formulations) {
-            if (!o.stiffness.empty()) {
-                for (double k : o.stiffness) series.push_back({f, k});
-            } else if (nodes == kSeriesCount) {
-                for (double factor : o.stiffnessFactors)
-                    series.push_back({f, factor * defaultStiffness(f)});
-            } else {
-                series.push_back({f, defaultStiffness(f)});
-            }
-        }
-        // P[series][step][orientation]
-        std::vector<std::vector<std::vector<double>>> force(
-            series.size(), std::vector<std::vector<double>>(o.steps + 1));
-        for (int m = 0; m < o.orientations; ++m) {
-            std::mt19937_64 rng(o.seed * 7919u + unsigned(m));
-            ContactGrain fixed, moved;
-            fixed.asset = moved.asset = &sphere;
-            fixed.index = 0;
-            moved.index = 1;
-            fixed.pose.orientation = randomRotation(rng);
-            moved.pose.orientation = randomRotation(rng);
-            for (int step = 0; step <= o.steps; ++step) {
-                const double delta = o.deltaMax * step / o.steps;
-                moved.pose.position = Vec3(2 * o.radius - delta, 0, 0);
-                for (size_t s = 0; s < series.size(); ++s) {
-                    ContactModel model;
-                    model.formulation = series[s].formulation;
-                    model.normalStiffness = series[s].stiffness;
-                    model.testing = o.testing;
-                    const PairForces f =
-                        computePairContact(fixed, moved, model, 0.0, nullptr, result.stats);
-                    force[s][step].push_back(f.forceOnSecond.x());  // along the centre line
-                }
-            }
-        }
-        for (size_t s = 0; s < series.size(); ++s)
-            for (int step = 0; step <= o.steps; ++step) {
-                const std::vector<double>& p = force[s][step];
-                TwoSpheresRow row;
-                row.formulation = series[s].formulation;
-                row.nodesRequested = nodes;
-                row.nodesActual = double(sphere.nodes.size());
-                row.stiffness = series[s].stiffness;
-                row.delta = o.deltaMax * step / o.steps;
-                double sum = 0, sum2 = 0;
-                row.forceMin = p.front();
-                row.forceMax = p.front();
-                for (double v : p) {
-                    sum += v;
-                    sum2 += v * v;
-                    row.forceMin = std::min(row.forceMin, v);
-                    row.forceMax = std::max(row.forceMax, v);
-                }
-                row.forceMean = sum / p.size();
-                row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
-                row.forceExact = exactSphereContactForce(o.radius, row.delta, row.stiffness);
-                result.rows.push_back(row);
-            }
-        result.contactSeconds += contact.seconds();
+    const bool live = ranks.ranks() == 1;
+    // One run per node count: its bake, every series and orientation.
+    const RunDistributor::Job job = [&](const std::string& description) {
+        const int nodes = o.nodeCounts.at(size_t(RecordReader(description).integer()));
+        TwoSpheresResult part;
+        std::string log;
+        runNodeCount(o, nodes, live, part, log);
+        return partRecord(part, log);
+    };
+    if (!ranks.isRoot()) {
+        ranks.serve(job);
+        return {};
     }
+
+    std::vector<std::string> descriptions;
+    std::vector<double> costs;
+    const int kSeriesCount = stiffnessSeriesNodes(o);
+    for (size_t i = 0; i < o.nodeCounts.size(); ++i) {
+        descriptions.push_back(RecordWriter().integer(static_cast<long long>(i)).bytes());
+        const int nodes = o.nodeCounts[i];
+        const size_t series = !o.stiffness.empty()   ? o.stiffness.size()
+                              : nodes == kSeriesCount ? o.stiffnessFactors.size()
+                                                      : 1;
+        costs.push_back(double(nodes) * double(series) * o.orientations * (o.steps + 1));
+    }
+    std::vector<TwoSpheresResult> parts(descriptions.size());
+    RunShares shares(ranks.ranks());
+    ranks.runAll(descriptions, costs, job, [&](size_t i, int rank, const std::string& record) {
+        shares.add(rank);
+        std::printf("%s", readPartRecord(record, parts[i]).c_str());
+        std::fflush(stdout);
+    });
+    ranks.finish();
+
+    TwoSpheresResult result;  // in the order of the node counts, wherever each was run
+    for (const TwoSpheresResult& part : parts) {
+        result.rows.insert(result.rows.end(), part.rows.begin(), part.rows.end());
+        result.stats += part.stats;
+        result.bakeSeconds += part.bakeSeconds;
+        result.contactSeconds += part.contactSeconds;
+    }
+    if (ranks.ranks() > 1) std::printf("%s\n", shares.text().c_str());
     return result;
 }
 

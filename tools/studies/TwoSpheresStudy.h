@@ -5,6 +5,7 @@
 ///        averaged over random orientations of both spheres. Displacement control: no dynamics.
 #pragma once
 
+#include "studies/RunDistributor.h"
 #include "studies/SphereSeriesOptions.h"
 
 #include "lsdem/contact/NodeContact.h"
@@ -48,8 +49,11 @@ struct TwoSpheresResult
 /// Check @a o and throw Error naming the bad option and the fix.
 void checkTwoSpheresOptions(const TwoSpheresOptions& o);
 
-/// Run the study (no files written).
-TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o);
+/// Run the study (no files written), one run per node count spread by @a ranks. On rank 0 the
+/// result, the same on any number of ranks; the other ranks do the runs rank 0 hands them and
+/// get an empty result.
+TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o,
+                               RunDistributor& ranks = serialRunDistributor());
 
 /// Write @a result as CSV to @a path (atomically).
 void writeTwoSpheresCsv(const TwoSpheresResult& result, const TwoSpheresOptions& o,

@@ -42,6 +42,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         effectiveMass(*sides[0].tester, *sides[0].other), totalStiffness);
     const bool perNodeShear = shearSprings.active(normalLaw);
 
+    // Sums kept in locals (registers), not in `result`, which the compiler must assume the
+    // stores to the point forces may alias; the additions happen in the same order.
+    double elasticEnergy = result.elasticEnergy;
+    Mat3 normalStiffness = result.normalStiffness;
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
         std::vector<PointForce>& forces = normal[s];
@@ -70,8 +74,8 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             const double size = f.force.norm();
             if (size == 0.0 || f.stiffness <= 0.0) continue;
             const Vec3 n = f.force / size;
-            result.elasticEnergy += 0.5 * size * size / f.stiffness;
-            result.normalStiffness += f.stiffness * n * n.transpose();
+            elasticEnergy += 0.5 * size * size / f.stiffness;
+            normalStiffness += f.stiffness * n * n.transpose();
             const Vec3 relativeVelocity =
                 side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
             Vec3 total = f.force;
@@ -88,7 +92,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                                                     shearSprings.friction * size);
                 nextHistory.push_back({c.node, shear});
                 total += shear;
-                result.elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
+                elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
             }
             f.force = total;
         }
@@ -104,15 +108,24 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         Vec3& torqueOnTester = testerIsFirst ? result.torqueOnFirst : result.torqueOnSecond;
         Vec3& forceOnOther = testerIsFirst ? result.forceOnSecond : result.forceOnFirst;
         Vec3& torqueOnOther = testerIsFirst ? result.torqueOnSecond : result.torqueOnFirst;
+        Vec3 testerForce = forceOnTester, testerTorque = torqueOnTester;
+        Vec3 otherForce = forceOnOther, otherTorque = torqueOnOther;
+        const Vec3 testerCentre = side.tester->pose.position, otherCentre = side.other->pose.position;
         for (const PointForce& f : forces) {
-            forceOnTester += f.force;
-            torqueOnTester += (f.point - side.tester->pose.position).cross(f.force);
-            forceOnOther -= f.force;
-            torqueOnOther -= (f.point - side.other->pose.position).cross(f.force);
+            testerForce += f.force;
+            testerTorque += (f.point - testerCentre).cross(f.force);
+            otherForce -= f.force;
+            otherTorque -= (f.point - otherCentre).cross(f.force);
         }
+        forceOnTester = testerForce;
+        torqueOnTester = testerTorque;
+        forceOnOther = otherForce;
+        torqueOnOther = otherTorque;
         if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
         if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
     }
+    result.elasticEnergy = elasticEnergy;
+    result.normalStiffness = normalStiffness;
     return result;
 }
 

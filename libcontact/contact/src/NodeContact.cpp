@@ -46,6 +46,22 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     // An unregistered accessor costs next to nothing, but only when some node gets near B.
     std::optional<LevelSetSampler> sampler;
     const Vec3* positions = a.nodes.positions.data();
+    // With remembered candidates, each sampled node's cell from the last step is looked up by
+    // walking the last step's cells alongside the nodes (both ascending), and this step's are
+    // written to a buffer that is swapped in at the end (its old storage is reused by this
+    // thread's next pair).
+    thread_local std::vector<CandidateBlocks::SampledCell> nextCells;
+    const std::vector<CandidateBlocks::SampledCell>* lastCells = nullptr;
+    size_t cursor = 0;
+    auto sampleNode = [&](int i, const Vec3& inB) {
+        if (!lastCells) return sampler->sample(inB);
+        while (cursor < lastCells->size() && (*lastCells)[cursor].node < i) ++cursor;
+        CandidateBlocks::SampledCell& next = nextCells.emplace_back();
+        next.node = i;
+        if (cursor < lastCells->size() && (*lastCells)[cursor].node == i)
+            next.cell = (*lastCells)[cursor].cell;
+        return sampler->sample(inB, next.cell);
+    };
     auto visit = [&](int begin, int end) {
         for (int i = begin; i < end; ++i) {
             const Vec3 inB = rotation * positions[i] + translation;
@@ -57,7 +73,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             }
             ++stats.nodesSampled;
             if (!sampler) sampler.emplace(*b.levelSet);
-            const LevelSetSample s = sampler->sample(inB);
+            const LevelSetSample s = sampleNode(i, inB);
             if (!(s.phi < 0.0)) continue;
             const double gradientLength = s.gradient.norm();
             if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
@@ -100,11 +116,14 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             ignored);
     }
     // The remembered nodes, each tested as a full walk would.
+    nextCells.clear();
+    lastCells = &candidates->cells;
     long long visited = 0;
     for (const auto& [begin, end] : candidates->runs) {
         visited += end - begin;
         visit(begin, end);
     }
+    candidates->cells.swap(nextCells);
     stats.nodesCulled += count - visited;
 }
 

@@ -6,18 +6,47 @@
 
 namespace lsdem::scenefile {
 
-namespace {
-
 namespace fs = std::filesystem;
 
-std::string resolvePath(const std::string& directory, const std::string& file)
+std::string resolveScenePath(const std::string& directory, const std::string& file)
 {
     fs::path p(file);
     if (p.is_relative()) p = fs::path(directory) / p;
     return fs::absolute(p).lexically_normal().string();
 }
 
-} // namespace
+void readBakeKeys(TableReader& t, BakeOptions& b, bool analytic, const std::string& provenance)
+{
+    b.voxelSize = t.positive("voxel");
+    const int placements = int(t.has("node_spacing")) + int(t.has("nodes")) +
+                           int(t.has("mesh_nodes") && t.boolean("mesh_nodes", false));
+    if (placements != 1)
+        t.fail("", placements == 0 ? "says nothing about its surface nodes"
+                                   : "gives more than one way to place surface nodes",
+               "give exactly one of node_spacing = SDP, nodes = N or mesh_nodes = true");
+    std::ostringstream opts;
+    opts << provenance << ": voxel " << b.voxelSize;
+    if (t.has("node_spacing")) {
+        b.nodePlacement = NodePlacement::Spacing;
+        b.nodeSpacing = t.positive("node_spacing");
+        opts << " node_spacing " << b.nodeSpacing;
+    } else if (t.has("nodes")) {
+        b.nodePlacement = NodePlacement::Count;
+        const long long n = t.positiveInteger("nodes");
+        if (n > 100000000) t.fail("nodes", "is absurdly large", "give at most 1e8 nodes");
+        b.nodeCount = static_cast<int>(n);
+        opts << " nodes " << b.nodeCount;
+    } else {
+        if (analytic) t.fail("mesh_nodes", "an analytic shape has no mesh vertices",
+                             "use node_spacing or nodes");
+        b.nodePlacement = NodePlacement::MeshVertices;
+        opts << " mesh_nodes";
+    }
+    const std::string areas = t.choice("areas", {"mesh", "uniform"}, "mesh");
+    b.areaRule = areas == "mesh" ? AreaRule::Mesh : AreaRule::Uniform;
+    opts << " areas " << areas;
+    b.optionsText = opts.str();
+}
 
 AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene)
 {
@@ -31,7 +60,7 @@ AssetSpec readAsset(const std::string& name, const toml::table& table, const Sce
                "give exactly one of file = \"grain.vdb\", mesh = \"grain.stl\" or "
                "shape = \"sphere\" | \"box\" | \"ellipsoid\"");
     auto existing = [&](const std::string& key) {
-        const std::string p = resolvePath(scene.directory, t.string(key));
+        const std::string p = resolveScenePath(scene.directory, t.string(key));
         // The error_code form: a path the system refuses (too long, say) is not found either,
         // rather than a filesystem_error without the scene's line (found by fuzzing).
         std::error_code ec;
@@ -68,36 +97,7 @@ AssetSpec readAsset(const std::string& name, const toml::table& table, const Sce
                                     : AnalyticShape::ellipsoid(s.x(), s.y(), s.z());
         }
     }
-    BakeOptions& b = a.bake;
-    b.voxelSize = t.positive("voxel");
-    const int placements = int(t.has("node_spacing")) + int(t.has("nodes")) +
-                           int(t.has("mesh_nodes") && t.boolean("mesh_nodes", false));
-    if (placements != 1)
-        t.fail("", placements == 0 ? "says nothing about its surface nodes"
-                                   : "gives more than one way to place surface nodes",
-               "give exactly one of node_spacing = SDP, nodes = N or mesh_nodes = true");
-    std::ostringstream opts;
-    opts << "scene " << scene.path << " asset " << name << ": voxel " << b.voxelSize;
-    if (t.has("node_spacing")) {
-        b.nodePlacement = NodePlacement::Spacing;
-        b.nodeSpacing = t.positive("node_spacing");
-        opts << " node_spacing " << b.nodeSpacing;
-    } else if (t.has("nodes")) {
-        b.nodePlacement = NodePlacement::Count;
-        const long long n = t.positiveInteger("nodes");
-        if (n > 100000000) t.fail("nodes", "is absurdly large", "give at most 1e8 nodes");
-        b.nodeCount = static_cast<int>(n);
-        opts << " nodes " << b.nodeCount;
-    } else {
-        if (a.shape) t.fail("mesh_nodes", "an analytic shape has no mesh vertices",
-                            "use node_spacing or nodes");
-        b.nodePlacement = NodePlacement::MeshVertices;
-        opts << " mesh_nodes";
-    }
-    const std::string areas = t.choice("areas", {"mesh", "uniform"}, "mesh");
-    b.areaRule = areas == "mesh" ? AreaRule::Mesh : AreaRule::Uniform;
-    opts << " areas " << areas;
-    b.optionsText = opts.str();
+    readBakeKeys(t, a.bake, bool(a.shape), "scene " + scene.path + " asset " + name);
     t.rejectUnknownKeys();
     return a;
 }

@@ -73,9 +73,10 @@ Scene parseScene(const std::string& text, const std::string& path)
                     "see docs/scenes.md and the examples in assets/scenes/");
     }
 
-    const std::vector<std::string> sections = {"units",     "assets",     "materials",
-                                               "contacts",  "grains",     "lattices",
-                                               "boundaries", "simulation", "output"};
+    const std::vector<std::string> sections = {"units",      "assets",     "asset_sets",
+                                               "materials",  "contacts",   "grains",
+                                               "lattices",   "boundaries", "simulation",
+                                               "output"};
     for (auto&& [key, value] : root) {
         const std::string k(key.str());
         if (std::find(sections.begin(), sections.end(), k) == sections.end())
@@ -83,7 +84,8 @@ Scene parseScene(const std::string& text, const std::string& path)
                         "unknown top-level key or table '" + k + "'",
                         "use one of: " + joined(sections));
     }
-    for (const char* single : {"units", "assets", "materials", "simulation", "output"}) {
+    for (const char* single :
+         {"units", "assets", "asset_sets", "materials", "simulation", "output"}) {
         const toml::node* n = root.get(single);
         if (n && !n->is_table())
             throw Error(path + ":" + std::to_string(n->source().begin.line),
@@ -95,6 +97,9 @@ Scene parseScene(const std::string& text, const std::string& path)
     scene.units = readUnits(root["units"].as_table(), path);
     for (const auto& [name, table] : tablesInFileOrder(root["assets"].as_table(), "assets", path))
         scene.assets.push_back(readAsset(name, *table, scene));
+    for (const auto& [name, table] :
+         tablesInFileOrder(root["asset_sets"].as_table(), "asset_sets", path))
+        readAssetSet(name, *table, scene);
     for (const auto& [name, table] :
          tablesInFileOrder(root["materials"].as_table(), "materials", path)) {
         TableReader t(*table, "[materials." + name + "]", path);

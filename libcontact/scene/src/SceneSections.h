@@ -19,6 +19,17 @@ UnitSystem readUnits(const toml::table* table, const std::string& path);
 /// [assets.NAME]: a baked file, or a mesh or shape baked at load with its options.
 AssetSpec readAsset(const std::string& name, const toml::table& table, const Scene& scene);
 
+/// The baking keys of an asset or set (voxel, node_spacing | nodes | mesh_nodes, areas) into
+/// @a bake; @a analytic refuses mesh_nodes; @a provenance starts the options text.
+void readBakeKeys(TableReader& t, BakeOptions& bake, bool analytic, const std::string& provenance);
+
+/// @a file (as written in the scene) resolved from the scene's @a directory, absolute.
+std::string resolveScenePath(const std::string& directory, const std::string& file);
+
+/// [asset_sets.NAME]: a catalogue or a glob of baked assets, appended to scene.assets and
+/// recorded in scene.assetSets.
+void readAssetSet(const std::string& name, const toml::table& table, Scene& scene);
+
 /// The most grains a scene may hold (single grains and lattices together): far more than lsdem
 /// can simulate on one machine, and a bound on what a few bytes of [[lattices]] can ask for.
 constexpr long long kMaxSceneGrains = 1000000;
@@ -62,8 +73,13 @@ int lookUp(TableReader& t, const std::string& key, const std::vector<Spec>& spec
     const std::string name = t.string(key);
     const int i = indexByName(specs, name);
     if (i < 0) {
+        // A few names are a hint; a set of a thousand assets would bury the message.
+        constexpr size_t kShown = 12;
         std::vector<std::string> names;
-        for (const Spec& s : specs) names.push_back("'" + s.name + "'");
+        for (size_t k = 0; k < specs.size() && k < kShown; ++k)
+            names.push_back("'" + specs[k].name + "'");
+        if (specs.size() > kShown)
+            names.push_back("... (" + std::to_string(specs.size()) + " in all)");
         t.fail(key, "no " + what + " named '" + name + "'",
                (names.empty() ? "" : "use one of " + joined(names) + ", or ") + howToDefine);
     }
@@ -72,7 +88,9 @@ int lookUp(TableReader& t, const std::string& key, const std::vector<Spec>& spec
 
 inline int lookUpAsset(TableReader& t, const Scene& scene)
 {
-    return lookUp(t, "asset", scene.assets, "asset", "define it in an [assets.NAME] table");
+    return lookUp(t, "asset", scene.assets, "asset",
+                  "define it in an [assets.NAME] table (or an [asset_sets.SET] table, whose "
+                  "assets are named SET/NAME)");
 }
 
 inline int lookUpMaterial(TableReader& t, const Scene& scene)

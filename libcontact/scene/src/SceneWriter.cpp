@@ -126,6 +126,17 @@ std::string motionName(GrainMotion m)
     return "free";
 }
 
+void writeBakeKeys(TomlText& t, const BakeOptions& b)
+{
+    t.number("voxel", b.voxelSize);
+    switch (b.nodePlacement) {
+    case NodePlacement::Spacing: t.number("node_spacing", b.nodeSpacing); break;
+    case NodePlacement::Count: t.integer("nodes", b.nodeCount); break;
+    case NodePlacement::MeshVertices: t.boolean("mesh_nodes", true); break;
+    }
+    t.string("areas", b.areaRule == AreaRule::Mesh ? "mesh" : "uniform");
+}
+
 void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)
 {
     t.table("assets." + TomlText::key(a.name));
@@ -158,14 +169,7 @@ void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)
         throw Error(a.where, "asset '" + a.name + "' has no source",
                     "give it a file, a mesh or a shape");
     }
-    const BakeOptions& b = a.bake;
-    t.number("voxel", b.voxelSize);
-    switch (b.nodePlacement) {
-    case NodePlacement::Spacing: t.number("node_spacing", b.nodeSpacing); break;
-    case NodePlacement::Count: t.integer("nodes", b.nodeCount); break;
-    case NodePlacement::MeshVertices: t.boolean("mesh_nodes", true); break;
-    }
-    t.string("areas", b.areaRule == AreaRule::Mesh ? "mesh" : "uniform");
+    writeBakeKeys(t, a.bake);
 }
 
 void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
@@ -276,7 +280,15 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
     t.string("mass", scene.units.mass);
     t.string("time", scene.units.time);
     t.string("force", scene.units.force);
-    for (const AssetSpec& a : scene.assets) writeAsset(t, a, sceneDirectory);
+    for (const AssetSpec& a : scene.assets)
+        if (a.set.empty()) writeAsset(t, a, sceneDirectory);
+    // A set's assets are written as the set: the reader lists them again, after the others.
+    for (const AssetSetSpec& s : scene.assetSets) {
+        t.table("asset_sets." + TomlText::key(s.name));
+        if (!s.catalog.empty()) t.string("catalog", pathFrom(sceneDirectory, s.catalog));
+        else t.string("glob", pathFrom(sceneDirectory, s.glob));
+        if (s.meshes) writeBakeKeys(t, s.bake);
+    }
     for (const MaterialSpec& m : scene.materials) {
         t.table("materials." + TomlText::key(m.name));
         t.number("density", m.density);

@@ -1,13 +1,37 @@
 #include "lsdem/simulation/BroadPhase.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
-
-#include <tbb/parallel_for.h>
 
 namespace lsdem {
+
+namespace {
+
+/// Cells per axis at most: keys pack three cell coordinates (each offset by one, so a
+/// neighbour at -1 is still >= 0) into 21 bits each without wrapping.
+constexpr double kMaxCellsPerAxis = double(1 << 20);
+
+uint64_t cellKey(int64_t x, int64_t y, int64_t z)
+{
+    return (uint64_t(x + 1) << 42) | (uint64_t(y + 1) << 21) | uint64_t(z + 1);
+}
+
+/// A grain in the sorted cell list.
+struct CellEntry
+{
+    uint64_t key;
+    int grain;
+    bool operator<(const CellEntry& o) const
+    {
+        return key < o.key || (key == o.key && grain < o.grain);
+    }
+};
+
+} // namespace
 
 std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& centers,
                                                     const std::vector<double>& radii,
@@ -16,59 +40,65 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
     std::vector<std::pair<int, int>> pairs;
     const int n = static_cast<int>(centers.size());
     if (n < 2) return pairs;
-    // Cells as wide as the largest reach, so overlapping spheres sit in neighbouring cells.
+    // Cells as wide as the largest reach, so overlapping spheres sit in neighbouring cells;
+    // wider if the grains spread over more than 2²⁰ of them (a grain flung far away): pairs
+    // are still decided by their distance, only more of them are looked at.
     double largest = 0.0;
-    Vec3 lo = centers[0];
+    Vec3 lo = centers[0], hi = centers[0];
     for (int i = 0; i < n; ++i) {
-        largest = std::max(largest, radii[i]);
-        lo = lo.cwiseMin(centers[i]);
+        largest = std::max(largest, radii[size_t(i)]);
+        lo = lo.cwiseMin(centers[size_t(i)]);
+        hi = hi.cwiseMax(centers[size_t(i)]);
     }
-    const double cell = std::max(2.0 * largest + margin, 1e-300);
-    auto cellOf = [&](const Vec3& c) {
-        return Eigen::Vector3i(static_cast<int>(std::floor((c.x() - lo.x()) / cell)),
-                               static_cast<int>(std::floor((c.y() - lo.y()) / cell)),
-                               static_cast<int>(std::floor((c.z() - lo.z()) / cell)));
-    };
-    // Cell coordinates start at 0 (lo is the minimum) and neighbours at -1: offset by one and
-    // pack 21 bits each.
-    auto key = [](const Eigen::Vector3i& c) {
-        const auto field = [](int v) { return uint64_t(int64_t(v) + 1) & 0x1FFFFFu; };
-        return (field(c.x()) << 42) | (field(c.y()) << 21) | field(c.z());
-    };
-    std::unordered_map<uint64_t, std::vector<int>> grid;
-    grid.reserve(static_cast<size_t>(n));
-    std::vector<Eigen::Vector3i> cells(n);
-    for (int i = 0; i < n; ++i) {
-        cells[i] = cellOf(centers[i]);
-        grid[key(cells[i])].push_back(i);
-    }
-    // Each grain's partners of higher index, found in parallel into its own list; the lists
-    // are then joined in grain order, so the result is sorted and thread-count independent.
-    std::vector<std::vector<int>> partners(static_cast<size_t>(n));
+    double cell = std::max(2.0 * largest + margin, 1e-300);
+    cell = std::max(cell, (hi - lo).maxCoeff() / kMaxCellsPerAxis);
+    std::vector<Eigen::Matrix<int64_t, 3, 1>> cells(static_cast<size_t>(n));
+    std::vector<CellEntry> sorted(static_cast<size_t>(n));
     tbb::parallel_for(0, n, [&](int i) {
-        std::vector<int>& mine = partners[static_cast<size_t>(i)];
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = grid.find(key(cells[i] + Eigen::Vector3i(dx, dy, dz)));
-                    if (it == grid.end()) continue;
-                    for (int j : it->second) {
+        const Vec3 c = ((centers[size_t(i)] - lo) / cell).array().floor();
+        auto& mine = cells[size_t(i)];
+        mine = c.cast<int64_t>().cwiseMin(int64_t(kMaxCellsPerAxis));
+        sorted[size_t(i)] = {cellKey(mine.x(), mine.y(), mine.z()), i};
+    });
+    // Grains sorted by cell (x, then y, then z): the three cells of a column along z are one
+    // run of keys. The entries are distinct, so the order is the same on any thread count.
+    tbb::parallel_sort(sorted.begin(), sorted.end());
+
+    // Each chunk of grains finds its grains' partners of higher index into its own list; the
+    // chunks are joined in order, so the result is sorted and thread-count independent.
+    constexpr int kChunk = 512;
+    const int chunks = (n + kChunk - 1) / kChunk;
+    std::vector<std::vector<std::pair<int, int>>> found(static_cast<size_t>(chunks));
+    tbb::parallel_for(0, chunks, [&](int chunk) {
+        std::vector<std::pair<int, int>>& out = found[size_t(chunk)];
+        std::vector<int> partners;
+        const int end = std::min(n, (chunk + 1) * kChunk);
+        for (int i = chunk * kChunk; i < end; ++i) {
+            partners.clear();
+            const auto& c = cells[size_t(i)];
+            for (int64_t dx = -1; dx <= 1; ++dx)
+                for (int64_t dy = -1; dy <= 1; ++dy) {
+                    const uint64_t first = cellKey(c.x() + dx, c.y() + dy, c.z() - 1);
+                    const uint64_t last = cellKey(c.x() + dx, c.y() + dy, c.z() + 1);
+                    auto it = std::lower_bound(sorted.begin(), sorted.end(),
+                                               CellEntry{first, -1});
+                    for (; it != sorted.end() && it->key <= last; ++it) {
+                        const int j = it->grain;
                         if (j <= i) continue;
-                        const double reach = radii[i] + radii[j] + margin;
-                        if ((centers[i] - centers[j]).squaredNorm() <= reach * reach)
-                            mine.push_back(j);
+                        const double reach = radii[size_t(i)] + radii[size_t(j)] + margin;
+                        if ((centers[size_t(i)] - centers[size_t(j)]).squaredNorm() <=
+                            reach * reach)
+                            partners.push_back(j);
                     }
                 }
-        std::sort(mine.begin(), mine.end());
-        // Keys wrap beyond 2²¹ cells per axis; a wrapped key can only repeat a pair, never
-        // lose one.
-        mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+            std::sort(partners.begin(), partners.end());
+            for (int j : partners) out.emplace_back(i, j);
+        }
     });
     size_t total = 0;
-    for (const std::vector<int>& mine : partners) total += mine.size();
+    for (const auto& chunk : found) total += chunk.size();
     pairs.reserve(total);
-    for (int i = 0; i < n; ++i)
-        for (int j : partners[static_cast<size_t>(i)]) pairs.emplace_back(i, j);
+    for (const auto& chunk : found) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
     return pairs;
 }
 

@@ -2,7 +2,9 @@
 
 #include "lsdem/simulation/BroadPhase.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 
@@ -10,22 +12,33 @@ namespace lsdem {
 
 bool ContactList::update(World& world)
 {
-    bool stale = !mBuilt || mGrainPositionsAtBuild.size() != world.grains.size() ||
-                 mBoundaryDisplacementsAtBuild.size() != world.boundaries.size();
+    const bool sizesChanged = mGrainPositionsAtBuild.size() != world.grains.size() ||
+                              mBoundaryDisplacementsAtBuild.size() != world.boundaries.size();
+    bool stale = !mBuilt || sizesChanged;
     // Two bodies within reach now were within reach plus the skin at the build as long as
     // neither moved more than half of it.
     const double half2 = 0.25 * mSkin * mSkin;
-    for (size_t i = 0; !stale && i < world.grains.size(); ++i)
-        stale = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i]).squaredNorm() >
-                half2;
+    // Checked for every grain every step: in parallel (any one moved too far decides).
+    if (!stale)
+        stale = tbb::parallel_reduce(
+            tbb::blocked_range<size_t>(0, world.grains.size(), 4096), false,
+            [&](const tbb::blocked_range<size_t>& r, bool moved) {
+                for (size_t i = r.begin(); !moved && i != r.end(); ++i)
+                    moved = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i])
+                                .squaredNorm() > half2;
+                return moved;
+            },
+            [](bool a, bool b) { return a || b; });
     for (size_t b = 0; !stale && b < world.boundaries.size(); ++b)
         stale = (world.boundaries[b].displacement - mBoundaryDisplacementsAtBuild[b])
                     .squaredNorm() > half2;
-    if (stale) rebuild(world);
+    // Built and only moved since: the same grains and assets, so what each pair learned about
+    // its node blocks still applies.
+    if (stale) rebuild(world, mBuilt && !sizesChanged);
     return stale;
 }
 
-void ContactList::rebuild(World& w)
+void ContactList::rebuild(World& w, bool keepPairKnowledge)
 {
     const int n = static_cast<int>(w.grains.size());
     std::vector<Vec3> centers(static_cast<size_t>(n));
@@ -56,8 +69,15 @@ void ContactList::rebuild(World& w)
 
     // Walk the sorted list and the sorted histories together: histories of pairs no longer on
     // the list are dropped, new pairs start empty. std::map nodes do not move, so the slots
-    // can point into the maps until the next rebuild.
+    // can point into the maps until the next rebuild. A pair that stays on the list keeps its
+    // node blocks near the other grain (they hold whatever the list) and its buffers, so a
+    // rebuild after motion costs its pairs no full walk of their blocks.
+    std::vector<ContactSlot> previous;
+    if (keepPairKnowledge) previous.swap(mSlots);
+    const size_t previousPairs = keepPairKnowledge ? mPairSlots : 0;
     mSlots.clear();
+    mSlots.reserve(pairs.size() + previous.size() - previousPairs);
+    size_t kept = 0;
     auto it = w.pairHistory.begin();
     for (const auto& p : pairs) {
         while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
@@ -67,6 +87,14 @@ void ContactList::rebuild(World& w)
         s.first = p.first;
         s.second = p.second;
         s.pairHistory = &it->second;
+        while (kept < previousPairs &&
+               std::make_pair(previous[kept].first, previous[kept].second) < p)
+            ++kept;
+        if (kept < previousPairs && previous[kept].first == p.first &&
+            previous[kept].second == p.second) {
+            s.candidates = std::move(previous[kept].candidates);
+            s.forces.swap(previous[kept].forces);
+        }
         ++it;
     }
     w.pairHistory.erase(it, w.pairHistory.end());

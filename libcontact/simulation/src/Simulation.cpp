@@ -271,6 +271,18 @@ void Simulation::checkStability()
     }
 }
 
+std::vector<int> Simulation::grainContactCounts() const
+{
+    std::vector<int> counts(mWorld.grains.size(), 0);
+    const std::vector<ContactSlot>& slots = mContacts.slots();
+    for (size_t k = 0; k < mContacts.pairSlotCount(); ++k)
+        if (slots[k].result.contactNodes > 0) {
+            ++counts[size_t(slots[k].first)];
+            ++counts[size_t(slots[k].second)];
+        }
+    return counts;
+}
+
 Energies Simulation::energies() const
 {
     Energies e;

@@ -75,6 +75,8 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
         EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
         EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
         EXPECT_EQ(listStats.nodesCulled, fullStats.nodesCulled);
+        // Every node sampled this step left its cell for the next one.
+        EXPECT_EQ(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
     }
     EXPECT_GT(stepsInContact, steps * 9 / 10);  // the trajectory stays in contact
     EXPECT_GT(refreshes, 5);                    // the list had to follow the motion

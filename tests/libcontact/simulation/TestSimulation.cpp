@@ -175,6 +175,19 @@ Bounce bounce(Simulation& sim, double bottomOffset, int maxSteps)
 // velocities, positions) oscillates by about (ω·dt)²/4 of the contact energy. With dt a hundredth
 // of the contact period, ω·dt = 0.063 and the bound is 1e-3; nodes entering contact (stiffness
 // jumps, force continuous) add a little.
+// Coordination counts grain–grain contacts only: a row of three overlapping spheres touches
+// 1, 2 and 1 neighbours; a fourth sphere resting on the floor alone touches none.
+TEST(Simulation, GrainContactCountsCountNeighboursNotWalls)
+{
+    Scene scene = oneMaterialScene("sphere", adapted(kKnStar));
+    for (double x : {0.0, 9.9, 19.8}) scene.grains.push_back(grainAt(Vec3(x, 0, 20)));
+    scene.grains.push_back(grainAt(Vec3(100, 0, kRadius - 0.05)));
+    scene.boundaries.push_back(floorPlane());
+    const Simulation sim(build(scene), 1e-7);
+    EXPECT_EQ(sim.grainContactCounts(), (std::vector<int>{1, 2, 1, 0}));
+    EXPECT_GT(sim.world().boundaries[0].force.norm(), 0.0);  // the fourth does touch the floor
+}
+
 TEST(Simulation, ElasticSphereReboundsFromAWallWithItsImpactSpeed)
 {
     Scene scene = oneMaterialScene("sphere", adapted(kKnStar));

@@ -7,7 +7,11 @@
 ///        clear its accessors' caches.
 #pragma once
 
+#include "lsdem/ls/LevelSetCell.h"
 #include "lsdem/ls/LevelSetGrid.h"
+
+#include <array>
+#include <cmath>
 
 namespace lsdem {
 
@@ -32,11 +36,24 @@ public:
     /// two one-sided derivatives, so aligned configurations are not biased to one side.
     LevelSetSample sample(const Vec3& p)
     {
+        LevelSetCell cell;
+        return sample(p, cell);
+    }
+
+    /// The same as sample(p), reusing @a cell's corner values when @a p lies in that cell
+    /// (and otherwise reading them into it): for a point sampled again at the next step.
+    LevelSetSample sample(const Vec3& p, LevelSetCell& cell)
+    {
         const Vec3 index = (p - mOrigin) * mInvVoxel;
-        double value[8];
-        Vec3 base, fraction;
-        fetch(index, value, base, fraction);
-        LevelSetSample s = interpolate(value, fraction);
+        const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
+        const std::array<int, 3> lower = {static_cast<int>(base.x()), static_cast<int>(base.y()),
+                                          static_cast<int>(base.z())};
+        if (lower != cell.base) {
+            fetch(openvdb::Coord(lower[0], lower[1], lower[2]), cell.value.data());
+            cell.base = lower;
+        }
+        const Vec3 fraction = index - base;
+        LevelSetSample s = interpolate(cell.value.data(), fraction);
         for (int axis = 0; axis < 3; ++axis) {
             // On a face when the fraction within the cell is within the tolerance of 0 or 1
             // (the subtractions are exact, so this is |index - round(index)| <= tolerance).
@@ -64,15 +81,19 @@ private:
     /// The trilinear interpolant and its gradient at an index-space point.
     LevelSetSample evaluate(const Vec3& index)
     {
-        double value[8];
-        Vec3 base, fraction;
-        fetch(index, value, base, fraction);
-        return interpolate(value, fraction);
+        const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
+        float value[8];
+        fetch(openvdb::Coord(static_cast<int>(base.x()), static_cast<int>(base.y()),
+                             static_cast<int>(base.z())),
+              value);
+        return interpolate(value, index - base);
     }
 
     /// The trilinear interpolant of the cell corners @a value and its gradient at @a fraction.
-    LevelSetSample interpolate(const double value[8], const Vec3& fraction) const
+    LevelSetSample interpolate(const float corner[8], const Vec3& fraction) const
     {
+        double value[8];
+        for (int k = 0; k < 8; ++k) value[k] = corner[k];
         const double fx = fraction.x(), fy = fraction.y(), fz = fraction.z();
         // Trilinear interpolation along x, then y, then z; corners indexed as (z<<2)|(y<<1)|x.
         const double c00 = value[0] + fx * (value[1] - value[0]);
@@ -92,14 +113,9 @@ private:
         return s;
     }
 
-    /// The 8 corners of the cell holding @a index, its lower corner @a cell and the position
-    /// @a fraction within it.
-    void fetch(const Vec3& index, double value[8], Vec3& cell, Vec3& fraction)
+    /// The 8 corners of the cell whose lower corner is @a base.
+    void fetch(const openvdb::Coord& base, float value[8])
     {
-        cell = Vec3(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
-        fraction = index - cell;
-        const openvdb::Coord base(static_cast<int>(cell.x()), static_cast<int>(cell.y()),
-                                  static_cast<int>(cell.z()));
         // Read the corners straight from the buffers of the leaves (8^3 voxels) that hold
         // them: one leaf 7 times in 8 per axis, otherwise 2, 4 or 8 neighbouring leaves, each
         // looked up once. Offsets within a leaf are x*64 + y*8 + z. A corner whose leaf does

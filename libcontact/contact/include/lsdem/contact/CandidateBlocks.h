@@ -10,9 +10,15 @@
 /// the same order. A node x of A moves relative to B by at most |Δt| + 2 sin(θ/2)·|x|, where
 /// Δt and θ are the change of the map's translation and the angle of its change of rotation,
 /// and |x| is at most A's bounding radius.
+///
+/// It also keeps, for each node sampled in B at the last step, the voxel cell of B it fell in
+/// and that cell's corner values: contacts last thousands of steps and a node moves a tiny
+/// fraction of a voxel per step, so most samples are interpolated from these (read in order,
+/// one stream) instead of from the grid's leaves (scattered), with the same result.
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
+#include "lsdem/ls/LevelSetCell.h"
 
 #include <utility>
 #include <vector>
@@ -30,6 +36,14 @@ struct CandidateBlocks
     Vec3 translation = Vec3::Zero();
     double margin = 0.0;                  ///< length
     std::vector<std::pair<int, int>> runs;  ///< A's nodes [begin, end) in those blocks, ascending
+
+    /// A node of A sampled in B at the last step, and the cell of B it was in.
+    struct SampledCell
+    {
+        int node = 0;
+        LevelSetCell cell;
+    };
+    std::vector<SampledCell> cells;  ///< ascending by node
 
     /// Whether the list still holds every block that can touch B under the map (@a rotation,
     /// @a translation) for a grain A whose nodes lie within @a reachA of its origin.

@@ -37,6 +37,22 @@ struct AssetSpec
     std::optional<AnalyticShape> shape;  ///< analytic shape to bake on the fly
     BakeOptions bake;                  ///< voxel size, node placement, areas (on-the-fly only)
     std::string where;                 ///< "scene.toml:12" for messages
+    std::string set;                   ///< the [asset_sets] entry it came from ("" if none)
+};
+
+/// [asset_sets.NAME]: many assets at once, from a catalogue (lsdem-bake --out-dir writes
+/// DIR/catalog.csv) or from the files a glob matches (baked .vdb files, or meshes baked at load
+/// with the set's options). Each becomes an AssetSpec named "NAME/ASSET" (ASSET: the
+/// catalogue's name column, or the file's stem), appended to Scene::assets in the catalogue's
+/// row order or the matches' name order.
+struct AssetSetSpec
+{
+    std::string name;
+    std::string catalog;  ///< the catalogue, absolute path ("" if glob)
+    std::string glob;     ///< the pattern, absolute ("" if catalog); wildcards in the file name
+    bool meshes = false;  ///< the glob matches meshes, baked at load with @a bake
+    BakeOptions bake;
+    std::string where;
 };
 
 struct MaterialSpec
@@ -123,6 +139,7 @@ struct Scene
     std::string text;       ///< the file's text (kept in checkpoints)
     UnitSystem units;
     std::vector<AssetSpec> assets;
+    std::vector<AssetSetSpec> assetSets;
     std::vector<MaterialSpec> materials;
     std::vector<ContactSpec> contacts;
     std::vector<GrainSpec> grains;

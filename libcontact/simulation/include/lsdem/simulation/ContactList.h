@@ -74,7 +74,9 @@ public:
     double skin() const { return mSkin; }
 
 private:
-    void rebuild(World& world);
+    /// @param keepPairKnowledge whether pairs still on the list keep their candidate node
+    ///        blocks (only when the world's grains and assets are those of the last build)
+    void rebuild(World& world, bool keepPairKnowledge);
 
     double mSkinFraction;
     double mSkin = 0.0;

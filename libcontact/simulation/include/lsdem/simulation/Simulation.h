@@ -73,6 +73,9 @@ public:
     long long contactNodes() const { return mContactNodes; }
     /// Elastic energy at the last evaluation.
     double elasticEnergy() const { return mElastic; }
+    /// How many other grains each grain touched (a penetrating node either way) at the last
+    /// evaluation, by grain index: the coordination of granular mechanics (walls not counted).
+    std::vector<int> grainContactCounts() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
 

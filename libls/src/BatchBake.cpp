@@ -1,0 +1,204 @@
+#include "lsdem/ls/BatchBake.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/MassProperties.h"
+#include "lsdem/ls/MeshIO.h"
+#include "lsdem/ls/MeshValidation.h"
+#include "lsdem/ls/Sha256.h"
+#include "lsdem/ls/Stopwatch.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <optional>
+
+namespace lsdem {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string shortest(double v)
+{
+    char buffer[64];
+    return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
+}
+
+/// What happened to one file.
+struct FileResult
+{
+    std::optional<CatalogEntry> entry;
+    bool unchanged = false;
+    std::string failure;
+    std::vector<std::string> warnings;
+};
+
+/// The earlier catalogue's rows by name, or none if there is no (readable) catalogue.
+std::map<std::string, CatalogEntry> earlierRows(const std::string& catalogPath,
+                                                std::vector<std::string>& warnings)
+{
+    std::map<std::string, CatalogEntry> rows;
+    std::error_code ec;
+    if (!fs::exists(catalogPath, ec)) return rows;
+    try {
+        for (CatalogEntry& e : readCatalog(catalogPath)) rows.emplace(e.name, std::move(e));
+    } catch (const Error& e) {
+        warnings.push_back(std::string(e.what()) +
+                           " (ignoring the old catalogue: every file is baked again)");
+        rows.clear();
+    }
+    return rows;
+}
+
+FileResult bakeOne(const std::string& path, const std::string& name,
+                   const BatchBakeOptions& o, const std::string& optionsText,
+                   const CatalogEntry* earlier)
+{
+    FileResult result;
+    const std::string assetFile = name + ".vdb";
+    const std::string assetPath = (fs::path(o.outDir) / assetFile).string();
+    try {
+        const Stopwatch clock;
+        const std::string sha = sha256OfFile(path);
+        std::error_code ec;
+        if (earlier && !o.rebake && earlier->sourceSha256 == sha &&
+            earlier->bakeOptions == optionsText && earlier->asset == assetFile &&
+            fs::is_regular_file(assetPath, ec)) {
+            result.entry = *earlier;
+            result.entry->source = path;
+            result.unchanged = true;
+            return result;
+        }
+        TriangleMesh mesh = readMesh(path);
+        BakeOptions bake = o.bake;
+        if (o.voxelPerSize > 0.0 || o.nodeSpacingPerSize > 0.0) {
+            // The size needs a solid: validate (and repair) here, bakeMesh finds nothing left.
+            validateSolidMesh(mesh, path);
+            const double d = std::cbrt(6.0 * computeMassProperties(mesh).volume / kPi);
+            if (o.voxelPerSize > 0.0) bake.voxelSize = o.voxelPerSize * d;
+            if (o.nodeSpacingPerSize > 0.0) bake.nodeSpacing = o.nodeSpacingPerSize * d;
+        }
+        bake.optionsText = optionsText + " (voxel " + shortest(bake.voxelSize) +
+                           (bake.nodePlacement == NodePlacement::Spacing
+                                ? ", node spacing " + shortest(bake.nodeSpacing)
+                                : std::string()) +
+                           ")";
+        GrainAsset asset = bakeMesh(std::move(mesh), path, bake, result.warnings);
+        asset.provenance.sourceSha256 = sha;
+        saveAsset(asset, assetPath);
+        result.entry = catalogEntry(asset, name, assetFile, optionsText, clock.seconds());
+    } catch (const Error& e) {
+        result.failure = e.what();
+    } catch (const std::exception& e) {
+        // CGAL, OpenVDB or the allocator gave up on this file: the others may still bake.
+        result.failure = path + ": internal error while baking: " + e.what();
+    }
+    return result;
+}
+
+} // namespace
+
+std::string batchOptionsText(const BatchBakeOptions& o)
+{
+    const BakeOptions& b = o.bake;
+    std::string text = o.voxelPerSize > 0.0 ? "voxel-per-size " + shortest(o.voxelPerSize)
+                                            : "voxel " + shortest(b.voxelSize);
+    switch (b.nodePlacement) {
+    case NodePlacement::Spacing:
+        text += o.nodeSpacingPerSize > 0.0
+                    ? " node-spacing-per-size " + shortest(o.nodeSpacingPerSize)
+                    : " node-spacing " + shortest(b.nodeSpacing);
+        break;
+    case NodePlacement::Count: text += " nodes " + std::to_string(b.nodeCount); break;
+    case NodePlacement::MeshVertices: text += " mesh-nodes"; break;
+    }
+    text += b.areaRule == AreaRule::Mesh ? " areas mesh" : " areas uniform";
+    text += " band " + std::to_string(b.exteriorBandVoxels);
+    return text;
+}
+
+BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
+                          const BatchBakeOptions& o, const BatchProgress& progress)
+{
+    if (meshPaths.empty()) throw Error("", "no mesh files to bake", "give one or more files");
+    if (!(o.voxelPerSize >= 0.0) || !(o.nodeSpacingPerSize >= 0.0))
+        throw Error("", "per-size voxel and node spacing must be positive");
+    if (o.nodeSpacingPerSize > 0.0 && o.bake.nodePlacement != NodePlacement::Spacing)
+        throw Error("", "a node spacing per size needs node placement by spacing");
+    if (o.threads < 0) throw Error("", "--threads must be >= 0");
+    // Names first: two files with one stem would overwrite each other's asset.
+    std::vector<std::string> names;
+    std::map<std::string, std::string> pathOfName;
+    for (const std::string& p : meshPaths) {
+        const std::string name = fs::path(p).stem().string();
+        if (name.empty())
+            throw Error(p, "cannot name an asset after this file (no file name)");
+        const auto [it, fresh] = pathOfName.emplace(name, p);
+        if (!fresh)
+            throw Error(p, "has the same name '" + name + "' as " + it->second +
+                               ": both would be baked to " + name + ".vdb",
+                        "rename one of them, or bake them into different --out-dir folders");
+        names.push_back(name);
+    }
+    prepareOutputFolder(o.outDir, "choose another --out-dir");
+
+    BatchBakeReport report;
+    report.catalogPath = (fs::path(o.outDir) / "catalog.csv").string();
+    std::map<std::string, CatalogEntry> earlier = earlierRows(report.catalogPath, report.warnings);
+    const std::string optionsText = batchOptionsText(o);
+
+    std::vector<FileResult> results(meshPaths.size());
+    std::mutex progressMutex;
+    size_t done = 0;
+    tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        // One file per task, handed out as threads free up (grains differ in cost).
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, meshPaths.size(), 1),
+            [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const auto found = earlier.find(names[i]);
+                    results[i] = bakeOne(meshPaths[i], names[i], o, optionsText,
+                                         found == earlier.end() ? nullptr : &found->second);
+                    std::lock_guard<std::mutex> lock(progressMutex);
+                    ++done;
+                    if (progress) progress(done, meshPaths.size(), meshPaths[i]);
+                }
+            },
+            tbb::simple_partitioner());
+    });
+
+    for (size_t i = 0; i < results.size(); ++i) {
+        FileResult& r = results[i];
+        for (std::string& w : r.warnings) report.warnings.push_back(std::move(w));
+        earlier.erase(names[i]);  // this run's result replaces it, or a failure drops it
+        if (!r.entry) {
+            report.failures.push_back({meshPaths[i], r.failure});
+            continue;
+        }
+        (r.unchanged ? report.unchanged : report.baked) += 1;
+        report.entries.push_back(std::move(*r.entry));
+    }
+    for (auto& [name, row] : earlier) {
+        std::error_code ec;
+        if (fs::is_regular_file(fs::path(o.outDir) / row.asset, ec))
+            report.entries.push_back(std::move(row));
+    }
+    std::sort(report.entries.begin(), report.entries.end(),
+              [](const CatalogEntry& a, const CatalogEntry& b) { return a.name < b.name; });
+    writeCatalog(report.catalogPath, report.entries);
+    return report;
+}
+
+} // namespace lsdem

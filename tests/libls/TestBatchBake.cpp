@@ -1,0 +1,163 @@
+// Batch baking: generated grains and one corrupt file baked on two threads; the good files are
+// baked and catalogued with their assets' own values, the corrupt one listed; voxel and node
+// spacing per size follow each grain's size; an unchanged second run bakes nothing; the thread
+// count changes nothing but the timings.
+#include "lsdem/ls/BatchBake.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/GrainGenerator.h"
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+using namespace lsdem;
+
+namespace {
+
+/// Three small generated grains of different sizes and a corrupt STL among them.
+std::vector<std::string> makeInputs(const test::ScratchDir& dir)
+{
+    GrainShapeOptions g;
+    g.triangles = 320;
+    g.maxDegree = 6;
+    g.sizeSpread = 0.4;
+    std::vector<std::string> files;
+    for (uint64_t i = 0; i < 3; ++i) {
+        files.push_back(dir.file("grain_" + std::to_string(i) + ".stl"));
+        writeGrainMesh(generateGrain(g, 1, i), files.back());
+    }
+    files.insert(files.begin() + 1, dir.file("broken.stl"));
+    writeTextFileAtomically(files[1], "solid broken\n  facet normal 0 0 1\n    outer loop\n");
+    return files;
+}
+
+BatchBakeOptions smallBake(const std::string& outDir, int threads)
+{
+    BatchBakeOptions o;
+    o.voxelPerSize = 0.08;
+    o.nodeSpacingPerSize = 0.15;
+    o.bake.nodePlacement = NodePlacement::Spacing;
+    o.outDir = outDir;
+    o.threads = threads;
+    return o;
+}
+
+} // namespace
+
+TEST(BatchBake, BakesTheGoodFilesAndListsTheBadOne)
+{
+    test::ScratchDir dir;
+    const std::vector<std::string> files = makeInputs(dir);
+    const std::string out = dir.file("assets");
+    size_t calls = 0;
+    const BatchBakeReport r = bakeBatch(files, smallBake(out, 2),
+                                        [&](size_t done, size_t total, const std::string&) {
+                                            EXPECT_EQ(done, ++calls);
+                                            EXPECT_EQ(total, 4u);
+                                        });
+    EXPECT_EQ(calls, 4u);
+    EXPECT_EQ(r.baked, 3);
+    ASSERT_EQ(r.failures.size(), 1u);
+    EXPECT_EQ(r.failures[0].source, files[1]);
+    EXPECT_NE(r.failures[0].message.find("broken.stl"), std::string::npos)
+        << r.failures[0].message;
+    EXPECT_FALSE(std::filesystem::exists(out + "/broken.vdb"));
+
+    // The catalogue on disk: sorted by name, each row its asset's own values.
+    const std::vector<CatalogEntry> rows = readCatalog(r.catalogPath);
+    ASSERT_EQ(rows.size(), 3u);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const CatalogEntry& row = rows[i];
+        EXPECT_EQ(row.name, "grain_" + std::to_string(i));
+        EXPECT_EQ(row.source, dir.file(row.name + ".stl"));
+        const auto asset = loadAsset(out + "/" + row.asset);
+        EXPECT_EQ(row.measures.volume, asset->mass.volume);
+        EXPECT_EQ(row.measures.surfaceArea, asset->nodes.totalArea());
+        EXPECT_EQ(row.nodes, static_cast<long long>(asset->nodes.size()));
+        EXPECT_EQ(row.vdp, asset->voxelSize);
+        EXPECT_EQ(row.sdp, asset->spacing.mean);
+        EXPECT_EQ(row.sourceSha256, asset->provenance.sourceSha256);
+        EXPECT_GT(row.bakeSeconds, 0.0);
+        // Per size: the voxel is 0.08 of this grain's equivalent diameter, (6V/π)^(1/3).
+        const double d = std::cbrt(6.0 * asset->mass.volume / kPi);
+        EXPECT_NEAR(row.measures.equivalentDiameter, d, 1e-12 * d);
+        EXPECT_NEAR(asset->voxelSize, 0.08 * d, 1e-6 * d);  // volume of the float32 STL
+        EXPECT_NEAR(asset->spacing.mean / (0.15 * d), 1.0, 0.25);  // remeshing to a target
+    }
+    EXPECT_NE(rows[0].measures.equivalentDiameter, rows[1].measures.equivalentDiameter);
+}
+
+TEST(BatchBake, UnchangedFilesAreNotBakedAgain)
+{
+    test::ScratchDir dir;
+    std::vector<std::string> files = makeInputs(dir);
+    files.erase(files.begin() + 1);  // no broken file here
+    const std::string out = dir.file("assets");
+    EXPECT_EQ(bakeBatch(files, smallBake(out, 2)).baked, 3);
+    const auto firstRows = readCatalog(out + "/catalog.csv");
+
+    const BatchBakeReport again = bakeBatch(files, smallBake(out, 2));
+    EXPECT_EQ(again.baked, 0);
+    EXPECT_EQ(again.unchanged, 3);
+    const auto rows = readCatalog(out + "/catalog.csv");
+    ASSERT_EQ(rows.size(), 3u);
+    for (size_t i = 0; i < rows.size(); ++i)
+        EXPECT_EQ(rows[i].bakeSeconds, firstRows[i].bakeSeconds);  // the old rows, kept
+
+    // A changed source is baked again; so is everything when the options change.
+    GrainShapeOptions g;
+    g.triangles = 320;
+    g.maxDegree = 6;
+    writeGrainMesh(generateGrain(g, 99, 0), files[0]);
+    const BatchBakeReport changed = bakeBatch(files, smallBake(out, 2));
+    EXPECT_EQ(changed.baked, 1);
+    EXPECT_EQ(changed.unchanged, 2);
+    BatchBakeOptions finer = smallBake(out, 2);
+    finer.voxelPerSize = 0.07;
+    EXPECT_EQ(bakeBatch(files, finer).baked, 3);
+
+    // Baking part of the set keeps the other rows.
+    const BatchBakeReport part = bakeBatch({files[1]}, finer);
+    EXPECT_EQ(part.unchanged, 1);
+    EXPECT_EQ(readCatalog(out + "/catalog.csv").size(), 3u);
+}
+
+TEST(BatchBake, ThreadCountChangesOnlyTheTimings)
+{
+    test::ScratchDir dir;
+    std::vector<std::string> files = makeInputs(dir);
+    const BatchBakeReport one = bakeBatch(files, smallBake(dir.file("one"), 1));
+    const BatchBakeReport two = bakeBatch(files, smallBake(dir.file("two"), 2));
+    ASSERT_EQ(one.entries.size(), two.entries.size());
+    for (size_t i = 0; i < one.entries.size(); ++i) {
+        const CatalogEntry &a = one.entries[i], &b = two.entries[i];
+        EXPECT_EQ(a.name, b.name);
+        EXPECT_EQ(a.measures.volume, b.measures.volume);
+        EXPECT_EQ(a.measures.surfaceArea, b.measures.surfaceArea);
+        EXPECT_EQ(a.measures.lengthLong, b.measures.lengthLong);
+        EXPECT_EQ(a.nodes, b.nodes);
+        EXPECT_EQ(a.sdp, b.sdp);
+    }
+    EXPECT_EQ(one.failures.size(), 1u);
+    EXPECT_EQ(two.failures.size(), 1u);
+}
+
+TEST(BatchBake, TwoFilesWithOneNameAreRefusedBeforeAnyWork)
+{
+    test::ScratchDir dir;
+    std::filesystem::create_directories(dir.file("a"));
+    std::filesystem::create_directories(dir.file("b"));
+    try {
+        bakeBatch({dir.file("a/g.stl"), dir.file("b/g.stl")}, smallBake(dir.file("out"), 1));
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("same name 'g'"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}

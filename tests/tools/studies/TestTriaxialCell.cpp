@@ -1,0 +1,113 @@
+// What a triaxial test reads off its cell (tools/studies/TriaxialCell): sizes from the walls'
+// positions, principal stresses from their forces over the current areas, p, q, strains, void
+// ratio, coordination and the mobilised friction angle, against values worked out by hand.
+#include "studies/TriaxialCell.h"
+
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+using namespace lsdem;
+
+namespace {
+
+Boundary plane(const std::string& name, const Vec3& point, const Vec3& normal)
+{
+    Boundary b;
+    b.name = name;
+    b.shape = BoundaryShape::Plane;
+    b.plane.point = point;
+    b.plane.normal = normal;
+    return b;
+}
+
+/// The cell [0, 2] × [0, 3] × [0, 4] with walls 0 … 5 in the order x min, x max, y min, ...
+World boxCell()
+{
+    World w;
+    w.boundaries = {plane("west", Vec3(0, 0, 0), Vec3::UnitX()),
+                    plane("east", Vec3(2, 0, 0), -Vec3::UnitX()),
+                    plane("south", Vec3(0, 0, 0), Vec3::UnitY()),
+                    plane("north", Vec3(0, 3, 0), -Vec3::UnitY()),
+                    plane("bottom", Vec3(0, 0, 0), Vec3::UnitZ()),
+                    plane("top", Vec3(0, 0, 4), -Vec3::UnitZ())};
+    return w;
+}
+
+TriaxialWalls walls()
+{
+    TriaxialWalls t;
+    t.index = {0, 1, 2, 3, 4, 5};
+    return t;
+}
+
+} // namespace
+
+TEST(TriaxialCell, StressesStrainsAndVoidRatioFromTheWalls)
+{
+    World w = boxCell();
+    const TriaxialState start = measureTriaxialCell(w, walls(), {});
+    EXPECT_EQ(start.size, Vec3(2, 3, 4));
+    EXPECT_DOUBLE_EQ(start.volume, 24.0);
+
+    // The top comes down by 0.4 and the east wall moves out by 0.1: 2.1 × 3 × 3.6.
+    w.boundaries[5].displacement = Vec3(0, 0, -0.4);
+    w.boundaries[1].displacement = Vec3(0.1, 0, 0);
+    // Grains push each wall outwards (against its normal). Areas: x walls 3 × 3.6 = 10.8,
+    // y walls 2.1 × 3.6 = 7.56, z walls 2.1 × 3 = 6.3.
+    w.boundaries[0].force = Vec3(-10.8, 0, 0);   // 1.0
+    w.boundaries[1].force = Vec3(3 * 10.8, 0, 0);  // 3.0: σ_x = 2
+    w.boundaries[2].force = Vec3(0, -2 * 7.56, 0);
+    w.boundaries[3].force = Vec3(0, 2 * 7.56, 0);  // σ_y = 2
+    w.boundaries[4].force = Vec3(0, 0, -5 * 6.3);
+    w.boundaries[5].force = Vec3(0.5, 0, 5 * 6.3);  // σ_z = 5 (a tangential part is ignored)
+    auto grainOfVolume = [](double v) {
+        auto asset = std::make_shared<GrainAsset>();
+        asset->mass.volume = v;
+        Grain g;
+        g.asset = asset;
+        return g;
+    };
+    w.grains = {grainOfVolume(6.0), grainOfVolume(9.12)};  // solid 15.12 of 22.68
+    const TriaxialState now = measureTriaxialCell(w, walls(), {3, 1});
+
+    EXPECT_NEAR(now.size.x(), 2.1, 1e-12);
+    EXPECT_NEAR(now.size.z(), 3.6, 1e-12);
+    EXPECT_NEAR(now.volume, 22.68, 1e-12);
+    EXPECT_NEAR(now.stress.x(), 2.0, 1e-12);
+    EXPECT_NEAR(now.stress.y(), 2.0, 1e-12);
+    EXPECT_NEAR(now.stress.z(), 5.0, 1e-12);
+    EXPECT_NEAR(now.p, 3.0, 1e-12);
+    EXPECT_NEAR(now.q, 3.0, 1e-12);
+    EXPECT_NEAR(now.voidRatio, 0.5, 1e-12);        // 22.68 / 15.12 − 1
+    EXPECT_DOUBLE_EQ(now.coordination, 2.0);       // (3 + 1) / 2
+    EXPECT_NEAR(axialStrain(start, now), 0.1, 1e-12);
+    EXPECT_NEAR(volumetricStrain(start, now), (24.0 - 22.68) / 24.0, 1e-12);
+    // sin φ = (5 − 2)/(5 + 2); and q/p = 6 sin φ / (3 − sin φ) for triaxial compression.
+    const double phi = mobilisedFrictionAngle(now);
+    EXPECT_NEAR(phi, std::asin(3.0 / 7.0) * 180.0 / kPi, 1e-12);
+    const double sinPhi = std::sin(phi * kPi / 180.0);
+    EXPECT_NEAR(now.q / now.p, 6 * sinPhi / (3 - sinPhi), 1e-12);
+}
+
+TEST(TriaxialCell, RefusesWallsThatDoNotBoundACuboid)
+{
+    World w = boxCell();
+    TriaxialWalls swapped = walls();
+    swapped.index = {1, 0, 2, 3, 4, 5};  // x max given as x min: its normal points along −x
+    EXPECT_THROW(measureTriaxialCell(w, swapped, {}), Error);
+    TriaxialWalls missing = walls();
+    missing.index[4] = 9;
+    EXPECT_THROW(measureTriaxialCell(w, missing, {}), Error);
+    w.boundaries[5].shape = BoundaryShape::Sphere;
+    try {
+        measureTriaxialCell(w, walls(), {});
+        FAIL() << "a sphere taken for a wall";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("top"), std::string::npos) << e.what();
+    }
+}

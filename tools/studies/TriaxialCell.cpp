@@ -1,0 +1,97 @@
+#include "studies/TriaxialCell.h"
+
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace lsdem {
+
+namespace {
+
+const char* const kWallNames[6] = {"x min", "x max", "y min", "y max", "z min", "z max"};
+
+const Boundary& wall(const World& world, const TriaxialWalls& walls, int which)
+{
+    const int index = walls.index[size_t(which)];
+    if (index < 0 || index >= static_cast<int>(world.boundaries.size()))
+        throw Error("triaxial cell", std::string("the ") + kWallNames[which] +
+                                         " wall is not one of the scene's boundaries",
+                    "give the index of a plane boundary");
+    const Boundary& b = world.boundaries[size_t(index)];
+    if (b.shape != BoundaryShape::Plane)
+        throw Error("triaxial cell", "wall '" + b.name + "' (" + kWallNames[which] +
+                                         ") is not a plane",
+                    "bound the cell with six planes");
+    return b;
+}
+
+} // namespace
+
+TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
+                                  const std::vector<int>& contactCounts)
+{
+    TriaxialState s;
+    double force[6];
+    for (int axis = 0; axis < 3; ++axis) {
+        const Boundary& low = wall(world, walls, 2 * axis);
+        const Boundary& high = wall(world, walls, 2 * axis + 1);
+        const Vec3 n = low.plane.normal;
+        // Opposite walls: parallel, facing each other, the low one's normal along +axis.
+        if (n.dot(high.plane.normal) > -1.0 + 1e-9 || n[axis] < 1.0 - 1e-9)
+            throw Error("triaxial cell",
+                        "walls '" + low.name + "' and '" + high.name + "' are not a pair of "
+                        "opposite planes facing into the cell along " + "xyz"[axis],
+                        "use planes with normals +e and -e of that axis");
+        const Vec3 lowPoint = low.plane.point + low.displacement;
+        const Vec3 highPoint = high.plane.point + high.displacement;
+        s.size[axis] = (highPoint - lowPoint).dot(n);
+        // The grains push a wall against its normal: compression is -F·n.
+        force[2 * axis] = -low.force.dot(n);
+        force[2 * axis + 1] = -high.force.dot(high.plane.normal);
+    }
+    s.volume = s.size.prod();
+    for (int axis = 0; axis < 3; ++axis) {
+        const double area = s.volume / s.size[axis];
+        s.stress[axis] = 0.5 * (force[2 * axis] + force[2 * axis + 1]) / area;
+    }
+    s.p = s.stress.sum() / 3.0;
+    s.q = s.stress.z() - 0.5 * (s.stress.x() + s.stress.y());
+    const double solid = solidVolume(world);
+    s.voidRatio = solid > 0.0 ? (s.volume - solid) / solid : 0.0;
+    if (!contactCounts.empty() && !world.grains.empty()) {
+        long long ends = 0;
+        for (int c : contactCounts) ends += c;
+        s.coordination = static_cast<double>(ends) / static_cast<double>(world.grains.size());
+    }
+    return s;
+}
+
+double solidVolume(const World& world)
+{
+    double volume = 0.0;
+    for (const Grain& g : world.grains) volume += g.asset->mass.volume;
+    return volume;
+}
+
+double axialStrain(const TriaxialState& start, const TriaxialState& now)
+{
+    return (start.size.z() - now.size.z()) / start.size.z();
+}
+
+double volumetricStrain(const TriaxialState& start, const TriaxialState& now)
+{
+    return (start.volume - now.volume) / start.volume;
+}
+
+double mobilisedFrictionAngle(const TriaxialState& state)
+{
+    const double major = state.stress.z();
+    const double minor = 0.5 * (state.stress.x() + state.stress.y());
+    if (!(major + minor > 0.0)) return 0.0;
+    return std::asin(std::clamp((major - minor) / (major + minor), -1.0, 1.0)) * 180.0 / kPi;
+}
+
+} // namespace lsdem

@@ -1,0 +1,54 @@
+/// @file TriaxialCell.h
+/// @brief What a triaxial test measures on a cuboid cell of six plane walls: the cell's size,
+///        the principal stresses from the walls' forces over their current areas, p and q,
+///        axial and volumetric strain from a reference size, the void ratio and the
+///        coordination number. Compression is positive (soil mechanics); the axis of loading
+///        is z. Units are the scene's (e.g. mm, N: stresses in N/mm² = MPa).
+#pragma once
+
+#include "lsdem/simulation/World.h"
+
+#include <array>
+#include <vector>
+
+namespace lsdem {
+
+/// The boundary indices of the six walls, each a plane whose normal points into the cell:
+/// x min, x max, y min, y max, z min (bottom), z max (top).
+struct TriaxialWalls
+{
+    std::array<int, 6> index = {-1, -1, -1, -1, -1, -1};
+};
+
+struct TriaxialState
+{
+    Vec3 size = Vec3::Zero();     ///< edge lengths along x, y, z (distances between walls)
+    double volume = 0.0;          ///< size.x · size.y · size.z
+    /// σ_x, σ_y, σ_z: each the mean of its two walls' normal force over their current area.
+    Vec3 stress = Vec3::Zero();
+    double p = 0.0;               ///< mean stress (σ_x + σ_y + σ_z) / 3
+    double q = 0.0;               ///< deviator σ_z − (σ_x + σ_y) / 2
+    double voidRatio = 0.0;       ///< (volume − solid volume) / solid volume
+    double coordination = 0.0;    ///< mean grain–grain contacts per grain, 2C/N
+};
+
+/// The cell of @a world bounded by @a walls (plane boundaries, checked: @throw Error naming
+/// the wall if one is not a plane, not facing into the cell, or opposite walls not parallel
+/// and facing each other). @a contactCounts: each grain's grain contacts (see
+/// Simulation::grainContactCounts; empty gives coordination 0).
+TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
+                                  const std::vector<int>& contactCounts);
+
+/// The grains' solid volume: Σ of their assets' volumes.
+double solidVolume(const World& world);
+
+/// Axial strain (H₀ − H)/H₀ along z and volumetric strain (V₀ − V)/V₀ from the reference
+/// state @a start (compression positive, so dilation is negative).
+double axialStrain(const TriaxialState& start, const TriaxialState& now);
+double volumetricStrain(const TriaxialState& start, const TriaxialState& now);
+
+/// The mobilised friction angle (degrees) of a triaxial compression state, from Mohr–Coulomb:
+/// sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) with σ₁ = σ_z and σ₃ the mean lateral stress.
+double mobilisedFrictionAngle(const TriaxialState& state);
+
+} // namespace lsdem

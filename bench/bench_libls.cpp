@@ -1,15 +1,24 @@
 // Benchmarks for grain assets (issue: bake, memory, sampling). Run:
 //   build/bench/bench_libls --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// Medians are the figures to quote; this machine is shared and noisy.
+// Medians are the figures to quote; this machine is shared and noisy. The bake benchmarks
+// report wall time ("Time") and the CPU time of all threads ("CPU"); memory figures are
+// resident bytes (/proc/self/status), so they include what malloc keeps but not what it gave
+// back. See docs/assets.md, "Cost".
 
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/LevelSetSampler.h"
+#include "lsdem/ls/MassProperties.h"
+#include "lsdem/ls/MeshLevelSet.h"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
+#include <malloc.h>
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 
 using namespace lsdem;
 
@@ -44,24 +53,216 @@ const GrainAsset& sphereAsset()
     return asset;
 }
 
+/// A field of /proc/self/status in bytes (VmRSS: resident now, VmHWM: the high-water mark).
+double statusBytes(const std::string& field)
+{
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind(field + ":", 0) == 0) {
+            std::istringstream in(line.substr(field.size() + 1));
+            double kib = 0;
+            in >> kib;
+            return kib * 1024.0;
+        }
+    return 0.0;
+}
+
+/// Reset the high-water mark to the present resident size (Linux ≥ 4.0), so VmHWM afterwards
+/// is the peak of what runs in between.
+void resetPeakRss()
+{
+    malloc_trim(0);  // hand freed heap back, so memory reused from earlier runs counts too
+    std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+constexpr double kMiB = 1024.0 * 1024.0;
+
+BakeOptions pebbleOptions()
+{
+    BakeOptions o;
+    o.voxelSize = 0.05;  // R/100
+    o.nodePlacement = NodePlacement::Spacing;
+    o.nodeSpacing = 0.12;
+    return o;
+}
+
+/// The 100k-triangle pebble in its principal frame, as bakeMesh has it before the stages.
+const TriangleMesh& framedPebble()
+{
+    static const TriangleMesh mesh = [] {
+        TriangleMesh m = pebble(71);  // 100,820 triangles
+        const PrincipalFrame frame = principalFrame(computeMassProperties(m), m);
+        transformMesh(m, frame.rotation, -(frame.rotation * frame.centroid));
+        return m;
+    }();
+    return mesh;
+}
+
+/// The whole bake; peak_over_grid is the resident high-water mark while baking, above what
+/// was resident before, over the final grid's own memory.
 void BM_BakeMesh100kTriangles(benchmark::State& state)
 {
     const TriangleMesh mesh = pebble(71);  // 100,820 triangles
-    BakeOptions o;
-    o.voxelSize = 0.05;
-    o.nodePlacement = NodePlacement::Spacing;
-    o.nodeSpacing = 0.12;
+    const BakeOptions o = pebbleOptions();
     size_t nodes = 0;
+    double peak = 0, grid = 0;
     for (auto _ : state) {
         std::vector<std::string> warnings;
+        resetPeakRss();
+        const double before = statusBytes("VmRSS");
         const GrainAsset asset = bakeMesh(mesh, "pebble", o, warnings);
+        peak = statusBytes("VmHWM") - before;
+        grid = double(asset.levelSet->grid->memUsage());
         nodes = asset.nodes.size();
         benchmark::DoNotOptimize(asset.levelSet.get());
     }
     state.counters["triangles"] = double(mesh.triangles.size());
     state.counters["nodes"] = double(nodes);
+    state.counters["grid_MiB"] = grid / kMiB;
+    state.counters["peak_MiB"] = peak / kMiB;
+    state.counters["peak_over_grid"] = peak / grid;
 }
-BENCHMARK(BM_BakeMesh100kTriangles)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BakeMesh100kTriangles)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+
+// The stages of that bake, one at a time, on the same mesh already in its principal frame.
+
+void BM_BakeStageMass(benchmark::State& state)
+{
+    const TriangleMesh mesh = pebble(71);
+    for (auto _ : state) {
+        const MassProperties props = computeMassProperties(mesh);
+        const PrincipalFrame frame = principalFrame(props, mesh);
+        benchmark::DoNotOptimize(frame.moments);
+    }
+}
+BENCHMARK(BM_BakeStageMass)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_BakeStageLevelSet(benchmark::State& state)
+{
+    const TriangleMesh& mesh = framedPebble();
+    const BakeOptions o = pebbleOptions();
+    double peak = 0, grid = 0, active = 0;
+    for (auto _ : state) {
+        resetPeakRss();
+        const double before = statusBytes("VmRSS");
+        const auto levelSet = meshLevelSet(mesh, o.voxelSize, o.exteriorBandVoxels);
+        peak = statusBytes("VmHWM") - before;
+        grid = double(levelSet->grid->memUsage());
+        active = double(levelSet->grid->activeVoxelCount());
+    }
+    state.counters["grid_MiB"] = grid / kMiB;
+    state.counters["peak_MiB"] = peak / kMiB;
+    state.counters["peak_over_grid"] = peak / grid;
+    state.counters["active_voxels"] = active;
+}
+BENCHMARK(BM_BakeStageLevelSet)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_BakeStageRemesh(benchmark::State& state)
+{
+    const TriangleMesh& mesh = framedPebble();
+    const BakeOptions o = pebbleOptions();
+    size_t vertices = 0;
+    double peak = 0;
+    for (auto _ : state) {
+        resetPeakRss();
+        const double before = statusBytes("VmRSS");
+        vertices = nodeSurface(mesh, o, true).vertices.size();
+        peak = statusBytes("VmHWM") - before;
+    }
+    state.counters["nodes"] = double(vertices);
+    state.counters["peak_MiB"] = peak / kMiB;
+}
+BENCHMARK(BM_BakeStageRemesh)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+
+void BM_BakeStageAreas(benchmark::State& state)
+{
+    const TriangleMesh surface = nodeSurface(framedPebble(), pebbleOptions(), true);
+    for (auto _ : state) {
+        SurfaceNodes nodes = nodesFromMesh(surface, AreaRule::Mesh);
+        sortNodesSpatially(nodes, 0.05);
+        benchmark::DoNotOptimize(groupNodesIntoBlocks(nodes));
+        benchmark::DoNotOptimize(nodeSpacing(nodes).mean);
+    }
+}
+BENCHMARK(BM_BakeStageAreas)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
+
+/// The issue's small grain: a 2×1×0.5 box at VDP 0.02, its grid against a dense float array
+/// of the grid's active bounding box.
+void BM_SmallBoxSparseVsDense(benchmark::State& state)
+{
+    BakeOptions o;
+    o.voxelSize = 0.02;
+    o.nodePlacement = NodePlacement::Spacing;
+    o.nodeSpacing = 0.05;
+    double sparse = 0, dense = 0;
+    for (auto _ : state) {
+        std::vector<std::string> warnings;
+        const GrainAsset asset = bakeAnalytic(AnalyticShape::box(2.0, 1.0, 0.5), o, warnings);
+        const auto& grid = *asset.levelSet->grid;
+        sparse = double(grid.memUsage());
+        dense = 4.0 * double(grid.evalActiveVoxelBoundingBox().volume());
+    }
+    state.counters["sparse_MiB"] = sparse / kMiB;
+    state.counters["dense_MiB"] = dense / kMiB;
+    state.counters["sparse_over_dense"] = sparse / dense;
+}
+BENCHMARK(BM_SmallBoxSparseVsDense)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+/// A sphere-like pebble of radius 1 with its own bumps (seed), about 5,000 triangles.
+TriangleMesh smallPebble(int seed)
+{
+    std::mt19937 random{uint32_t(seed)};
+    std::uniform_real_distribution<double> phase(0.0, 6.283);
+    const double a = phase(random), b = phase(random), c = phase(random);
+    TriangleMesh mesh = AnalyticShape::sphere(1.0).surfaceMesh(1.05 / 16);
+    for (Vec3& v : mesh.vertices) {
+        const Vec3 u = v.normalized();
+        v = u * (1.0 + 0.08 * std::sin(3 * u.x() + a) * std::cos(2 * u.y() + b) +
+                 0.05 * std::sin(5 * u.z() + c));
+    }
+    return mesh;
+}
+
+/// The resident memory of 1000 distinct assets of sphere-like grains at VDP = R/20 with about
+/// 1000 nodes each. Baking 1000 would take minutes, so 10 are baked (distinct bumps) and each
+/// is deep-copied 100 times: every copy owns its grid and nodes, as a distinct asset would.
+void BM_ThousandAssetsMemory(benchmark::State& state)
+{
+    BakeOptions o;
+    o.voxelSize = 0.05;  // R/20
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = 1000;
+    std::vector<GrainAsset> baked;
+    for (int seed = 0; seed < 10; ++seed) {
+        std::vector<std::string> warnings;
+        baked.push_back(bakeMesh(smallPebble(seed), "pebble", o, warnings));
+    }
+    double resident = 0, grids = 0, nodes = 0;
+    for (auto _ : state) {
+        malloc_trim(0);
+        const double before = statusBytes("VmRSS");
+        std::vector<GrainAsset> assets;
+        assets.reserve(1000);
+        grids = 0;
+        for (int i = 0; i < 1000; ++i) {
+            GrainAsset copy = baked[size_t(i % 10)];
+            auto levelSet = std::make_shared<LevelSetGrid>(*copy.levelSet);
+            levelSet->grid = levelSet->grid->deepCopy();
+            grids += double(levelSet->grid->memUsage());
+            copy.levelSet = levelSet;
+            assets.push_back(std::move(copy));
+        }
+        resident = statusBytes("VmRSS") - before;
+        nodes = double(assets[0].nodes.size());
+        benchmark::DoNotOptimize(assets.data());
+    }
+    state.counters["resident_MiB"] = resident / kMiB;
+    state.counters["grids_MiB"] = grids / kMiB;
+    state.counters["KiB_per_asset"] = resident / 1000.0 / 1024.0;
+    state.counters["nodes_per_asset"] = nodes;
+}
+BENCHMARK(BM_ThousandAssetsMemory)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_AssetMemory(benchmark::State& state)
 {

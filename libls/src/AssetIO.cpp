@@ -184,7 +184,7 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     if (!asset.levelSet || !asset.levelSet->grid)
         throw Error(path, "the asset has no level set to write");
     // Copy the grid's tree pointer, not the tree: metadata lives on a shallow copy.
-    openvdb::FloatGrid::Ptr phi = asset.levelSet->grid->copy();
+    openvdb::FloatGrid::Ptr phi = toFloatGrid(*asset.levelSet->grid);
     phi->setName(kLevelSetGridName);
     phi->setGridClass(openvdb::GRID_LEVEL_SET);
     writeMetadata(*phi, asset);
@@ -256,9 +256,9 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     // The exact voxel size and origin are kept as metadata (the transform's matrix would round
     // them); they must agree with the transform that OpenVDB tools use.
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = phi;
     levelSet->voxelSize = readMeta<double>(*phi, "voxel_size", path);
     levelSet->origin = readVec3(*phi, "grid_origin", path);
+    levelSet->grid = toLevelSetGrid(*phi);
     if (!(levelSet->voxelSize > 0.0 && std::isfinite(levelSet->voxelSize)) ||
         !levelSet->origin.allFinite())
         throw Error(path, "the voxel size or the grid origin is not a finite length",

@@ -3,13 +3,14 @@
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/ls/MeshIO.h"
+#include "lsdem/ls/MeshLevelSet.h"
 #include "lsdem/ls/MeshRemesh.h"
 #include "lsdem/ls/MeshValidation.h"
 #include "lsdem/ls/Sha256.h"
 
 #include <openvdb/tools/Dense.h>
-#include <openvdb/tools/MeshToVolume.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <cmath>
 #include <limits>
@@ -71,9 +72,12 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
     }
 }
 
-TriangleMesh nodeMesh(const TriangleMesh& surface, const BakeOptions& o)
+} // namespace
+
+TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool keepFineInput)
 {
     RemeshOptions remesh;
+    remesh.keepFineInput = keepFineInput;
     if (o.nodePlacement == NodePlacement::Spacing) {
         remesh.targetEdgeLength = o.nodeSpacing;
         return remeshIsotropic(surface, remesh);
@@ -96,13 +100,15 @@ TriangleMesh nodeMesh(const TriangleMesh& surface, const BakeOptions& o)
     return best;
 }
 
+namespace {
+
 /// Mark @a grid as a level set and wrap it with its index-space origin and voxel size.
 std::shared_ptr<const LevelSetGrid> wrapLevelSet(const openvdb::FloatGrid::Ptr& grid,
                                                  const Vec3& origin, double voxelSize)
 {
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = grid;
+    levelSet->grid = toLevelSetGrid(*grid);
     levelSet->origin = origin;
     levelSet->voxelSize = voxelSize;
     return levelSet;
@@ -178,24 +184,24 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
     asset.mass.inertia = asset.inputFrame.moments.asDiagonal();
     asset.provenance.source = sourceName;
 
-    // Level set of the input surface (the geometric truth), interior filled.
-    initializeOpenVdb();
-    const double vox = options.voxelSize;
-    const double pad = (options.exteriorBandVoxels + 2) * vox;
-    Vec3 origin;
-    for (int k = 0; k < 3; ++k) origin[k] = vox * std::floor((bounds[0][k] - pad) / vox);
-    const auto xform = makeGridTransform(vox, origin);
-    std::vector<openvdb::Vec3s> points;
-    std::vector<openvdb::Vec3I> triangles;
-    for (const Vec3& v : mesh.vertices) points.emplace_back(float(v.x()), float(v.y()), float(v.z()));
-    for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-    auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(
-        *xform, points, triangles, {}, float(options.exteriorBandVoxels),
-        std::numeric_limits<float>::max());
-    asset.levelSet = wrapLevelSet(grid, origin, vox);
-
-    const TriangleMesh surface =
-        options.nodePlacement == NodePlacement::MeshVertices ? mesh : nodeMesh(mesh, options);
+    // The level set of the input surface (the geometric truth) and the node surface are
+    // independent: made side by side, the bake takes about as long as the slower of the two.
+    std::shared_ptr<LevelSetGrid> levelSet;
+    tbb::task_group levelSetTask;
+    levelSetTask.run([&] {
+        levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
+    });
+    TriangleMesh surface;
+    try {
+        surface = options.nodePlacement == NodePlacement::MeshVertices
+                      ? mesh
+                      : nodeSurface(mesh, options, /*keepFineInput=*/true);
+    } catch (...) {
+        levelSetTask.wait();
+        throw;
+    }
+    levelSetTask.wait();  // rethrows what the level set threw
+    asset.levelSet = std::move(levelSet);
     asset.nodes = nodesFromMesh(surface, options.areaRule);
     finishAsset(asset, options, warnings);
     for (const Vec3& v : mesh.vertices)
@@ -256,7 +262,7 @@ GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
         const double h = options.nodePlacement == NodePlacement::Count
                              ? edgeLengthForNodeCount(shape.surfaceArea(), options.nodeCount)
                              : options.nodeSpacing;
-        surface = nodeMesh(shape.surfaceMesh(0.5 * h), options);  // fine seed
+        surface = nodeSurface(shape.surfaceMesh(0.5 * h), options, false);  // fine seed
         for (Vec3& v : surface.vertices) v = shape.closestSurfacePoint(v);
     }
     asset.nodes = nodesFromMesh(surface, options.areaRule);

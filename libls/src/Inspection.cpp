@@ -54,10 +54,10 @@ InspectionTarget openForInspection(const std::string& path)
         throw Error(path, "grid '" + chosen->getName() + "' has a non-uniform or non-linear "
                           "transform, which lsdem cannot sample");
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = chosen;
     levelSet->voxelSize = xform.voxelSize()[0];
     const openvdb::Vec3d o = xform.indexToWorld(openvdb::Vec3d(0, 0, 0));
     levelSet->origin = Vec3(o.x(), o.y(), o.z());
+    levelSet->grid = toLevelSetGrid(*chosen);
     target.levelSet = levelSet;
     target.gridName = chosen->getName();
     return target;
@@ -66,11 +66,13 @@ InspectionTarget openForInspection(const std::string& path)
 InspectionReport inspect(const InspectionTarget& target)
 {
     const LevelSetGrid& ls = *target.levelSet;
-    const openvdb::FloatGrid& grid = *ls.grid;
+    // OpenVDB's tools are instantiated for the standard tree: inspect a copy in it.
+    const openvdb::FloatGrid::Ptr standard = toFloatGrid(*ls.grid);
+    const openvdb::FloatGrid& grid = *standard;
     InspectionReport r;
     r.voxelSize = ls.voxelSize;
     r.activeVoxels = static_cast<long long>(grid.activeVoxelCount());
-    r.memoryBytes = static_cast<double>(grid.memUsage());
+    r.memoryBytes = static_cast<double>(ls.grid->memUsage());  // as held in memory
     r.background = grid.background();
     const openvdb::CoordBBox box = grid.evalActiveVoxelBoundingBox();
     for (int k = 0; k < 3; ++k) {
@@ -129,13 +131,14 @@ TriangleMesh zeroIsosurface(const LevelSetGrid& levelSet, double meshVoxel)
     std::vector<openvdb::Vec3s> points;
     std::vector<openvdb::Vec3I> triangles;
     std::vector<openvdb::Vec4I> quads;
+    const openvdb::FloatGrid::Ptr standard = toFloatGrid(*levelSet.grid);
     if (meshVoxel > levelSet.voxelSize) {
         const auto coarse = openvdb::math::Transform::createLinearTransform(meshVoxel);
         const openvdb::FloatGrid::Ptr rebuilt =
-            openvdb::tools::levelSetRebuild(*levelSet.grid, 0.0f, 2.0f, coarse.get());
+            openvdb::tools::levelSetRebuild(*standard, 0.0f, 2.0f, coarse.get());
         openvdb::tools::volumeToMesh(*rebuilt, points, triangles, quads, 0.0, 0.0);
     } else {
-        openvdb::tools::volumeToMesh(*levelSet.grid, points, triangles, quads, 0.0, 0.0);
+        openvdb::tools::volumeToMesh(*standard, points, triangles, quads, 0.0, 0.0);
     }
     TriangleMesh mesh;
     for (const auto& p : points) mesh.vertices.emplace_back(p.x(), p.y(), p.z());

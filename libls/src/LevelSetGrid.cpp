@@ -2,8 +2,48 @@
 
 #include <limits>
 #include <mutex>
+#include <vector>
 
 namespace lsdem {
+
+namespace {
+
+/// Copy the tiles of @a from (not its leaves' voxels) into @a to, and its transform and
+/// metadata; values equal to the background in inactive tiles are left to the background.
+template <typename FromGrid, typename ToGrid>
+void copyTilesAndMetadata(const FromGrid& from, ToGrid& to)
+{
+    static_cast<openvdb::MetaMap&>(to) = static_cast<const openvdb::MetaMap&>(from);
+    to.setTransform(from.transform().copy());
+    auto it = from.tree().cbeginValueAll();
+    it.setMaxDepth(FromGrid::TreeType::RootNodeType::LEVEL - 1);  // tiles only, no voxels
+    for (; it; ++it)
+        if (it.isValueOn() || *it != from.background())
+            to.tree().fill(it.getBoundingBox(), *it, it.isValueOn());
+}
+
+} // namespace
+
+LevelSetFloatGrid::Ptr toLevelSetGrid(openvdb::FloatGrid& grid)
+{
+    auto result = LevelSetFloatGrid::create(grid.background());
+    copyTilesAndMetadata(grid, *result);
+    std::vector<openvdb::FloatTree::LeafNodeType*> leaves;
+    leaves.reserve(grid.tree().leafCount());
+    grid.tree().stealNodes(leaves);
+    for (auto* leaf : leaves) result->tree().addLeaf(leaf);  // takes ownership
+    grid.tree().clear();
+    return result;
+}
+
+openvdb::FloatGrid::Ptr toFloatGrid(const LevelSetFloatGrid& grid)
+{
+    auto result = openvdb::FloatGrid::create(grid.background());
+    copyTilesAndMetadata(grid, *result);
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        result->tree().addLeaf(new openvdb::FloatTree::LeafNodeType(*leaf));
+    return result;
+}
 
 void initializeOpenVdb()
 {

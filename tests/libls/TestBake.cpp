@@ -97,7 +97,8 @@ TEST(Bake, LevelSetOwnMeasuresConvergeToTheSphere)
     const double radius = 5.0;
     for (double vox : {0.5, 0.25}) {
         const GrainAsset a = bake(AnalyticShape::sphere(radius), vox, 1.0);
-        openvdb::tools::LevelSetMeasure<openvdb::FloatGrid> measure(*a.levelSet->grid);
+        const openvdb::FloatGrid::Ptr grid = lsdem::toFloatGrid(*a.levelSet->grid);
+        openvdb::tools::LevelSetMeasure<openvdb::FloatGrid> measure(*grid);
         const double volume = 4.0 / 3.0 * kPi * radius * radius * radius;
         // OpenVDB's measure smears the surface over about a voxel: error O(vox/R) at worst.
         EXPECT_NEAR(measure.volume(true), volume, 0.5 * (vox / radius) * volume);

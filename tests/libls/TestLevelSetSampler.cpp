@@ -19,7 +19,7 @@ TEST(LevelSetSampler, ReproducesTrilinearFunctionsAndTheirGradients)
     LevelSetGrid ls;
     ls.voxelSize = 0.25;
     ls.origin = Vec3(-1.0, -2.0, 0.5);
-    ls.grid = openvdb::FloatGrid::create(100.0f);
+    ls.grid = lsdem::LevelSetFloatGrid::create(100.0f);
     auto f = [](const Vec3& p) { return 0.5 + 2 * p.x() - p.y() + 3 * p.z() + 0.25 * p.x() * p.y(); };
     auto accessor = ls.grid->getAccessor();
     for (int i = 0; i < 16; ++i)

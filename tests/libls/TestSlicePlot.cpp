@@ -37,7 +37,7 @@ InspectionTarget sphereTarget()
     auto ls = std::make_shared<LevelSetGrid>();
     ls->voxelSize = kVoxel;
     ls->origin = kOrigin;
-    ls->grid = openvdb::FloatGrid::create(kBand);
+    ls->grid = lsdem::LevelSetFloatGrid::create(kBand);
     auto accessor = ls->grid->getAccessor();
     for (int i = 0; i <= kCells[0]; ++i)
         for (int j = 0; j <= kCells[1]; ++j)

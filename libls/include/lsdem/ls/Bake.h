@@ -39,6 +39,12 @@ GrainAsset bakeMeshFile(const std::string& meshPath, const BakeOptions& options,
 GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const BakeOptions& options,
                     std::vector<std::string>& warnings);
 
+/// The mesh whose vertices become the nodes: @a surface remeshed isotropically to the node
+/// spacing or count of @a options (NodePlacement::Spacing or Count). One stage of bakeMesh,
+/// which remeshes fine scans as they are (@a keepFineInput, see RemeshOptions).
+TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options,
+                         bool keepFineInput);
+
 /// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
 /// surface. NodePlacement::MeshVertices is refused (there is no input mesh).
 GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,

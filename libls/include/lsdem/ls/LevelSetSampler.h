@@ -120,7 +120,7 @@ private:
         // them: one leaf 7 times in 8 per axis, otherwise 2, 4 or 8 neighbouring leaves, each
         // looked up once. Offsets within a leaf are x*64 + y*8 + z. A corner whose leaf does
         // not exist (a tile, or outside the band) asks the accessor for its value.
-        using Leaf = openvdb::FloatTree::LeafNodeType;
+        using Leaf = LevelSetTree::LeafNodeType;
         constexpr int kLast = Leaf::DIM - 1;
         const int crossX = (base.x() & kLast) == kLast, crossY = (base.y() & kLast) == kLast,
                   crossZ = (base.z() & kLast) == kLast;
@@ -154,7 +154,7 @@ private:
         }
     }
 
-    openvdb::FloatGrid::ConstUnsafeAccessor mAccessor;
+    LevelSetFloatGrid::ConstUnsafeAccessor mAccessor;
     Vec3 mOrigin;
     double mInvVoxel;
 };

@@ -37,10 +37,10 @@ SlabRunCost slabRunCost(const SlabStudyOptions& o, const SlabCase& run)
     const double blocks = double(panel.n()) * panel.n();
     const SlabStiffness k = slabStiffness(o);
     const double mass = o.material.density * panel.blockVolume();
-    // Measured on this machine (2 shared cores, see docs/slab.md): about 75 ns of wall time
-    // per block node and step, both directions of symmetric testing and the shear history
-    // included.
-    const double secondsPerNodeStep = 75e-9;
+    // Measured on this machine (2 cores, see docs/slab.md): about 21 ns of wall time per block
+    // node and step when the cores are idle (bench_slab, 2026-11-25), both directions of
+    // symmetric testing and the shear history included; 25 ns leaves room for a little load.
+    const double secondsPerNodeStep = 25e-9;
     SlabRunCost c;
     c.nodes = nodesForSpacing(area, run.sdp);
     const ContactModel model = slabContactModel(o, run.formulation);

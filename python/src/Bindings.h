@@ -9,7 +9,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <tbb/task_arena.h>
+
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +45,8 @@ py::array_t<double> vectorCopy(const std::vector<Vec3>& vectors);
 /// A fresh (3,) float64 array; a fresh (3, 3) one.
 py::array_t<double> toArray(const Vec3& v);
 py::array_t<double> toArray(const Mat3& m);
+/// A TBB arena of @a threads threads (all cores if none). @throw lsdem::Error if < 1.
+std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads);
 /// A vector from any Python sequence of three numbers. @throw lsdem::Error naming @a what.
 Vec3 toVec3(const py::handle& value, const std::string& what);
 

@@ -21,12 +21,6 @@ namespace lsdem::python {
 
 namespace {
 
-tbb::task_arena arenaFor(std::optional<int> threads)
-{
-    if (threads && *threads < 1) throw Error("", "threads wants a number >= 1");
-    return threads ? tbb::task_arena(*threads) : tbb::task_arena();
-}
-
 /// A path given as str or os.PathLike.
 std::string pathText(const py::handle& path)
 {
@@ -42,12 +36,12 @@ py::dict runScene(const py::object& scene, const py::object& out, std::optional<
     options.progress = progress;
     if (stopAtStep < 0) throw Error("", "stop_at_step wants a number >= 0 (0: run to the end)");
     options.stopAtStep = stopAtStep;
-    tbb::task_arena arena = arenaFor(threads);
+    const std::unique_ptr<tbb::task_arena> arena = makeArena(threads);
     std::ostringstream log;
     RunResult result;
     {
         py::gil_scoped_release release;
-        arena.execute([&] { result = runSimulation(options, log); });
+        arena->execute([&] { result = runSimulation(options, log); });
     }
     py::dict d;
     d["interrupted"] = result.interrupted;
@@ -92,11 +86,11 @@ py::list twoSpheres(const std::vector<std::string>& formulations, const std::vec
     checkTwoSpheresOptions(o);
     const std::string csvPath =
         outDir ? (std::filesystem::path(pathText(*outDir)) / "two_spheres.csv").string() : "";
-    tbb::task_arena arena = arenaFor(threads);
+    const std::unique_ptr<tbb::task_arena> arena = makeArena(threads);
     TwoSpheresResult result;
     {
         py::gil_scoped_release release;
-        arena.execute([&] {
+        arena->execute([&] {
             result = runTwoSpheres(o);
             if (!csvPath.empty()) {
                 std::filesystem::create_directories(std::filesystem::path(csvPath).parent_path());

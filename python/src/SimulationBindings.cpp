@@ -23,19 +23,19 @@
 
 namespace lsdem::python {
 
-namespace {
-
-namespace fs = std::filesystem;
-
-/// While C++ steps without a callback, Python gets the GIL back this often to notice Ctrl-C.
-constexpr double kSignalCheckSeconds = 0.2;
-
 std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads)
 {
     if (threads && *threads < 1) throw Error("", "threads wants a number >= 1");
     return threads ? std::make_unique<tbb::task_arena>(*threads)
                    : std::make_unique<tbb::task_arena>();
 }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// While C++ steps without a callback, Python gets the GIL back this often to notice Ctrl-C.
+constexpr double kSignalCheckSeconds = 0.2;
 
 void warnAll(const std::vector<std::string>& warnings)
 {

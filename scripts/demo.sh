@@ -29,9 +29,9 @@ echo "== 27-sphere stack study (Fig. 4; about 15 s)"
 build/tools/lsdem-study cube27 --out results/cube27-study
 echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cube27.toml)"
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27
-echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; about 25 s)"
+echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; about 6 s)"
 build/tools/lsdem-run assets/scenes/sand.toml --out results/sand
-echo "== interlocked slab study (Fig. 5 and 6; about 6 minutes on 2 cores)"
+echo "== interlocked slab study (Fig. 5 and 6; about 2 minutes on 2 cores)"
 build/tools/lsdem-study slab --out results/slab
 echo "== done: assets in $out (open the .png slices; the .obj isosurfaces load in any viewer;"
 echo "   $out/sand holds the baked sand grains and their catalog.csv),"

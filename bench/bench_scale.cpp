@@ -396,28 +396,20 @@ void BM_StepAfterRebuild(benchmark::State& state)
 // grains: a repetition at 100,000 grains takes seconds.
 void registerScale(int grains, int steps)
 {
-    benchmark::RegisterBenchmark("BM_ScaleStep", BM_ScaleStep)
-        ->Args({grains, 1})
-        ->Args({grains, 2})
-        ->ArgNames({"grains", "threads"})
-        ->Iterations(steps)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->MeasureProcessCPUTime();
-    benchmark::RegisterBenchmark("BM_StepAfterRebuild", BM_StepAfterRebuild)
-        ->Args({grains, 2})
-        ->ArgNames({"grains", "threads"})
-        ->Iterations(steps)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->MeasureProcessCPUTime();
-    benchmark::RegisterBenchmark("BM_ListRebuild", BM_ListRebuild)
-        ->Args({grains, 2})
-        ->ArgNames({"grains", "threads"})
-        ->Iterations(steps)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime()
-        ->MeasureProcessCPUTime();
+    // Every benchmark here: timed per step, wall clock and the whole process's CPU time.
+    auto perStep = [steps](benchmark::internal::Benchmark* b) {
+        b->ArgNames({"grains", "threads"})
+            ->Iterations(steps)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime()
+            ->MeasureProcessCPUTime();
+    };
+    perStep(benchmark::RegisterBenchmark("BM_ScaleStep", BM_ScaleStep)
+                ->Args({grains, 1})
+                ->Args({grains, 2}));
+    perStep(benchmark::RegisterBenchmark("BM_StepAfterRebuild", BM_StepAfterRebuild)
+                ->Args({grains, 2}));
+    perStep(benchmark::RegisterBenchmark("BM_ListRebuild", BM_ListRebuild)->Args({grains, 2}));
 }
 
 } // namespace

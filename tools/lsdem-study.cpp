@@ -4,6 +4,7 @@
 #include "studies/Cube27Command.h"
 #include "studies/RunDistributor.h"
 #include "studies/SlabCommand.h"
+#include "studies/TriaxialCommand.h"
 #include "studies/TwoSpheresCommand.h"
 
 #include "lsdem/ls/Error.h"
@@ -61,6 +62,7 @@ int main(int argc, char** argv)
     TwoSpheresCommand twoSpheres(app);
     Cube27Command cube27(app);
     SlabCommand slab(app);
+    TriaxialCommand triaxial(app);
     app.set_help_all_flag("--help-all", "print the help of every study and exit");
     if (argc < 2) {
         std::cerr << app.help();
@@ -74,10 +76,11 @@ int main(int argc, char** argv)
         };
         if (study[0] != '-' && std::as_const(app).get_subcommands(named).empty())
             throw Error("", "unknown study '" + study + "'",
-                        "available: two-spheres, cube27, slab");
+                        "available: two-spheres, cube27, slab, triaxial");
         if (const auto exitCode = cli::parse(app, argc, argv)) return *exitCode;
         if (twoSpheres.chosen()) return twoSpheres.run(*ranks);
         if (cube27.chosen()) return cube27.run(*ranks);
+        if (triaxial.chosen()) return triaxial.run(*ranks);
         return slab.run(*ranks);
     });
 }

@@ -1,0 +1,172 @@
+#include "studies/TriaxialCommand.h"
+
+#include "studies/RunDistributor.h"
+#include "studies/StudyCommandOptions.h"
+#include "studies/ThreadLimit.h"
+#include "studies/TriaxialOutputs.h"
+#include "studies/TriaxialStudy.h"
+
+#include "common/CommandLine.h"
+#include "common/StudyOutput.h"
+
+#include "lsdem/ls/Stopwatch.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace lsdem {
+
+TriaxialCommand::TriaxialCommand(CLI::App& study)
+    : mCommand(study.add_subcommand(
+          "triaxial",
+          "Triaxial compression of a granular sample, adapted against original\n\n"
+          "A sample of --grains grains (the meshes of --meshes, in turn, on a loose lattice, "
+          "random\norientations) in a cuboid of six walls: consolidated isotropically to "
+          "--confining-stress\nby servo walls, then compressed axially at the strain rate of "
+          "--inertial-number with the\nside walls holding the confining stress, to "
+          "--axial-strain. Once per formulation and node\nspacing (SDP), at one voxel size "
+          "(VDP): q, p, strains, void ratio, coordination; peak and\ncritical-state friction "
+          "angles (docs/triaxial.md)."))
+{
+    using cli::addInteger;
+    using cli::addNumber;
+    using cli::addNumbers;
+    TriaxialOptions& o = mOptions;
+    const std::string sample = "Sample";
+    mCommand->add_option("--meshes", o.meshes, "grain mesh files, or folders of them")
+        ->type_name("PATH")
+        ->capture_default_str()
+        ->group(sample);
+    addInteger(*mCommand, "--grains", o.grains, "grains in the sample")->type_name("N")->group(sample);
+    addInteger(*mCommand, "--seed", o.seed, "random seed (which mesh, orientation)")
+        ->type_name("S")
+        ->group(sample);
+    addNumber(*mCommand, "--density", o.density, "grain density, tonne/mm^3")->type_name("RHO")->group(sample);
+    const std::string resolution = "Resolution";
+    addNumber(*mCommand, "--vdp", o.vdp, "voxel size, mm (every run)")->type_name("V")->group(resolution);
+    addNumbers(*mCommand, "--sdps", o.sdps, "node spacings, mm, coarsest first")
+        ->type_name("S")
+        ->group(resolution);
+    addFormulationOption(*mCommand, o.formulations)->group(resolution);
+    const std::string law = "Contact law";
+    addNumber(*mCommand, "--kn-star", o.knStar, "adapted kn*, N/mm^3")->type_name("K")->group(law);
+    addNumber(*mCommand, "--kn-original", o.knOriginal,
+              "original kn, N/mm (0: kn* x mean node area at the coarsest SDP)")
+        ->type_name("K")
+        ->group(law);
+    addNumber(*mCommand, "--shear-ratio", o.shearRatio, "ks/kn")->type_name("R")->group(law);
+    addNumber(*mCommand, "--friction", o.friction, "grain-grain friction while shearing")
+        ->type_name("MU")
+        ->group(law);
+    addNumber(*mCommand, "--consolidation-friction", o.consolidationFriction,
+              "grain-grain friction while consolidating (0: a dense sample)")
+        ->type_name("MU")
+        ->group(law);
+    addNumber(*mCommand, "--wall-friction", o.wallFriction, "grain-wall friction")
+        ->type_name("MU")
+        ->group(law);
+    addNumber(*mCommand, "--damping", o.globalDamping, "global damping")->type_name("L")->group(law);
+    const std::string test = "Test";
+    addNumber(*mCommand, "--confining-stress", o.confiningStress, "sigma_3, MPa")
+        ->type_name("S")
+        ->group(test);
+    addNumber(*mCommand, "--inertial-number", o.inertialNumber,
+              "I = rate x d x sqrt(rho/sigma_3): sets the axial strain rate")
+        ->type_name("I")
+        ->group(test);
+    addNumber(*mCommand, "--axial-strain", o.maxAxialStrain, "axial strain at the end")
+        ->type_name("E")
+        ->group(test);
+    addNumber(*mCommand, "--stress-tolerance", o.stressTolerance,
+              "consolidated when every |sigma_i/sigma_3 - 1| is below this")
+        ->type_name("T")
+        ->group(test);
+    const std::string output = "Output";
+    addInteger(*mCommand, "--records", o.records, "rows per run over the shearing")
+        ->type_name("N")
+        ->group(output);
+    addInteger(*mCommand, "--threads", o.threads, "worker threads (0: all cores)")
+        ->type_name("N")
+        ->group(output);
+    addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the summary");
+    mCommand->footer("Units: mm, tonne, s, N (stresses in MPa). Writes DIR/triaxial.csv (rows of "
+                     "every run),\nDIR/triaxial_runs.csv (one row per run) and, with "
+                     "python3-matplotlib, DIR/*.png.");
+}
+
+bool TriaxialCommand::chosen() const
+{
+    return mCommand->parsed();
+}
+
+int TriaxialCommand::run(RunDistributor& ranks) const
+{
+    const TriaxialOptions& o = mOptions;
+    checkTriaxialOptions(o);
+    const ThreadLimit threads(o.threads, ranks);
+    if (!ranks.isRoot()) {
+        runTriaxialStudy(o, ranks);
+        return 0;
+    }
+    cli::prepareOutputFolder(o.outDir);
+    if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
+    std::printf("triaxial: %lld grains, sigma_3 = %g MPa, I = %g, to %g %% axial strain, "
+                "VDP %g mm\n",
+                o.grains, o.confiningStress, o.inertialNumber, 100.0 * o.maxAxialStrain, o.vdp);
+    std::fflush(stdout);
+
+    const Stopwatch wall;
+    auto onRun = [&](const TriaxialRun& r) {
+        if (o.quiet) return;
+        std::printf("  done: %s SDP %g: %.0f nodes/grain, peak phi %.2f deg, critical phi "
+                    "%.2f deg, %.0f s\n",
+                    formulationName(r.formulation).c_str(), r.sdp, r.nodesPerGrain,
+                    r.test.peakFrictionAngle, r.test.criticalFrictionAngle, r.runSeconds);
+        std::fflush(stdout);
+    };
+    auto progress = [&](Formulation f, double sdp, const TriaxialRow& row) {
+        if (o.quiet) return;
+        static int counter = 0;
+        if (row.stage == 1 && ++counter % 20 != 0) return;  // every tenth of the shearing
+        std::printf("  %s SDP %g: %s step %lld, eps_a %.3f, p %.4g, q %.4g, e %.3f\n",
+                    formulationName(f).c_str(), sdp,
+                    row.stage == 0 ? "consolidating" : "shearing", row.step, row.axialStrain,
+                    row.state.p, row.state.q, row.state.voidRatio);
+        std::fflush(stdout);
+    };
+    const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
+    const std::string csv = o.outDir + "/triaxial.csv";
+    const std::string runsCsv = o.outDir + "/triaxial_runs.csv";
+    writeTriaxialCsv(result, csv);
+    writeTriaxialRunsCsv(result, runsCsv);
+
+    std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
+                "spacing %.3g mm\n",
+                result.grains, result.meshes, result.meanDiameter, result.spacing);
+    std::printf("%-9s %6s %6s %7s %6s %8s %7s %8s %7s %9s %8s %8s %8s\n", "formul.", "SDP",
+                "nodes", "e0", "Z0", "phi_peak", "eps_pk", "phi_cs", "e_cs", "I_max", "steps",
+                "ms/step", "wall s");
+    for (const TriaxialRun& r : result.runs) {
+        const TriaxialTestResult& t = r.test;
+        std::printf("%-9s %6.3g %6.0f %7.3f %6.2f %8.2f %7.3f %8.2f %7.3f %9.2e %8lld %8.2f "
+                    "%8.0f%s\n",
+                    formulationName(r.formulation).c_str(), r.sdp, r.nodesPerGrain,
+                    t.consolidated.voidRatio, t.consolidated.coordination, t.peakFrictionAngle,
+                    t.peakAxialStrain, t.criticalFrictionAngle, t.criticalVoidRatio,
+                    t.maxInertialNumber, t.consolidationSteps + t.shearSteps, r.msPerStep,
+                    r.runSeconds, t.consolidatedWithinTolerance ? "" : "  (not consolidated)");
+    }
+    for (Formulation f : o.formulations) {
+        const double change = finestPeakChange(result, f);
+        if (std::isfinite(change))
+            std::printf("%s: peak friction angle changes by %+.2f deg between the two finest "
+                        "SDPs\n",
+                        formulationName(f).c_str(), change);
+    }
+    std::printf("time %.0f s\nwrote %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str());
+    return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
+}
+
+} // namespace lsdem

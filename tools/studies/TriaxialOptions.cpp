@@ -1,0 +1,113 @@
+#include "studies/TriaxialOptions.h"
+
+#include "studies/FormulationList.h"
+
+#include "common/NumberText.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace lsdem {
+
+namespace {
+
+void requirePositive(double v, const std::string& option, const std::string& fix = "")
+{
+    if (!(v > 0.0 && std::isfinite(v)))
+        throw Error("", option + " must be positive and finite, got " + cli::numberText(v), fix);
+}
+
+void requireFraction(double v, const std::string& option, double upper)
+{
+    if (!(v >= 0.0 && v < upper))
+        throw Error("", option + " must be in [0, " + cli::numberText(upper) + "), got " +
+                            cli::numberText(v));
+}
+
+bool isMeshFile(const std::filesystem::path& p)
+{
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".off";
+}
+
+} // namespace
+
+void checkTriaxialOptions(const TriaxialOptions& o)
+{
+    if (o.meshes.empty()) throw Error("", "--meshes needs at least one mesh file or folder");
+    if (o.grains < 8)
+        throw Error("", "--grains must be at least 8, got " + std::to_string(o.grains),
+                    "a triaxial sample needs grains in every direction; 1000 is the default");
+    if (o.seed < 0) throw Error("", "--seed wants a number >= 0");
+    requirePositive(o.vdp, "--vdp", "e.g. --vdp 0.03 (mm)");
+    if (o.sdps.empty()) throw Error("", "--sdps needs at least one node spacing");
+    for (double s : o.sdps) requirePositive(s, "--sdps", "e.g. --sdps 0.1 0.07 0.05 (mm)");
+    for (size_t i = 1; i < o.sdps.size(); ++i)
+        if (!(o.sdps[i] < o.sdps[i - 1]))
+            throw Error("", "--sdps must be decreasing (coarsest first), got " +
+                                cli::numberText(o.sdps[i - 1]) + " then " +
+                                cli::numberText(o.sdps[i]),
+                        "e.g. --sdps 0.1 0.07 0.05");
+    checkFormulationList(o.formulations);
+    for (Formulation f : o.formulations)
+        if (f != Formulation::Adapted && f != Formulation::Original)
+            throw Error("", "the triaxial study runs adapted and original, not " +
+                                formulationName(f),
+                        "--formulation adapted original");
+    requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
+    requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
+    if (!(o.knOriginal >= 0.0 && std::isfinite(o.knOriginal)))
+        throw Error("", "--kn-original must be zero (derived) or positive, got " +
+                            cli::numberText(o.knOriginal));
+    requirePositive(o.shearRatio, "--shear-ratio", "0.5 is the default");
+    for (const auto& [value, option] : {std::pair{o.friction, "--friction"},
+                                        std::pair{o.consolidationFriction, "--consolidation-friction"},
+                                        std::pair{o.wallFriction, "--wall-friction"}})
+        if (!(value >= 0.0 && std::isfinite(value)))
+            throw Error("", std::string(option) + " must be zero or positive, got " +
+                                cli::numberText(value));
+    requireFraction(o.globalDamping, "--damping", 1.0);
+    requirePositive(o.confiningStress, "--confining-stress",
+                    "a compressive stress in MPa, e.g. 0.1 for 100 kPa");
+    requirePositive(o.inertialNumber, "--inertial-number", "1e-3 is quasi-static");
+    if (!(o.maxAxialStrain > 0.0 && o.maxAxialStrain < 0.5))
+        throw Error("", "--axial-strain must be in (0, 0.5), got " +
+                            cli::numberText(o.maxAxialStrain), "0.2 is the default");
+    if (!(o.stressTolerance > 0.0 && o.stressTolerance < 0.5))
+        throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
+                            cli::numberText(o.stressTolerance));
+    if (o.records < 2) throw Error("", "--records must be at least 2");
+    if (o.threads < 0) throw Error("", "--threads must be zero (all cores) or positive");
+}
+
+std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o)
+{
+    namespace fs = std::filesystem;
+    std::vector<std::string> files;
+    for (const std::string& path : o.meshes) {
+        std::error_code ec;
+        if (fs::is_directory(path, ec)) {
+            std::vector<std::string> inFolder;
+            for (const fs::directory_entry& e : fs::directory_iterator(path, ec))
+                if (e.is_regular_file() && isMeshFile(e.path())) inFolder.push_back(e.path().string());
+            if (inFolder.empty())
+                throw Error(path, "no mesh files (.obj, .stl, .ply, .off) in this folder",
+                            "give --meshes a folder of grain meshes, or the files themselves");
+            std::sort(inFolder.begin(), inFolder.end());
+            files.insert(files.end(), inFolder.begin(), inFolder.end());
+        } else if (fs::is_regular_file(path, ec)) {
+            files.push_back(path);
+        } else {
+            throw Error(path, "no such mesh file or folder",
+                        "run from lsdem's folder (the default is assets/meshes/sand), or give "
+                        "--meshes");
+        }
+    }
+    return files;
+}
+
+} // namespace lsdem

@@ -1,0 +1,52 @@
+/// @file TriaxialOptions.h
+/// @brief The options of the triaxial study (`lsdem-study triaxial`): the sample (grain meshes,
+///        count, seed), the resolutions (one VDP, several SDPs), the contact law, and the test
+///        (confining stress, inertial number, axial strain). Units: mm, tonne, s, N (stresses in
+///        N/mm² = MPa).
+#pragma once
+
+#include "lsdem/contact/ContactModel.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lsdem {
+
+struct TriaxialOptions
+{
+    /// Grain meshes: files, or folders whose .obj/.stl/.ply/.off files are all used.
+    std::vector<std::string> meshes = {"assets/meshes/sand"};
+    long long grains = 1000;       ///< grains in the sample, the meshes used in turn
+    long long seed = 1;            ///< which mesh and orientation each grain gets (>= 0)
+    double vdp = 0.03;             ///< voxel size, mm (the same for every run)
+    std::vector<double> sdps = {0.1, 0.07, 0.05};  ///< node spacings, mm, coarsest first
+    std::vector<Formulation> formulations = {Formulation::Adapted, Formulation::Original};
+    double density = 2.65e-9;      ///< tonne/mm³ (quartz)
+    double knStar = 1e3;           ///< adapted kn*, N/mm³
+    /// original kn, N/mm (0: kn* times the mean node area at the coarsest SDP, so both
+    /// formulations are the same law there and part as the nodes are refined)
+    double knOriginal = 0.0;
+    double shearRatio = 0.5;       ///< ks/kn (ks*/kn* for adapted)
+    double friction = 0.5;         ///< grain–grain μ while shearing
+    double consolidationFriction = 0.0;  ///< grain–grain μ while consolidating (0: dense)
+    double wallFriction = 0.0;     ///< grain–wall μ (smooth platens)
+    double globalDamping = 0.2;
+    double confiningStress = 0.1;  ///< σ₃, MPa (100 kPa)
+    double inertialNumber = 1e-3;  ///< I = ε̇·d·sqrt(ρ/σ₃): sets the axial strain rate
+    double maxAxialStrain = 0.2;
+    double stressTolerance = 0.02; ///< consolidated when every |σ_i/σ₃ − 1| is below this
+    int records = 200;             ///< rows written over the shearing
+    long long threads = 0;
+    std::string outDir = "results/triaxial";
+    bool plots = true, quiet = false;
+};
+
+/// @throw Error naming the option and the fix for anything out of range.
+void checkTriaxialOptions(const TriaxialOptions& o);
+
+/// The mesh files of o.meshes (folders expanded, sorted by name). @throw Error if a path does
+/// not exist or nothing is found.
+std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o);
+
+} // namespace lsdem

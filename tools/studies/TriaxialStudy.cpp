@@ -1,0 +1,243 @@
+#include "studies/TriaxialStudy.h"
+
+#include "studies/RunDistributor.h"
+#include "studies/RunRecord.h"
+#include "studies/TriaxialSample.h"
+
+#include "lsdem/ls/Constants.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+namespace lsdem {
+
+namespace {
+
+constexpr int kRowFields = 21;
+
+void packRow(const TriaxialRow& r, std::vector<double>& out)
+{
+    const TriaxialState& s = r.state;
+    const double fields[kRowFields] = {
+        double(r.stage), double(r.step), r.time, s.size.x(), s.size.y(), s.size.z(), s.volume,
+        s.stress.x(), s.stress.y(), s.stress.z(), s.p, s.q, s.voidRatio, s.coordination,
+        r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber, r.kinetic, 0.0, 0.0};
+    out.insert(out.end(), fields, fields + kRowFields);
+}
+
+TriaxialRow unpackRow(const double* f)
+{
+    TriaxialRow r;
+    r.stage = int(f[0]);
+    r.step = static_cast<long long>(f[1]);
+    r.time = f[2];
+    r.state.size = Vec3(f[3], f[4], f[5]);
+    r.state.volume = f[6];
+    r.state.stress = Vec3(f[7], f[8], f[9]);
+    r.state.p = f[10];
+    r.state.q = f[11];
+    r.state.voidRatio = f[12];
+    r.state.coordination = f[13];
+    r.axialStrain = f[14];
+    r.volumetricStrain = f[15];
+    r.frictionAngle = f[16];
+    r.inertialNumber = f[17];
+    r.kinetic = f[18];
+    return r;
+}
+
+std::string encodeRun(const TriaxialRun& r)
+{
+    RecordWriter w;
+    w.text(formulationName(r.formulation));
+    w.number(r.sdp).number(r.vdp).number(r.nodesPerGrain).number(r.stiffness).number(r.dt);
+    w.number(r.stabilityLimit);
+    w.number(r.strainRate).number(r.bakeSeconds).number(r.runSeconds).number(r.msPerStep);
+    const TriaxialTestResult& t = r.test;
+    w.integer(t.consolidatedWithinTolerance ? 1 : 0);
+    w.integer(t.consolidationSteps).integer(t.shearSteps);
+    std::vector<double> consolidated, rows;
+    packRow(TriaxialRow{1, 0, 0.0, t.consolidated}, consolidated);
+    for (const TriaxialRow& row : t.rows) packRow(row, rows);
+    w.numbers(consolidated).numbers(rows);
+    return w.bytes();
+}
+
+TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
+{
+    RecordReader in(bytes);
+    TriaxialRun r;
+    r.formulation = parseFormulation(in.text());
+    r.sdp = in.number();
+    r.vdp = in.number();
+    r.nodesPerGrain = in.number();
+    r.stiffness = in.number();
+    r.dt = in.number();
+    r.stabilityLimit = in.number();
+    r.strainRate = in.number();
+    r.bakeSeconds = in.number();
+    r.runSeconds = in.number();
+    r.msPerStep = in.number();
+    r.test.consolidatedWithinTolerance = in.integer() != 0;
+    r.test.consolidationSteps = in.integer();
+    r.test.shearSteps = in.integer();
+    r.test.consolidated = unpackRow(in.numbers().data()).state;
+    const std::vector<double> rows = in.numbers();
+    for (size_t k = 0; k + kRowFields <= rows.size(); k += kRowFields)
+        r.test.rows.push_back(unpackRow(rows.data() + k));
+    summariseTriaxialShearing(r.test, maxAxialStrain);
+    return r;
+}
+
+/// The assets of one SDP, baked once per process (adapted and original share them).
+std::shared_ptr<const TriaxialAssets> assetsAt(const std::vector<std::string>& files, double vdp,
+                                               double sdp)
+{
+    static std::mutex mutex;
+    static std::map<std::pair<double, double>, std::shared_ptr<const TriaxialAssets>> baked;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = baked[{vdp, sdp}];
+    if (!slot) slot = std::make_shared<const TriaxialAssets>(bakeTriaxialAssets(files, vdp, sdp));
+    return slot;
+}
+
+/// A step well inside the stability limit of a grain pressed by σ₃ on all sides: a contact of
+/// two spheres of the mean diameter d carrying σ₃·d² has k = 2·sqrt(π·k*·(d/4)·F) (the adapted
+/// law's F = π·k*·R·δ²; original acts like k* = kn / node area), about ten such contacts press
+/// a grain, and half the limit 2·sqrt(m/k) leaves room for the peaks (the 27-grain sample saw
+/// a limit 3 times this step). Never above the
+/// single-node automatic step at safety 0.45 (the stability check guards the rest).
+double triaxialTimeStep(const World& world, const TriaxialOptions& o, Formulation f,
+                        const TriaxialAssets& a, double kn)
+{
+    const double kStar = f == Formulation::Adapted ? kn : kn / a.meanNodeArea;
+    const double d = a.meanDiameter;
+    const double force = o.confiningStress * d * d;
+    const double contact = 2.0 * std::sqrt(kPi * kStar * 0.25 * d * force);
+    double lightest = 1e300;
+    for (const Grain& g : world.grains) lightest = std::min(lightest, g.body.mass);
+    const double estimate = 0.5 * 2.0 * std::sqrt(lightest / (10.0 * contact));
+    return std::min(estimate, automaticTimeStep(world, 0.45));
+}
+
+/// One run: bake (or reuse) the assets, build the cloud and its scene, consolidate and shear.
+/// A time step the simulation finds unstable is halved and the run started again.
+TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& files,
+                   Formulation f, double sdp, double spacing, double kn,
+                   const std::function<void(const TriaxialRow&)>& progress)
+{
+    const std::shared_ptr<const TriaxialAssets> assets = assetsAt(files, o.vdp, sdp);
+    TriaxialRun run;
+    run.formulation = f;
+    run.sdp = sdp;
+    run.vdp = o.vdp;
+    run.nodesPerGrain = assets->meanNodes;
+    run.stiffness = kn;
+    run.bakeSeconds = assets->bakeSeconds;
+    run.strainRate = triaxialStrainRate(o, assets->meanDiameter);
+
+    TriaxialProtocol p;
+    p.confiningStress = o.confiningStress;
+    p.strainRate = run.strainRate;
+    p.consolidationRate = 10.0 * run.strainRate;
+    p.maxAxialStrain = o.maxAxialStrain;
+    p.stressTolerance = o.stressTolerance;
+    p.friction = o.friction;
+    p.consolidationFriction = o.consolidationFriction;
+    p.grainDiameter = assets->meanDiameter;
+    p.density = o.density;
+    p.records = o.records;
+
+    const TriaxialCloud cloud =
+        makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,
+                          static_cast<std::uint64_t>(o.seed));
+    const Scene scene = triaxialScene(o, *assets, cloud, f, kn);
+    std::vector<std::string> warnings;
+    World world = buildWorld(scene, warnings);
+    double dt = triaxialTimeStep(world, o, f, *assets, kn);
+    const Stopwatch runClock;
+    for (int attempt = 0;; ++attempt) {
+        try {
+            Simulation sim(world, dt);
+            run.test = runTriaxialTest(sim, triaxialWalls(), p, progress);
+            run.stabilityLimit = sim.stabilityLimitSeen();
+            break;
+        } catch (const Error&) {
+            if (attempt >= 3) throw;  // not a matter of the step
+            dt *= 0.5;
+        }
+    }
+    run.dt = dt;
+    run.runSeconds = runClock.seconds();
+    const long long steps = run.test.consolidationSteps + run.test.shearSteps;
+    run.msPerStep = steps > 0 ? 1e3 * run.runSeconds / double(steps) : 0.0;
+    return run;
+}
+
+} // namespace
+
+double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter)
+{
+    return o.inertialNumber / (meanDiameter * std::sqrt(o.density / o.confiningStress));
+}
+
+TriaxialStudyResult runTriaxialStudy(
+    const TriaxialOptions& o, RunDistributor& ranks,
+    const std::function<void(const TriaxialRun&)>& onRun,
+    const std::function<void(Formulation, double, const TriaxialRow&)>& progress)
+{
+    checkTriaxialOptions(o);
+    const std::vector<std::string> files = triaxialMeshFiles(o);
+    // A run is described by its formulation, SDP, the lattice spacing and the stiffness: the
+    // rest is in the options every rank has.
+    const RunDistributor::Job job = [&](const std::string& description) {
+        RecordReader in(description);
+        const Formulation f = parseFormulation(in.text());
+        const double sdp = in.number(), spacing = in.number(), kn = in.number();
+        std::function<void(const TriaxialRow&)> tell;
+        if (progress && ranks.isRoot())
+            tell = [&](const TriaxialRow& row) { progress(f, sdp, row); };
+        return encodeRun(runOne(o, files, f, sdp, spacing, kn, tell));
+    };
+    if (!ranks.isRoot()) {
+        ranks.serve(job);
+        return {};
+    }
+
+    // The coarsest assets set the lattice (every run starts from the same grains in the same
+    // places) and original's kn (the same law as adapted's there).
+    const std::shared_ptr<const TriaxialAssets> coarsest = assetsAt(files, o.vdp, o.sdps.front());
+    TriaxialStudyResult result;
+    result.meshes = int(files.size());
+    result.grains = o.grains;
+    result.spacing = triaxialCloudSpacing(*coarsest);
+    result.meanDiameter = coarsest->meanDiameter;
+    const double knOriginal = o.knOriginal > 0.0 ? o.knOriginal : o.knStar * coarsest->meanNodeArea;
+
+    std::vector<std::string> descriptions;
+    std::vector<double> costs;
+    for (Formulation f : o.formulations)
+        for (double sdp : o.sdps) {
+            RecordWriter w;
+            w.text(formulationName(f)).number(sdp).number(result.spacing);
+            w.number(f == Formulation::Adapted ? o.knStar : knOriginal);
+            descriptions.push_back(w.bytes());
+            // Nodes grow as 1/SDP²; original's step also shrinks with the SDP.
+            costs.push_back(std::pow(o.sdps.front() / sdp, f == Formulation::Adapted ? 2.0 : 3.0));
+        }
+    result.runs.resize(descriptions.size());
+    ranks.runAll(descriptions, costs, job, [&](size_t index, int, const std::string& bytes) {
+        result.runs[index] = decodeRun(bytes, o.maxAxialStrain);
+        if (onRun) onRun(result.runs[index]);
+    });
+    ranks.finish();
+    return result;
+}
+
+} // namespace lsdem

@@ -1,0 +1,166 @@
+#include "studies/TriaxialTest.h"
+
+#include "lsdem/simulation/Simulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lsdem {
+
+namespace {
+
+/// The other two pairs of walls, which bound the area a wall of @a axis pushes on.
+std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis)
+{
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    return {walls.index[size_t(2 * u)], walls.index[size_t(2 * u + 1)],
+            walls.index[size_t(2 * v)], walls.index[size_t(2 * v + 1)]};
+}
+
+Boundary& wallOf(World& w, const TriaxialWalls& walls, int which)
+{
+    return w.boundaries[size_t(walls.index[size_t(which)])];
+}
+
+/// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed.
+void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialProtocol& p,
+                double maxSpeed)
+{
+    for (int side = 0; side < 2; ++side) {
+        StressServo& s = wallOf(w, walls, 2 * axis + side).servo;
+        s.targetStress = p.confiningStress;
+        s.area = 0.0;
+        s.areaWalls = areaWallsOf(walls, axis);
+        s.gain = p.servoGain;
+        s.maxSpeed = maxSpeed;
+    }
+}
+
+double& grainFriction(World& w)
+{
+    return w.models[0].friction;  // material 0 with itself
+}
+
+TriaxialRow measureRow(const Simulation& sim, const TriaxialWalls& walls, int stage,
+                       const TriaxialState* reference, const TriaxialProtocol& p)
+{
+    TriaxialRow r;
+    r.stage = stage;
+    r.step = sim.world().step;
+    r.time = sim.world().time;
+    r.state = measureTriaxialCell(sim.world(), walls, sim.grainContactCounts());
+    if (reference) {
+        r.axialStrain = axialStrain(*reference, r.state);
+        r.volumetricStrain = volumetricStrain(*reference, r.state);
+        if (r.state.p > 0.0)
+            r.inertialNumber = p.strainRate * p.grainDiameter * std::sqrt(p.density / r.state.p);
+    }
+    r.frictionAngle = mobilisedFrictionAngle(r.state);
+    r.kinetic = sim.energies().kinetic;
+    return r;
+}
+
+bool withinTolerance(const TriaxialState& s, const TriaxialProtocol& p)
+{
+    for (int axis = 0; axis < 3; ++axis)
+        if (!(std::abs(s.stress[axis] / p.confiningStress - 1.0) < p.stressTolerance)) return false;
+    return true;
+}
+
+} // namespace
+
+TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
+                                   const TriaxialProtocol& p,
+                                   const std::function<void(const TriaxialRow&)>& progress)
+{
+    TriaxialTestResult result;
+    auto record = [&](TriaxialRow row) {
+        if (progress) progress(row);
+        result.rows.push_back(std::move(row));
+    };
+
+    // Isotropic consolidation: six servo walls close in on the cloud until every stress is
+    // within the tolerance of σ₃ for settledSteps.
+    World& w = sim.world();
+    const TriaxialState start = measureTriaxialCell(w, walls, {});
+    auto limitSpeeds = [&](double rate) {
+        for (int axis = 0; axis < 3; ++axis)
+            holdStress(w, walls, axis, p, 0.5 * rate * start.size[axis]);
+    };
+    limitSpeeds(p.approachRate);
+    grainFriction(w) = p.consolidationFriction;
+    sim.invalidateContacts();
+    const long long firstStep = w.step;
+    long long settledSince = -1;
+    constexpr long long kCheckEvery = 100, kRecordEvery = 1000;
+    while (w.step - firstStep < p.maxConsolidationSteps) {
+        for (long long k = 0; k < kCheckEvery; ++k) sim.step();
+        const TriaxialState now = measureTriaxialCell(w, walls, {});
+        limitSpeeds(now.p < 0.5 * p.confiningStress ? p.approachRate : p.consolidationRate);
+        if (withinTolerance(now, p)) {
+            if (settledSince < 0) settledSince = w.step;
+            if (w.step - settledSince >= p.settledSteps) {
+                result.consolidatedWithinTolerance = true;
+                break;
+            }
+        } else {
+            settledSince = -1;
+        }
+        if ((w.step - firstStep) % kRecordEvery == 0) record(measureRow(sim, walls, 0, nullptr, p));
+    }
+    result.consolidationSteps = w.step - firstStep;
+
+    // Shearing: the reference is the consolidated cell; the end walls move towards each other
+    // at ε̇·H₀/2 each, the side walls keep σ₃ (fast enough for a dilation rate of 2ε̇).
+    result.consolidated = measureTriaxialCell(w, walls, sim.grainContactCounts());
+    const TriaxialState& reference = result.consolidated;
+    TriaxialRow first = measureRow(sim, walls, 1, &reference, p);
+    record(first);
+    grainFriction(w) = p.friction;
+    const double endSpeed = 0.5 * p.strainRate * reference.size.z();
+    for (int side = 0; side < 2; ++side) {
+        Boundary& b = wallOf(w, walls, 4 + side);
+        b.servo.targetStress = 0.0;
+        b.velocity = endSpeed * b.plane.normal;
+    }
+    for (int axis = 0; axis < 2; ++axis)
+        holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
+    const double dt = sim.timeStep();
+    const long long shearSteps =
+        static_cast<long long>(std::ceil(p.maxAxialStrain / (p.strainRate * dt)));
+    const long long recordEvery = std::max(1LL, shearSteps / p.records);
+    const long long shearStart = w.step;
+    while (w.step - shearStart < shearSteps) {
+        sim.step();
+        const long long done = w.step - shearStart;
+        if (done % recordEvery == 0 || done == shearSteps)
+            record(measureRow(sim, walls, 1, &reference, p));
+    }
+    result.shearSteps = w.step - shearStart;
+    summariseTriaxialShearing(result, p.maxAxialStrain);
+    return result;
+}
+
+void summariseTriaxialShearing(TriaxialTestResult& r, double maxAxialStrain)
+{
+    double phiSum = 0.0, eSum = 0.0;
+    int critical = 0;
+    r.peakFrictionAngle = r.peakAxialStrain = r.maxInertialNumber = 0.0;
+    for (const TriaxialRow& row : r.rows) {
+        if (row.stage != 1) continue;
+        if (row.frictionAngle > r.peakFrictionAngle) {
+            r.peakFrictionAngle = row.frictionAngle;
+            r.peakAxialStrain = row.axialStrain;
+        }
+        r.maxInertialNumber = std::max(r.maxInertialNumber, row.inertialNumber);
+        if (row.axialStrain >= 0.75 * maxAxialStrain) {
+            phiSum += row.frictionAngle;
+            eSum += row.state.voidRatio;
+            ++critical;
+        }
+    }
+    r.criticalFrictionAngle = critical > 0 ? phiSum / critical : 0.0;
+    r.criticalVoidRatio = critical > 0 ? eSum / critical : 0.0;
+}
+
+} // namespace lsdem

@@ -1,0 +1,74 @@
+/// @file TriaxialTest.h
+/// @brief The triaxial test on a cell of six plane walls (TriaxialCell.h): isotropic
+///        consolidation to σ₃ by six servo walls, then axial compression at a constant rate
+///        (the top and bottom walls move towards each other) while the four side walls keep σ₃,
+///        to a given axial strain. Records q, p, strains, void ratio, coordination and the
+///        inertial number along the way.
+#pragma once
+
+#include "studies/TriaxialCell.h"
+
+#include <functional>
+#include <vector>
+
+namespace lsdem {
+
+class Simulation;
+
+struct TriaxialProtocol
+{
+    double confiningStress = 0.1;  ///< σ₃ > 0, force/length² (compression positive)
+    double strainRate = 1.0;       ///< axial ε̇ while shearing, 1/time
+    /// Consolidation: each wall's servo limit speed is this strain rate times half the cell's
+    /// size along its axis at the start, ...
+    double consolidationRate = 10.0;
+    /// ... and this one while the mean stress is below σ₃/2 (the walls closing in on a loose
+    /// cloud: how fast they come does not change where a frictionless consolidation ends).
+    double approachRate = 100.0;
+    double maxAxialStrain = 0.2;
+    double stressTolerance = 0.02; ///< consolidated: every |σ_i/σ₃ − 1| below it ...
+    long long settledSteps = 2000; ///< ... at every check over this many steps
+    long long maxConsolidationSteps = 400000;  ///< give up (result says so) after this many
+    double friction = 0.5;         ///< grain–grain μ while shearing (material 0 with itself)
+    double consolidationFriction = 0.0;  ///< ... and while consolidating
+    double servoGain = 0.5;        ///< α of every servo wall (StressServo.h)
+    double grainDiameter = 1.0;    ///< mean equivalent diameter, for the inertial number
+    double density = 1.0;          ///< grain density, for the inertial number
+    int records = 200;             ///< rows over the shearing
+};
+
+struct TriaxialRow
+{
+    int stage = 0;                 ///< 0 consolidation, 1 shearing
+    long long step = 0;
+    double time = 0.0;
+    TriaxialState state;
+    double axialStrain = 0.0, volumetricStrain = 0.0;  ///< from the consolidated state
+    double frictionAngle = 0.0;    ///< mobilised, degrees
+    double inertialNumber = 0.0;   ///< ε̇·d·sqrt(ρ/p)
+    double kinetic = 0.0;          ///< kinetic energy
+};
+
+struct TriaxialTestResult
+{
+    std::vector<TriaxialRow> rows;
+    TriaxialState consolidated;    ///< where the shearing starts (its reference)
+    bool consolidatedWithinTolerance = false;
+    long long consolidationSteps = 0, shearSteps = 0;
+    double peakFrictionAngle = 0.0, peakAxialStrain = 0.0;
+    /// Critical state: means over the last quarter of the axial strain.
+    double criticalFrictionAngle = 0.0, criticalVoidRatio = 0.0;
+    double maxInertialNumber = 0.0;  ///< over the shearing rows
+};
+
+/// Run the test on @a sim, whose world holds grains of material 0 inside @a walls (fixed
+/// planes, perpendicular pairs). @a progress, if set, is told each recorded row.
+/// @throw Error from the simulation (e.g. a time step too large for the contacts).
+TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
+                                   const TriaxialProtocol& protocol,
+                                   const std::function<void(const TriaxialRow&)>& progress = {});
+
+/// Peak and critical-state figures of @a result's shearing rows (runTriaxialTest calls it).
+void summariseTriaxialShearing(TriaxialTestResult& result, double maxAxialStrain);
+
+} // namespace lsdem

@@ -1,0 +1,198 @@
+// The triaxial test (tools/studies/TriaxialTest, TriaxialSample, TriaxialStudy) on a small
+// sample of the bundled sand grains: the servo walls consolidate it to σ₃ and hold σ₃ on the
+// sides while the ends close at the set strain rate; q and p are what the walls' forces over
+// their areas say; strains and void ratio follow from the walls' positions and the grains'
+// volumes; and the study hands its runs and files over as described.
+#include "studies/RunDistributor.h"
+#include "studies/TriaxialOutputs.h"
+#include "studies/TriaxialSample.h"
+#include "studies/TriaxialStudy.h"
+#include "studies/TriaxialTest.h"
+
+#include "lsdem/ls/Error.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+using namespace lsdem;
+
+namespace {
+
+TriaxialOptions smallOptions()
+{
+    TriaxialOptions o;
+    o.meshes = {std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand"};
+    o.sdps = {0.15};
+    return o;
+}
+
+/// The stress the grains put on wall @a b (compression positive), from its force and the
+/// positions of the four walls around it: worked out here, apart from TriaxialCell.
+double wallStress(const World& w, int wall)
+{
+    const Boundary& b = w.boundaries[size_t(wall)];
+    const int axis = wall / 2;
+    double area = 1.0;
+    for (int other = 0; other < 3; ++other) {
+        if (other == axis) continue;
+        const Boundary& low = w.boundaries[size_t(2 * other)];
+        const Boundary& high = w.boundaries[size_t(2 * other + 1)];
+        area *= (high.plane.point + high.displacement - low.plane.point - low.displacement)[other];
+    }
+    return -b.force.dot(b.plane.normal) / area;
+}
+
+} // namespace
+
+// About a hundred grains, consolidated to 100 kPa and sheared to 3 % axial strain: one run, all
+// the checks (a ctest process per test would run it again for each).
+TEST(TriaxialTest, HundredGrainsConsolidateHoldSigma3AndReportWallStresses)
+{
+    TriaxialOptions o = smallOptions();
+    o.grains = 100;
+    const std::vector<std::string> files = triaxialMeshFiles(o);
+    ASSERT_EQ(files.size(), 16u);
+    const TriaxialAssets assets = bakeTriaxialAssets(files, o.vdp, o.sdps[0]);
+    const TriaxialCloud cloud =
+        makeTriaxialCloud(o.grains, int(files.size()), triaxialCloudSpacing(assets), 1);
+    std::vector<std::string> warnings;
+    World world = buildWorld(triaxialScene(o, assets, cloud, Formulation::Adapted, o.knStar),
+                             warnings);
+    // No two bounding spheres of the cloud overlap: the lattice keeps them apart.
+    for (size_t i = 0; i < world.grains.size(); ++i)
+        for (size_t j = 0; j < i; ++j)
+            ASSERT_GT((world.grains[i].body.pose.position - world.grains[j].body.pose.position).norm(),
+                      world.grains[i].asset->boundingRadius + world.grains[j].asset->boundingRadius);
+
+    TriaxialProtocol p;
+    p.confiningStress = o.confiningStress;
+    p.strainRate = triaxialStrainRate(o, assets.meanDiameter);
+    p.consolidationRate = 10.0 * p.strainRate;
+    p.maxAxialStrain = 0.03;
+    p.grainDiameter = assets.meanDiameter;
+    p.density = o.density;
+    p.records = 30;
+    Simulation sim(std::move(world), 1.5e-6);
+    const TriaxialTestResult r = runTriaxialTest(sim, triaxialWalls(), p);
+
+    // Consolidated: each principal stress within the 2 % tolerance of σ₃.
+    ASSERT_TRUE(r.consolidatedWithinTolerance);
+    for (int axis = 0; axis < 3; ++axis)
+        EXPECT_NEAR(r.consolidated.stress[axis], p.confiningStress, 0.02 * p.confiningStress);
+    EXPECT_GT(r.consolidated.coordination, 3.0);   // a load-bearing packing
+    EXPECT_LT(r.consolidated.voidRatio, 1.2);      // far denser than the cloud it came from
+
+    // The end: the axial strain is ε̇·t of shearing, to within one step of the walls.
+    const TriaxialRow& last = r.rows.back();
+    ASSERT_EQ(last.stage, 1);
+    EXPECT_NEAR(last.axialStrain, p.maxAxialStrain, p.strainRate * sim.timeStep() + 1e-12);
+    // q, p and the void ratio from the walls themselves: forces over current areas, volume
+    // from their positions, solid volume from the assets.
+    const World& w = sim.world();
+    double s[3];
+    for (int axis = 0; axis < 3; ++axis)
+        s[axis] = 0.5 * (wallStress(w, 2 * axis) + wallStress(w, 2 * axis + 1));
+    EXPECT_NEAR(last.state.p, (s[0] + s[1] + s[2]) / 3.0, 1e-12 * std::abs(last.state.p));
+    EXPECT_NEAR(last.state.q, s[2] - 0.5 * (s[0] + s[1]), 1e-12 * std::abs(last.state.q));
+    double solid = 0.0;
+    for (const Grain& g : w.grains) solid += g.asset->mass.volume;
+    EXPECT_NEAR(last.state.voidRatio, last.state.volume / solid - 1.0, 1e-12);
+    EXPECT_NEAR(last.volumetricStrain, 1.0 - last.state.volume / r.consolidated.volume, 1e-12);
+
+    // While shearing, the side walls hold σ₃ within 10 % (a servo of gain 0.5 corrects half
+    // its error per step; what is left is the lag behind the sample's dilation), and the sample
+    // carries a deviator: a frictional packing under compression.
+    for (const TriaxialRow& row : r.rows) {
+        if (row.stage != 1 || row.axialStrain < 0.005) continue;
+        EXPECT_NEAR(row.state.stress.x(), p.confiningStress, 0.1 * p.confiningStress) << row.step;
+        EXPECT_NEAR(row.state.stress.y(), p.confiningStress, 0.1 * p.confiningStress) << row.step;
+        EXPECT_GT(row.state.q, 0.0) << row.step;
+    }
+    // Friction angles of a granular sample with μ = 0.5: between those of a frictionless
+    // packing (~5-10°) and the steepest natural sands (~50°).
+    EXPECT_GT(r.peakFrictionAngle, 15.0);
+    EXPECT_LT(r.peakFrictionAngle, 55.0);
+    // The rate makes the inertial number asked for at p = σ₃ (and less once p grows).
+    EXPECT_NEAR(r.rows[size_t(std::count_if(r.rows.begin(), r.rows.end(),
+                                            [](const TriaxialRow& row) { return row.stage == 0; }))]
+                    .inertialNumber,
+                o.inertialNumber, 0.05 * o.inertialNumber);
+}
+
+// The study: runs in the order formulations × SDPs, original's kn from the coarsest node area,
+// the same lattice for every run, and the files with a row per run and per record.
+TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
+{
+    TriaxialOptions o = smallOptions();
+    o.grains = 27;
+    o.sdps = {0.2, 0.15};
+    o.maxAxialStrain = 0.01;
+    o.records = 10;
+    const TriaxialStudyResult r = runTriaxialStudy(o, serialRunDistributor());
+    ASSERT_EQ(r.runs.size(), 4u);
+    EXPECT_EQ(r.runs[0].formulation, Formulation::Adapted);
+    EXPECT_EQ(r.runs[1].sdp, 0.15);
+    EXPECT_EQ(r.runs[2].formulation, Formulation::Original);
+    const TriaxialAssets coarsest = bakeTriaxialAssets(triaxialMeshFiles(o), o.vdp, 0.2);
+    EXPECT_DOUBLE_EQ(r.runs[2].stiffness, o.knStar * coarsest.meanNodeArea);
+    EXPECT_DOUBLE_EQ(r.spacing, triaxialCloudSpacing(coarsest));
+    EXPECT_GT(r.runs[1].nodesPerGrain, 1.5 * r.runs[0].nodesPerGrain);  // (0.2/0.15)² = 1.8
+    for (const TriaxialRun& run : r.runs) {
+        EXPECT_TRUE(run.test.consolidatedWithinTolerance);
+        EXPECT_NEAR(run.test.rows.back().axialStrain, 0.01, 1e-4);
+    }
+
+    const std::string dir = ::testing::TempDir() + "/triaxial_study";
+    std::filesystem::create_directories(dir);
+    writeTriaxialCsv(r, dir + "/triaxial.csv");
+    writeTriaxialRunsCsv(r, dir + "/triaxial_runs.csv");
+    auto lines = [](const std::string& path) {
+        std::ifstream in(path);
+        std::string line;
+        size_t n = 0;
+        while (std::getline(in, line)) ++n;
+        return n;
+    };
+    size_t rows = 0;
+    for (const TriaxialRun& run : r.runs) rows += run.test.rows.size();
+    EXPECT_EQ(lines(dir + "/triaxial.csv"), rows + 1);
+    EXPECT_EQ(lines(dir + "/triaxial_runs.csv"), r.runs.size() + 1);
+    EXPECT_TRUE(std::isfinite(finestPeakChange(r, Formulation::Adapted)));
+}
+
+TEST(TriaxialOptions, BadValuesNameTheOption)
+{
+    auto message = [](TriaxialOptions o) {
+        try {
+            checkTriaxialOptions(o);
+            triaxialMeshFiles(o);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    TriaxialOptions o = smallOptions();
+    EXPECT_EQ(message(o), "accepted");
+    TriaxialOptions up = o;
+    up.sdps = {0.05, 0.1};
+    EXPECT_NE(message(up).find("--sdps must be decreasing"), std::string::npos);
+    TriaxialOptions tension = o;
+    tension.confiningStress = -0.1;
+    EXPECT_NE(message(tension).find("--confining-stress"), std::string::npos);
+    TriaxialOptions few = o;
+    few.grains = 3;
+    EXPECT_NE(message(few).find("--grains"), std::string::npos);
+    TriaxialOptions single = o;
+    single.formulations = {Formulation::SingleNode};
+    EXPECT_NE(message(single).find("adapted and original"), std::string::npos);
+    TriaxialOptions missing = o;
+    missing.meshes = {"/nonexistent/sand"};
+    EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);
+}

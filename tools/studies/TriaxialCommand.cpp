@@ -4,6 +4,7 @@
 #include "studies/StudyCommandOptions.h"
 #include "studies/ThreadLimit.h"
 #include "studies/TriaxialOutputs.h"
+#include "studies/TriaxialShearScene.h"
 #include "studies/TriaxialStudy.h"
 
 #include "common/CommandLine.h"
@@ -165,7 +166,15 @@ int TriaxialCommand::run(RunDistributor& ranks) const
                         "SDPs\n",
                         formulationName(f).c_str(), change);
     }
+    // The first formulation's finest run, as a scene to rerun the shearing with lsdem-run
+    // (ParaView frames, wall histories) or to edit.
+    const TriaxialRun* finest = nullptr;
+    for (const TriaxialRun& r : result.runs)
+        if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
+    const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
     std::printf("time %.0f s\nwrote %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str());
+    std::printf("wrote %s: the shearing of %s SDP %g for lsdem-run (ParaView frames)\n",
+                scene.c_str(), formulationName(finest->formulation).c_str(), finest->sdp);
     return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
 }
 

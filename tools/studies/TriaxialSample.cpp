@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <random>
 
 namespace lsdem {
@@ -49,6 +51,17 @@ TriaxialAssets bakeTriaxialAssets(const std::vector<std::string>& meshFiles, dou
     a.meanDiameter = diameter / n;
     a.bakeSeconds = clock.seconds();
     return a;
+}
+
+std::shared_ptr<const TriaxialAssets> sharedTriaxialAssets(const std::vector<std::string>& meshFiles,
+                                                           double vdp, double sdp)
+{
+    static std::mutex mutex;
+    static std::map<std::pair<double, double>, std::shared_ptr<const TriaxialAssets>> baked;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = baked[{vdp, sdp}];
+    if (!slot) slot = std::make_shared<const TriaxialAssets>(bakeTriaxialAssets(meshFiles, vdp, sdp));
+    return slot;
 }
 
 double triaxialCloudSpacing(const TriaxialAssets& assets)

@@ -38,6 +38,11 @@ struct TriaxialAssets
 TriaxialAssets bakeTriaxialAssets(const std::vector<std::string>& meshFiles, double vdp,
                                   double sdp);
 
+/// bakeTriaxialAssets, once per process for each (@a vdp, @a sdp): the runs of a study that
+/// share a resolution (adapted and original) share its assets. Thread-safe.
+std::shared_ptr<const TriaxialAssets> sharedTriaxialAssets(const std::vector<std::string>& meshFiles,
+                                                           double vdp, double sdp);
+
 struct TriaxialCloud
 {
     std::vector<int> asset;        ///< per grain, an index into TriaxialAssets::assets

@@ -12,8 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <mutex>
 
 namespace lsdem {
 
@@ -66,6 +64,15 @@ std::string encodeRun(const TriaxialRun& r)
     packRow(TriaxialRow{1, 0, 0.0, t.consolidated}, consolidated);
     for (const TriaxialRow& row : t.rows) packRow(row, rows);
     w.numbers(consolidated).numbers(rows);
+    std::vector<double> poses, wallPoints;
+    for (const RigidPose& pose : t.consolidatedPoses) {
+        poses.insert(poses.end(), pose.position.data(), pose.position.data() + 3);
+        poses.insert(poses.end(), pose.orientation.coeffs().data(),
+                     pose.orientation.coeffs().data() + 4);
+    }
+    for (const Vec3& point : t.consolidatedWallPoints)
+        wallPoints.insert(wallPoints.end(), point.data(), point.data() + 3);
+    w.numbers(poses).numbers(wallPoints);
     return w.bytes();
 }
 
@@ -91,20 +98,17 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
     const std::vector<double> rows = in.numbers();
     for (size_t k = 0; k + kRowFields <= rows.size(); k += kRowFields)
         r.test.rows.push_back(unpackRow(rows.data() + k));
+    const std::vector<double> poses = in.numbers(), wallPoints = in.numbers();
+    for (size_t k = 0; k + 7 <= poses.size(); k += 7) {
+        RigidPose pose;
+        pose.position = Vec3(poses[k], poses[k + 1], poses[k + 2]);
+        pose.orientation.coeffs() = Eigen::Vector4d(poses[k + 3], poses[k + 4], poses[k + 5], poses[k + 6]);
+        r.test.consolidatedPoses.push_back(pose);
+    }
+    for (size_t k = 0; k < 6 && 3 * k + 2 < wallPoints.size(); ++k)
+        r.test.consolidatedWallPoints[k] = Vec3(wallPoints[3 * k], wallPoints[3 * k + 1], wallPoints[3 * k + 2]);
     summariseTriaxialShearing(r.test, maxAxialStrain);
     return r;
-}
-
-/// The assets of one SDP, baked once per process (adapted and original share them).
-std::shared_ptr<const TriaxialAssets> assetsAt(const std::vector<std::string>& files, double vdp,
-                                               double sdp)
-{
-    static std::mutex mutex;
-    static std::map<std::pair<double, double>, std::shared_ptr<const TriaxialAssets>> baked;
-    const std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = baked[{vdp, sdp}];
-    if (!slot) slot = std::make_shared<const TriaxialAssets>(bakeTriaxialAssets(files, vdp, sdp));
-    return slot;
 }
 
 /// A step well inside the stability limit of a grain pressed by σ₃ on all sides: a contact of
@@ -132,7 +136,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
                    Formulation f, double sdp, double spacing, double kn,
                    const std::function<void(const TriaxialRow&)>& progress)
 {
-    const std::shared_ptr<const TriaxialAssets> assets = assetsAt(files, o.vdp, sdp);
+    const std::shared_ptr<const TriaxialAssets> assets = sharedTriaxialAssets(files, o.vdp, sdp);
     TriaxialRun run;
     run.formulation = f;
     run.sdp = sdp;
@@ -212,7 +216,7 @@ TriaxialStudyResult runTriaxialStudy(
 
     // The coarsest assets set the lattice (every run starts from the same grains in the same
     // places) and original's kn (the same law as adapted's there).
-    const std::shared_ptr<const TriaxialAssets> coarsest = assetsAt(files, o.vdp, o.sdps.front());
+    const std::shared_ptr<const TriaxialAssets> coarsest = sharedTriaxialAssets(files, o.vdp, o.sdps.front());
     TriaxialStudyResult result;
     result.meshes = int(files.size());
     result.grains = o.grains;

@@ -113,6 +113,11 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
     // Shearing: the reference is the consolidated cell; the end walls move towards each other
     // at ε̇·H₀/2 each, the side walls keep σ₃ (fast enough for a dilation rate of 2ε̇).
     result.consolidated = measureTriaxialCell(w, walls, sim.grainContactCounts());
+    for (const Grain& g : w.grains) result.consolidatedPoses.push_back(g.body.pose);
+    for (int k = 0; k < 6; ++k) {
+        const Boundary& b = wallOf(w, walls, k);
+        result.consolidatedWallPoints[size_t(k)] = b.plane.point + b.displacement;
+    }
     const TriaxialState& reference = result.consolidated;
     TriaxialRow first = measureRow(sim, walls, 1, &reference, p);
     record(first);

@@ -53,6 +53,8 @@ struct TriaxialTestResult
 {
     std::vector<TriaxialRow> rows;
     TriaxialState consolidated;    ///< where the shearing starts (its reference)
+    std::vector<RigidPose> consolidatedPoses;  ///< every grain's pose then
+    std::array<Vec3, 6> consolidatedWallPoints;  ///< each wall's point then (walls' order)
     bool consolidatedWithinTolerance = false;
     long long consolidationSteps = 0, shearSteps = 0;
     double peakFrictionAngle = 0.0, peakAxialStrain = 0.0;

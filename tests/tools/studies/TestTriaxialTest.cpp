@@ -6,11 +6,13 @@
 #include "studies/RunDistributor.h"
 #include "studies/TriaxialOutputs.h"
 #include "studies/TriaxialSample.h"
+#include "studies/TriaxialShearScene.h"
 #include "studies/TriaxialStudy.h"
 #include "studies/TriaxialTest.h"
 
 #include "lsdem/ls/Error.h"
 #include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/SceneFile.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <gtest/gtest.h>
@@ -165,6 +167,24 @@ TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
     EXPECT_EQ(lines(dir + "/triaxial.csv"), rows + 1);
     EXPECT_EQ(lines(dir + "/triaxial_runs.csv"), r.runs.size() + 1);
     EXPECT_TRUE(std::isfinite(finestPeakChange(r, Formulation::Adapted)));
+
+    // The shearing as a scene for lsdem-run: read back, it holds the consolidated sample, the
+    // side walls at σ₃ and the ends closing at the run's rate until the axial strain.
+    const TriaxialRun& finest = r.runs[1];
+    const Scene scene = readSceneFile(writeTriaxialShearScene(o, r, finest, dir + "/scene"));
+    ASSERT_EQ(scene.grains.size(), 27u);
+    for (size_t k = 0; k < scene.grains.size(); ++k)
+        EXPECT_LT((scene.grains[k].pose.position - finest.test.consolidatedPoses[k].position).norm(), 1e-12);
+    ASSERT_EQ(scene.boundaries.size(), 6u);
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_EQ(scene.boundaries[size_t(k)].servo.targetStress, o.confiningStress);
+        EXPECT_TRUE(scene.boundaries[size_t(k)].servo.areaFromWalls());
+    }
+    const double height = finest.test.consolidated.size.z();
+    EXPECT_NEAR(scene.boundaries[5].velocity.z(), -0.5 * finest.strainRate * height, 1e-12);
+    EXPECT_EQ(scene.end.boundary, 5);
+    EXPECT_NEAR(scene.end.displacement, 0.5 * o.maxAxialStrain * height, 1e-12);
+    EXPECT_EQ(scene.timeStep.fixed, finest.dt);
 }
 
 TEST(TriaxialOptions, BadValuesNameTheOption)

@@ -1,0 +1,85 @@
+#include "studies/TriaxialShearScene.h"
+
+#include "studies/TriaxialSample.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/scene/GrainsCsv.h"
+#include "lsdem/scene/SceneWriter.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+namespace lsdem {
+
+std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStudyResult& study,
+                                    const TriaxialRun& run, const std::string& dir)
+{
+    namespace fs = std::filesystem;
+    const TriaxialTestResult& t = run.test;
+    if (t.consolidatedPoses.size() != static_cast<size_t>(study.grains))
+        throw Error(dir, "the run kept no consolidated sample to write as a scene");
+    const std::vector<std::string> files = triaxialMeshFiles(o);
+    const std::shared_ptr<const TriaxialAssets> assets =
+        sharedTriaxialAssets(files, run.vdp, run.sdp);
+    const TriaxialCloud cloud = makeTriaxialCloud(study.grains, int(files.size()), study.spacing,
+                                                  static_cast<std::uint64_t>(o.seed));
+    Scene s = triaxialScene(o, *assets, cloud, run.formulation, run.stiffness);
+
+    fs::create_directories(fs::path(dir) / "assets");
+    double smallestRadius = 1e300;
+    for (size_t i = 0; i < s.assets.size(); ++i) {
+        const fs::path file = fs::absolute(fs::path(dir) / "assets" / (s.assets[i].name + ".vdb"));
+        saveAsset(*assets->assets[i], file.string());
+        s.assets[i].file = file.string();
+        smallestRadius = std::min(smallestRadius, assets->assets[i]->boundingRadius);
+    }
+    for (size_t k = 0; k < s.grains.size(); ++k) s.grains[k].pose = t.consolidatedPoses[k];
+    const std::string grainsFile = fs::absolute(fs::path(dir) / "grains.csv").string();
+    writeGrainsCsv(s, 0, s.grains.size(), grainsFile);
+    GrainFileSpec table;
+    table.file = grainsFile;
+    table.count = s.grains.size();
+    // A consolidated sample is pressed together: its grains overlap by their elastic contact
+    // deformation at σ₃, more than a loose packing's default allowance.
+    table.maxOverlap = 0.1 * smallestRadius;
+    s.grainFiles.push_back(table);
+
+    const Vec3 size = t.consolidated.size;
+    for (int k = 0; k < 6; ++k) {
+        BoundarySpec& b = s.boundaries[size_t(k)];
+        b.point = t.consolidatedWallPoints[size_t(k)];
+        const int axis = k / 2;
+        if (axis == 2) {
+            b.velocity = 0.5 * run.strainRate * size.z() * b.normal;
+            continue;
+        }
+        const int u = axis == 0 ? 1 : 0;
+        b.servo.targetStress = o.confiningStress;
+        b.servo.areaWalls = {2 * u, 2 * u + 1, 4, 5};
+        b.servo.gain = 0.5;
+        b.servo.maxSpeed = run.strainRate * size[axis];
+    }
+    s.timeStep.fixed = run.dt;
+    s.end.boundary = 5;
+    s.end.displacement = 0.5 * o.maxAxialStrain * size.z();
+    const double duration = o.maxAxialStrain / run.strainRate;
+    s.output.historyPeriod = duration / o.records;
+    s.output.vtkPeriod = duration / 20.0;
+
+    char header[512];
+    std::snprintf(header, sizeof header,
+                  "The shearing stage of lsdem-study triaxial (%s, SDP %g mm, VDP %g mm): %lld "
+                  "grains consolidated\nto sigma_3 = %g MPa, compressed to %g %% axial strain at "
+                  "%g /s with the side walls at sigma_3.\nThe grains start at rest with no "
+                  "contact history. Run with\n  lsdem-run triaxial_shear.toml --out shear\n"
+                  "Units: mm, tonne, s, N (MPa). See docs/triaxial.md.",
+                  formulationName(run.formulation).c_str(), run.sdp, run.vdp, study.grains,
+                  o.confiningStress, 100.0 * o.maxAxialStrain, run.strainRate);
+    const std::string path = (fs::path(dir) / "triaxial_shear.toml").string();
+    writeSceneFile(s, path, header);
+    return path;
+}
+
+} // namespace lsdem

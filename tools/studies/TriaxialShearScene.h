@@ -1,0 +1,21 @@
+/// @file TriaxialShearScene.h
+/// @brief The shearing stage of a triaxial run as a scene for lsdem-run, to edit and rerun:
+///        the consolidated sample (grain poses from the run, walls where consolidation left
+///        them), the top and bottom walls closing at the run's strain rate, the side walls
+///        servo-controlled at σ₃, ParaView frames on. The grains start at rest with no contact
+///        history, so it is the same test, not the run's bytes.
+#pragma once
+
+#include "studies/TriaxialStudy.h"
+
+#include <string>
+
+namespace lsdem {
+
+/// Write @a dir/triaxial_shear.toml with @a dir/grains.csv and @a dir/assets/NAME.vdb for
+/// @a run of @a study (options @a o). Returns the scene's path. @throw Error if the run kept no
+/// consolidated state or a file cannot be written.
+std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStudyResult& study,
+                                    const TriaxialRun& run, const std::string& dir);
+
+} // namespace lsdem

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job on the bundled default case: install dependencies, build, then bake the bundled
 # grains (an analytic sphere and box, and the pebble mesh in assets/meshes) into results/demo/
-# and inspect them (summaries, slice pictures, isosurfaces); then run the two-sphere, 27-sphere
-# and interlocked-slab studies and simulate the 27-sphere stack of assets/scenes/cube27.toml.
+# and inspect them (summaries, slice pictures, isosurfaces); then run the two-sphere, 27-sphere,
+# a small triaxial and the interlocked-slab studies and simulate the 27-sphere stack of assets/scenes/cube27.toml.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -31,6 +31,8 @@ echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cub
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27
 echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; about 6 s)"
 build/tools/lsdem-run assets/scenes/sand.toml --out results/sand
+echo "== triaxial test: a first look with 27 sand grains, adapted and original (about 30 s; docs/triaxial.md)"
+build/tools/lsdem-study triaxial --grains 27 --sdps 0.1 --axial-strain 0.05 --out results/triaxial-look
 echo "== interlocked slab study (Fig. 5 and 6; about 2 minutes on 2 cores)"
 build/tools/lsdem-study slab --out results/slab
 echo "== done: assets in $out (open the .png slices; the .obj isosurfaces load in any viewer;"
@@ -39,4 +41,5 @@ echo "   two-sphere study in results/two-spheres (two_spheres.csv and *.png),"
 echo "   the stack study in results/cube27-study (cube27.csv and *.png),"
 echo "   the stack in results/cube27 (boundary_top.csv: P-δ of the top wall; frames.pvd for ParaView),"
 echo "   the sand grains in results/sand (frames.pvd for ParaView),"
+echo "   the triaxial look in results/triaxial-look (triaxial.csv, triaxial_runs.csv, *.png; scene/ for lsdem-run),"
 echo "   the slab study in results/slab (slab_failure.txt, slab.csv, slab_*.png; slab_scene.toml for lsdem-run)"

@@ -44,6 +44,11 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
     addInteger(*mCommand, "--seed", o.seed, "random seed (which mesh, orientation)")
         ->type_name("S")
         ->group(sample);
+    addNumber(*mCommand, "--lattice-spacing", o.latticeSpacing,
+              "spacing of the starting lattice, mm (0: 2.2 x the largest bounding radius at the "
+              "coarsest SDP)")
+        ->type_name("L")
+        ->group(sample);
     addNumber(*mCommand, "--density", o.density, "grain density, tonne/mm^3")->type_name("RHO")->group(sample);
     const std::string resolution = "Resolution";
     addNumber(*mCommand, "--vdp", o.vdp, "voxel size, mm (every run)")->type_name("V")->group(resolution);
@@ -144,7 +149,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     writeTriaxialRunsCsv(result, runsCsv);
 
     std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
-                "spacing %.3g mm\n",
+                "spacing %.17g mm\n",
                 result.grains, result.meshes, result.meanDiameter, result.spacing);
     std::printf("%-9s %6s %6s %7s %6s %8s %7s %8s %7s %9s %8s %8s %8s\n", "formul.", "SDP",
                 "nodes", "e0", "Z0", "phi_peak", "eps_pk", "phi_cs", "e_cs", "I_max", "steps",

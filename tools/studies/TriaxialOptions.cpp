@@ -60,6 +60,9 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                         "--formulation adapted original");
     requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
     requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
+    if (!(o.latticeSpacing >= 0.0 && std::isfinite(o.latticeSpacing)))
+        throw Error("", "--lattice-spacing must be zero (derived) or positive, got " +
+                            cli::numberText(o.latticeSpacing));
     if (!(o.knOriginal >= 0.0 && std::isfinite(o.knOriginal)))
         throw Error("", "--kn-original must be zero (derived) or positive, got " +
                             cli::numberText(o.knOriginal));

@@ -18,6 +18,9 @@ struct TriaxialOptions
     /// Grain meshes: files, or folders whose .obj/.stl/.ply/.off files are all used.
     std::vector<std::string> meshes = {"assets/meshes/sand"};
     long long grains = 1000;       ///< grains in the sample, the meshes used in turn
+    /// Spacing of the starting lattice, mm (0: 2.2 times the largest bounding radius at the
+    /// coarsest SDP). Give it to extend a study with finer SDPs on the same lattice.
+    double latticeSpacing = 0.0;
     long long seed = 1;            ///< which mesh and orientation each grain gets (>= 0)
     double vdp = 0.03;             ///< voxel size, mm (the same for every run)
     std::vector<double> sdps = {0.1, 0.07, 0.05};  ///< node spacings, mm, coarsest first

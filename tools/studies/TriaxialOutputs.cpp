@@ -34,15 +34,15 @@ void writeTriaxialCsv(const TriaxialStudyResult& r, const std::string& path)
 void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
 {
     std::ostringstream out;
-    out.precision(10);
-    out << "formulation,sdp,vdp,nodes_per_grain,grains,stiffness,time_step,stability_limit,strain_rate,"
+    out.precision(17);  // exact: the spacing and kn extend a study (--lattice-spacing)
+    out << "formulation,sdp,vdp,nodes_per_grain,grains,lattice_spacing,stiffness,time_step,stability_limit,strain_rate,"
            "consolidation_steps,consolidated,shear_steps,void_ratio_0,coordination_0,"
            "peak_friction_angle,peak_axial_strain,critical_friction_angle,critical_void_ratio,"
            "max_inertial_number,bake_seconds,run_seconds,ms_per_step\n";
     for (const TriaxialRun& run : r.runs) {
         const TriaxialTestResult& t = run.test;
         out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.vdp << ','
-            << run.nodesPerGrain << ',' << r.grains << ',' << run.stiffness << ',' << run.dt
+            << run.nodesPerGrain << ',' << r.grains << ',' << r.spacing << ',' << run.stiffness << ',' << run.dt
             << ',' << run.stabilityLimit << ',' << run.strainRate << ',' << t.consolidationSteps << ','
             << (t.consolidatedWithinTolerance ? "yes" : "no") << ',' << t.shearSteps << ','
             << t.consolidated.voidRatio << ',' << t.consolidated.coordination << ','

@@ -158,6 +158,12 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     p.density = o.density;
     p.records = o.records;
 
+    if (!(spacing > 2.0 * assets->largestBoundingRadius))
+        throw Error("", "the lattice spacing " + std::to_string(spacing) + " mm is not more than "
+                            "the largest bounding diameter " +
+                            std::to_string(2.0 * assets->largestBoundingRadius) +
+                            " mm of the grains at SDP " + std::to_string(sdp) + ": they would overlap",
+                    "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,
                           static_cast<std::uint64_t>(o.seed));
@@ -220,7 +226,7 @@ TriaxialStudyResult runTriaxialStudy(
     TriaxialStudyResult result;
     result.meshes = int(files.size());
     result.grains = o.grains;
-    result.spacing = triaxialCloudSpacing(*coarsest);
+    result.spacing = o.latticeSpacing > 0.0 ? o.latticeSpacing : triaxialCloudSpacing(*coarsest);
     result.meanDiameter = coarsest->meanDiameter;
     const double knOriginal = o.knOriginal > 0.0 ? o.knOriginal : o.knStar * coarsest->meanNodeArea;
 

@@ -12,6 +12,15 @@
 
 namespace lsdem {
 
+namespace {
+
+/// Evaluations between two redraws at least: the work of a grain's contacts moves with every
+/// collision, and a redraw hands grains to ranks whose cached node blocks (CandidateBlocks.h)
+/// are cold, which costs work of its own.
+constexpr long long kEvaluationsBetweenRedraws = 50;
+
+} // namespace
+
 ContactDecomposition::ContactDecomposition(RankGroup& ranks, double rebalanceAbove)
     : mRanks(ranks), mRebalanceAbove(rebalanceAbove)
 {
@@ -40,6 +49,7 @@ void ContactDecomposition::rebalance(const std::vector<Vec3>& centres)
         if (!p.allFinite()) p = Vec3::Zero();
     mDomains = WorkBisection::balance(points, mGrainWork, mRanks.ranks());
     mDrawn = true;
+    mLastRedraw = mEvaluations;
     ++mCounters.rebalances;
     for (size_t g = 0; g < points.size(); ++g) mGrainOwner[g] = mDomains.partOf(centres[g]);
     // The best this split does with the work it was drawn for: work that cannot be split
@@ -60,11 +70,16 @@ const std::vector<char>& ContactDecomposition::assign(const World& world,
     mGrainOwner.resize(n);
     if (!mDrawn) {
         rebalance(centres);
+        // Drawn by grain count (no work measured yet): the next evaluation may redraw.
+        mLastRedraw = mEvaluations - kEvaluationsBetweenRedraws;
     } else {
         tbb::parallel_for(size_t(0), n,
                           [&](size_t g) { mGrainOwner[g] = mDomains.partOf(centres[g]); });
-        if (imbalance() > mRedrawAbove) rebalance(centres);
+        if (mEvaluations - mLastRedraw >= kEvaluationsBetweenRedraws &&
+            imbalance() > mRedrawAbove)
+            rebalance(centres);
     }
+    ++mEvaluations;
     mCounters.lastImbalance = imbalance();
 
     const std::vector<ContactSlot>& slots = contacts.slots();

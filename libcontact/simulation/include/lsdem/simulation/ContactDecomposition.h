@@ -42,7 +42,8 @@ class ContactDecomposition
 public:
     /// @param ranks the group (outlives this); its rank() is this process
     /// @param rebalanceAbove redraw the sub-domains when max / mean of the ranks' work exceeds
-    ///        this (and the best split of the last redraw by the same factor)
+    ///        this (and the best split of the last redraw by the same factor), at most every
+    ///        50 evaluations
     explicit ContactDecomposition(RankGroup& ranks, double rebalanceAbove = 1.1);
 
     RankGroup& ranks() { return mRanks; }
@@ -71,6 +72,7 @@ private:
     double mRedrawAbove = 0.0;           ///< the imbalance that triggers the next redraw
     WorkBisection mDomains;
     bool mDrawn = false;
+    long long mEvaluations = 0, mLastRedraw = 0;
     std::vector<double> mGrainWork;      ///< node checks of each grain's slots, last evaluation
     std::vector<int> mGrainOwner;
     std::vector<int> mSlotOwner;

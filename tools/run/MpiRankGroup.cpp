@@ -23,7 +23,7 @@ namespace {
 /// How long ranks that failed wait for the others to fail too before ending the job: a
 /// failure of the shared state (bad scene, unstable step) reaches every rank at the same
 /// step, within moments of each other.
-constexpr auto kFailureAgreement = std::chrono::seconds(10);
+constexpr auto kFailureAgreement = std::chrono::seconds(3);
 
 class MpiRankGroup final : public RankGroup
 {

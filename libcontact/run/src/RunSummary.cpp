@@ -45,11 +45,12 @@ void printRunSummary(std::ostream& log, const RunResult& r)
         std::snprintf(split, sizeof split,
                       "split over %d ranks (rank 0's figures): sent %.3g bytes and received %.3g "
                       "per step, %.1f %% of the step time exchanging; %lld redraws of the "
-                      "sub-domains, work max/mean %.3g at the end\n",
+                      "sub-domains, %lld changes of rank by grains, work max/mean %.3g at "
+                      "the end\n",
                       r.ranks, double(d.bytesSent) * perExchange,
                       double(d.bytesReceived) * perExchange,
                       stepping > 0 ? 100.0 * (d.exchangeSeconds + d.packSeconds) / stepping : 0.0,
-                      d.rebalances, d.lastImbalance);
+                      d.rebalances, d.grainsMoved, d.lastImbalance);
         log << split;
     }
 }

@@ -67,6 +67,7 @@ const std::vector<char>& ContactDecomposition::assign(const World& world,
         mGrainWork.assign(n, 1.0);
         mDrawn = false;
     }
+    mPreviousOwner.swap(mGrainOwner);
     mGrainOwner.resize(n);
     if (!mDrawn) {
         rebalance(centres);
@@ -81,6 +82,8 @@ const std::vector<char>& ContactDecomposition::assign(const World& world,
     }
     ++mEvaluations;
     mCounters.lastImbalance = imbalance();
+    if (mPreviousOwner.size() == n)
+        for (size_t g = 0; g < n; ++g) mCounters.grainsMoved += mGrainOwner[g] != mPreviousOwner[g];
 
     const std::vector<ContactSlot>& slots = contacts.slots();
     const int me = mRanks.rank();

@@ -34,6 +34,7 @@ struct DecompositionCounters
     long long bytesReceived = 0;   ///< the other ranks' slot results
     long long exchanges = 0;
     long long rebalances = 0;
+    long long grainsMoved = 0;     ///< grains that changed rank between evaluations, summed
     double lastImbalance = 1.0;    ///< max / mean of the ranks' work at the last evaluation
 };
 
@@ -74,7 +75,7 @@ private:
     bool mDrawn = false;
     long long mEvaluations = 0, mLastRedraw = 0;
     std::vector<double> mGrainWork;      ///< node checks of each grain's slots, last evaluation
-    std::vector<int> mGrainOwner;
+    std::vector<int> mGrainOwner, mPreviousOwner;
     std::vector<int> mSlotOwner;
     std::vector<char> mMine;
     std::vector<char> mSend, mReceived;

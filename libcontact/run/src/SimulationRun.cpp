@@ -85,7 +85,9 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
 
     if (options.ranks) {
-        mDecomposition = std::make_unique<ContactDecomposition>(*options.ranks);
+        // One rank evaluates every contact: nothing to split, nothing to exchange.
+        if (options.ranks->ranks() > 1)
+            mDecomposition = std::make_unique<ContactDecomposition>(*options.ranks);
         mWrites = options.ranks->isRoot();
     }
     std::vector<std::string> warnings;
@@ -225,10 +227,8 @@ void Run::fillResult(RunResult& result) const
     result.time = mSim->world().time;
     result.counters = mSim->counters();
     result.wallSeconds = mWall.seconds();
-    if (mDecomposition) {
-        result.ranks = mOptions.ranks->ranks();
-        result.decomposition = mDecomposition->counters();
-    }
+    if (mOptions.ranks) result.ranks = mOptions.ranks->ranks();
+    if (mDecomposition) result.decomposition = mDecomposition->counters();
 }
 
 } // namespace
@@ -247,7 +247,7 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
             << (!options.ranks ? " process" : ranks == 1 ? " rank" : " ranks");
         if (options.threads > 0)
             log << " x " << options.threads << (options.threads == 1 ? " thread" : " threads");
-        log << (options.ranks ? " (contacts split over the ranks, state replicated)\n" : "\n");
+        log << (ranks > 1 ? " (contacts split over the ranks, state replicated)\n" : "\n");
     }
     Run run(options, log);
     RunResult result;

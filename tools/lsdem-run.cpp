@@ -19,6 +19,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -101,13 +102,17 @@ int main(int argc, char** argv)
                         "see lsdem-run --help");
         if (!options.scenePath.empty() && options.outDir.empty())
             throw Error("", "no output folder given", "pass --out DIR");
-        options.progress = !quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
+        options.progress =
+            !quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
         if (ranks) {
             options.ranks = &ranks->group();
-            // Ranks on one machine share its cores, rather than each taking them all.
-            if (threads == 0)
-                threads = std::max(1, tbb::info::default_concurrency() /
-                                          std::max(1, ranks->ranksOnThisMachine()));
+            // Ranks on one machine share its cores rather than each taking them all, and a
+            // rank the launcher bound to fewer cores (TBB sees its affinity) keeps to those.
+            if (threads == 0) {
+                const int machine = static_cast<int>(std::thread::hardware_concurrency());
+                const int share = machine / std::max(1, ranks->ranksOnThisMachine());
+                threads = std::max(1, std::min(tbb::info::default_concurrency(), share));
+            }
         }
 
         std::unique_ptr<tbb::global_control> limit;

@@ -134,8 +134,8 @@ vtk_period = 1e-2
 std::string threeSpheres()
 {
     std::string scene = column(1, 0.01);
-    const std::string lattice = scene.substr(scene.find("[[lattices]]"),
-                                             scene.find("[[boundaries]]") - scene.find("[[lattices]]"));
+    const size_t begin = scene.find("[[lattices]]"), end = scene.find("[[boundaries]]");
+    const std::string lattice = scene.substr(begin, end - begin);
     scene.replace(scene.find(lattice), lattice.size(), R"([[grains]]
 asset = "ball"
 material = "rock"
@@ -186,12 +186,16 @@ TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
     const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
     ASSERT_EQ(serial.exitCode, 0) << serial.output;
     for (int ranks = 1; ranks <= 4; ++ranks) {
+        // Threads inside the ranks too: 2 ranks of 2 threads.
+        const int threads = ranks == 2 ? 2 : 1;
         const std::string out = dir.file("ranks" + std::to_string(ranks));
-        const CommandResult r = runCommand(onRanks(ranks, "-q " + scene + " --out " + out));
+        const CommandResult r = runCommand(onRanks(
+            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
         ASSERT_EQ(r.exitCode, 0) << r.output;
         expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
-        const std::string header = "running on " + std::to_string(ranks) +
-                                   (ranks == 1 ? " rank x 1 thread" : " ranks x 1 thread");
+        const std::string header =
+            "running on " + std::to_string(ranks) + (ranks == 1 ? " rank x " : " ranks x ") +
+            std::to_string(threads) + (threads == 1 ? " thread" : " threads");
         EXPECT_EQ(count(r.output, header), 1u) << r.output;
         EXPECT_EQ(count(r.output, "where the time went"), 1u) << r.output;
         if (ranks > 1) {

@@ -93,7 +93,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
-    if (mWrites) prepareOutputFolder(mOutDir, "choose a writable --out folder");  // once the scene is good
+    if (mWrites)  // once the scene is good
+        prepareOutputFolder(mOutDir, "choose a writable --out folder");
     for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
 
     double dt = mScene.timeStep.fixed;

@@ -143,7 +143,8 @@ void Simulation::evaluateForces(double slipStep)
     mBoundaryViews.clear();
     for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));
     // Split over ranks, this rank evaluates its own slots and receives the others' after.
-    const std::vector<char>* mine = mDecomposition ? &mDecomposition->assign(w, mContacts) : nullptr;
+    const std::vector<char>* mine =
+        mDecomposition ? &mDecomposition->assign(w, mContacts) : nullptr;
     mCounters.broadSeconds += secondsSince(broadStart);
     mCounters.candidatePairs += static_cast<long long>(pairSlots);
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);

@@ -41,7 +41,9 @@ bool isEmpty(const PairForces& r)
 {
     if (r.contactNodes != 0 || r.pointForcesOnFirst != 0) return false;
     static const double zeros[9] = {};
-    const auto zero = [](const double* p, size_t n) { return std::memcmp(p, zeros, n * sizeof(double)) == 0; };
+    const auto zero = [](const double* p, size_t n) {
+        return std::memcmp(p, zeros, n * sizeof(double)) == 0;
+    };
     return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
            zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
            zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);

@@ -59,8 +59,9 @@ int WorkBisection::cut(const std::vector<Vec3>& points, const std::vector<double
     size_t split = begin;
     double bestMiss = std::numeric_limits<double>::infinity(), below = 0.0;
     for (size_t m = begin; m <= end; ++m) {
-        const bool separable = m == begin || m == end ||
-                               points[size_t(indices[m - 1])][axis] < points[size_t(indices[m])][axis];
+        const bool separable =
+            m == begin || m == end ||
+            points[size_t(indices[m - 1])][axis] < points[size_t(indices[m])][axis];
         if (separable && std::abs(below - target) < bestMiss) {
             bestMiss = std::abs(below - target);
             split = m;

@@ -80,7 +80,8 @@ TEST(WorkBisection, RandomWeightsAreSplitEvenly)
         const double mean = total / parts;
         const double levels = std::ceil(std::log2(double(parts)));
         for (int p = 0; p < parts; ++p)
-            EXPECT_NEAR(w[size_t(p)], mean, levels * heaviest + 1e-9) << parts << " parts, part " << p;
+            EXPECT_NEAR(w[size_t(p)], mean, levels * heaviest + 1e-9)
+                << parts << " parts, part " << p;
         // The same input gives the same cuts (every rank draws them itself).
         const WorkBisection again = WorkBisection::balance(points, weights, parts);
         for (const Vec3& p : points) ASSERT_EQ(again.partOf(p), b.partOf(p));

@@ -62,7 +62,7 @@ private:
     std::unique_ptr<FrameWriter> mFrames;
     long long mHistoryEvery = 0, mVtkEvery = 0, mCheckpointEvery = 0;
     double mPlannedSteps = -1.0;
-    double mSetupSeconds = 0.0, mOutputSeconds = 0.0;
+    double mSetupSeconds = 0.0, mOutputSeconds = 0.0, mVoteSeconds = 0.0;
     long long mFirstStep = 0;
     Stopwatch mSinceFlush, mSinceProgress, mLoop;
 };
@@ -167,12 +167,15 @@ bool Run::stepToEnd()
             throw;
         }
         const long long step = mSim->world().step;
+        // A signal may reach one rank only: the ranks stop together, at the same step. (The
+        // vote waits for the slowest rank: exchange time.)
+        const Stopwatch vote;
+        const bool requested = mOptions.ranks ? mOptions.ranks->anyRank(gStopRequested.load())
+                                              : gStopRequested.load();
+        mVoteSeconds += vote.seconds();
         const Stopwatch output;
         if (step % mHistoryEvery == 0) recordHistoryRow(*mSim, mCheckpoint.record);
         if (mFrames && step % mVtkEvery == 0) mFrames->write(*mSim);
-        // A signal may reach one rank only: the ranks stop together, at the same step.
-        const bool requested = mOptions.ranks ? mOptions.ranks->anyRank(gStopRequested.load())
-                                              : gStopRequested.load();
         const bool stop = requested || (mOptions.stopAtStep > 0 && step >= mOptions.stopAtStep);
         if (stop || (mCheckpointEvery > 0 && step % mCheckpointEvery == 0)) {
             writeCheckpoint();
@@ -229,7 +232,10 @@ void Run::fillResult(RunResult& result) const
     result.counters = mSim->counters();
     result.wallSeconds = mWall.seconds();
     if (mOptions.ranks) result.ranks = mOptions.ranks->ranks();
-    if (mDecomposition) result.decomposition = mDecomposition->counters();
+    if (mDecomposition) {
+        result.decomposition = mDecomposition->counters();
+        result.decomposition.exchangeSeconds += mVoteSeconds;
+    }
 }
 
 } // namespace

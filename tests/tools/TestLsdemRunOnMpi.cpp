@@ -1,16 +1,19 @@
 // lsdem-run under `mpirun --oversubscribe -n N` as a user runs it: one simulation with its
 // contacts split over N ranks, every rank stepping the same replicated state
-// (lsdem/simulation/ContactDecomposition.h), rank 0 writing. Every file it writes (histories,
-// grains, checkpoint, ParaView frames) must be the single process's, byte for byte, for 1 to 4
-// ranks, with a rank that owns no grain, and across a restart on another rank count. Skipped
-// when lsdem was built without MPI. Open MPI refuses to start as root without
-// OMPI_ALLOW_RUN_AS_ROOT*: ctest sets those for this program (tests/CMakeLists.txt).
+// (lsdem/simulation/ContactDecomposition.h), rank 0 writing the histories and checkpoints, each
+// rank its piece of every ParaView frame. Every history, grains.csv and checkpoint must be the
+// single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, and across
+// a restart on another rank count; each frame is the single process's file, or a .pvtu whose
+// pieces hold together exactly its points and cells. Skipped when lsdem was built without MPI.
+// Open MPI refuses to start as root without OMPI_ALLOW_RUN_AS_ROOT*: ctest sets those for this
+// program (tests/CMakeLists.txt).
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -37,16 +40,70 @@ std::set<std::string> filesIn(const std::string& dir)
     return names;
 }
 
-/// Every file of @a expected's folder is in @a actual's with the same bytes, and no other.
+/// A .vtu's point and cell counts, as its Piece tag declares them.
+std::pair<long long, long long> pointsAndCells(const std::string& path)
+{
+    static const std::regex piece(R"__(<Piece NumberOfPoints="(\d+)" NumberOfCells="(\d+)">)__");
+    const std::string text = readFile(path);
+    std::smatch m;
+    const std::string head = text.substr(0, text.find("<AppendedData"));
+    if (!std::regex_search(head, m, piece)) return {-1, -1};
+    return {std::stoll(m[1]), std::stoll(m[2])};
+}
+
+/// The files a parallel frame's .pvtu names as its pieces.
+std::vector<std::string> piecesOf(const std::string& path)
+{
+    static const std::regex source(R"__(<Piece Source="([^"]*)"/>)__");
+    const std::string text = readFile(path);
+    std::vector<std::string> pieces;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), source);
+         it != std::sregex_iterator(); ++it)
+        pieces.push_back((*it)[1]);
+    return pieces;
+}
+
+/// @a actual's folder holds what @a expected's (one process's) does: every file but the frames
+/// with the same bytes; each frame either the same file, byte for byte, or a .pvtu whose pieces
+/// together have its points and cells; the .pvd naming whichever it is; and no other file.
 void expectSameFiles(const std::string& expected, const std::string& actual,
                      const std::string& what)
 {
     const std::set<std::string> names = filesIn(expected);
-    EXPECT_EQ(filesIn(actual), names) << what;
     EXPECT_TRUE(names.count("checkpoint.lsdem") && names.count("energy.csv")) << what;
-    for (const std::string& name : names)
-        EXPECT_TRUE(readFile(expected + "/" + name) == readFile(actual + "/" + name))
-            << what << ": " << name << " differs";
+    std::set<std::string> accounted;
+    std::string pvd = readFile(expected + "/frames.pvd");
+    for (const std::string& name : names) {
+        if (name == "frames.pvd") continue;  // below
+        const bool frame = name.rfind("frames_", 0) == 0;
+        const std::string parallel = name.substr(0, name.size() - 4) + ".pvtu";
+        if (!frame || std::filesystem::exists(actual + "/" + name)) {
+            accounted.insert(name);
+            EXPECT_TRUE(readFile(expected + "/" + name) == readFile(actual + "/" + name))
+                << what << ": " << name << " differs";
+            continue;
+        }
+        accounted.insert(parallel);
+        const std::vector<std::string> pieces = piecesOf(actual + "/" + parallel);
+        EXPECT_GE(pieces.size(), 2u) << what << ": " << parallel;
+        long long points = 0, cells = 0;
+        for (const std::string& piece : pieces) {
+            accounted.insert(piece);
+            const auto [p, c] = pointsAndCells(actual + "/" + piece);
+            points += p;
+            cells += c;
+        }
+        EXPECT_EQ(std::make_pair(points, cells), pointsAndCells(expected + "/" + name))
+            << what << ": the pieces of " << parallel;
+        const std::string listed = "file=\"" + name + "\"";
+        if (pvd.find(listed) != std::string::npos)
+            pvd.replace(pvd.find(listed), listed.size(), "file=\"" + parallel + "\"");
+    }
+    if (names.count("frames.pvd")) {
+        accounted.insert("frames.pvd");
+        EXPECT_EQ(readFile(actual + "/frames.pvd"), pvd) << what;
+    }
+    EXPECT_EQ(filesIn(actual), accounted) << what;
 }
 
 size_t count(const std::string& text, const std::string& what)
@@ -175,7 +232,8 @@ std::string onRanks(int ranks, const std::string& args)
 
 } // namespace
 
-// A settling column of 20 spheres: on 1, 2, 3 and 4 ranks, every file is the single process's.
+// A settling column of 20 spheres: on 1, 2, 3 and 4 ranks, every file is the single process's
+// (the frames of 2 or more ranks as a parallel series holding the same points and cells).
 // The run must be what it claims: split over N ranks (the header, the exchange summary), grains
 // changing rank as they fall through the sub-domains, rank 0 alone printing.
 TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
@@ -193,6 +251,10 @@ TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
             ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
         ASSERT_EQ(r.exitCode, 0) << r.output;
         expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
+        // One rank writes whole frames; more write a parallel series, a piece each.
+        EXPECT_EQ(std::filesystem::exists(out + "/frames_grains_0.pvtu"), ranks > 1);
+        if (ranks > 1)
+            EXPECT_EQ(piecesOf(out + "/frames_grains_0.pvtu").size(), size_t(ranks));
         const std::string header =
             "running on " + std::to_string(ranks) + (ranks == 1 ? " rank x " : " ranks x ") +
             std::to_string(threads) + (threads == 1 ? " thread" : " threads");

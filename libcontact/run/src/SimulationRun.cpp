@@ -126,7 +126,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     mVtkEvery = out.vtkPeriod > 0.0 ? stepsPer(out.vtkPeriod, dt) : 0;
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
     mCheckpointPath = (fs::path(mOutDir) / "checkpoint.lsdem").string();
-    if (mVtkEvery > 0 && mWrites) {
+    // Split over ranks, every rank writes its piece of each frame.
+    if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
         mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }

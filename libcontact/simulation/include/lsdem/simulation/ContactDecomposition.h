@@ -48,6 +48,7 @@ public:
     explicit ContactDecomposition(RankGroup& ranks, double rebalanceAbove = 1.1);
 
     RankGroup& ranks() { return mRanks; }
+    const RankGroup& rankGroup() const { return mRanks; }
 
     /// Before the slots of @a contacts (current for @a world) are evaluated: which of them
     /// this rank evaluates (nonzero), by the owner of each slot's first grain.

@@ -253,8 +253,9 @@ TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
         expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
         // One rank writes whole frames; more write a parallel series, a piece each.
         EXPECT_EQ(std::filesystem::exists(out + "/frames_grains_0.pvtu"), ranks > 1);
-        if (ranks > 1)
+        if (ranks > 1) {
             EXPECT_EQ(piecesOf(out + "/frames_grains_0.pvtu").size(), size_t(ranks));
+        }
         const std::string header =
             "running on " + std::to_string(ranks) + (ranks == 1 ? " rank x " : " ranks x ") +
             std::to_string(threads) + (threads == 1 ? " thread" : " threads");

@@ -50,8 +50,8 @@ int main(int argc, char** argv)
     CLI::App app(
         "Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:\n"
         "energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), "
-        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set) and "
-        "checkpoint.lsdem.\n\n"
+        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set; under "
+        "mpirun a\n.pvtu per frame and a .vtu piece per rank) and checkpoint.lsdem.\n\n"
         "  lsdem-run SCENE.toml --out DIR [options]\n"
         "  lsdem-run --restart DIR/checkpoint.lsdem [options]\n"
         "  mpirun -n N lsdem-run SCENE.toml --out DIR   (contacts split over N ranks, the same "

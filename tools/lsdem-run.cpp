@@ -1,20 +1,25 @@
-/// lsdem-run: run a scene file (TOML) and write histories, ParaView frames and checkpoints.
+/// lsdem-run: run a scene file (TOML) and write histories, ParaView frames and checkpoints;
+/// under mpirun, one simulation with its contacts split over the ranks (run/RunRanks.h).
 
 #include "common/CommandLine.h"
+#include "run/RunRanks.h"
 
 #include "lsdem/run/SimulationRun.h"
 #include "lsdem/ls/Error.h"
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -32,13 +37,25 @@ void onSignal(int)
 int main(int argc, char** argv)
 {
     using lsdem::Error;
+    // Under mpirun: MPI starts here, and only rank 0 prints (its errors are every rank's).
+    std::unique_ptr<lsdem::RunRanks> ranks;
+    if (const int failed = lsdem::cli::runTool("lsdem-run", [&] {
+            ranks = lsdem::startRunRanks(argc, argv);
+            return 0;
+        }))
+        return failed;
+    if (ranks && !ranks->group().isRoot() && !std::freopen("/dev/null", "w", stdout))
+        return 3;
+
     CLI::App app(
         "Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:\n"
         "energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), "
-        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set) and "
-        "checkpoint.lsdem.\n\n"
+        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set; under "
+        "mpirun a\n.pvtu per frame and a .vtu piece per rank) and checkpoint.lsdem.\n\n"
         "  lsdem-run SCENE.toml --out DIR [options]\n"
-        "  lsdem-run --restart DIR/checkpoint.lsdem [options]",
+        "  lsdem-run --restart DIR/checkpoint.lsdem [options]\n"
+        "  mpirun -n N lsdem-run SCENE.toml --out DIR   (contacts split over N ranks, the same "
+        "bytes)",
         "lsdem-run");
     lsdem::cli::applyConventions(app);
     app.footer("Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; "
@@ -61,7 +78,8 @@ int main(int argc, char** argv)
                threads = lsdem::cli::parseInteger(text, "--threads");
                if (threads < 1) throw Error("", "--threads wants a number >= 1");
            },
-           "worker threads (default: all cores); results do not depend on N")
+           "worker threads (default: all cores; under mpirun, the cores shared among\nthe ranks "
+           "on each machine); results do not depend on N")
         ->type_name("N");
     app.add_option_function<std::string>(
            "--stop-at-step",
@@ -73,7 +91,7 @@ int main(int argc, char** argv)
         ->type_name("N");
     app.add_flag("-q,--quiet", quiet, "no progress line");
 
-    return lsdem::cli::runTool("lsdem-run", [&] {
+    const auto body = [&] {
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
         if (scenes.size() > 1)
             throw Error("", "more than one scene file given ('" + scenes[1] + "')",
@@ -84,15 +102,29 @@ int main(int argc, char** argv)
                         "see lsdem-run --help");
         if (!options.scenePath.empty() && options.outDir.empty())
             throw Error("", "no output folder given", "pass --out DIR");
-        options.progress = !quiet && isatty(STDERR_FILENO);
+        options.progress =
+            !quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
+        if (ranks) {
+            options.ranks = &ranks->group();
+            // Ranks on one machine share its cores rather than each taking them all, and a
+            // rank the launcher bound to fewer cores (TBB sees its affinity) keeps to those.
+            if (threads == 0) {
+                const int machine = static_cast<int>(std::thread::hardware_concurrency());
+                const int share = machine / std::max(1, ranks->ranksOnThisMachine());
+                threads = std::max(1, std::min(tbb::info::default_concurrency(), share));
+            }
+        }
 
         std::unique_ptr<tbb::global_control> limit;
         if (threads > 0)
             limit = std::make_unique<tbb::global_control>(
                 tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+        options.threads = static_cast<int>(
+            tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
         std::signal(SIGINT, onSignal);
         std::signal(SIGTERM, onSignal);
         const lsdem::RunResult result = lsdem::runSimulation(options, std::cout);
         return result.interrupted ? 130 : 0;
-    });
+    };
+    return ranks ? ranks->run("lsdem-run", body) : lsdem::cli::runTool("lsdem-run", body);
 }

@@ -1,6 +1,7 @@
 #include "FrameWriter.h"
 
 #include "lsdem/ls/Inspection.h"
+#include "lsdem/simulation/ContactDecomposition.h"
 
 namespace lsdem {
 
@@ -17,17 +18,31 @@ FrameWriter::FrameWriter(const std::string& dir, const World& world) : mSeries(d
 void FrameWriter::write(const Simulation& sim)
 {
     const World& w = sim.world();
+    // Split over ranks, each rank writes the grains it owns (and the forces on them) as its
+    // piece of a parallel frame; otherwise the whole frame is written here.
+    const ContactDecomposition* split = sim.decomposition();
+    const int rank = split ? split->rankGroup().rank() : 0;
+    auto mine = [&](int grain) {
+        if (!split) return true;
+        if (grain < 0) return rank == 0;  // on no grain: rank 0 keeps it
+        return split->grainOwners()[size_t(grain)] == rank;
+    };
     std::vector<VtkGrain> grains;
     for (size_t i = 0; i < w.grains.size(); ++i) {
         const Grain& g = w.grains[i];
+        if (!mine(static_cast<int>(i))) continue;
         grains.push_back({&mSurfaces.at(g.asset.get()), g.body.pose, static_cast<int>(i),
                           g.motion == GrainMotion::Fixed ? Vec3::Zero() : g.body.velocity,
                           g.angularVelocity()});
     }
     std::vector<VtkForcePoint> forces;
     for (const ContactForceRecord& f : sim.contactForces())
-        forces.push_back({f.point, f.force, f.grain});
-    mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces);
+        if (mine(f.grain)) forces.push_back({f.point, f.force, f.grain});
+    if (split)
+        mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, rank,
+                                   split->rankGroup().ranks(), grains, forces);
+    else
+        mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces);
 }
 
 } // namespace lsdem

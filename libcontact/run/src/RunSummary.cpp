@@ -8,7 +8,8 @@ namespace lsdem {
 void printRunSummary(std::ostream& log, const RunResult& r)
 {
     const StepCounters& c = r.counters;
-    const double stepping = c.broadSeconds + c.narrowSeconds + c.integrateSeconds;
+    const double stepping = c.broadSeconds + c.narrowSeconds + c.integrateSeconds +
+                            r.decomposition.exchangeSeconds + r.decomposition.packSeconds;
     char line[200];
     log << "\nwhere the time went:\n";
     auto row = [&](const char* name, double s) {
@@ -20,6 +21,11 @@ void printRunSummary(std::ostream& log, const RunResult& r)
     row("broad phase", c.broadSeconds);
     row("narrow phase + laws", c.narrowSeconds);
     row("integration", c.integrateSeconds);
+    const DecompositionCounters& d = r.decomposition;
+    if (r.ranks > 1) {
+        row("exchange (all-gather)", d.exchangeSeconds);
+        row("exchange (pack)", d.packSeconds);
+    }
     row("output", r.outputSeconds);
     row("total (wall)", r.wallSeconds);
     const double steps = static_cast<double>(c.steps);
@@ -33,6 +39,20 @@ void printRunSummary(std::ostream& log, const RunResult& r)
                       ? 100.0 * double(c.nodes.nodesCulled) / double(c.nodes.nodesConsidered)
                       : 0.0);
     log << line;
+    if (r.ranks > 1 && d.exchanges > 0) {
+        const double perExchange = 1.0 / double(d.exchanges);
+        char split[600];
+        std::snprintf(split, sizeof split,
+                      "split over %d ranks (rank 0's figures): sent %.3g bytes and received %.3g "
+                      "per step, %.1f %% of the step time exchanging; %lld redraws of the "
+                      "sub-domains, %lld changes of rank by grains, work max/mean %.3g at "
+                      "the end\n",
+                      r.ranks, double(d.bytesSent) * perExchange,
+                      double(d.bytesReceived) * perExchange,
+                      stepping > 0 ? 100.0 * (d.exchangeSeconds + d.packSeconds) / stepping : 0.0,
+                      d.rebalances, d.grainsMoved, d.lastImbalance);
+        log << split;
+    }
 }
 
 } // namespace lsdem

@@ -55,11 +55,14 @@ private:
     Checkpoint mCheckpoint;
     std::string mOutDir, mCheckpointPath;
     std::vector<Vec3> mInitialPositions;
+    /// Split over ranks: this rank's share of the contacts; only rank 0 writes.
+    std::unique_ptr<ContactDecomposition> mDecomposition;
+    bool mWrites = true;
     std::unique_ptr<Simulation> mSim;
     std::unique_ptr<FrameWriter> mFrames;
     long long mHistoryEvery = 0, mVtkEvery = 0, mCheckpointEvery = 0;
     double mPlannedSteps = -1.0;
-    double mSetupSeconds = 0.0, mOutputSeconds = 0.0;
+    double mSetupSeconds = 0.0, mOutputSeconds = 0.0, mVoteSeconds = 0.0;
     long long mFirstStep = 0;
     Stopwatch mSinceFlush, mSinceProgress, mLoop;
 };
@@ -81,10 +84,17 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
 
+    if (options.ranks) {
+        // One rank evaluates every contact: nothing to split, nothing to exchange.
+        if (options.ranks->ranks() > 1)
+            mDecomposition = std::make_unique<ContactDecomposition>(*options.ranks);
+        mWrites = options.ranks->isRoot();
+    }
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
-    prepareOutputFolder(mOutDir, "choose a writable --out folder");  // once the scene is good
+    if (mWrites)  // once the scene is good
+        prepareOutputFolder(mOutDir, "choose a writable --out folder");
     for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
 
     double dt = mScene.timeStep.fixed;
@@ -98,7 +108,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     const OutputSpec& out = mScene.output;
     const bool recordForces = out.vtkPeriod > 0.0 && out.contactForces;
     const Stopwatch firstEvaluation;
-    mSim = std::make_unique<Simulation>(std::move(world), dt, !mRestart, recordForces);
+    mSim = std::make_unique<Simulation>(std::move(world), dt, !mRestart, recordForces,
+                                        mDecomposition.get());
     mCheckpoint.timeStep = dt;
 
     mPlannedSteps = plannedSteps(mScene, mSim->world(), dt);
@@ -115,7 +126,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     mVtkEvery = out.vtkPeriod > 0.0 ? stepsPer(out.vtkPeriod, dt) : 0;
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
     mCheckpointPath = (fs::path(mOutDir) / "checkpoint.lsdem").string();
-    if (mVtkEvery > 0) {
+    // Split over ranks, every rank writes its piece of each frame.
+    if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
         mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }
@@ -132,6 +144,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
 
 void Run::writeTextOutputs()
 {
+    if (!mWrites) return;
     writeHistoryFiles(mOutDir, mSim->world(), mCheckpoint.record);
     writeGrainsFile((fs::path(mOutDir) / "grains.csv").string(), mSim->world(),
                     mInitialPositions);
@@ -139,6 +152,7 @@ void Run::writeTextOutputs()
 
 void Run::writeCheckpoint()
 {
+    if (!mWrites) return;
     if (mFrames) mCheckpoint.record.vtkFrameTimes = mFrames->series().frameTimes();
     saveCheckpoint(mCheckpointPath, mSim->world(), mCheckpoint);
     writeTextOutputs();
@@ -154,11 +168,16 @@ bool Run::stepToEnd()
             throw;
         }
         const long long step = mSim->world().step;
+        // A signal may reach one rank only: the ranks stop together, at the same step. (The
+        // vote waits for the slowest rank: exchange time.)
+        const Stopwatch vote;
+        const bool requested = mOptions.ranks ? mOptions.ranks->anyRank(gStopRequested.load())
+                                              : gStopRequested.load();
+        mVoteSeconds += vote.seconds();
         const Stopwatch output;
         if (step % mHistoryEvery == 0) recordHistoryRow(*mSim, mCheckpoint.record);
         if (mFrames && step % mVtkEvery == 0) mFrames->write(*mSim);
-        const bool stop = gStopRequested.load() ||
-                          (mOptions.stopAtStep > 0 && step >= mOptions.stopAtStep);
+        const bool stop = requested || (mOptions.stopAtStep > 0 && step >= mOptions.stopAtStep);
         if (stop || (mCheckpointEvery > 0 && step % mCheckpointEvery == 0)) {
             writeCheckpoint();
             mSinceFlush.restart();
@@ -213,6 +232,11 @@ void Run::fillResult(RunResult& result) const
     result.time = mSim->world().time;
     result.counters = mSim->counters();
     result.wallSeconds = mWall.seconds();
+    if (mOptions.ranks) result.ranks = mOptions.ranks->ranks();
+    if (mDecomposition) {
+        result.decomposition = mDecomposition->counters();
+        result.decomposition.exchangeSeconds += mVoteSeconds;
+    }
 }
 
 } // namespace
@@ -225,6 +249,14 @@ void requestStop()
 RunResult runSimulation(const RunOptions& options, std::ostream& log)
 {
     gStopRequested.store(false);
+    if (options.ranks || options.threads > 0) {
+        const int ranks = options.ranks ? options.ranks->ranks() : 1;
+        log << "running on " << ranks
+            << (!options.ranks ? " process" : ranks == 1 ? " rank" : " ranks");
+        if (options.threads > 0)
+            log << " x " << options.threads << (options.threads == 1 ? " thread" : " threads");
+        log << (ranks > 1 ? " (contacts split over the ranks, state replicated)\n" : "\n");
+    }
     Run run(options, log);
     RunResult result;
     result.interrupted = run.stepToEnd();

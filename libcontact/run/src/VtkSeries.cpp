@@ -195,14 +195,55 @@ std::string contactsFile(const std::vector<VtkForcePoint>& forces)
     return file.contents(forces.size(), forces.size());
 }
 
-std::string frameFileName(const std::string& baseName, const char* kind, size_t frame)
+std::string frameFileName(const std::string& baseName, const char* kind, size_t frame,
+                          bool parallel = false)
 {
-    return baseName + "_" + kind + "_" + std::to_string(frame) + ".vtu";
+    return baseName + "_" + kind + "_" + std::to_string(frame) + (parallel ? ".pvtu" : ".vtu");
+}
+
+std::string pieceFileName(const std::string& baseName, const char* kind, size_t frame, int piece)
+{
+    return baseName + "_" + kind + "_" + std::to_string(frame) + "_" + std::to_string(piece) +
+           ".vtu";
+}
+
+/// A parallel frame's `.pvtu` of one kind: the arrays its pieces hold (as grainsFile and
+/// contactsFile write them) and the pieces' files, relative to it.
+std::string parallelFile(const std::string& baseName, const char* kind, size_t frame, int pieces)
+{
+    const bool grains = std::string(kind) == "grains";
+    std::string xml = "<?xml version=\"1.0\"?>\n"
+                      "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
+                      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+                      "  <PUnstructuredGrid GhostLevel=\"0\">\n";
+    if (grains)
+        xml += "    <PPointData Vectors=\"velocity\">\n"
+               "      <PDataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n"
+               "    </PPointData>\n"
+               "    <PCellData Scalars=\"grain\">\n"
+               "      <PDataArray type=\"Int32\" Name=\"grain\" NumberOfComponents=\"1\"/>\n"
+               "    </PCellData>\n";
+    else
+        xml += "    <PPointData Vectors=\"force\" Scalars=\"grain\">\n"
+               "      <PDataArray type=\"Float64\" Name=\"force\" NumberOfComponents=\"3\"/>\n"
+               "      <PDataArray type=\"Int32\" Name=\"grain\" NumberOfComponents=\"1\"/>\n"
+               "    </PPointData>\n"
+               "    <PCellData>\n"
+               "    </PCellData>\n";
+    xml += "    <PPoints>\n"
+           "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+           "    </PPoints>\n";
+    for (int p = 0; p < pieces; ++p)
+        xml += "    <Piece Source=\"" + xmlEscape(pieceFileName(baseName, kind, frame, p)) +
+               "\"/>\n";
+    xml += "  </PUnstructuredGrid>\n</VTKFile>\n";
+    return xml;
 }
 
 /// The collection: per frame, its time and the two files (part 0 grains, part 1 contacts),
 /// named relative to the .pvd so the output folder can be moved.
-std::string collectionFile(const std::string& baseName, const std::vector<double>& times)
+std::string collectionFile(const std::string& baseName, const std::vector<double>& times,
+                           const std::vector<char>& parallel)
 {
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -215,7 +256,7 @@ std::string collectionFile(const std::string& baseName, const std::vector<double
         for (int part = 0; part < 2; ++part)
             xml += "    <DataSet timestep=\"" + std::string(timestep) + "\" part=\"" +
                    std::to_string(part) + "\" file=\"" +
-                   xmlEscape(frameFileName(baseName, kinds[part], k)) + "\"/>\n";
+                   xmlEscape(frameFileName(baseName, kinds[part], k, parallel[k])) + "\"/>\n";
     }
     xml += "  </Collection>\n</VTKFile>\n";
     return xml;
@@ -239,13 +280,55 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
     const size_t k = static_cast<size_t>(frame);
     writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(), grainsFile(grains));
     writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
+    list(frame, time, false, true);
+}
 
+void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces,
+                                   const std::vector<VtkGrain>& grains,
+                                   const std::vector<VtkForcePoint>& forces)
+{
+    if (frame < 0 || frame > framesWritten() || piece < 0 || piece >= pieces)
+        throw std::invalid_argument("VtkSeries::writeParallelFrame: frame " +
+                                    std::to_string(frame) + " is not in 0.." +
+                                    std::to_string(framesWritten()) + ", or piece " +
+                                    std::to_string(piece) + " not in 0.." +
+                                    std::to_string(pieces - 1));
+    const std::filesystem::path dir(mDirectory);
+    const size_t k = static_cast<size_t>(frame);
+    writeTextFileAtomically((dir / pieceFileName(mBaseName, "grains", k, piece)).string(),
+                            grainsFile(grains));
+    writeTextFileAtomically((dir / pieceFileName(mBaseName, "contacts", k, piece)).string(),
+                            contactsFile(forces));
+    if (piece == 0)
+        for (const char* kind : {"grains", "contacts"})
+            writeTextFileAtomically((dir / frameFileName(mBaseName, kind, k, true)).string(),
+                                    parallelFile(mBaseName, kind, k, pieces));
+    list(frame, time, true, piece == 0);
+}
+
+void VtkSeries::list(int frame, double time, bool parallel, bool writeCollection)
+{
     // The list changes only once the .pvd naming it is written, so a failure leaves the
     // series as it was and the frame can be written again.
     std::vector<double> times(mTimes.begin(), mTimes.begin() + frame);
+    std::vector<char> kinds(mParallel.begin(), mParallel.begin() + frame);
     times.push_back(time);
-    writeTextFileAtomically((dir / (mBaseName + ".pvd")).string(), collectionFile(mBaseName, times));
+    kinds.push_back(parallel);
+    const std::filesystem::path dir(mDirectory);
+    if (writeCollection)
+        writeTextFileAtomically((dir / (mBaseName + ".pvd")).string(),
+                                collectionFile(mBaseName, times, kinds));
     mTimes = std::move(times);
+    mParallel = std::move(kinds);
+}
+
+void VtkSeries::restoreFrameTimes(std::vector<double> times)
+{
+    mTimes = std::move(times);
+    mParallel.assign(mTimes.size(), 0);
+    for (size_t k = 0; k < mTimes.size(); ++k)
+        mParallel[k] = std::filesystem::exists(std::filesystem::path(mDirectory) /
+                                               frameFileName(mBaseName, "grains", k, true));
 }
 
 } // namespace lsdem

@@ -2,6 +2,7 @@
 
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/simulation/BroadPhase.h"
+#include "lsdem/simulation/ContactDecomposition.h"
 #include "lsdem/ls/Error.h"
 
 #include <tbb/parallel_for.h>
@@ -61,9 +62,9 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
 } // namespace
 
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
-                       bool recordContactForces)
+                       bool recordContactForces, ContactDecomposition* decomposition)
     : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
-      mStabilityLimit(std::numeric_limits<double>::infinity())
+      mStabilityLimit(std::numeric_limits<double>::infinity()), mDecomposition(decomposition)
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -141,6 +142,9 @@ void Simulation::evaluateForces(double slipStep)
     tbb::parallel_for(0, n, [&](int i) { mViews[size_t(i)] = contactView(w.grains[size_t(i)], i); });
     mBoundaryViews.clear();
     for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));
+    // Split over ranks, this rank evaluates its own slots and receives the others' after.
+    const std::vector<char>* mine =
+        mDecomposition ? &mDecomposition->assign(w, mContacts) : nullptr;
     mCounters.broadSeconds += secondsSince(broadStart);
     mCounters.candidatePairs += static_cast<long long>(pairSlots);
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
@@ -151,6 +155,7 @@ void Simulation::evaluateForces(double slipStep)
     const std::vector<ContactGrain>& views = mViews;
     const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
+        if (mine && !(*mine)[k]) return;
         ContactSlot& s = slots[k];
         ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
         s.stats = NodeCheckStats();
@@ -176,6 +181,7 @@ void Simulation::evaluateForces(double slipStep)
         }
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);
+    if (mDecomposition) mDecomposition->share(mContacts, record);
 
     // Sum each grain's slots in list order, grains in parallel: the same numbers whatever the
     // thread count (and the same as one pass over the slots in order).

@@ -419,3 +419,82 @@ TEST(VtkSeries, FailedCollectionLeavesTheSeriesAsItWas)
     EXPECT_EQ(parsePvd(dir.file("frames.pvd")).size(), 4u);
     EXPECT_NE(readFile(dir.file("frames.pvd")), before);
 }
+
+// A parallel frame (one simulation over ranks): two "ranks" each write their piece, rank 0 the
+// .pvtu files. Each .pvtu names the pieces and declares exactly the arrays every piece holds
+// (name, type, components: what a VTK reader matches them by); the pieces hold each rank's
+// grains; the .pvd names the .pvtu files; a series restored in that folder (a restart) lists
+// the frame as parallel again, and a later single-process frame as a plain one.
+TEST(VtkSeries, ParallelFramesNameTheirPiecesAndDeclareTheirArrays)
+{
+    ScratchDir dir;
+    const TriangleMesh tet = tetrahedron(), cube = box();
+    RigidPose moved;
+    moved.position = Vec3(3, 0, 0);
+    VtkSeries rank0(dir.path().string(), "frames"), rank1(dir.path().string(), "frames");
+    rank1.writeParallelFrame(0, 0.5, 1, 2, {{&cube, moved, 7, Vec3::Zero(), Vec3::Zero()}},
+                             {{Vec3(1, 2, 3), Vec3(0, 0, -1), 7}});
+    rank0.writeParallelFrame(0, 0.5, 0, 2, {{&tet, RigidPose(), 2, Vec3::Zero(), Vec3::Zero()}},
+                             {});
+    EXPECT_EQ(rank1.framesWritten(), 1);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("frames_grains_0.vtu")));
+
+    const std::vector<DataSetEntry> entries = parsePvd(dir.file("frames.pvd"));
+    ASSERT_EQ(entries.size(), 2u);
+    EXPECT_EQ(entries[0].file, "frames_grains_0.pvtu");
+    EXPECT_EQ(entries[1].file, "frames_contacts_0.pvtu");
+    EXPECT_EQ(entries[0].time, 0.5);
+
+    static const std::regex pieceTag(R"__(<Piece Source="([^"]*)"/>)__");
+    static const std::regex arrayTag(R"__(<PDataArray ([^>]*)/>)__");
+    for (const char* kind : {"grains", "contacts"}) {
+        const std::string text = readFile(dir.file(std::string("frames_") + kind + "_0.pvtu"));
+        EXPECT_NE(text.find("<VTKFile type=\"PUnstructuredGrid\""), std::string::npos);
+        std::vector<std::string> pieces;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), pieceTag);
+             it != std::sregex_iterator(); ++it)
+            pieces.push_back((*it)[1]);
+        ASSERT_EQ(pieces.size(), 2u) << kind;
+        std::map<std::string, std::pair<std::string, int>> declared;
+        for (auto it = std::sregex_iterator(text.begin(), text.end(), arrayTag);
+             it != std::sregex_iterator(); ++it) {
+            const auto a = attributesOf((*it)[1]);
+            declared[a.at("Name")] = {a.at("type"), std::stoi(a.at("NumberOfComponents"))};
+        }
+        for (int p = 0; p < 2; ++p) {
+            EXPECT_EQ(pieces[size_t(p)], std::string("frames_") + kind + "_0_" +
+                                             std::to_string(p) + ".vtu");
+            const ParsedGrid grid = parseVtu(dir.file(pieces[size_t(p)]));
+            // Every data array of the piece (not its cells' structure) is declared alike.
+            size_t dataArrays = 0;
+            for (const auto& [key, array] : grid.arrays) {
+                if (key.rfind("Cells/", 0) == 0) continue;
+                const std::string name = key.substr(key.find('/') + 1);
+                ++dataArrays;
+                ASSERT_TRUE(declared.count(name)) << kind << ": " << name;
+                EXPECT_EQ(declared.at(name).first, array.type) << name;
+                EXPECT_EQ(declared.at(name).second, array.components) << name;
+            }
+            EXPECT_EQ(dataArrays, declared.size()) << kind;
+        }
+    }
+    // Each piece holds its rank's grain: the tetrahedron (4 points) and the box (8).
+    const ParsedGrid first = parseVtu(dir.file("frames_grains_0_0.vtu"));
+    const ParsedGrid second = parseVtu(dir.file("frames_grains_0_1.vtu"));
+    EXPECT_EQ(first.points, 4u);
+    EXPECT_EQ(second.points, 8u);
+    EXPECT_EQ(first.at("CellData/grain").ints, std::vector<std::int64_t>(4, 2));
+    EXPECT_EQ(second.at("CellData/grain").ints, std::vector<std::int64_t>(12, 7));
+    EXPECT_EQ(second.vec3("Points/Points", 0), Vec3(2, -0.5, -0.25));
+    EXPECT_EQ(parseVtu(dir.file("frames_contacts_0_1.vtu")).points, 1u);
+    EXPECT_EQ(parseVtu(dir.file("frames_contacts_0_0.vtu")).points, 0u);
+
+    VtkSeries restarted(dir.path().string(), "frames");
+    restarted.restoreFrameTimes({0.5});
+    restarted.writeFrame(1, 0.75, {}, {});
+    const std::vector<DataSetEntry> after = parsePvd(dir.file("frames.pvd"));
+    ASSERT_EQ(after.size(), 4u);
+    EXPECT_EQ(after[0].file, "frames_grains_0.pvtu");
+    EXPECT_EQ(after[2].file, "frames_grains_1.vtu");
+    EXPECT_THROW(rank0.writeParallelFrame(0, 0.5, 2, 2, {}, {}), std::invalid_argument);
+}

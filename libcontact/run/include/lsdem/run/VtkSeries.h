@@ -4,6 +4,11 @@
 ///        the contact forces as points with force vectors. Every file is written atomically
 ///        and the `.pvd` is rewritten after each frame, so an interrupted run leaves a valid
 ///        series of the frames written so far.
+///
+/// A simulation split over ranks writes each frame as a parallel one: every rank a piece
+/// (`<base>_grains_<frame>_<rank>.vtu`, the grains it owns and the forces on them), rank 0 a
+/// `.pvtu` per kind naming the pieces, and the `.pvd` names the `.pvtu` files: ParaView opens
+/// the series as one.
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
@@ -46,15 +51,27 @@ public:
     void writeFrame(int frame, double time, const std::vector<VtkGrain>& grains,
                     const std::vector<VtkForcePoint>& forces);
 
+    /// Write frame @a frame as a parallel one of @a pieces pieces: this rank's piece
+    /// @a piece (its grains and forces); piece 0 also writes the `.pvtu` files and rewrites
+    /// the .pvd, as writeFrame does. Every rank calls it for every frame.
+    void writeParallelFrame(int frame, double time, int piece, int pieces,
+                            const std::vector<VtkGrain>& grains,
+                            const std::vector<VtkForcePoint>& forces);
+
     int framesWritten() const { return static_cast<int>(mTimes.size()); }
 
-    /// The times of the frames listed so far (kept in checkpoints) and, on restart, restored.
+    /// The times of the frames listed so far (kept in checkpoints) and, on restart, restored;
+    /// a restored frame is listed as parallel if its `.pvtu` is in the folder.
     const std::vector<double>& frameTimes() const { return mTimes; }
-    void restoreFrameTimes(std::vector<double> times) { mTimes = std::move(times); }
+    void restoreFrameTimes(std::vector<double> times);
 
 private:
+    /// Frame @a frame at @a time is written: list it (rewriting the .pvd if @a writeCollection).
+    void list(int frame, double time, bool parallel, bool writeCollection);
+
     std::string mDirectory, mBaseName;
-    std::vector<double> mTimes;  ///< time of each frame listed in the .pvd
+    std::vector<double> mTimes;   ///< time of each frame listed in the .pvd
+    std::vector<char> mParallel;  ///< whether each is a parallel frame (.pvtu)
 };
 
 } // namespace lsdem

@@ -14,6 +14,8 @@
 
 namespace lsdem {
 
+class ContactDecomposition;
+
 /// Energies now (force·length). Dissipated energy is what the balance leaves over:
 /// boundary work − (kinetic + elastic + potential − their initial total).
 struct Energies
@@ -48,8 +50,12 @@ public:
     /// the current state are computed (a fresh start); a restart passes false because the
     /// grains' forces come from the checkpoint. @a recordContactForces: as
     /// setRecordContactForces, from the initial evaluation on (so a first frame has them).
+    /// @a decomposition (null: this process evaluates every contact): the contacts are split
+    /// over its ranks, each of which steps its own copy of the same world in step with the
+    /// others (ContactDecomposition.h); it must outlive the simulation, which is then not to
+    /// be copied.
     Simulation(World world, double dt, bool evaluateInitialForces = true,
-               bool recordContactForces = false);
+               bool recordContactForces = false, ContactDecomposition* decomposition = nullptr);
 
     /// Advance one step: half kick, drift, forces, half kick.
     /// @throw Error if the state becomes non-finite or a contact is stiffer than dt allows.
@@ -78,6 +84,8 @@ public:
     std::vector<int> grainContactCounts() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
+    /// The split of the contacts over ranks given at construction (null: none).
+    const ContactDecomposition* decomposition() const { return mDecomposition; }
 
 private:
     void evaluateForces(double slipStep);
@@ -94,6 +102,7 @@ private:
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
     StepCounters mCounters;
+    ContactDecomposition* mDecomposition = nullptr;
     /// Each thread's working memory for the contact laws (no allocation in the hot loop).
     tbb::enumerable_thread_specific<ContactScratch> mScratch;
 };

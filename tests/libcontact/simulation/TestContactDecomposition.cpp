@@ -1,0 +1,405 @@
+// One simulation split over ranks without MPI: the sub-domains of the recursive bisection
+// against hand-computed cuts and balance bounds, and the whole decomposition run on "ranks"
+// that are threads of this process (a RankGroup whose all-gather is a barrier and a shared
+// buffer), each stepping its own copy of the world: every copy must end bit for bit where one
+// process ends, for 1 to 4 ranks, with a rank that owns nothing, and with shear history that
+// must travel between ranks as grains cross sub-domains.
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/ContactDecomposition.h"
+#include "lsdem/simulation/Simulation.h"
+#include "lsdem/simulation/WorkBisection.h"
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Bake.h"
+
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <cstring>
+#include <iostream>
+#include <mutex>
+#include <random>
+#include <set>
+#include <thread>
+
+using namespace lsdem;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The bisection.
+// ---------------------------------------------------------------------------------------------
+
+/// Total weight of each part.
+std::vector<double> partWeights(const WorkBisection& b, const std::vector<Vec3>& points,
+                                const std::vector<double>& weights)
+{
+    std::vector<double> w(size_t(b.parts()), 0.0);
+    for (size_t i = 0; i < points.size(); ++i) w[size_t(b.partOf(points[i]))] += weights[i];
+    return w;
+}
+
+} // namespace
+
+// 100 points of equal weight on a line at x = 0..99 in 4 parts: the cuts fall at the quartiles
+// (between 24 and 25, 49 and 50, 74 and 75), and the parts are numbered along the line.
+TEST(WorkBisection, EqualWeightsOnALineCutAtTheQuartiles)
+{
+    std::vector<Vec3> points;
+    for (int i = 0; i < 100; ++i) points.emplace_back(double(i), 0.01 * (i % 3), 0.0);
+    const WorkBisection b = WorkBisection::balance(points, std::vector<double>(100, 1.0), 4);
+    ASSERT_EQ(b.parts(), 4);
+    for (int i = 0; i < 100; ++i) EXPECT_EQ(b.partOf(points[size_t(i)]), i / 25) << i;
+    // Space beyond the points belongs to the outer parts; a point between two grains to one.
+    EXPECT_EQ(b.partOf(Vec3(-1e9, 0, 0)), 0);
+    EXPECT_EQ(b.partOf(Vec3(1e9, 0, 0)), 3);
+    EXPECT_EQ(b.partOf(Vec3(24.6, 5, 5)), 1);
+}
+
+// Random points with random weights: every part's work is the mean within what one cut can
+// miss. A cut misses its share by at most half the heaviest point, and a part lies below at
+// most ceil(log2 P) cuts, each of whose miss is shared by fewer parts; so each part's work is
+// within mean ± levels × heaviest of the mean.
+TEST(WorkBisection, RandomWeightsAreSplitEvenly)
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Vec3> points;
+    std::vector<double> weights;
+    for (int i = 0; i < 2000; ++i) {
+        points.emplace_back(10.0 * u(rng), 3.0 * u(rng), 5.0 * u(rng));
+        weights.push_back(1.0 + 100.0 * u(rng) * u(rng));
+    }
+    const double heaviest = *std::max_element(weights.begin(), weights.end());
+    double total = 0.0;
+    for (double w : weights) total += w;
+    for (int parts : {1, 2, 3, 4, 5, 7, 8}) {
+        const WorkBisection b = WorkBisection::balance(points, weights, parts);
+        const std::vector<double> w = partWeights(b, points, weights);
+        const double mean = total / parts;
+        const double levels = std::ceil(std::log2(double(parts)));
+        for (int p = 0; p < parts; ++p)
+            EXPECT_NEAR(w[size_t(p)], mean, levels * heaviest + 1e-9)
+                << parts << " parts, part " << p;
+        // The same input gives the same cuts (every rank draws them itself).
+        const WorkBisection again = WorkBisection::balance(points, weights, parts);
+        for (const Vec3& p : points) ASSERT_EQ(again.partOf(p), b.partOf(p));
+    }
+}
+
+// The cut follows the work, not the count: 10 points of weight 50 at the left end of a line
+// of 100 points (the rest weigh 1; total 590) split in two where the left side's work is
+// closest to 295: after 6 heavy points (300; 5 heavy points would give 250), so 6 points on
+// one side and 94 on the other.
+TEST(WorkBisection, TheCutFollowsTheWorkNotTheCount)
+{
+    std::vector<Vec3> points;
+    std::vector<double> weights;
+    for (int i = 0; i < 100; ++i) {
+        points.emplace_back(double(i), 0, 0);
+        weights.push_back(i < 10 ? 50.0 : 1.0);
+    }
+    const WorkBisection b = WorkBisection::balance(points, weights, 2);
+    for (int i = 0; i < 100; ++i) EXPECT_EQ(b.partOf(points[size_t(i)]), i < 6 ? 0 : 1) << i;
+    const std::vector<double> w = partWeights(b, points, weights);
+    EXPECT_EQ(w[0], 300.0);
+    EXPECT_EQ(w[1], 290.0);
+}
+
+// More parts than points: 3 grains over 4 ranks leave one part empty and never two grains in
+// one part; equal points stay together (no plane passes between them).
+TEST(WorkBisection, MorePartsThanPointsLeavesPartsEmpty)
+{
+    const std::vector<Vec3> points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+    const WorkBisection b = WorkBisection::balance(points, {1.0, 1.0, 1.0}, 4);
+    std::set<int> used;
+    for (const Vec3& p : points) used.insert(b.partOf(p));
+    EXPECT_EQ(used.size(), 3u);
+    for (int p : used) EXPECT_TRUE(p >= 0 && p < 4);
+
+    const std::vector<Vec3> same(6, Vec3(1, 2, 3));
+    const WorkBisection c = WorkBisection::balance(same, std::vector<double>(6, 1.0), 3);
+    for (const Vec3& p : same) EXPECT_EQ(c.partOf(p), c.partOf(same[0]));
+    const WorkBisection none = WorkBisection::balance({}, {}, 3);
+    EXPECT_EQ(none.parts(), 3);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The decomposition on threads.
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+/// What the threads of one "job" share: a generation-counted barrier and each rank's bytes.
+class ThreadJob
+{
+public:
+    explicit ThreadJob(int ranks) : mRanks(ranks), mContributions(static_cast<size_t>(ranks)) {}
+    int ranks() const { return mRanks; }
+
+    void barrier()
+    {
+        std::unique_lock<std::mutex> lock(mMutex);
+        const long long generation = mGeneration;
+        if (++mArrived == mRanks) {
+            mArrived = 0;
+            ++mGeneration;
+            mChanged.notify_all();
+        } else {
+            mChanged.wait(lock, [&] { return mGeneration != generation; });
+        }
+    }
+
+    std::vector<char>& contribution(int rank) { return mContributions[size_t(rank)]; }
+
+private:
+    int mRanks;
+    std::mutex mMutex;
+    std::condition_variable mChanged;
+    int mArrived = 0;
+    long long mGeneration = 0;
+    std::vector<std::vector<char>> mContributions;
+};
+
+class ThreadRankGroup final : public RankGroup
+{
+public:
+    ThreadRankGroup(ThreadJob& job, int rank) : mJob(job), mRank(rank) {}
+    int rank() const override { return mRank; }
+    int ranks() const override { return mJob.ranks(); }
+
+    void allGather(const std::vector<char>& mine, std::vector<char>& all,
+                   std::vector<size_t>& starts) override
+    {
+        mJob.contribution(mRank) = mine;
+        mJob.barrier();  // every rank's bytes are in
+        all.clear();
+        starts.assign(1, 0);
+        for (int r = 0; r < ranks(); ++r) {
+            const std::vector<char>& c = mJob.contribution(r);
+            all.insert(all.end(), c.begin(), c.end());
+            starts.push_back(all.size());
+        }
+        mJob.barrier();  // every rank has read them before anyone writes again
+    }
+
+    bool anyRank(bool) override { throw std::logic_error("not used by these tests"); }
+
+private:
+    ThreadJob& mJob;
+    int mRank;
+};
+
+/// A sphere of radius 2 with 300 nodes, baked once per program.
+const std::string& sphereFile()
+{
+    static test::ScratchDir dir;
+    static const std::string path = [] {
+        BakeOptions o;
+        o.voxelSize = 0.2;
+        o.nodePlacement = NodePlacement::Count;
+        o.nodeCount = 300;
+        std::vector<std::string> warnings;
+        const std::string file = dir.file("sphere.vdb");
+        saveAsset(bakeAnalytic(AnalyticShape::sphere(2.0), o, warnings), file);
+        return file;
+    }();
+    return path;
+}
+
+/// @a count spheres (up to 4 × 3 × 3) dropped with random velocities and spins into a box of
+/// a floor and four walls, with friction: within a few hundred steps they hit the walls, the
+/// floor and each other, and move across the box (so across the sub-domains).
+World droppedSpheres(int count)
+{
+    Scene s;
+    AssetSpec a;
+    a.name = "sphere";
+    a.file = sphereFile();
+    s.assets.push_back(a);
+    MaterialSpec rock;
+    rock.name = "rock";
+    rock.density = 2.65e-9;
+    s.materials.push_back(rock);
+    ContactSpec c;
+    c.model.formulation = Formulation::Adapted;
+    c.model.normalStiffness = 1e3;
+    c.model.shearStiffness = 5e2;
+    c.model.friction = 0.5;
+    c.restitution = 0.5;
+    s.contacts.push_back(c);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < count; ++i) {
+        GrainSpec g;
+        g.pose.position = Vec3(-7.5 + 5.0 * (i % 4) + 0.2 * u(rng), -5.0 + 5.0 * ((i / 4) % 3),
+                               2.05 + 5.0 * (i / 12));
+        g.velocity = Vec3(1500.0 * u(rng), 1500.0 * u(rng), -500.0 + 300.0 * u(rng));
+        g.angularVelocity = Vec3(50.0 * u(rng), 50.0 * u(rng), 50.0 * u(rng));
+        s.grains.push_back(g);
+    }
+    const Vec3 normals[] = {Vec3::UnitZ(), Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
+                            -Vec3::UnitY()};
+    const Vec3 points[] = {Vec3::Zero(), Vec3(-11, 0, 0), Vec3(11, 0, 0), Vec3(0, -9, 0),
+                           Vec3(0, 9, 0)};
+    for (int k = 0; k < 5; ++k) {
+        BoundarySpec b;
+        b.name = "wall" + std::to_string(k);
+        b.shape = BoundaryShape::Plane;
+        b.point = points[k];
+        b.normal = normals[k];
+        s.boundaries.push_back(b);
+    }
+    s.gravity = Vec3(0, 0, -9810.0);
+    std::vector<std::string> warnings;
+    return buildWorld(s, warnings);
+}
+
+
+/// Everything of a world that must be the same on every rank, as bytes.
+std::string stateBytes(const Simulation& sim)
+{
+    std::string out;
+    auto put = [&](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
+    auto vec = [&](const Vec3& v) { put(v.data(), 3 * sizeof(double)); };
+    auto history = [&](const ShearHistory& h) {
+        for (const ShearHistory::Entry& e : h.entries()) {
+            put(&e.node, sizeof e.node);
+            vec(e.force);
+        }
+        out += '|';
+    };
+    const World& w = sim.world();
+    for (const Grain& g : w.grains) {
+        vec(g.body.pose.position);
+        put(g.body.pose.orientation.coeffs().data(), 4 * sizeof(double));
+        vec(g.body.velocity);
+        vec(g.body.angularMomentum);
+        vec(g.force);
+        vec(g.torque);
+    }
+    for (const Boundary& b : w.boundaries) vec(b.force);
+    for (const auto& [key, h] : w.pairHistory) {
+        put(&key, sizeof key);
+        history(h.shearOnFirstNodes);
+        history(h.shearOnSecondNodes);
+    }
+    for (const auto& [key, h] : w.boundaryHistory) {
+        put(&key, sizeof key);
+        history(h);
+    }
+    const Energies e = sim.energies();
+    put(&e, sizeof e);
+    const long long nodes = sim.contactNodes();
+    put(&nodes, sizeof nodes);
+    for (const ContactForceRecord& f : sim.contactForces()) {
+        vec(f.point);
+        vec(f.force);
+        put(&f.grain, sizeof f.grain);
+    }
+    return out;
+}
+
+struct RankOutcome
+{
+    std::string state;
+    DecompositionCounters counters;
+    std::set<int> ownersSeen;  ///< ranks that owned some grain at some step
+    int ownerChanges = 0;      ///< grains that changed rank from one step to the next
+};
+
+/// Step @a count spheres @a steps times on @a ranks thread-ranks; one outcome per rank.
+std::vector<RankOutcome> runOnThreads(int ranks, int count, int steps)
+{
+    ThreadJob job(ranks);
+    std::vector<RankOutcome> outcomes(static_cast<size_t>(ranks));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < ranks; ++r)
+        threads.emplace_back([&, r] {
+            ThreadRankGroup group(job, r);
+            ContactDecomposition split(group);
+            World world = droppedSpheres(count);
+            const double dt = automaticTimeStep(world, 0.2);
+            Simulation sim(std::move(world), dt, true, true, &split);
+            RankOutcome& o = outcomes[size_t(r)];
+            std::vector<int> before = split.grainOwners();
+            for (int k = 0; k < steps; ++k) {
+                sim.step();
+                const std::vector<int>& now = split.grainOwners();
+                for (size_t g = 0; g < now.size(); ++g) {
+                    o.ownersSeen.insert(now[g]);
+                    o.ownerChanges += now[g] != before[g];
+                }
+                before = now;
+            }
+            o.state = stateBytes(sim);
+            o.counters = split.counters();
+        });
+    for (std::thread& t : threads) t.join();
+    return outcomes;
+}
+
+Simulation oneProcess(int count, bool recordForces)
+{
+    World world = droppedSpheres(count);
+    const double dt = automaticTimeStep(world, 0.2);
+    return Simulation(std::move(world), dt, true, recordForces);
+}
+
+std::string runInOneProcess(int count, int steps)
+{
+    Simulation sim = oneProcess(count, true);
+    for (int k = 0; k < steps; ++k) sim.step();
+    return stateBytes(sim);
+}
+
+} // namespace
+
+// 24 spheres thrown about a box, 1500 steps: on 1, 2, 3 and 4 thread-ranks every rank's world
+// (grains, forces, boundary reactions, every shear history, energies, recorded point forces)
+// is the single process's, byte for byte. The run is checked to do what it is meant to test:
+// grains change rank as they cross sub-domains, every rank owns grains, results cross between
+// ranks (bytes received), and contacts carry shear.
+TEST(ContactDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
+{
+    const int count = 24, steps = 1500;
+    const std::string serial = runInOneProcess(count, steps);
+    {
+        Simulation sim = oneProcess(count, false);
+        std::set<std::pair<int, int>> shearedPairs, shearedOnWalls;
+        for (int k = 0; k < steps; ++k) {
+            sim.step();
+            for (const auto& [key, h] : sim.world().pairHistory)
+                if (!h.empty()) shearedPairs.insert(key);
+            for (const auto& [key, h] : sim.world().boundaryHistory)
+                if (!h.empty()) shearedOnWalls.insert(key);
+        }
+        std::cout << "[ measured ] " << shearedPairs.size() << " grain pairs and "
+                  << shearedOnWalls.size() << " grain-wall contacts carried shear\n";
+        EXPECT_GE(shearedPairs.size(), 10u);
+        EXPECT_GE(shearedOnWalls.size(), 10u);
+    }
+    for (int ranks : {1, 2, 3, 4}) {
+        const std::vector<RankOutcome> outcomes = runOnThreads(ranks, count, steps);
+        for (int r = 0; r < ranks; ++r) {
+            const RankOutcome& o = outcomes[size_t(r)];
+            EXPECT_TRUE(o.state == serial) << ranks << " ranks: rank " << r << " differs";
+            EXPECT_EQ(o.ownersSeen.size(), size_t(ranks)) << ranks << " ranks";
+            if (ranks > 1) {
+                EXPECT_GT(o.counters.bytesReceived, 0) << ranks << " ranks";
+                EXPECT_GT(o.ownerChanges, 0) << ranks << " ranks: no grain crossed";
+            }
+        }
+    }
+}
+
+// 3 spheres on 4 ranks: at every step some rank owns no grain (and evaluates nothing), and
+// every rank still ends with the whole world, bit for bit.
+TEST(ContactDecomposition, ARankWithoutGrainsKeepsTheWholeWorld)
+{
+    const int count = 3, steps = 400;
+    const std::string serial = runInOneProcess(count, steps);
+    const std::vector<RankOutcome> outcomes = runOnThreads(4, count, steps);
+    for (const RankOutcome& o : outcomes) EXPECT_TRUE(o.state == serial);
+}

@@ -1,0 +1,338 @@
+// lsdem-run under `mpirun --oversubscribe -n N` as a user runs it: one simulation with its
+// contacts split over N ranks, every rank stepping the same replicated state
+// (lsdem/simulation/ContactDecomposition.h), rank 0 writing the histories and checkpoints, each
+// rank its piece of every ParaView frame. Every history, grains.csv and checkpoint must be the
+// single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, and across
+// a restart on another rank count; each frame is the single process's file, or a .pvtu whose
+// pieces hold together exactly its points and cells. Skipped when lsdem was built without MPI.
+// Open MPI refuses to start as root without OMPI_ALLOW_RUN_AS_ROOT*: ctest sets those for this
+// program (tests/CMakeLists.txt).
+#include "support/TestSupport.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+using namespace lsdem::test;
+
+namespace {
+
+const std::string kRun = LSDEM_RUN_EXE;
+const std::string kMpiexec = LSDEM_MPIEXEC;
+
+std::string readFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+std::set<std::string> filesIn(const std::string& dir)
+{
+    std::set<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        if (e.is_regular_file()) names.insert(e.path().filename().string());
+    return names;
+}
+
+/// A .vtu's point and cell counts, as its Piece tag declares them.
+std::pair<long long, long long> pointsAndCells(const std::string& path)
+{
+    static const std::regex piece(R"__(<Piece NumberOfPoints="(\d+)" NumberOfCells="(\d+)">)__");
+    const std::string text = readFile(path);
+    std::smatch m;
+    const std::string head = text.substr(0, text.find("<AppendedData"));
+    if (!std::regex_search(head, m, piece)) return {-1, -1};
+    return {std::stoll(m[1]), std::stoll(m[2])};
+}
+
+/// The files a parallel frame's .pvtu names as its pieces.
+std::vector<std::string> piecesOf(const std::string& path)
+{
+    static const std::regex source(R"__(<Piece Source="([^"]*)"/>)__");
+    const std::string text = readFile(path);
+    std::vector<std::string> pieces;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), source);
+         it != std::sregex_iterator(); ++it)
+        pieces.push_back((*it)[1]);
+    return pieces;
+}
+
+/// @a actual's folder holds what @a expected's (one process's) does: every file but the frames
+/// with the same bytes; each frame either the same file, byte for byte, or a .pvtu whose pieces
+/// together have its points and cells; the .pvd naming whichever it is; and no other file.
+void expectSameFiles(const std::string& expected, const std::string& actual,
+                     const std::string& what)
+{
+    const std::set<std::string> names = filesIn(expected);
+    EXPECT_TRUE(names.count("checkpoint.lsdem") && names.count("energy.csv")) << what;
+    std::set<std::string> accounted;
+    std::string pvd = readFile(expected + "/frames.pvd");
+    for (const std::string& name : names) {
+        if (name == "frames.pvd") continue;  // below
+        const bool frame = name.rfind("frames_", 0) == 0;
+        const std::string parallel = name.substr(0, name.size() - 4) + ".pvtu";
+        if (!frame || std::filesystem::exists(actual + "/" + name)) {
+            accounted.insert(name);
+            EXPECT_TRUE(readFile(expected + "/" + name) == readFile(actual + "/" + name))
+                << what << ": " << name << " differs";
+            continue;
+        }
+        accounted.insert(parallel);
+        const std::vector<std::string> pieces = piecesOf(actual + "/" + parallel);
+        EXPECT_GE(pieces.size(), 2u) << what << ": " << parallel;
+        long long points = 0, cells = 0;
+        for (const std::string& piece : pieces) {
+            accounted.insert(piece);
+            const auto [p, c] = pointsAndCells(actual + "/" + piece);
+            points += p;
+            cells += c;
+        }
+        EXPECT_EQ(std::make_pair(points, cells), pointsAndCells(expected + "/" + name))
+            << what << ": the pieces of " << parallel;
+        const std::string listed = "file=\"" + name + "\"";
+        if (pvd.find(listed) != std::string::npos)
+            pvd.replace(pvd.find(listed), listed.size(), "file=\"" + parallel + "\"");
+    }
+    if (names.count("frames.pvd")) {
+        accounted.insert("frames.pvd");
+        EXPECT_EQ(readFile(actual + "/frames.pvd"), pvd) << what;
+    }
+    EXPECT_EQ(filesIn(actual), accounted) << what;
+}
+
+size_t count(const std::string& text, const std::string& what)
+{
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+/// The number printed before @a label in @a text ("... 12 changes of rank ..."), or -1.
+long long numberBefore(const std::string& text, const std::string& label)
+{
+    const size_t at = text.find(label);
+    if (at == std::string::npos || at < 2) return -1;
+    size_t begin = at - 1;
+    while (begin > 0 && std::isdigit(static_cast<unsigned char>(text[begin - 1]))) --begin;
+    return std::stoll(text.substr(begin, at - 1 - begin));
+}
+
+/// Spheres of radius 2.5 dropped from a loose column (2 × 2 × @a layers, jittered) into a box
+/// of a floor and four walls, with friction and damping, @a endTime seconds. Tall and narrow,
+/// so the sub-domains are cut across its height and the grains fall through the cuts; the
+/// spheres hit the walls, the floor and each other, so shear histories load and travel.
+std::string column(int layers, double endTime)
+{
+    std::ostringstream s;
+    s << R"(
+[assets.ball]
+shape = "sphere"
+radius = 2.5
+voxel = 0.25
+nodes = 300
+
+[materials.rock]
+density = 2.65e-9
+[materials.wall]
+density = 0.0
+
+[[contacts]]
+materials = ["rock", "rock"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.5
+restitution = 0.3
+
+[[contacts]]
+materials = ["rock", "wall"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.5
+restitution = 0.3
+
+[[lattices]]
+asset = "ball"
+material = "rock"
+origin = [-2.8, -2.8, 2.6]
+count = [2, 2, )" << layers << R"(]
+spacing = [5.6, 5.6, 5.6]
+jitter = 0.4
+seed = 3
+)";
+    const char* walls[][3] = {{"floor", "[0, 0, 0]", "[0, 0, 1]"},
+                              {"west", "[-6, 0, 0]", "[1, 0, 0]"},
+                              {"east", "[6, 0, 0]", "[-1, 0, 0]"},
+                              {"south", "[0, -6, 0]", "[0, 1, 0]"},
+                              {"north", "[0, 6, 0]", "[0, -1, 0]"}};
+    for (const auto& w : walls)
+        s << "\n[[boundaries]]\nname = \"" << w[0] << "\"\ntype = \"plane\"\nmaterial = \"wall\"\n"
+          << "point = " << w[1] << "\nnormal = " << w[2] << "\n";
+    s << R"(
+[simulation]
+gravity = [0, 0, -9810]
+global_damping = 0.1
+time_step = "auto"
+end_time = )" << endTime << R"(
+
+[output]
+history_period = 1e-3
+vtk_period = 1e-2
+)";
+    return s.str();
+}
+
+/// Three spheres, side by side on the floor and pushed together: fewer grains than 4 ranks.
+std::string threeSpheres()
+{
+    std::string scene = column(1, 0.01);
+    const size_t begin = scene.find("[[lattices]]"), end = scene.find("[[boundaries]]");
+    const std::string lattice = scene.substr(begin, end - begin);
+    scene.replace(scene.find(lattice), lattice.size(), R"([[grains]]
+asset = "ball"
+material = "rock"
+position = [-3.5, 0, 2.6]
+velocity = [200, 0, 0]
+
+[[grains]]
+asset = "ball"
+material = "rock"
+position = [1.2, 0.5, 4]
+angular_velocity = [0, 30, 0]
+
+[[grains]]
+asset = "ball"
+material = "rock"
+position = [3.3, -2.5, 3]
+velocity = [-100, 200, 0]
+
+)");
+    return scene;
+}
+
+std::string writeScene(const ScratchDir& dir, const std::string& name, const std::string& text)
+{
+    const std::string path = dir.file(name);
+    std::ofstream(path) << text;
+    return path;
+}
+
+std::string onRanks(int ranks, const std::string& args)
+{
+    return kMpiexec + " --oversubscribe -n " + std::to_string(ranks) + " " + kRun + " " + args;
+}
+
+#define SKIP_WITHOUT_MPI() \
+    if (kMpiexec.empty()) GTEST_SKIP() << "built without MPI"
+
+} // namespace
+
+// A settling column of 20 spheres: on 1, 2, 3 and 4 ranks, every file is the single process's
+// (the frames of 2 or more ranks as a parallel series holding the same points and cells).
+// The run must be what it claims: split over N ranks (the header, the exchange summary), grains
+// changing rank as they fall through the sub-domains, rank 0 alone printing.
+TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, "column.toml", column(5, 0.03));
+    const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    for (int ranks = 1; ranks <= 4; ++ranks) {
+        // Threads inside the ranks too: 2 ranks of 2 threads.
+        const int threads = ranks == 2 ? 2 : 1;
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(onRanks(
+            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
+        // One rank writes whole frames; more write a parallel series, a piece each.
+        EXPECT_EQ(std::filesystem::exists(out + "/frames_grains_0.pvtu"), ranks > 1);
+        if (ranks > 1) {
+            EXPECT_EQ(piecesOf(out + "/frames_grains_0.pvtu").size(), size_t(ranks));
+        }
+        const std::string header =
+            "running on " + std::to_string(ranks) + (ranks == 1 ? " rank x " : " ranks x ") +
+            std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+        EXPECT_EQ(count(r.output, header), 1u) << r.output;
+        EXPECT_EQ(count(r.output, "where the time went"), 1u) << r.output;
+        if (ranks > 1) {
+            EXPECT_GT(numberBefore(r.output, "changes of rank by grains"), 0) << r.output;
+            EXPECT_NE(r.output.find("split over " + std::to_string(ranks) + " ranks"),
+                      std::string::npos)
+                << r.output;
+        }
+    }
+}
+
+// Three grains on four ranks: at every step a rank owns no grain; the files are still the
+// single process's.
+TEST(LsdemRunOnMpi, ARankWithoutGrainsChangesNothing)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, "three.toml", threeSpheres());
+    const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    const CommandResult four = runCommand(onRanks(4, "-q " + scene + " --out " + dir.file("four")));
+    ASSERT_EQ(four.exitCode, 0) << four.output;
+    expectSameFiles(dir.file("serial"), dir.file("four"), "3 grains on 4 ranks");
+}
+
+// A checkpoint is the replicated state: stopped on 2 ranks, continued on 3, the run ends with
+// the files of one uninterrupted process; and a single process's checkpoint continues on 4.
+TEST(LsdemRunOnMpi, ACheckpointRestartsOnAnotherRankCount)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, "column.toml", column(5, 0.03));
+    const CommandResult straight =
+        runCommand(kRun + " -q " + scene + " --out " + dir.file("straight"));
+    ASSERT_EQ(straight.exitCode, 0) << straight.output;
+
+    const CommandResult first =
+        runCommand(onRanks(2, "-q " + scene + " --stop-at-step 3000 --out " + dir.file("two")));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    EXPECT_EQ(count(first.output, "stopped at step 3000"), 1u) << first.output;
+    const CommandResult second =
+        runCommand(onRanks(3, "-q --restart " + dir.file("two/checkpoint.lsdem")));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    expectSameFiles(dir.file("straight"), dir.file("two"), "2 ranks, then 3");
+
+    const CommandResult alone =
+        runCommand(kRun + " -q " + scene + " --stop-at-step 2000 --out " + dir.file("one"));
+    ASSERT_EQ(alone.exitCode, 130) << alone.output;
+    const CommandResult four =
+        runCommand(onRanks(4, "-q --restart " + dir.file("one/checkpoint.lsdem")));
+    ASSERT_EQ(four.exitCode, 0) << four.output;
+    expectSameFiles(dir.file("straight"), dir.file("one"), "1 process, then 4 ranks");
+}
+
+// A bad scene fails on every rank alike: one message (rank 0's), exit code 1, nothing written.
+// A failure on one rank only (rank 0 cannot make its output folder) ends the whole job with
+// that rank's message rather than leaving the others waiting.
+TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    std::string bad = column(2, 0.01);
+    bad.replace(bad.find("radius = 2.5"), 12, "radius = -2.5");
+    const std::string badScene = writeScene(dir, "bad.toml", bad);
+    const CommandResult r = runCommand(onRanks(3, "-q " + badScene + " --out " + dir.file("bad")));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_EQ(count(r.output, "lsdem-run: error:"), 1u) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("bad/energy.csv")));
+
+    const std::string scene = writeScene(dir, "column.toml", column(2, 0.01));
+    std::ofstream(dir.file("a-file")) << "not a folder";
+    const CommandResult one =
+        runCommand(onRanks(2, "-q " + scene + " --out " + dir.file("a-file/out")));
+    EXPECT_NE(one.exitCode, 0) << one.output;
+    EXPECT_NE(one.output.find("lsdem-run (rank 0 of 2): error:"), std::string::npos)
+        << one.output;
+}

@@ -151,15 +151,16 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
                 "spacing %.17g mm\n",
                 result.grains, result.meshes, result.meanDiameter, result.spacing);
-    std::printf("%-9s %6s %6s %7s %6s %8s %7s %8s %7s %9s %8s %8s %8s\n", "formul.", "SDP",
-                "nodes", "e0", "Z0", "phi_peak", "eps_pk", "phi_cs", "e_cs", "I_max", "steps",
-                "ms/step", "wall s");
+    std::printf("%-9s %6s %6s %7s %6s %8s %7s %8s %7s %8s %9s %8s %8s %8s\n", "formul.",
+                "SDP", "nodes", "e0", "Z0", "E50 MPa", "phi_pk", "eps_pk", "phi_cs", "e_cs",
+                "I_max", "steps", "ms/step", "wall s");
     for (const TriaxialRun& r : result.runs) {
         const TriaxialTestResult& t = r.test;
-        std::printf("%-9s %6.3g %6.0f %7.3f %6.2f %8.2f %7.3f %8.2f %7.3f %9.2e %8lld %8.2f "
-                    "%8.0f%s\n",
+        std::printf("%-9s %6.3g %6.0f %7.3f %6.2f %8.2f %7.2f %7.3f %8.2f %7.3f %9.2e %8lld "
+                    "%8.2f %8.0f%s\n",
                     formulationName(r.formulation).c_str(), r.sdp, r.nodesPerGrain,
-                    t.consolidated.voidRatio, t.consolidated.coordination, t.peakFrictionAngle,
+                    t.consolidated.voidRatio, t.consolidated.coordination, t.secantModulus50,
+                    t.peakFrictionAngle,
                     t.peakAxialStrain, t.criticalFrictionAngle, t.criticalVoidRatio,
                     t.maxInertialNumber, t.consolidationSteps + t.shearSteps, r.msPerStep,
                     r.runSeconds, t.consolidatedWithinTolerance ? "" : "  (not consolidated)");
@@ -167,9 +168,9 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     for (Formulation f : o.formulations) {
         const double change = finestPeakChange(result, f);
         if (std::isfinite(change))
-            std::printf("%s: peak friction angle changes by %+.2f deg between the two finest "
-                        "SDPs\n",
-                        formulationName(f).c_str(), change);
+            std::printf("%s, between the two finest SDPs: peak friction angle %+.2f deg, "
+                        "E50 %+.1f %%\n",
+                        formulationName(f).c_str(), change, 100.0 * finestModulusChange(result, f));
     }
     // The first formulation's finest run, as a scene to rerun the shearing with lsdem-run
     // (ParaView frames, wall histories) or to edit.

@@ -38,7 +38,7 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
     out << "formulation,sdp,vdp,nodes_per_grain,grains,lattice_spacing,stiffness,time_step,stability_limit,strain_rate,"
            "consolidation_steps,consolidated,shear_steps,void_ratio_0,coordination_0,"
            "peak_friction_angle,peak_axial_strain,critical_friction_angle,critical_void_ratio,"
-           "max_inertial_number,bake_seconds,run_seconds,ms_per_step\n";
+           "max_inertial_number,secant_modulus_50,bake_seconds,run_seconds,ms_per_step\n";
     for (const TriaxialRun& run : r.runs) {
         const TriaxialTestResult& t = run.test;
         out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.vdp << ','
@@ -48,13 +48,17 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
             << t.consolidated.voidRatio << ',' << t.consolidated.coordination << ','
             << t.peakFrictionAngle << ',' << t.peakAxialStrain << ','
             << t.criticalFrictionAngle << ',' << t.criticalVoidRatio << ','
-            << t.maxInertialNumber << ',' << run.bakeSeconds << ',' << run.runSeconds << ','
+            << t.maxInertialNumber << ',' << t.secantModulus50 << ',' << run.bakeSeconds << ',' << run.runSeconds << ','
             << run.msPerStep << '\n';
     }
     writeTextFileAtomically(path, out.str());
 }
 
-double finestPeakChange(const TriaxialStudyResult& r, Formulation f)
+namespace {
+
+/// The runs of @a f at the finest SDP and the one before it (null where there is none).
+std::pair<const TriaxialRun*, const TriaxialRun*> twoFinest(const TriaxialStudyResult& r,
+                                                            Formulation f)
 {
     const TriaxialRun* finest = nullptr;
     const TriaxialRun* next = nullptr;
@@ -67,8 +71,24 @@ double finestPeakChange(const TriaxialStudyResult& r, Formulation f)
             next = &run;
         }
     }
+    return {finest, next};
+}
+
+} // namespace
+
+double finestPeakChange(const TriaxialStudyResult& r, Formulation f)
+{
+    const auto [finest, next] = twoFinest(r, f);
     if (!finest || !next) return std::numeric_limits<double>::quiet_NaN();
     return finest->test.peakFrictionAngle - next->test.peakFrictionAngle;
+}
+
+double finestModulusChange(const TriaxialStudyResult& r, Formulation f)
+{
+    const auto [finest, next] = twoFinest(r, f);
+    if (!finest || !next || !(next->test.secantModulus50 > 0.0))
+        return std::numeric_limits<double>::quiet_NaN();
+    return finest->test.secantModulus50 / next->test.secantModulus50 - 1.0;
 }
 
 } // namespace lsdem

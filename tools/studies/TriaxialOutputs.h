@@ -21,4 +21,8 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
 /// the study ran @a f at fewer than two SDPs.
 double finestPeakChange(const TriaxialStudyResult& r, Formulation f);
 
+/// The relative change of E₅₀ between the two finest SDPs of @a f (0.1: 10 % stiffer at the
+/// finest), NaN if there are fewer than two.
+double finestModulusChange(const TriaxialStudyResult& r, Formulation f);
+
 } // namespace lsdem

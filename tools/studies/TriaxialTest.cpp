@@ -164,6 +164,22 @@ void summariseTriaxialShearing(TriaxialTestResult& r, double maxAxialStrain)
             ++critical;
         }
     }
+    // E₅₀ from the rising branch: the first row at half the peak deviator, interpolated.
+    double peakQ = 0.0;
+    for (const TriaxialRow& row : r.rows)
+        if (row.stage == 1) peakQ = std::max(peakQ, row.state.q);
+    r.secantModulus50 = 0.0;
+    const TriaxialRow* before = nullptr;
+    for (const TriaxialRow& row : r.rows) {
+        if (row.stage != 1) continue;
+        if (before && row.state.q >= 0.5 * peakQ && peakQ > 0.0) {
+            const double t = (0.5 * peakQ - before->state.q) / (row.state.q - before->state.q);
+            const double strain = before->axialStrain + t * (row.axialStrain - before->axialStrain);
+            if (strain > 0.0) r.secantModulus50 = 0.5 * peakQ / strain;
+            break;
+        }
+        before = &row;
+    }
     r.criticalFrictionAngle = critical > 0 ? phiSum / critical : 0.0;
     r.criticalVoidRatio = critical > 0 ? eSum / critical : 0.0;
 }

@@ -61,6 +61,9 @@ struct TriaxialTestResult
     /// Critical state: means over the last quarter of the axial strain.
     double criticalFrictionAngle = 0.0, criticalVoidRatio = 0.0;
     double maxInertialNumber = 0.0;  ///< over the shearing rows
+    /// E₅₀: the secant modulus q/ε_a where q first reaches half its peak (between rows:
+    /// linear), the stiffness of the sample; force/length².
+    double secantModulus50 = 0.0;
 };
 
 /// Run the test on @a sim, whose world holds grains of material 0 inside @a walls (fixed

@@ -10,6 +10,7 @@
 #include "studies/TriaxialStudy.h"
 #include "studies/TriaxialTest.h"
 
+#include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
@@ -215,4 +216,32 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions missing = o;
     missing.meshes = {"/nonexistent/sand"};
     EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);
+}
+
+// Peak, critical state and E₅₀ of a made-up curve with known answers: q rises linearly with
+// slope E to its peak at 2 %, then falls to a plateau; rows every 0.3 % (E₅₀ falls between
+// rows, so the interpolation is what finds it).
+TEST(TriaxialSummary, PeakCriticalStateAndSecantModulusOfAKnownCurve)
+{
+    const double E = 50.0, sigma3 = 0.1;
+    TriaxialTestResult r;
+    for (int k = 0; k <= 60; ++k) {
+        TriaxialRow row;
+        row.stage = 1;
+        row.axialStrain = 0.003 * k;
+        const double eps = row.axialStrain;
+        row.state.q = eps <= 0.02 ? E * eps : std::max(0.6, E * 0.02 - 10.0 * (eps - 0.02));
+        row.state.stress = Vec3(sigma3, sigma3, sigma3 + row.state.q);
+        row.state.voidRatio = 0.5 + eps;
+        row.frictionAngle = mobilisedFrictionAngle(row.state);
+        r.rows.push_back(row);
+    }
+    summariseTriaxialShearing(r, 0.18);
+    EXPECT_NEAR(r.secantModulus50, E, 1e-9 * E);
+    // Peak: the highest row, 2.1 % (q = 1 − 10·0.001 = 0.99; 1.8 % has only 0.9), where
+    // sin φ = q / (q + 2σ₃).
+    EXPECT_NEAR(r.peakAxialStrain, 0.021, 1e-12);
+    EXPECT_NEAR(r.peakFrictionAngle, std::asin(0.99 / 1.19) * 180.0 / kPi, 1e-9);
+    // Critical state: the plateau q = 0.6 over the last quarter (ε ≥ 13.5 %).
+    EXPECT_NEAR(r.criticalFrictionAngle, std::asin(0.6 / 0.8) * 180.0 / kPi, 1e-9);
 }

@@ -1,4 +1,5 @@
-// [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres and level-set obstacles.
+// [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres, level-set obstacles and
+// cylinders (containers).
 #include "SceneSections.h"
 
 #include <algorithm>
@@ -122,8 +123,10 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
     if (!isFileNameSafe(b.name))
         t.fail("name", "'" + b.name + "' cannot name a file (boundary_<name>.csv)",
                "use letters, digits, '_' and '-' only");
-    const std::string type = t.choice("type", {"plane", "sphere", "level-set"}, "");
-    if (type.empty()) t.fail("", "missing key 'type'", "add type = \"plane\" | \"sphere\" | \"level-set\"");
+    const std::string type = t.choice("type", {"plane", "sphere", "level-set", "cylinder"}, "");
+    if (type.empty())
+        t.fail("", "missing key 'type'",
+               "add type = \"plane\" | \"sphere\" | \"level-set\" | \"cylinder\"");
     b.material = lookUpMaterial(t, scene);
     b.velocity = t.vec3("velocity", Vec3::Zero());
     if (type != "plane")
@@ -155,6 +158,11 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
     } else if (type == "sphere") {
         b.shape = BoundaryShape::Sphere;
         b.center = t.vec3("center");
+        b.radius = t.positive("radius");
+    } else if (type == "cylinder") {
+        b.shape = BoundaryShape::Cylinder;
+        b.center = t.vec3("center");
+        b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
         b.radius = t.positive("radius");
     } else {
         b.shape = BoundaryShape::LevelSet;

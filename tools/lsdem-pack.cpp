@@ -40,6 +40,9 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
     if (!c.catalog.empty() && !c.files.empty())
         throw Error("", "both asset files and --catalog are given",
                     "give either ASSET.vdb files or --catalog assets/catalog.csv --set NAME");
+    if (c.catalog.empty() && !c.set.empty())
+        throw Error("", "--set names the asset set of a catalogue, and no --catalog is given",
+                    "add --catalog assets/catalog.csv, or remove --set");
     if (c.catalog.empty() && c.files.empty())
         throw Error("", "no grain assets given",
                     "give one or more .vdb files, or --catalog assets/catalog.csv --set NAME");
@@ -47,9 +50,6 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
         throw Error("", "--catalog needs --set NAME",
                     "give the NAME of the scene's [asset_sets.NAME] that reads the catalogue: "
                     "the CSV names its assets NAME/ASSET as that set does");
-    if (c.catalog.empty() && !c.set.empty())
-        throw Error("", "--set names the asset set of a catalogue, and no --catalog is given",
-                    "add --catalog assets/catalog.csv, or remove --set");
     if (!c.catalog.empty() && !c.names.empty())
         throw Error("", "--names is for asset files; a catalogue's assets are named SET/ASSET",
                     "remove --names (use --set to choose SET)");

@@ -132,22 +132,33 @@ TEST(LsdemPack, BadOptionsExitOne)
           ball + " --box 0 0 0 5 5 5 --count 0 -o x.csv",
           ball + " --box 0 0 0 5 5 5 --count 4 --fractions 1 2 -o x.csv",
           a.dir.file("missing.vdb") + " --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          ball + " --box 0 0 0 5 5 5 --cylinder 0 0 3 0 5 --count 4 -o x.csv",
-          ball + " --cylinder 0 0 0 0 5 --count 4 -o x.csv",
-          ball + " --cylinder 0 0 3 5 5 --count 4 -o x.csv",
-          ball + " --cylinder 0 0 3 0 --count 4 -o x.csv",
-          ball + " --cylinder 0 0 0.9 0 5 --count 4 -o x.csv",
-          ball + " --catalog cat.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog cat.csv --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--set s --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog nowhere.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog cat.csv --set s --fractions 1 2 3 --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog cat.csv --set s --names a --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog cat.csv --set a/b --box 0 0 0 5 5 5 --count 4 -o x.csv",
-          "--catalog bad.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv"}) {
+          ball + " --cylinder 0 0 3 0 --count 4 -o x.csv"}) {
         const CommandResult r = runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);
         EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("lsdem-pack: error:"), std::string::npos) << r.output;
+    }
+    // The container and the catalogue: the message names the option or the file, and a fix.
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {ball + " --box 0 0 0 5 5 5 --cylinder 0 0 3 0 5 --count 4 -o x.csv", "both --box and --cylinder"},
+        {ball + " --count 4 -o x.csv", "no container given"},
+        {ball + " --cylinder 0 0 0 0 5 --count 4 -o x.csv", "--cylinder: the radius must be > 0"},
+        {ball + " --cylinder 0 0 3 5 5 --count 4 -o x.csv", "--cylinder: Z1 must exceed Z0"},
+        {ball + " --cylinder 0 0 0.9 0 5 --count 4 -o x.csv", "does not fit in the cylinder"},
+        {ball + " --catalog cat.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv", "both asset files and --catalog"},
+        {"--catalog cat.csv --box 0 0 0 5 5 5 --count 4 -o x.csv", "--catalog needs --set NAME"},
+        {"--set s --box 0 0 0 5 5 5 --count 4 -o x.csv", "no --catalog is given"},
+        {"--catalog nowhere.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv", "nowhere.csv: catalogue not found"},
+        {"--catalog cat.csv --set s --fractions 1 2 3 --box 0 0 0 5 5 5 --count 4 -o x.csv", "--fractions has 3 values for 1 assets of the catalogue cat.csv"},
+        {"--catalog cat.csv --set s --names a --box 0 0 0 5 5 5 --count 4 -o x.csv", "--names is for asset files"},
+        {"--catalog cat.csv --set a/b --box 0 0 0 5 5 5 --count 4 -o x.csv", "'a/b' must be non-empty and hold no '/'"},
+        {"--catalog bad.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv", "bad.csv: asset 'ball': file not found: none.vdb"},
+        {"--catalog cat.csv --set s --cylinder 0 0 1.2 0 3 --count 4 -o x.csv", "only 1 of 4 grains fit in the cylinder"},
+    };
+    for (const auto& [args, message] : cases) {
+        const CommandResult r = runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("lsdem-pack: error: "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("fix:"), std::string::npos) << args << "\n" << r.output;
     }
     EXPECT_FALSE(std::ifstream(a.dir.file("x.csv")).good());

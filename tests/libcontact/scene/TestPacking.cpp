@@ -248,10 +248,12 @@ TEST(Packing, BuriedGrainsStayPutSoALayerCostsBoundedWork)
               << r.largestLayerGrains << " grains per deposition, deepest overlap " << r.maxOverlap
               << "\n";
     EXPECT_LT(deepestOverlap(r.scene), 0.03);
+    // Inside the box up to the walls' contact overlap, within the same 3 % of the radius
+    // (wedged between two side walls, balls press into them by about 1 %).
     for (const GrainSpec& g : r.scene.grains)
         for (int d = 0; d < 2; ++d) {
-            EXPECT_GT(g.pose.position[d], o.boxMin[d] + 0.49 * diameter);
-            EXPECT_LT(g.pose.position[d], o.boxMax[d] - 0.49 * diameter);
+            EXPECT_GT(g.pose.position[d], o.boxMin[d] + 0.97 * 0.5 * diameter);
+            EXPECT_LT(g.pose.position[d], o.boxMax[d] - 0.97 * 0.5 * diameter);
         }
 }
 

@@ -15,9 +15,10 @@
 ///        the layer; layers that later ones will cover settle to 100 times the tolerance.
 ///
 ///        The cost of a layer is bounded: only the grains whose centres lie less than
-///        kFreeDepthDiameters largest diameters below the new layer's bottom move with it;
-///        those within a further kSupportDepthDiameters are held fixed (the bed the moving
-///        grains rest on) and the deeper ones are left out of its deposition. So the time grows
+///        kFreeDepthDiameters largest diameters below the new layer's bottom (the top of the
+///        bed) move with it; those whose bounding spheres reach a further
+///        kSupportDepthDiameters below are held fixed (the bed the moving grains rest on) and
+///        the deeper ones are left out of its deposition. So the time grows
 ///        with the count, not its square.
 #pragma once
 
@@ -48,9 +49,9 @@ struct PackingCylinder
 };
 
 /// Largest grain diameters below the new layer's bottom within which grains move with it.
-constexpr double kFreeDepthDiameters = 3.0;
-/// Largest grain diameters below those that are held fixed during a layer's deposition.
-constexpr double kSupportDepthDiameters = 2.0;
+constexpr double kFreeDepthDiameters = 2.5;
+/// Largest grain diameters below those, reached by grains held fixed during the deposition.
+constexpr double kSupportDepthDiameters = 1.0;
 
 struct PackingOptions
 {

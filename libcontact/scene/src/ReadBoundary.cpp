@@ -2,6 +2,8 @@
 // cylinders (containers).
 #include "SceneSections.h"
 
+#include "lsdem/scene/SceneFile.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -72,49 +74,6 @@ void readServo(TableReader& t, BoundarySpec& b)
 
 } // namespace
 
-void resolveServoAreaWalls(Scene& scene)
-{
-    const double parallel = 1e-6;  // |cos| tolerance: the walls of a cuboid cell are exact
-    for (BoundarySpec& b : scene.boundaries) {
-        if (b.areaWallNames.empty()) continue;
-        const std::string label = "[[boundaries]] '" + b.name + "' area_walls: ";
-        for (size_t k = 0; k < 4; ++k) {
-            const std::string& name = b.areaWallNames[k];
-            const int i = indexByName(scene.boundaries, name);
-            if (i < 0)
-                throw Error(b.where, label + "no boundary named '" + name + "'",
-                            "name four plane walls of the scene");
-            const BoundarySpec& w = scene.boundaries[static_cast<size_t>(i)];
-            if (&w == &b || w.shape != BoundaryShape::Plane)
-                throw Error(b.where, label + "'" + name + "' " +
-                                         (&w == &b ? "is the wall itself" : "is not a plane"),
-                            "name the plane walls around it, two opposite pairs");
-            if (std::abs(w.normal.dot(b.normal)) > parallel)
-                throw Error(b.where, label + "'" + name + "' is not perpendicular to the wall",
-                            "name the walls that bound it sideways");
-            b.servo.areaWalls[k] = i;
-        }
-        for (size_t pair = 0; pair < 2; ++pair) {
-            const BoundarySpec& w0 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair])];
-            const BoundarySpec& w1 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair + 1])];
-            if (w0.normal.dot(w1.normal) > -1.0 + parallel)
-                throw Error(b.where,
-                            label + "'" + w0.name + "' and '" + w1.name + "' are not opposite walls",
-                            "list two pairs of walls whose normals point at each other");
-            if (!((w1.point - w0.point).dot(w0.normal) > 0.0))
-                throw Error(b.where,
-                            label + "'" + w0.name + "' and '" + w1.name + "' enclose no space",
-                            "each wall's normal points towards the grains, so towards the other");
-        }
-        const BoundarySpec& u = scene.boundaries[size_t(b.servo.areaWalls[0])];
-        const BoundarySpec& v = scene.boundaries[size_t(b.servo.areaWalls[2])];
-        if (std::abs(u.normal.dot(v.normal)) > parallel)
-            throw Error(b.where, label + "the pairs '" + u.name + "' and '" + v.name +
-                                     "' are not perpendicular",
-                        "list the x pair and then the y pair (or any two perpendicular pairs)");
-    }
-}
-
 BoundarySpec readBoundary(TableReader& t, const Scene& scene)
 {
     BoundarySpec b;
@@ -175,3 +134,50 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
 }
 
 } // namespace lsdem::scenefile
+
+namespace lsdem {
+
+void resolveServoAreaWalls(Scene& scene)
+{
+    const double parallel = 1e-6;  // |cos| tolerance: the walls of a cuboid cell are exact
+    for (BoundarySpec& b : scene.boundaries) {
+        if (b.areaWallNames.empty()) continue;
+        const std::string label = "[[boundaries]] '" + b.name + "' area_walls: ";
+        for (size_t k = 0; k < 4; ++k) {
+            const std::string& name = b.areaWallNames[k];
+            const int i = scenefile::indexByName(scene.boundaries, name);
+            if (i < 0)
+                throw Error(b.where, label + "no boundary named '" + name + "'",
+                            "name four plane walls of the scene");
+            const BoundarySpec& w = scene.boundaries[static_cast<size_t>(i)];
+            if (&w == &b || w.shape != BoundaryShape::Plane)
+                throw Error(b.where, label + "'" + name + "' " +
+                                         (&w == &b ? "is the wall itself" : "is not a plane"),
+                            "name the plane walls around it, two opposite pairs");
+            if (std::abs(w.normal.dot(b.normal)) > parallel)
+                throw Error(b.where, label + "'" + name + "' is not perpendicular to the wall",
+                            "name the walls that bound it sideways");
+            b.servo.areaWalls[k] = i;
+        }
+        for (size_t pair = 0; pair < 2; ++pair) {
+            const BoundarySpec& w0 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair])];
+            const BoundarySpec& w1 = scene.boundaries[size_t(b.servo.areaWalls[2 * pair + 1])];
+            if (w0.normal.dot(w1.normal) > -1.0 + parallel)
+                throw Error(b.where,
+                            label + "'" + w0.name + "' and '" + w1.name + "' are not opposite walls",
+                            "list two pairs of walls whose normals point at each other");
+            if (!((w1.point - w0.point).dot(w0.normal) > 0.0))
+                throw Error(b.where,
+                            label + "'" + w0.name + "' and '" + w1.name + "' enclose no space",
+                            "each wall's normal points towards the grains, so towards the other");
+        }
+        const BoundarySpec& u = scene.boundaries[size_t(b.servo.areaWalls[0])];
+        const BoundarySpec& v = scene.boundaries[size_t(b.servo.areaWalls[2])];
+        if (std::abs(u.normal.dot(v.normal)) > parallel)
+            throw Error(b.where, label + "the pairs '" + u.name + "' and '" + v.name +
+                                     "' are not perpendicular",
+                        "list the x pair and then the y pair (or any two perpendicular pairs)");
+    }
+}
+
+} // namespace lsdem

@@ -287,6 +287,15 @@ PackingResult generatePacking(const PackingOptions& o,
                 layer.grains.back().motion = GrainMotion::Fixed;
             }
         }
+        // A grain small enough to pass between the fixed ones (a wide size range) lands on a
+        // floor at the bottom of the support band, not inside the grains left out below it.
+        if (supportBottom > floorZ) {
+            BoundarySpec bed;
+            bed.name = "buried";
+            bed.point = Vec3(0, 0, supportBottom);
+            bed.normal = Vec3::UnitZ();
+            layer.boundaries.push_back(bed);
+        }
         result.largestLayerGrains =
             std::max(result.largestLayerGrains, static_cast<long long>(layer.grains.size()));
 

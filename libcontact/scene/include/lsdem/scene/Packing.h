@@ -18,7 +18,8 @@
 ///        kFreeDepthDiameters largest diameters below the new layer's bottom (the top of the
 ///        bed) move with it; those whose bounding spheres reach a further
 ///        kSupportDepthDiameters below are held fixed (the bed the moving grains rest on) and
-///        the deeper ones are left out of its deposition. So the time grows
+///        the deeper ones are left out of its deposition, below a floor that catches any grain
+///        small enough to pass between the fixed ones. So the time grows
 ///        with the count, not its square.
 #pragma once
 

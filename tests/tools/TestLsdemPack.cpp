@@ -168,9 +168,14 @@ TEST(LsdemPack, FillsACylinder)
 {
     const Assets a;
     const std::string csv = a.dir.file("packing.csv");
-    const CommandResult pack = runCommand(kPack + " " + a.dir.file("ball.vdb") +
-                                          " --count 4 --cylinder 1 1 2.4 0 6 --seed 3 -o " + csv);
+    const std::string command = kPack + " " + a.dir.file("ball.vdb") +
+                                " --count 4 --cylinder 1 1 2.4 0 6 --seed 3 -o ";
+    const CommandResult pack = runCommand(command + csv + " --threads 2");
     ASSERT_EQ(pack.exitCode, 0) << pack.output;
+    // The same file byte for byte on one thread.
+    const CommandResult serial = runCommand(command + a.dir.file("serial.csv") + " --threads 1");
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    EXPECT_EQ(readFile(a.dir.file("serial.csv")), readFile(csv));
     EXPECT_NE(pack.output.find("packed 4 grains"), std::string::npos) << pack.output;
     std::istringstream rows(readFile(csv));
     std::string row;

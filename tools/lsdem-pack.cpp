@@ -72,7 +72,8 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
     if (!c.fractions.empty() && c.fractions.size() != mixture.size())
         throw Error("", "--fractions has " + std::to_string(c.fractions.size()) + " values for " +
                             std::to_string(mixture.size()) +
-                            (c.catalog.empty() ? " assets" : " assets of the catalogue " + c.catalog),
+                            (c.catalog.empty() ? " assets"
+                                               : " assets of the catalogue " + c.catalog),
                     c.catalog.empty() ? "give one fraction per asset"
                                       : "give one fraction per catalogue row, in its order, or "
                                         "none for equal shares");
@@ -84,7 +85,8 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
 void readContainer(const PackCommandLine& c, lsdem::PackingOptions& o)
 {
     if (c.box.empty() == c.cylinder.empty())
-        throw Error("", c.box.empty() ? "no container given" : "both --box and --cylinder are given",
+        throw Error("",
+                    c.box.empty() ? "no container given" : "both --box and --cylinder are given",
                     "pass either --box X0 Y0 Z0 X1 Y1 Z1 or --cylinder CX CY RADIUS Z0 Z1");
     if (!c.box.empty()) {
         o.boxMin = lsdem::Vec3(c.box[0], c.box[1], c.box[2]);

@@ -28,7 +28,8 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
     const fs::path folder = fs::path(catalog).parent_path();
     std::vector<PackingComponent> mixture;
     for (const CatalogEntry& e : entries) {
-        const fs::path file = fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
+        const fs::path file =
+            fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))
             throw Error(catalog, "asset '" + e.name + "': file not found: " + file.string(),

@@ -172,8 +172,8 @@ Scene depositionScene(const PackingOptions& o, double knStar)
 
 /// Random sequential insertion in the layer [zLow, zHigh] of the container: each grain of
 /// @a order from @a next gets up to @a attempts random centres (its bounding sphere inside the
-/// layer and the container, clear of every other bounding sphere) and a random orientation. Stops at the first
-/// grain that finds no room. @return how many were placed.
+/// layer and the container, clear of every other bounding sphere) and a random orientation.
+/// Stops at the first grain that finds no room. @return how many were placed.
 size_t insertLayer(const PackingOptions& o, const std::vector<int>& order, size_t next,
                    double zLow, double zHigh, std::mt19937_64& rng, Scene& scene)
 {

@@ -192,8 +192,8 @@ TEST(Packing, FillsACylinderWithoutOverlapsAndWithinItsWall)
         volume += a.mass.volume;
         for (const Vec3& node : a.nodes.positions) {
             const Vec3 x = g.pose.toWorld(node);
-            deepestOut = std::max(deepestOut,
-                                  (std::hypot(x.x() - c.x, x.y() - c.y) - c.radius) / a.boundingRadius);
+            const double outside = std::hypot(x.x() - c.x, x.y() - c.y) - c.radius;
+            deepestOut = std::max(deepestOut, outside / a.boundingRadius);
             EXPECT_GT(x.z(), c.zMin - 0.03 * a.boundingRadius);
         }
         highest = std::max(highest, g.pose.position.z());

@@ -239,9 +239,13 @@ PackingResult generatePacking(const PackingOptions& o,
         largest = std::max(largest, 2.0 * a.boundingRadius);
         lightest = std::min(lightest, kDensity * a.mass.volume);
     }
-    const double height = containerMax(o).z() - containerMin(o).z();
-    // kn* so that the weight of the column (height / mean diameter grains) presses a grain by
-    // kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane), δ = ε·R.
+    // kn* so that the weight of the column a deposition moves (height / mean diameter grains)
+    // presses a grain by kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane),
+    // δ = ε·R. That column is at most the new layer and the free depth above the fixed band,
+    // whatever the container's height: grains further down are held or left out.
+    const double height =
+        std::min(containerMax(o).z() - containerMin(o).z(),
+                 (kLayerDiameters + kFreeDepthDiameters + kSupportDepthDiameters) * largest);
     const double layers = std::max(1.0, height / (2.0 * meanRadius));
     const double knStar = layers * kDensity * meanVolume * kGravity /
                           (kPi * kRestOverlap * kRestOverlap * std::pow(meanRadius, 3));

@@ -8,8 +8,8 @@
 ///        The deposition is a numerical device: only the geometry is kept. It runs in its own
 ///        consistent units, with the user's lengths (those of the assets): density 1, gravity 1
 ///        along −z, global damping 0.3, and an adapted contact stiffness kn* chosen so that the
-///        weight of the whole column presses a grain into its neighbours by about 1 % of its
-///        bounding radius. A layer is at rest when its kinetic energy is below
+///        weight of the column a deposition moves (see below: bounded, whatever the container's
+///        height) presses a grain into its neighbours by about 1 % of its bounding radius. A layer is at rest when its kinetic energy is below
 ///        settleTolerance · Σ m_i·g·d_i (d_i: bounding diameter), i.e. the grains' mean speed is
 ///        below ~sqrt(2·tolerance·g·d), checked after at least twice the time to fall through
 ///        the layer; layers that later ones will cover settle to 100 times the tolerance.

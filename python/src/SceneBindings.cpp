@@ -3,6 +3,8 @@
 #include "Bindings.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/GrainCatalog.h"
+#include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneWriter.h"
 
@@ -10,6 +12,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace lsdem::python {
 
@@ -77,6 +81,65 @@ void markChanged(Scene& s)
 std::string sceneFolder(const Scene& s)
 {
     return s.directory.empty() ? fs::current_path().string() : s.directory;
+}
+
+/// @a file as an absolute path, relative ones from the scene's folder (as the reader does).
+std::string scenePath(const Scene& s, const std::string& file)
+{
+    fs::path p(file);
+    if (p.is_relative()) p = fs::path(sceneFolder(s)) / p;
+    return fs::absolute(p).lexically_normal().string();
+}
+
+/// A plane's stress servo from the keyword arguments of add_plane (the checks of the scene
+/// reader's [[boundaries]] servo keys, docs/scenes.md). Nothing unless @a stress is given.
+void setServo(BoundarySpec& b, const std::optional<double>& stress,
+              const std::optional<double>& area,
+              const std::optional<std::vector<std::string>>& areaWalls,
+              const std::optional<double>& maxSpeed, const std::optional<double>& gain)
+{
+    const std::string label = "boundary '" + b.name + "': ";
+    if (!stress) {
+        if (area || areaWalls || maxSpeed || gain)
+            throw Error("", label + "area, area_walls, max_speed and servo_gain only make sense "
+                                    "for a servo wall",
+                        "add stress=σ (the target normal stress) or remove them");
+        return;
+    }
+    StressServo& v = b.servo;
+    if (!(*stress > 0.0) || !std::isfinite(*stress))
+        throw Error("", label + "stress must be > 0: a wall can only push on the grains",
+                    "give the compressive stress as a positive number (force/length²)");
+    v.targetStress = *stress;
+    if (!b.velocity.isZero(0.0))
+        throw Error("", label + "a servo wall chooses its own velocity",
+                    "remove velocity, or remove stress for a wall moving at a fixed velocity");
+    if (area && areaWalls)
+        throw Error("", label + "both area and area_walls are given", "keep one of them");
+    if (!area && !areaWalls)
+        throw Error("", label + "a servo wall needs the area its stress acts on",
+                    "give area=A (length²) or area_walls=[x0, x1, y0, y1] (two pairs of "
+                    "opposite walls around it, added before it)");
+    if (area) {
+        if (!(*area > 0.0) || !std::isfinite(*area))
+            throw Error("", label + "area must be > 0");
+        v.area = *area;
+    } else {
+        if (areaWalls->size() != 4)
+            throw Error("", label + "area_walls wants the names of four walls",
+                        "give two pairs of opposite walls, e.g. ['x0', 'x1', 'y0', 'y1']");
+        b.areaWallNames = *areaWalls;
+    }
+    if (!maxSpeed || !(*maxSpeed > 0.0) || !std::isfinite(*maxSpeed))
+        throw Error("", label + "a servo wall needs a limit speed max_speed > 0",
+                    "give max_speed=v (length/time): how fast it may move towards its stress");
+    v.maxSpeed = *maxSpeed;
+    if (gain) {
+        if (!(*gain > 0.0 && *gain <= 1.0))
+            throw Error("", label + "servo_gain must be in (0, 1]",
+                        "a gain above 1 overshoots the target every step; 0.5 is the default");
+        v.gain = *gain;
+    }
 }
 
 template <typename Items>
@@ -298,8 +361,10 @@ void bindScenes(py::module_& m)
              "motion ('free', 'fixed', 'prescribed'). Returns its index.")
         .def("add_plane",
              [](Scene& s, const std::string& name, const std::string& material,
-                const py::object& point, const py::object& normal, const py::object& velocity) {
-                 markChanged(s);
+                const py::object& point, const py::object& normal, const py::object& velocity,
+                std::optional<double> stress, std::optional<double> area,
+                std::optional<std::vector<std::string>> areaWalls,
+                std::optional<double> maxSpeed, std::optional<double> servoGain) {
                  checkNewName(s.boundaries, name, "boundary");
                  BoundarySpec b;
                  b.name = name;
@@ -311,12 +376,149 @@ void bindScenes(py::module_& m)
                  b.normal.normalize();
                  b.velocity = toVec3(velocity, "velocity");
                  b.where = "boundary '" + name + "'";
+                 setServo(b, stress, area, areaWalls, maxSpeed, servoGain);
+                 markChanged(s);
                  s.boundaries.push_back(b);
+                 if (b.areaWallNames.empty()) return;
+                 try {  // the walls it names must be in the scene already
+                     resolveServoAreaWalls(s);
+                 } catch (const Error&) {
+                     s.boundaries.pop_back();
+                     throw;
+                 }
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("point"),
              py::arg("normal"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             py::arg("stress") = py::none(), py::arg("area") = py::none(),
+             py::arg("area_walls") = py::none(), py::arg("max_speed") = py::none(),
+             py::arg("servo_gain") = py::none(),
              "An unbounded wall through `point`; grains live on the side `normal` points to. "
-             "It moves at `velocity` whatever the forces (zero: fixed).")
+             "It moves at `velocity` whatever the forces (zero: fixed).\n\n"
+             "With `stress` (> 0, force/length²) it is a servo wall instead (docs/packing.md): "
+             "it moves along its normal to keep the grains' normal stress on it, over `area` "
+             "(length²) or over the rectangle between `area_walls` (the names of two pairs of "
+             "opposite plane walls perpendicular to it, added before it), at most at "
+             "`max_speed` (required), closing the share `servo_gain` in (0, 1] (default 0.5) "
+             "of the error per step.")
+        .def("add_cylinder_boundary",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const py::object& center, double radius, const py::object& axis,
+                const py::object& velocity) {
+                 checkNewName(s.boundaries, name, "boundary");
+                 if (!(radius > 0.0) || !std::isfinite(radius))
+                     throw Error("", "boundary '" + name + "': radius must be > 0");
+                 BoundarySpec b;
+                 b.name = name;
+                 b.shape = BoundaryShape::Cylinder;
+                 b.material = indexOf(s.materials, material, "material");
+                 b.center = toVec3(center, "center");
+                 b.axis = toVec3(axis, "axis");
+                 if (!(b.axis.norm() > 0.0))
+                     throw Error("", "boundary '" + name + "': the axis must not be zero");
+                 b.axis.normalize();
+                 b.radius = radius;
+                 b.velocity = toVec3(velocity, "velocity");
+                 b.where = "boundary '" + name + "'";
+                 markChanged(s);
+                 s.boundaries.push_back(b);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
+             py::arg("radius"), py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0),
+             py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "The side wall of an infinitely long cylinder through `center` along `axis`; "
+             "grains live inside it (a container: add planes for its floor and lid).")
+        .def("add_asset_set",
+             [](Scene& s, const std::string& name, const std::string& catalog) {
+                 if (name.empty() || name.find('/') != std::string::npos)
+                     throw Error("", "an asset set's name must be non-empty and hold no '/'",
+                                 "its assets are named SET/ASSET; e.g. 'sand'");
+                 checkNewName(s.assetSets, name, "asset set");
+                 AssetSetSpec set;
+                 set.name = name;
+                 set.catalog = scenePath(s, catalog);
+                 set.where = "asset set '" + name + "'";
+                 std::error_code ec;
+                 if (!fs::is_regular_file(set.catalog, ec))
+                     throw Error(set.catalog, "catalogue not found",
+                                 "give the catalog.csv lsdem-bake --out-dir wrote (relative "
+                                 "paths are from the scene's folder)");
+                 const std::vector<CatalogEntry> entries = readCatalog(set.catalog);
+                 if (entries.empty())
+                     throw Error(set.catalog, "the catalogue lists no assets",
+                                 "bake some files into its folder with lsdem-bake --out-dir");
+                 const fs::path folder = fs::path(set.catalog).parent_path();
+                 std::vector<AssetSpec> added;
+                 for (const CatalogEntry& e : entries) {
+                     AssetSpec a;
+                     a.name = name + "/" + e.name;
+                     fs::path file(e.asset);
+                     if (file.is_relative()) file = folder / file;
+                     a.file = fs::absolute(file).lexically_normal().string();
+                     if (!fs::is_regular_file(a.file, ec))
+                         throw Error(set.catalog,
+                                     "asset '" + e.name + "': file not found: " + a.file,
+                                     "bake the set again (lsdem-bake --out-dir), or fix its "
+                                     "asset column");
+                     checkNewName(s.assets, a.name, "asset");
+                     a.set = name;
+                     a.where = set.where;
+                     added.push_back(std::move(a));
+                 }
+                 markChanged(s);
+                 std::vector<std::string> names;
+                 for (AssetSpec& a : added) {
+                     names.push_back(a.name);
+                     s.assets.push_back(std::move(a));
+                 }
+                 s.assetSets.push_back(std::move(set));
+                 return names;
+             },
+             py::arg("name"), py::kw_only(), py::arg("catalog"),
+             "Every asset of a catalogue (lsdem-bake --out-dir writes DIR/catalog.csv), named "
+             "'NAME/ASSET', as [asset_sets.NAME] catalog = ... does; they are loaded when the "
+             "scene is simulated. Returns their names. (The TOML reader lists a set's assets "
+             "after the [assets] tables: add sets after single assets for to_toml to read back "
+             "in the same order.)")
+        .def("add_grain_file",
+             [](Scene& s, const std::string& file, const std::string& material,
+                std::optional<double> maxOverlap) {
+                 GrainFileSpec f;
+                 f.file = scenePath(s, file);
+                 f.material = indexOf(s.materials, material, "material");
+                 if (maxOverlap) {
+                     if (!(*maxOverlap >= 0.0) || !std::isfinite(*maxOverlap))
+                         throw Error("", "max_overlap must be >= 0 (a length)");
+                     f.maxOverlap = *maxOverlap;
+                 }
+                 f.where = "grain file '" + f.file + "'";
+                 std::ifstream in(f.file, std::ios::binary);
+                 std::error_code ec;
+                 if (!in || fs::is_directory(f.file, ec))
+                     throw Error(f.file, "cannot read the grains table",
+                                 "give a path relative to the scene's folder or an absolute one");
+                 std::ostringstream text;
+                 text << in.rdbuf();
+                 Scene copy = s;  // the scene is unchanged if a row is refused
+                 f.first = copy.grains.size();
+                 readGrainsCsv(text.str(), f.file, f.material, copy);
+                 f.count = copy.grains.size() - f.first;
+                 if (f.count == 0)
+                     throw Error(f.file, "the table holds no grains",
+                                 "add a row per grain below the header");
+                 copy.grainFiles.push_back(f);
+                 markChanged(copy);
+                 s = std::move(copy);
+                 return f.count;
+             },
+             py::arg("file"), py::arg("material"), py::kw_only(),
+             py::arg("max_overlap") = py::none(),
+             "The grains of a CSV table (lsdem-pack's output, a CT scan, another code: asset, "
+             "x, y, z, qw, qx, qy, qz, optional name, material, velocities), as [[grain_files]] "
+             "does: assets and materials by name, `material` for rows without one; overlaps "
+             "beyond max_overlap (a length; default 5 % of the smaller bounding radius) are "
+             "refused when the scene is simulated. Returns the number of grains. (The TOML "
+             "reader puts file grains after [[grains]]: add files last for to_toml to read back "
+             "in the same order.)")
         .def("add_sphere_boundary",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& velocity) {

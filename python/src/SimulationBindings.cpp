@@ -212,7 +212,13 @@ struct BoundariesView
 
 const char* shapeName(BoundaryShape s)
 {
-    return s == BoundaryShape::Plane ? "plane" : s == BoundaryShape::Sphere ? "sphere" : "level-set";
+    switch (s) {
+    case BoundaryShape::Plane: return "plane";
+    case BoundaryShape::Sphere: return "sphere";
+    case BoundaryShape::LevelSet: return "level-set";
+    case BoundaryShape::Cylinder: return "cylinder";
+    }
+    return "?";
 }
 
 void bindViews(py::module_& m)

@@ -81,3 +81,88 @@ def test_builder_errors():
     # An asset made in Python and never saved cannot be written as TOML.
     with pytest.raises(lsdem.Error, match="save"):
         scene.to_toml()
+
+
+def test_build_servo_walls_a_cylinder_asset_sets_and_grain_files(sphere, tmp_path):
+    """The builder makes what a scene file says with [asset_sets], [[grain_files]], servo
+    walls and a cylinder: the TOML it writes reads back to the same text, and it simulates."""
+    sphere.save(str(tmp_path / "ball.vdb"))
+    (tmp_path / "catalog.csv").write_text("name,asset\nball,ball.vdb\n")
+    (tmp_path / "packing.csv").write_text(
+        "asset,x,y,z,qw,qx,qy,qz\nsand/ball,0,0,5,1,0,0,0\nsand/ball,0,0,15.5,1,0,0,0\n")
+    scene = lsdem.Scene()
+    assert scene.add_asset_set("sand", catalog=str(tmp_path / "catalog.csv")) == ["sand/ball"]
+    scene.add_material("sand", density=2.65e-9)
+    scene.add_material("wall")
+    scene.add_contact("sand", "sand", normal_stiffness=1e3, restitution=0.5)
+    scene.add_contact("sand", "wall", normal_stiffness=1e3, restitution=0.5)
+    assert scene.add_grain_file(str(tmp_path / "packing.csv"), "sand") == 2
+    scene.add_plane("floor", "wall", point=[0, 0, 0], normal=[0, 0, 1])
+    for name, point, normal in [("x0", [-6, 0, 0], [1, 0, 0]), ("x1", [6, 0, 0], [-1, 0, 0]),
+                                ("y0", [0, -6, 0], [0, 1, 0]), ("y1", [0, 6, 0], [0, -1, 0])]:
+        scene.add_plane(name, "wall", point=point, normal=normal)
+    scene.add_plane("lid", "wall", point=[0, 0, 21], normal=[0, 0, -1], stress=0.01,
+                    area_walls=["x0", "x1", "y0", "y1"], max_speed=100.0, servo_gain=0.3)
+    scene.add_cylinder_boundary("drum", "wall", center=[0, 0, 0], radius=7.0)
+    scene.end_steps = 20
+    scene.time_step = 1e-6
+    path = tmp_path / "built.toml"
+    scene.save(str(path))
+    text = path.read_text()
+    for line in ["[asset_sets.sand]", "catalog = 'catalog.csv'", "[[grain_files]]",
+                 "file = 'packing.csv'", "stress = 0.01", "area_walls = ['x0', 'x1', 'y0', 'y1']",
+                 "max_speed = 100.0", "servo_gain = 0.3", "type = 'cylinder'", "radius = 7.0"]:
+        assert line in text, line
+    read = lsdem.Scene.from_toml(str(path))
+    assert read.to_toml() == scene.to_toml(str(tmp_path))
+    assert len(read) == 2 and read.asset_names == ["sand/ball"]
+    sim = lsdem.Simulation(read, threads=1)
+    sim.run()
+    assert sim.step == 20
+    assert sim.boundaries["drum"].shape == "cylinder"
+    # Not touching yet, the lid comes down at its limit speed: 20 steps of 100·1e-6.
+    assert sim.boundaries["lid"].velocity[2] == pytest.approx(-100.0)
+
+
+def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):
+    scene = lsdem.Scene()
+    scene.add_material("wall")
+    with pytest.raises(lsdem.Error, match="stress must be > 0"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=-1.0,
+                        area=1.0, max_speed=1.0)
+    with pytest.raises(lsdem.Error, match="needs the area"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0,
+                        max_speed=1.0)
+    with pytest.raises(lsdem.Error, match="limit speed"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0, area=1.0)
+    with pytest.raises(lsdem.Error, match=r"\(0, 1\]"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0, area=1.0,
+                        max_speed=1.0, servo_gain=2.0)
+    with pytest.raises(lsdem.Error, match="only make sense for a servo wall"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], area=1.0)
+    with pytest.raises(lsdem.Error, match="chooses its own velocity"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0, area=1.0,
+                        max_speed=1.0, velocity=[0, 0, -1])
+    with pytest.raises(lsdem.Error, match="no boundary named 'x0'"):
+        scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0,
+                        area_walls=["x0", "x1", "y0", "y1"], max_speed=1.0)
+    assert scene.boundary_names == []  # nothing half-added
+    with pytest.raises(lsdem.Error, match="radius must be > 0"):
+        scene.add_cylinder_boundary("drum", "wall", center=[0, 0, 0], radius=0.0)
+    with pytest.raises(lsdem.Error, match="axis must not be zero"):
+        scene.add_cylinder_boundary("drum", "wall", center=[0, 0, 0], radius=1.0, axis=[0, 0, 0])
+    with pytest.raises(lsdem.Error, match="catalogue not found"):
+        scene.add_asset_set("sand", catalog=str(tmp_path / "none.csv"))
+    (tmp_path / "catalog.csv").write_text("name,asset\nball,missing.vdb\n")
+    with pytest.raises(lsdem.Error, match="file not found"):
+        scene.add_asset_set("sand", catalog=str(tmp_path / "catalog.csv"))
+    with pytest.raises(lsdem.Error, match="no '/'"):
+        scene.add_asset_set("a/b", catalog=str(tmp_path / "catalog.csv"))
+    scene.add_asset("ball", sphere)
+    (tmp_path / "grains.csv").write_text("asset,x,y,z,qw,qx,qy,qz\nball,0,0,0,1,0,0,0\nrock,0,0,9,1,0,0,0\n")
+    with pytest.raises(lsdem.Error, match="no asset named 'rock'") as error:
+        scene.add_grain_file(str(tmp_path / "grains.csv"), "wall")
+    assert "grains.csv:3" in error.value.where
+    assert len(scene) == 0  # nothing half-added
+    with pytest.raises(lsdem.Error, match="cannot read"):
+        scene.add_grain_file(str(tmp_path / "none.csv"), "wall")

@@ -118,6 +118,7 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
     if (spec.thickness > 0.0) b.plane.thickness = spec.thickness;
     b.center = spec.center;
     b.radius = spec.radius;
+    b.axis = spec.axis.normalized();
     b.asset = std::move(asset);
     b.pose = spec.pose;
     return b;

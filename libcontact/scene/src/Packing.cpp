@@ -1,5 +1,6 @@
 // The packing generator: random insertion layer by layer, each layer deposited under gravity
-// with the Simulation until it is at rest (see Packing.h for the numerical set-up).
+// with the Simulation until it is at rest, only the top of the bed moving with it (see
+// Packing.h for the numerical set-up).
 #include "lsdem/scene/Packing.h"
 
 #include "lsdem/ls/Constants.h"
@@ -26,6 +27,28 @@ constexpr double kDamping = 0.3;
 constexpr double kRestOverlap = 0.01;  // static overlap / bounding radius under the column
 constexpr double kLayerDiameters = 3.0;  // insertion layer height, in largest grain diameters
 
+/// The corners of the container's bounding box.
+Vec3 containerMin(const PackingOptions& o)
+{
+    if (!o.cylinder) return o.boxMin;
+    const PackingCylinder& c = *o.cylinder;
+    return Vec3(c.x - c.radius, c.y - c.radius, c.zMin);
+}
+
+Vec3 containerMax(const PackingOptions& o)
+{
+    if (!o.cylinder) return o.boxMax;
+    const PackingCylinder& c = *o.cylinder;
+    return Vec3(c.x + c.radius, c.y + c.radius, c.zMax);
+}
+
+double containerVolume(const PackingOptions& o)
+{
+    if (!o.cylinder) return (o.boxMax - o.boxMin).prod();
+    const PackingCylinder& c = *o.cylinder;
+    return kPi * c.radius * c.radius * (c.zMax - c.zMin);
+}
+
 void checkOptions(const PackingOptions& o)
 {
     if (o.mixture.empty())
@@ -39,20 +62,30 @@ void checkOptions(const PackingOptions& o)
         total += c.fraction;
     }
     if (!(total > 0.0)) throw Error("", "the fractions add up to 0", "give a positive fraction");
-    if (!((o.boxMax - o.boxMin).minCoeff() > 0.0) || !o.boxMin.allFinite() || !o.boxMax.allFinite())
+    if (o.cylinder) {
+        const PackingCylinder& c = *o.cylinder;
+        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !(c.radius > 0.0) ||
+            !std::isfinite(c.radius) || !(c.zMax > c.zMin) || !std::isfinite(c.zMin) ||
+            !std::isfinite(c.zMax))
+            throw Error("", "the cylinder is empty (its radius must be > 0 and Z1 > Z0)",
+                        "give --cylinder CX CY RADIUS Z0 Z1 with RADIUS > 0 and Z1 > Z0");
+    } else if (!((o.boxMax - o.boxMin).minCoeff() > 0.0) || !o.boxMin.allFinite() ||
+               !o.boxMax.allFinite()) {
         throw Error("", "the box is empty (its max corner must exceed its min corner)",
                     "give --box X0 Y0 Z0 X1 Y1 Z1 with X1 > X0, Y1 > Y0, Z1 > Z0");
+    }
     if (o.count < 1) throw Error("", "the grain count must be >= 1", "give --count N");
     if (o.count > 1000000)  // a scene's limit (SceneSections.h): checked before any memory is taken
         throw Error("", "the grain count " + std::to_string(o.count) +
                             " is over the limit of a scene (1000000)", "split the packing");
+    const Vec3 size = containerMax(o) - containerMin(o);
     for (const PackingComponent& c : o.mixture) {
         const double d = 2.0 * c.asset->boundingRadius;
-        if (c.fraction > 0.0 && d >= (o.boxMax - o.boxMin).minCoeff()) {
+        if (c.fraction > 0.0 && d >= size.minCoeff()) {
             std::ostringstream s;
             s << "grain '" << c.name << "' (bounding diameter " << d
-              << ") does not fit in the box";
-            throw Error("", s.str(), "enlarge the box");
+              << ") does not fit in the " << (o.cylinder ? "cylinder" : "box");
+            throw Error("", s.str(), o.cylinder ? "enlarge the cylinder" : "enlarge the box");
         }
     }
 }
@@ -90,8 +123,8 @@ std::vector<int> insertionOrder(const std::vector<long long>& counts, std::mt199
     return order;
 }
 
-/// The scene the deposition runs: the mixture's assets, one material, the adapted law with
-/// @a knStar, a floor and four side walls, gravity and damping.
+/// The scene the deposition runs (without grains): the mixture's assets, one material, the
+/// adapted law with @a knStar, a floor and four side walls or a cylinder, gravity and damping.
 Scene depositionScene(const PackingOptions& o, double knStar)
 {
     Scene s;
@@ -117,23 +150,34 @@ Scene depositionScene(const PackingOptions& o, double knStar)
         b.normal = normal;
         s.boundaries.push_back(b);
     };
-    wall("floor", o.boxMin, Vec3::UnitZ());
-    wall("x0", o.boxMin, Vec3::UnitX());
-    wall("x1", o.boxMax, -Vec3::UnitX());
-    wall("y0", o.boxMin, Vec3::UnitY());
-    wall("y1", o.boxMax, -Vec3::UnitY());
+    wall("floor", containerMin(o), Vec3::UnitZ());
+    if (o.cylinder) {
+        BoundarySpec side;
+        side.name = "side";
+        side.shape = BoundaryShape::Cylinder;
+        side.center = Vec3(o.cylinder->x, o.cylinder->y, o.cylinder->zMin);
+        side.axis = Vec3::UnitZ();
+        side.radius = o.cylinder->radius;
+        s.boundaries.push_back(side);
+    } else {
+        wall("x0", o.boxMin, Vec3::UnitX());
+        wall("x1", o.boxMax, -Vec3::UnitX());
+        wall("y0", o.boxMin, Vec3::UnitY());
+        wall("y1", o.boxMax, -Vec3::UnitY());
+    }
     s.gravity = Vec3(0, 0, -kGravity);
     s.globalDamping = kDamping;
     return s;
 }
 
-/// Random sequential insertion in the layer [zLow, zHigh] of the box: each grain of @a order
-/// from @a next gets up to @a attempts random centres (its bounding sphere inside the layer and
-/// the box, clear of every other bounding sphere) and a random orientation. Stops at the first
-/// grain that finds no room. @return how many were placed.
+/// Random sequential insertion in the layer [zLow, zHigh] of the container: each grain of
+/// @a order from @a next gets up to @a attempts random centres (its bounding sphere inside the
+/// layer and the container, clear of every other bounding sphere) and a random orientation.
+/// Stops at the first grain that finds no room. @return how many were placed.
 size_t insertLayer(const PackingOptions& o, const std::vector<int>& order, size_t next,
                    double zLow, double zHigh, std::mt19937_64& rng, Scene& scene)
 {
+    const Vec3 boxMin = containerMin(o), boxMax = containerMax(o);
     // Only grains reaching into the layer can be in the way.
     std::vector<std::pair<Vec3, double>> near;
     for (const GrainSpec& g : scene.grains) {
@@ -144,13 +188,20 @@ size_t insertLayer(const PackingOptions& o, const std::vector<int>& order, size_
     for (size_t i = next; i < order.size(); ++i) {
         const int component = order[i];
         const double r = o.mixture[size_t(component)].asset->boundingRadius;
-        const Vec3 lo(o.boxMin.x() + r, o.boxMin.y() + r, zLow + r);
-        const Vec3 hi(o.boxMax.x() - r, o.boxMax.y() - r, zHigh - r);
+        const Vec3 lo(boxMin.x() + r, boxMin.y() + r, zLow + r);
+        const Vec3 hi(boxMax.x() - r, boxMax.y() - r, zHigh - r);
         if (!((hi - lo).minCoeff() >= 0.0)) break;
         bool found = false;
         Vec3 c;
         for (int attempt = 0; attempt < o.insertionAttempts && !found; ++attempt) {
             for (int d = 0; d < 3; ++d) c[d] = lo[d] + (hi[d] - lo[d]) * uniform01(rng);
+            // In a cylinder: a centre uniform in the disc of radius R - r (by rejection from
+            // its square: the draws, and so the packing, still follow from the seed alone).
+            if (o.cylinder) {
+                const double reach = o.cylinder->radius - r;
+                while (std::hypot(c.x() - o.cylinder->x, c.y() - o.cylinder->y) > reach)
+                    for (int d = 0; d < 2; ++d) c[d] = lo[d] + (hi[d] - lo[d]) * uniform01(rng);
+            }
             found = std::none_of(near.begin(), near.end(), [&](const auto& other) {
                 const double reach = r + other.second;
                 return (c - other.first).squaredNorm() < reach * reach;
@@ -188,9 +239,13 @@ PackingResult generatePacking(const PackingOptions& o,
         largest = std::max(largest, 2.0 * a.boundingRadius);
         lightest = std::min(lightest, kDensity * a.mass.volume);
     }
-    const double height = o.boxMax.z() - o.boxMin.z();
-    // kn* so that the weight of the column (height / mean diameter grains) presses a grain by
-    // kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane), δ = ε·R.
+    // kn* so that the weight of the column a deposition moves (height / mean diameter grains)
+    // presses a grain by kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane),
+    // δ = ε·R. That column is at most the new layer and the free depth above the fixed band,
+    // whatever the container's height: grains further down are held or left out.
+    const double height =
+        std::min(containerMax(o).z() - containerMin(o).z(),
+                 (kLayerDiameters + kFreeDepthDiameters + kSupportDepthDiameters) * largest);
     const double layers = std::max(1.0, height / (2.0 * meanRadius));
     const double knStar = layers * kDensity * meanVolume * kGravity /
                           (kPi * kRestOverlap * kRestOverlap * std::pow(meanRadius, 3));
@@ -204,18 +259,52 @@ PackingResult generatePacking(const PackingOptions& o,
     const double fallTime = std::sqrt(2.0 * layerHeight / kGravity);
 
     PackingResult result;
-    result.scene = depositionScene(o, knStar);
+    const Scene base = depositionScene(o, knStar);
+    result.scene = base;
+    const double floorZ = containerMin(o).z(), lidZ = containerMax(o).z();
     size_t next = 0;
-    double bedTop = o.boxMin.z();
+    double bedTop = floorZ;
     while (next < order.size()) {
-        const double zHigh = std::min(o.boxMax.z(), bedTop + layerHeight);
+        const double zHigh = std::min(lidZ, bedTop + layerHeight);
+        const size_t before = result.scene.grains.size();
         const size_t placed = insertLayer(o, order, next, bedTop, zHigh, rng, result.scene);
-        if (placed == 0) break;  // the box is full
+        if (placed == 0) break;  // the container is full
         next += placed;
         ++result.layers;
 
-        // Deposit: every grain so far, from rest, until the kinetic energy is small (a layer
-        // that more will cover only needs to be roughly at rest: 100 times the tolerance).
+        // The grains of this deposition: those whose centres lie above the free depth below
+        // the new layer's bottom move (the new layer among them); those reaching into the
+        // support band below are held fixed; the deeper ones are buried and left out.
+        const double freeBottom = bedTop - kFreeDepthDiameters * largest;
+        const double supportBottom = freeBottom - kSupportDepthDiameters * largest;
+        Scene layer = base;
+        std::vector<size_t> moving;  // indices into result.scene.grains of the free grains
+        for (size_t i = 0; i < result.scene.grains.size(); ++i) {
+            const GrainSpec& g = result.scene.grains[i];
+            const double z = g.pose.position.z();
+            const double r = o.mixture[size_t(g.asset)].asset->boundingRadius;
+            if (i >= before || z > freeBottom) {
+                moving.push_back(i);
+                layer.grains.push_back(g);
+            } else if (z + r > supportBottom) {
+                layer.grains.push_back(g);
+                layer.grains.back().motion = GrainMotion::Fixed;
+            }
+        }
+        // A grain small enough to pass between the fixed ones (a wide size range) lands on a
+        // floor at the bottom of the support band, not inside the grains left out below it.
+        if (supportBottom > floorZ) {
+            BoundarySpec bed;
+            bed.name = "buried";
+            bed.point = Vec3(0, 0, supportBottom);
+            bed.normal = Vec3::UnitZ();
+            layer.boundaries.push_back(bed);
+        }
+        result.largestLayerGrains =
+            std::max(result.largestLayerGrains, static_cast<long long>(layer.grains.size()));
+
+        // Deposit from rest until the kinetic energy is small (a layer that more will cover
+        // only needs to be roughly at rest: 100 times the tolerance).
         const double tolerance =
             next == order.size() ? o.settleTolerance : 100.0 * o.settleTolerance;
         std::vector<std::string> warnings;
@@ -224,10 +313,11 @@ PackingResult generatePacking(const PackingOptions& o,
         bool atRest = false;
         for (int attempt = 0; !sim; ++attempt) {
             try {
-                sim = std::make_unique<Simulation>(buildWorld(result.scene, warnings), dt);
+                sim = std::make_unique<Simulation>(buildWorld(layer, warnings), dt);
                 double restEnergy = 0.0;
                 for (const Grain& g : sim->world().grains)
-                    restEnergy += g.body.mass * kGravity * 2.0 * g.asset->boundingRadius;
+                    if (g.isFree())
+                        restEnergy += g.body.mass * kGravity * 2.0 * g.asset->boundingRadius;
                 steps = 0;
                 atRest = false;
                 while (!atRest && steps < o.maxStepsPerLayer) {
@@ -244,16 +334,19 @@ PackingResult generatePacking(const PackingOptions& o,
         }
         result.steps += steps;
         result.unsettledLayers += atRest ? 0 : 1;
-        bedTop = o.boxMin.z();
-        for (size_t i = 0; i < result.scene.grains.size(); ++i) {
-            const Grain& g = sim->world().grains[i];
-            result.scene.grains[i].pose = g.body.pose;
-            bedTop = std::max(bedTop, g.body.pose.position.z() + g.asset->boundingRadius);
+        // The layer's free grains are those of `moving`, in the same order.
+        for (size_t i = 0, k = 0; i < layer.grains.size(); ++i) {
+            if (layer.grains[i].motion == GrainMotion::Fixed) continue;
+            result.scene.grains[moving[k++]].pose = sim->world().grains[i].body.pose;
         }
+        bedTop = floorZ;
         double volume = 0.0;
-        for (const GrainSpec& g : result.scene.grains)
-            volume += o.mixture[size_t(g.asset)].asset->mass.volume;
-        result.solidFraction = volume / (o.boxMax - o.boxMin).prod();
+        for (const GrainSpec& g : result.scene.grains) {
+            const GrainAsset& a = *o.mixture[size_t(g.asset)].asset;
+            bedTop = std::max(bedTop, g.pose.position.z() + a.boundingRadius);
+            volume += a.mass.volume;
+        }
+        result.solidFraction = volume / containerVolume(o);
         result.seconds = clock.seconds();
         if (progress) progress(result);
     }

@@ -1,5 +1,8 @@
-// [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres and level-set obstacles.
+// [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres, level-set obstacles and
+// cylinders (containers).
 #include "SceneSections.h"
+
+#include "lsdem/scene/SceneFile.h"
 
 #include <algorithm>
 #include <cctype>
@@ -71,6 +74,69 @@ void readServo(TableReader& t, BoundarySpec& b)
 
 } // namespace
 
+BoundarySpec readBoundary(TableReader& t, const Scene& scene)
+{
+    BoundarySpec b;
+    b.where = t.where();
+    b.name = t.string("name");
+    if (!isFileNameSafe(b.name))
+        t.fail("name", "'" + b.name + "' cannot name a file (boundary_<name>.csv)",
+               "use letters, digits, '_' and '-' only");
+    const std::string type = t.choice("type", {"plane", "sphere", "level-set", "cylinder"}, "");
+    if (type.empty())
+        t.fail("", "missing key 'type'",
+               "add type = \"plane\" | \"sphere\" | \"level-set\" | \"cylinder\"");
+    b.material = lookUpMaterial(t, scene);
+    b.velocity = t.vec3("velocity", Vec3::Zero());
+    if (type != "plane")
+        for (const char* key : {"stress", "area", "area_walls", "max_speed", "servo_gain"})
+            if (t.has(key))
+                t.fail(key, "only a plane can keep a stress",
+                       "use type = \"plane\" or remove " + std::string(key));
+    if (type == "plane") {
+        b.shape = BoundaryShape::Plane;
+        b.point = t.vec3("point");
+        b.normal = t.unitVec3("normal");
+        if (t.has("extent")) {
+            const std::vector<double> e = t.numbers("extent", 2);
+            if (!(e[0] > 0.0 && e[1] > 0.0))
+                t.fail("extent", "both widths must be > 0", "omit extent for an unbounded plane");
+            b.extentU = e[0];
+            b.extentV = e[1];
+            b.axisU = t.has("axis_u") ? t.unitVec3("axis_u") : b.normal.unitOrthogonal();
+            // Keep only the in-plane part, so a slightly off axis still defines the patch.
+            const Vec3 inPlane = b.axisU - b.axisU.dot(b.normal) * b.normal;
+            if (inPlane.norm() < 1e-6)
+                t.fail("axis_u", "is parallel to the normal", "give a direction within the plane");
+            b.axisU = inPlane.normalized();
+        } else if (t.has("axis_u")) {
+            t.fail("axis_u", "only makes sense with extent", "add extent = [wu, wv] or remove it");
+        }
+        b.thickness = t.has("thickness") ? t.positive("thickness") : 0.0;
+        readServo(t, b);
+    } else if (type == "sphere") {
+        b.shape = BoundaryShape::Sphere;
+        b.center = t.vec3("center");
+        b.radius = t.positive("radius");
+    } else if (type == "cylinder") {
+        b.shape = BoundaryShape::Cylinder;
+        b.center = t.vec3("center");
+        b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
+        b.radius = t.positive("radius");
+    } else {
+        b.shape = BoundaryShape::LevelSet;
+        b.asset = lookUpAsset(t, scene);
+        b.pose.position = t.vec3("position");
+        b.pose.orientation = readOrientation(t);
+    }
+    t.rejectUnknownKeys();
+    return b;
+}
+
+} // namespace lsdem::scenefile
+
+namespace lsdem {
+
 void resolveServoAreaWalls(Scene& scene)
 {
     const double parallel = 1e-6;  // |cos| tolerance: the walls of a cuboid cell are exact
@@ -79,7 +145,7 @@ void resolveServoAreaWalls(Scene& scene)
         const std::string label = "[[boundaries]] '" + b.name + "' area_walls: ";
         for (size_t k = 0; k < 4; ++k) {
             const std::string& name = b.areaWallNames[k];
-            const int i = indexByName(scene.boundaries, name);
+            const int i = scenefile::indexByName(scene.boundaries, name);
             if (i < 0)
                 throw Error(b.where, label + "no boundary named '" + name + "'",
                             "name four plane walls of the scene");
@@ -114,56 +180,4 @@ void resolveServoAreaWalls(Scene& scene)
     }
 }
 
-BoundarySpec readBoundary(TableReader& t, const Scene& scene)
-{
-    BoundarySpec b;
-    b.where = t.where();
-    b.name = t.string("name");
-    if (!isFileNameSafe(b.name))
-        t.fail("name", "'" + b.name + "' cannot name a file (boundary_<name>.csv)",
-               "use letters, digits, '_' and '-' only");
-    const std::string type = t.choice("type", {"plane", "sphere", "level-set"}, "");
-    if (type.empty()) t.fail("", "missing key 'type'", "add type = \"plane\" | \"sphere\" | \"level-set\"");
-    b.material = lookUpMaterial(t, scene);
-    b.velocity = t.vec3("velocity", Vec3::Zero());
-    if (type != "plane")
-        for (const char* key : {"stress", "area", "area_walls", "max_speed", "servo_gain"})
-            if (t.has(key))
-                t.fail(key, "only a plane can keep a stress",
-                       "use type = \"plane\" or remove " + std::string(key));
-    if (type == "plane") {
-        b.shape = BoundaryShape::Plane;
-        b.point = t.vec3("point");
-        b.normal = t.unitVec3("normal");
-        if (t.has("extent")) {
-            const std::vector<double> e = t.numbers("extent", 2);
-            if (!(e[0] > 0.0 && e[1] > 0.0))
-                t.fail("extent", "both widths must be > 0", "omit extent for an unbounded plane");
-            b.extentU = e[0];
-            b.extentV = e[1];
-            b.axisU = t.has("axis_u") ? t.unitVec3("axis_u") : b.normal.unitOrthogonal();
-            // Keep only the in-plane part, so a slightly off axis still defines the patch.
-            const Vec3 inPlane = b.axisU - b.axisU.dot(b.normal) * b.normal;
-            if (inPlane.norm() < 1e-6)
-                t.fail("axis_u", "is parallel to the normal", "give a direction within the plane");
-            b.axisU = inPlane.normalized();
-        } else if (t.has("axis_u")) {
-            t.fail("axis_u", "only makes sense with extent", "add extent = [wu, wv] or remove it");
-        }
-        b.thickness = t.has("thickness") ? t.positive("thickness") : 0.0;
-        readServo(t, b);
-    } else if (type == "sphere") {
-        b.shape = BoundaryShape::Sphere;
-        b.center = t.vec3("center");
-        b.radius = t.positive("radius");
-    } else {
-        b.shape = BoundaryShape::LevelSet;
-        b.asset = lookUpAsset(t, scene);
-        b.pose.position = t.vec3("position");
-        b.pose.orientation = readOrientation(t);
-    }
-    t.rejectUnknownKeys();
-    return b;
-}
-
-} // namespace lsdem::scenefile
+} // namespace lsdem

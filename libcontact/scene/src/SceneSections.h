@@ -48,8 +48,6 @@ ContactSpec readContact(TableReader& t, const Scene& scene);
 
 /// [[boundaries]]: a plane, a sphere or a level-set obstacle.
 BoundarySpec readBoundary(TableReader& t, const Scene& scene);
-/// Servo walls' area_walls: the named walls exist and bound a rectangle around the wall.
-void resolveServoAreaWalls(Scene& scene);
 
 /// [simulation]: gravity, damping, time step and the end condition (required).
 void readSimulation(const toml::table* table, Scene& scene);

@@ -56,13 +56,56 @@ void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& 
     forEachBlockNotClear(a, isClear, visit, stats);
 }
 
+/// Nodes of @a a outside the cylinder (a point @a c of its axis, unit axis @a axis, radius
+/// @a r), grains living inside: depth ρ - r (ρ the node's distance from the axis), the normal
+/// pointing back towards the axis.
+void findCylinderContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& c,
+                          const Vec3& axis, double r, std::vector<NodeContact>& out,
+                          NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    auto radial = [&](const Vec3& x) {
+        const Vec3 offset = x - c;
+        return Vec3(offset - offset.dot(axis) * axis);
+    };
+    if (radial(pose.position).norm() + a.boundingRadius < r) {
+        stats.nodesCulled += count;
+        return;
+    }
+    const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+            ++stats.nodesSampled;
+            const Vec3 outward = radial(x);
+            const double distance = outward.norm();
+            if (!(distance > r)) continue;
+            ++stats.nodesInContact;
+            NodeContact nc;
+            nc.node = i;
+            nc.depth = distance - r;
+            nc.normal = -outward / distance;
+            nc.point = x + 0.5 * nc.depth * nc.normal;
+            nc.area = a.nodes.areas[i];
+            out.push_back(nc);
+        }
+    };
+    // A grain touches the wall with one side: skip the nodes well inside.
+    auto isClear = [&](const NodeBlock& run) {
+        return radial(rotation * run.center + pose.position).norm() + run.radius < r;
+    };
+    forEachBlockNotClear(a, isClear, visit, stats);
+}
+
 } // namespace
 
 Vec3 Boundary::referencePoint() const
 {
     switch (shape) {
     case BoundaryShape::Plane: return plane.point + displacement;
-    case BoundaryShape::Sphere: return center + displacement;
+    case BoundaryShape::Sphere:
+    case BoundaryShape::Cylinder: return center + displacement;
     case BoundaryShape::LevelSet: return pose.position + displacement;
     }
     return displacement;
@@ -85,6 +128,10 @@ bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
     case BoundaryShape::LevelSet:
         return (grainCenter - (pose.position + displacement)).norm() <=
                asset->boundingRadius + grainRadius;
+    case BoundaryShape::Cylinder: {
+        const Vec3 offset = grainCenter - (center + displacement);
+        return (offset - offset.dot(axis) * axis).norm() + grainRadius >= radius;
+    }
     }
     return false;
 }
@@ -99,6 +146,9 @@ void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boun
         return;
     case BoundaryShape::LevelSet:
         findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats);
+        return;
+    case BoundaryShape::Cylinder:
+        findCylinderContacts(a, pose, b.center + b.displacement, b.axis, b.radius, out, stats);
         return;
     }
 }

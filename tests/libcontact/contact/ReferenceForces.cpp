@@ -284,6 +284,8 @@ void writeBoundary(std::ostream& out, const Case& c)
             << "obstacle_position " << vec(b.pose.position) << "\n"
             << "obstacle_orientation " << quat(b.pose.orientation) << "\n";
         return;
+    case BoundaryShape::Cylinder:  // no reference case uses one
+        throw std::logic_error("reference forces: no file format for a cylinder boundary");
     }
 }
 

@@ -281,6 +281,11 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"servo area from unknown walls", servo("stress = 1.5\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\", \"d\"]"), "[[boundaries]]", "no boundary named 'a'"},
         {"servo area from three walls", servo("stress = 1.5\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\"]"), "area_walls", "four walls"},
         {"area without a servo", servo("area = 4.0"), "area = 4.0", "only makes sense for a servo wall"},
+        {"cylinder without radius", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]"), "[[boundaries]]", "missing key 'radius'"},
+        {"cylinder of zero radius", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 0"), "radius = 0", "must be > 0"},
+        {"cylinder of zero axis", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\naxis = [0, 0, 0]"), "axis = [0, 0, 0]", "zero vector"},
+        {"cylinder with a plane's key", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\nnormal = [0, 0, 1]"), "normal = [0, 0, 1]", "unknown key 'normal'"},
+        {"servo cylinder", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\nstress = 1.0"), "stress = 1.0", "only a plane can keep a stress"},
         {"non-unit quaternion", edited("axis_angle = [0, 0, 1, 90]", "orientation = [1, 1, 0, 0]"), "orientation", "not a unit quaternion"},
     };
     static_assert(sizeof(cases) / sizeof(cases[0]) >= 20);

@@ -99,6 +99,7 @@ void expectSameScene(const Scene& a, const Scene& b)
         EXPECT_EQ(x.thickness, y.thickness);
         EXPECT_EQ(x.center, y.center);
         EXPECT_EQ(x.radius, y.radius);
+        if (x.shape == BoundaryShape::Cylinder) expectSameDirection(x.axis, y.axis, "axis of " + x.name);
         EXPECT_EQ(x.asset, y.asset);
         EXPECT_EQ(x.pose.position, y.pose.position);
         expectSameDirection<Eigen::Vector4d>(x.pose.orientation.coeffs(), y.pose.orientation.coeffs(),
@@ -244,7 +245,14 @@ Scene everyFeature(const ScratchDir& dir)
     w1.name = "w1", w1.point = Vec3(0, 0.8, -0.6), w1.normal = Vec3(0, -0.8, 0.6);
     press.servo.areaWalls = {4, 5, 6, 7};
     press.areaWallNames = {"x0", "x1", "w0", "w1"};
-    s.boundaries = {floor, patch, indenter, obstacle, x0, x1, w0, w1, lid, press};
+    BoundarySpec drum;
+    drum.name = "drum";
+    drum.shape = BoundaryShape::Cylinder;
+    drum.material = 2;
+    drum.center = Vec3(0.5, -0.25, 0);
+    drum.axis = Vec3(0, 0.6, 0.8);
+    drum.radius = 4.5;
+    s.boundaries = {floor, patch, indenter, obstacle, x0, x1, w0, w1, lid, press, drum};
     s.gravity = Vec3(0, 0, -9.81);
     s.globalDamping = 0.2;
     s.timeStep.safety = 0.15;

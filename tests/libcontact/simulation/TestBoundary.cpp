@@ -269,3 +269,87 @@ TEST(Boundary, LevelSetContactsAreTheNarrowPhaseAtTheMovedPose)
     ASSERT_EQ(contacts.size(), 1u);
     EXPECT_NEAR(contacts[0].depth, depth - 0.2 * up.z(), 1e-6);
 }
+
+// A cylinder holds grains inside: a grain may touch it when its centre is within its radius of
+// the wall (distance from the axis + r ≥ R), whatever its height along the axis.
+TEST(Boundary, MayTouchACylinderFromInside)
+{
+    Boundary c;
+    c.shape = BoundaryShape::Cylinder;
+    c.center = Vec3(1, 2, 0);
+    c.axis = Vec3::UnitZ();
+    c.radius = 3.0;
+    EXPECT_FALSE(c.mayTouch(Vec3(1, 2, 50), 1.0));       // on the axis, far up
+    EXPECT_FALSE(c.mayTouch(Vec3(2.9, 2, -7), 1.0));     // 1.9 from the axis: 0.1 clear
+    EXPECT_TRUE(c.mayTouch(Vec3(3.1, 2, -7), 1.0));
+    EXPECT_TRUE(c.mayTouch(Vec3(1, 2 - 2.1, 0), 1.0));
+    EXPECT_TRUE(c.mayTouch(Vec3(10, 2, 0), 1.0));        // outside: certainly in contact
+    c.displacement = Vec3(0.5, 0, 9);                    // the axis moved to x = 1.5
+    EXPECT_FALSE(c.mayTouch(Vec3(3.1, 2, -7), 1.0));
+    EXPECT_EQ(c.referencePoint(), Vec3(1.5, 2, 9));
+}
+
+// Nodes outside a cylinder of tilted axis: depth ρ - R (ρ the distance from the axis), the
+// normal pointing back to the axis, the point halfway back to the wall.
+TEST(Boundary, CylinderContactsAreTheNodesOutsideIt)
+{
+    const GrainAsset a = sixNodes();
+    Boundary c;
+    c.shape = BoundaryShape::Cylinder;
+    c.axis = Vec3(0, 0.6, 0.8);  // in the y–z plane
+    c.center = Vec3(0.5, 0, 0);
+    c.radius = 1.2;
+    c.displacement = Vec3(-0.5, 0, 0);  // the axis now through the origin
+    RigidPose pose;
+    pose.position = Vec3(0.5, 0, 0);
+    std::vector<NodeContact> contacts;
+    NodeCheckStats stats;
+    findBoundaryContacts(a, pose, c, contacts, stats);
+    // Node 0 at (1.5, 0, 0) is 1.5 from the axis (it is perpendicular to it): 0.3 out. Node 2
+    // (0.5, 1, 0): the axial part is 0.6, so the radial offset is (0.5, 1, 0) - 0.6·axis =
+    // (0.5, 0.64, -0.48), length sqrt(0.25 + 0.4096 + 0.2304) = 0.943: inside; the others are
+    // nearer the axis.
+    ASSERT_EQ(contacts.size(), 1u);
+    EXPECT_EQ(contacts[0].node, 0);
+    EXPECT_NEAR(contacts[0].depth, 0.3, 1e-15);
+    EXPECT_LT((contacts[0].normal - Vec3(-1, 0, 0)).norm(), 1e-15);
+    EXPECT_LT((contacts[0].point - Vec3(1.35, 0, 0)).norm(), 1e-15);
+    EXPECT_EQ(contacts[0].area, 0.5);
+
+    // Deep inside, the whole grain is culled.
+    pose.position = Vec3::Zero();
+    NodeCheckStats inside;
+    contacts.clear();
+    findBoundaryContacts(a, pose, c, contacts, inside);
+    EXPECT_TRUE(contacts.empty());
+    EXPECT_EQ(inside.nodesCulled, 6);
+}
+
+// On a baked grain with node blocks pressed against the wall, the block culling keeps exactly
+// the contacts of a full scan, each at the exact distance from the axis.
+TEST(Boundary, CylinderBlockCullingKeepsEveryContact)
+{
+    const GrainAsset& withBlocks = boxAsset();
+    GrainAsset plain = withBlocks;
+    plain.nodeBlocks.clear();
+    RigidPose pose;
+    pose.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
+    pose.position = Vec3(1.3, 0.2, 5.0);
+    Boundary c;
+    c.shape = BoundaryShape::Cylinder;
+    c.radius = 2.0;
+    std::vector<NodeContact> blocked, scanned;
+    NodeCheckStats blockedStats, scannedStats;
+    findBoundaryContacts(withBlocks, pose, c, blocked, blockedStats);
+    findBoundaryContacts(plain, pose, c, scanned, scannedStats);
+    ASSERT_GT(scanned.size(), 3u);
+    ASSERT_EQ(blocked.size(), scanned.size());
+    for (size_t k = 0; k < scanned.size(); ++k) {
+        EXPECT_EQ(blocked[k].node, scanned[k].node);
+        EXPECT_EQ(blocked[k].depth, scanned[k].depth);
+        const Vec3 x = pose.toWorld(plain.nodes.positions[scanned[k].node]);
+        EXPECT_NEAR(scanned[k].depth, std::hypot(x.x(), x.y()) - 2.0, 1e-15);
+        EXPECT_GT(scanned[k].depth, 0.0);
+    }
+    EXPECT_GT(blockedStats.nodesCulled, scannedStats.nodesCulled);
+}

@@ -112,9 +112,11 @@ struct BoundarySpec
     double extentU = 0.0, extentV = 0.0;  ///< 0: unbounded
     Vec3 axisU = Vec3::UnitX();
     double thickness = 0.0;               ///< 0: unbounded
-    // Sphere: centre and radius.
+    // Sphere: centre and radius. Cylinder (grains inside): a point of its axis, the axis and
+    // the radius.
     Vec3 center = Vec3::Zero();
     double radius = 0.0;
+    Vec3 axis = Vec3::UnitZ();
     // Level set: the asset and where it sits.
     int asset = -1;
     RigidPose pose;

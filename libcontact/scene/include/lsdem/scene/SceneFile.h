@@ -18,4 +18,11 @@ Scene readSceneFile(const std::string& path);
 /// from the checkpoint, and by tests).
 Scene parseScene(const std::string& text, const std::string& path);
 
+/// Resolve the servo walls' area_walls (BoundarySpec::areaWallNames) to the indices of the named
+/// walls, once every boundary is in @a scene: done by the reader; a scene built by a program
+/// calls it after adding such a wall.
+/// @throw Error if a named wall is unknown, not a plane, not perpendicular to the servo wall,
+///        or the four do not form two opposite, perpendicular pairs.
+void resolveServoAreaWalls(Scene& scene);
+
 } // namespace lsdem

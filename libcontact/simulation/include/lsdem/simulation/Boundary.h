@@ -1,6 +1,7 @@
 /// @file Boundary.h
 /// @brief Rigid boundaries of a simulation: planes (walls, optionally finite patches), a sphere
-///        (an indenter) and level-set obstacles (an asset used as a rigid body). Each moves at a
+///        (an indenter), level-set obstacles (an asset used as a rigid body) and the side wall
+///        of a cylinder (a container: grains inside). Each moves at a
 ///        prescribed velocity (zero: fixed) or, for a servo plane, at the velocity that keeps
 ///        a target stress (StressServo.h); grains touch it with their nodes, through the same
 ///        contact laws as grain–grain contacts.
@@ -23,8 +24,10 @@ struct Boundary
     BoundaryShape shape = BoundaryShape::Plane;
     int material = 0;
     Plane plane;                                  ///< Plane: where it started
-    Vec3 center = Vec3::Zero();                   ///< Sphere: where its centre started
-    double radius = 0.0;                          ///< Sphere
+    Vec3 center = Vec3::Zero();                   ///< Sphere: where its centre started;
+                                                  ///< Cylinder: a point of its axis
+    double radius = 0.0;                          ///< Sphere, Cylinder
+    Vec3 axis = Vec3::UnitZ();                    ///< Cylinder: unit direction of its axis
     std::shared_ptr<const GrainAsset> asset;      ///< LevelSet
     RigidPose pose;                               ///< LevelSet: where it started
     Vec3 velocity = Vec3::Zero();                 ///< prescribed, world
@@ -37,7 +40,8 @@ struct Boundary
     double normalDashpot = 0.0;
     StressServo servo;                            ///< Plane: keeps a target stress if active
 
-    /// Its reference point now (plane point, sphere centre or obstacle centroid).
+    /// Its reference point now (plane point, sphere centre, obstacle centroid or the point of
+    /// a cylinder's axis).
     Vec3 referencePoint() const;
     /// Whether a grain whose surface lies within @a radius of @a center may touch it.
     bool mayTouch(const Vec3& center, double radius) const;

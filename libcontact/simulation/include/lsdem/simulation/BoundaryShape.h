@@ -8,6 +8,7 @@ enum class BoundaryShape {
     Plane,     ///< half-space wall; grains live on the side its normal points to
     Sphere,    ///< rigid sphere (an indenter); grains live outside it
     LevelSet,  ///< a baked asset used as a rigid obstacle; grains live outside it
+    Cylinder,  ///< the side wall of an infinitely long circular cylinder; grains live inside it
 };
 
 } // namespace lsdem

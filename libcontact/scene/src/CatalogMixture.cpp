@@ -1,0 +1,50 @@
+#include "lsdem/scene/CatalogMixture.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/GrainCatalog.h"
+
+#include <filesystem>
+
+namespace lsdem {
+
+std::vector<PackingComponent> catalogMixture(const std::string& catalog,
+                                             const std::string& setName)
+{
+    namespace fs = std::filesystem;
+    if (setName.empty() || setName.find('/') != std::string::npos)
+        throw Error("", "the asset set's name '" + setName + "' must be non-empty and hold no '/'",
+                    "give the name of the scene's [asset_sets.NAME] that reads the catalogue, "
+                    "e.g. --set sand");
+    std::error_code notFound;  // a regular file only: a folder is no catalogue
+    if (!fs::is_regular_file(catalog, notFound))
+        throw Error(catalog, "catalogue not found",
+                    "give the catalog.csv that lsdem-bake --out-dir DIR wrote in DIR");
+    const std::vector<CatalogEntry> entries = readCatalog(catalog);
+    if (entries.empty())
+        throw Error(catalog, "the catalogue lists no assets",
+                    "bake some files into its folder with lsdem-bake --out-dir");
+    // Relative asset paths are the catalogue's folder's, as the scene reader resolves them.
+    const fs::path folder = fs::path(catalog).parent_path();
+    std::vector<PackingComponent> mixture;
+    for (const CatalogEntry& e : entries) {
+        const fs::path file =
+            fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
+        std::error_code ec;
+        if (!fs::is_regular_file(file, ec))
+            throw Error(catalog, "asset '" + e.name + "': file not found: " + file.string(),
+                        "bake the set again (lsdem-bake --out-dir), or fix its asset column");
+        PackingComponent c;
+        c.name = setName + "/" + e.name;
+        try {
+            c.asset = loadAsset(file.string());
+        } catch (const Error& load) {
+            throw Error(catalog, "asset '" + e.name + "': " + load.what(),
+                        "bake the set again (lsdem-bake --out-dir)");
+        }
+        mixture.push_back(std::move(c));
+    }
+    return mixture;
+}
+
+} // namespace lsdem

@@ -1,5 +1,7 @@
 #include "run/RunRanks.h"
 
+#include "common/MpiLauncher.h"
+
 #include "lsdem/ls/Error.h"
 
 #include <algorithm>
@@ -8,31 +10,13 @@
 
 namespace lsdem {
 
+using cli::environmentCount;
+using cli::launchedByMpi;
+
 #ifdef LSDEM_WITH_MPI
 // MpiRankGroup.cpp: the only file of lsdem-run that includes mpi.h.
 std::unique_ptr<RunRanks> startMpiRunRanks(int& argc, char**& argv);
 #endif
-
-namespace {
-
-/// A count from the environment variable @a name, or 0.
-long long environmentCount(const char* name)
-{
-    const char* text = std::getenv(name);
-    return text ? std::atoll(text) : 0;
-}
-
-/// Whether an MPI launcher started this process: each sets its rank or size in the
-/// environment (Open MPI's mpirun, MPICH's hydra, PMI-1/2 and PMIx, which srun uses).
-bool launchedByMpi()
-{
-    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK",
-                             "MPI_LOCALNRANKS"})
-        if (std::getenv(name)) return true;
-    return false;
-}
-
-} // namespace
 
 std::unique_ptr<RunRanks> startRunRanks(int& argc, char**& argv)
 {

@@ -1,5 +1,7 @@
 #include "studies/RunDistributor.h"
 
+#include "common/MpiLauncher.h"
+
 #include "lsdem/ls/Error.h"
 
 #include <algorithm>
@@ -7,6 +9,9 @@
 #include <stdexcept>
 
 namespace lsdem {
+
+using cli::environmentCount;
+using cli::launchedByMpi;
 
 #ifdef LSDEM_WITH_MPI
 // MpiRunDistributor.cpp: the only file that includes mpi.h.
@@ -33,23 +38,6 @@ public:
     }
     void finish() override {}
 };
-
-/// A positive integer from the environment variable @a name, or 0.
-long long environmentCount(const char* name)
-{
-    const char* text = std::getenv(name);
-    return text ? std::atoll(text) : 0;
-}
-
-/// Whether an MPI launcher started this process: each sets its rank or size in the
-/// environment (Open MPI's mpirun, MPICH's hydra, PMI-1/2 and PMIx, which srun uses).
-bool launchedByMpi()
-{
-    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK",
-                             "MPI_LOCALNRANKS"})
-        if (std::getenv(name)) return true;
-    return false;
-}
 
 } // namespace
 

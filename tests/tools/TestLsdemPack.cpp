@@ -18,14 +18,6 @@ namespace {
 
 const std::string kPack = LSDEM_PACK_EXE;
 
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 struct Assets
 {
     ScratchDir dir;

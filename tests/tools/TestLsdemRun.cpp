@@ -19,14 +19,6 @@ namespace {
 
 const std::string kRun = LSDEM_RUN_EXE;
 
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 int countLines(const std::string& path)
 {
     std::ifstream in(path);

@@ -24,14 +24,6 @@ namespace {
 const std::string kRun = LSDEM_RUN_EXE;
 const std::string kMpiexec = LSDEM_MPIEXEC;
 
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 std::set<std::string> filesIn(const std::string& dir)
 {
     std::set<std::string> names;

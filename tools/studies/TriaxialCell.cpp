@@ -69,6 +69,13 @@ TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls
     return s;
 }
 
+std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis)
+{
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    return {walls.index[size_t(2 * u)], walls.index[size_t(2 * u + 1)],
+            walls.index[size_t(2 * v)], walls.index[size_t(2 * v + 1)]};
+}
+
 double solidVolume(const World& world)
 {
     double volume = 0.0;

@@ -20,6 +20,10 @@ struct TriaxialWalls
     std::array<int, 6> index = {-1, -1, -1, -1, -1, -1};
 };
 
+/// The two other pairs of walls around the walls of @a axis (0 x, 1 y, 2 z): the rectangle
+/// between them is the area those walls push on (StressServo::areaWalls).
+std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis);
+
 struct TriaxialState
 {
     Vec3 size = Vec3::Zero();     ///< edge lengths along x, y, z (distances between walls)

@@ -132,10 +132,10 @@ int TriaxialCommand::run(RunDistributor& ranks) const
                     r.test.peakFrictionAngle, r.test.criticalFrictionAngle, r.runSeconds);
         std::fflush(stdout);
     };
+    int shearingRows = 0;
     auto progress = [&](Formulation f, double sdp, const TriaxialRow& row) {
         if (o.quiet) return;
-        static int counter = 0;
-        if (row.stage == 1 && ++counter % 20 != 0) return;  // every tenth of the shearing
+        if (row.stage == 1 && ++shearingRows % 20 != 0) return;  // every tenth of the shearing
         std::printf("  %s SDP %g: %s step %lld, eps_a %.3f, p %.4g, q %.4g, e %.3f\n",
                     formulationName(f).c_str(), sdp,
                     row.stage == 0 ? "consolidating" : "shearing", row.step, row.axialStrain,

@@ -55,9 +55,8 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
             b.velocity = 0.5 * run.strainRate * size.z() * b.normal;
             continue;
         }
-        const int u = axis == 0 ? 1 : 0;
         b.servo.targetStress = o.confiningStress;
-        b.servo.areaWalls = {2 * u, 2 * u + 1, 4, 5};
+        b.servo.areaWalls = areaWallsOf(triaxialWalls(), axis);
         b.servo.gain = 0.5;
         b.servo.maxSpeed = run.strainRate * size[axis];
     }

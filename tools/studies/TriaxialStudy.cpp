@@ -17,7 +17,7 @@ namespace lsdem {
 
 namespace {
 
-constexpr int kRowFields = 21;
+constexpr int kRowFields = 19;
 
 void packRow(const TriaxialRow& r, std::vector<double>& out)
 {
@@ -25,7 +25,7 @@ void packRow(const TriaxialRow& r, std::vector<double>& out)
     const double fields[kRowFields] = {
         double(r.stage), double(r.step), r.time, s.size.x(), s.size.y(), s.size.z(), s.volume,
         s.stress.x(), s.stress.y(), s.stress.z(), s.p, s.q, s.voidRatio, s.coordination,
-        r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber, r.kinetic, 0.0, 0.0};
+        r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber, r.kinetic};
     out.insert(out.end(), fields, fields + kRowFields);
 }
 

@@ -9,14 +9,6 @@ namespace lsdem {
 
 namespace {
 
-/// The other two pairs of walls, which bound the area a wall of @a axis pushes on.
-std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis)
-{
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    return {walls.index[size_t(2 * u)], walls.index[size_t(2 * u + 1)],
-            walls.index[size_t(2 * v)], walls.index[size_t(2 * v + 1)]};
-}
-
 Boundary& wallOf(World& w, const TriaxialWalls& walls, int which)
 {
     return w.boundaries[size_t(walls.index[size_t(which)])];

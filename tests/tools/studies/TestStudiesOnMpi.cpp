@@ -17,18 +17,12 @@
 
 using lsdem::test::runCommand;
 
+using lsdem::test::readFile;
+
 namespace {
 
 const std::string kStudy = LSDEM_STUDY_EXE;
 const std::string kMpiexec = LSDEM_MPIEXEC;
-
-std::string readFile(const std::string& path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 /// Every file under @a dir, relative to it.
 std::set<std::string> filesUnder(const std::string& dir)

@@ -1,5 +1,7 @@
 #include "lsdem/ls/MeshLevelSet.h"
 
+#include "lsdem/ls/Error.h"
+
 #include <openvdb/tools/MeshToVolume.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -36,38 +38,56 @@ double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, co
     return (ap - (vb * denom) * ab - (vc * denom) * ac).squaredNorm();
 }
 
-/// The inward propagation of closest triangles (see fillInterior).
+/// The inward propagation of closest triangles: each voxel inside the band takes the nearest
+/// of the triangles closest to its 26 neighbours, layer after layer inward from the band.
+///
+/// Only the closest triangle of each voxel is kept while the layers advance (an Int32 tree
+/// over the band and the interior); the distances are written at the end, leaf by leaf, from
+/// those triangles, as each index leaf is freed. So the fill holds one full tree plus the
+/// band, not a float tree and an index tree of the same shape at once.
 class InteriorFill
 {
 public:
+    /// @a distance: the band's distances, with every voxel to be filled active (voxels or
+    /// active tiles); its interior tiles become voxels only when they are written.
     InteriorFill(openvdb::FloatTree& distance, const TriangleMesh& mesh, const Vec3& origin,
                  double voxelSize)
         : mDistance(distance), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize),
           mClosest(distance, kUnknown, kUnknown, openvdb::TopologyCopy())
     {
+        mClosest.voxelizeActiveTiles();
     }
 
-    /// Mark @a seeds (band voxels whose closest triangle is known) and fill every active
-    /// voxel of the distance tree that is still unknown, layer after layer inward.
-    void run(std::vector<openvdb::Coord> layer, const std::vector<openvdb::Int32>& seedTriangles)
+    /// Find the closest triangle of every active voxel, starting from @a layer (the band's
+    /// voxels whose closest triangle @a bandTriangles knows; cleared once read) and going
+    /// inward layer after layer, then write every solved voxel's distance into the distance
+    /// tree.
+    void run(std::vector<openvdb::Coord> layer, openvdb::Int32Grid& bandTriangles)
     {
         {
+            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> band(bandTriangles.tree());
             openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-            for (size_t i = 0; i < layer.size(); ++i)
-                closest.setValueOnly(layer[i], seedTriangles[i]);
+            for (const openvdb::Coord& c : layer) closest.setValueOnly(c, band.getValue(c));
         }
+        bandTriangles.clear();
         // OpenVDB grows its band from neighbours' closest triangles in float index space,
         // measured up to 7 % of a voxel off; one pass over the band's own candidates in double
-        // brings it to the exact distance nearly everywhere.
-        solveLayer(layer, /*keepSign=*/true);
+        // brings it to the exact distance nearly everywhere. The band keeps its signs.
+        solveLayer(layer, kBandBit);
         while (!layer.empty()) {
             layer = nextLayer(layer);
-            solveLayer(layer, /*keepSign=*/false);
+            solveLayer(layer, 0);
         }
+        writeDistances();
     }
 
 private:
     static constexpr openvdb::Int32 kUnknown = -1, kPending = -2;
+    /// Set on the closest triangle of a band voxel: its distance keeps the band's sign (the
+    /// voxels filled inward are inside). Triangle indices stay below it (checked by the caller).
+    static constexpr openvdb::Int32 kBandBit = openvdb::Int32(1) << 30;
+
+    using IndexLeaf = openvdb::Int32Tree::LeafNodeType;
 
     /// The unknown voxels face-adjacent to @a layer, marked pending (in a fixed order, so the
     /// result does not depend on the thread count).
@@ -76,71 +96,131 @@ private:
         static const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                                  {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-        openvdb::tree::ValueAccessor<const openvdb::FloatTree> distance(mDistance);
         std::vector<openvdb::Coord> next;
         for (const openvdb::Coord& c : layer)
             for (const openvdb::Coord& step : kFaces) {
                 const openvdb::Coord n = c + step;
-                if (closest.getValue(n) != kUnknown || !distance.isValueOn(n)) continue;
+                openvdb::Int32 state = kUnknown;
+                if (!closest.probeValue(n, state) || state != kUnknown) continue;
                 closest.setValueOnly(n, kPending);
                 next.push_back(n);
             }
         return next;
     }
 
-    /// Each voxel of @a layer takes the nearest of the triangles closest to itself and its 26
-    /// neighbours (ties to the lower index), as minus its distance or (@a keepSign) with the
-    /// sign it has; the voxels of one layer are independent.
-    void solveLayer(const std::vector<openvdb::Coord>& layer, bool keepSign)
+    /// The closest triangles of the 27 voxels around @a c (itself included), as stored.
+    static void neighbourhood(const openvdb::Coord& c,
+                              openvdb::tree::ValueAccessor<const openvdb::Int32Tree>& closest,
+                              openvdb::Int32 out[27])
     {
-        std::vector<float> depth(layer.size());
+        // Away from its leaf's faces a voxel's neighbours are all in its leaf: read them from
+        // the buffer (offsets x*64 + y*8 + z) instead of walking the tree 27 times.
+        constexpr int kLast = int(IndexLeaf::DIM) - 1;
+        const int x = c.x() & kLast, y = c.y() & kLast, z = c.z() & kLast;
+        if (x > 0 && x < kLast && y > 0 && y < kLast && z > 0 && z < kLast) {
+            if (const IndexLeaf* leaf = closest.probeConstLeaf(c)) {
+                const openvdb::Int32* centre = leaf->buffer().data() + IndexLeaf::coordToOffset(c);
+                constexpr int dx = 1 << (2 * IndexLeaf::LOG2DIM), dy = 1 << IndexLeaf::LOG2DIM;
+                int k = 0;
+                for (int i = -1; i <= 1; ++i)
+                    for (int j = -1; j <= 1; ++j)
+                        for (int l = -1; l <= 1; ++l) out[k++] = centre[i * dx + j * dy + l];
+                return;
+            }
+        }
+        int k = 0;
+        for (int i = -1; i <= 1; ++i)
+            for (int j = -1; j <= 1; ++j)
+                for (int l = -1; l <= 1; ++l) out[k++] = closest.getValue(c.offsetBy(i, j, l));
+    }
+
+    double squaredDistance(const Vec3& p, openvdb::Int32 t) const
+    {
+        const auto& tri = mMesh.triangles[size_t(t)];
+        return squaredDistanceToTriangle(p, mMesh.vertices[size_t(tri[0])],
+                                         mMesh.vertices[size_t(tri[1])],
+                                         mMesh.vertices[size_t(tri[2])]);
+    }
+
+    Vec3 centre(const openvdb::Coord& c) const
+    {
+        return mOrigin + mVoxel * Vec3(c.x(), c.y(), c.z());
+    }
+
+    /// Each voxel of @a layer takes the nearest of the triangles closest to itself and its 26
+    /// neighbours (ties to the lower index), stored with @a bandBit; the voxels of one layer
+    /// are independent.
+    void solveLayer(const std::vector<openvdb::Coord>& layer, openvdb::Int32 bandBit)
+    {
         std::vector<openvdb::Int32> nearest(layer.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 512),
                           [&](const tbb::blocked_range<size_t>& range) {
             openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
             for (size_t i = range.begin(); i != range.end(); ++i) {
-                const openvdb::Coord& c = layer[i];
-                const Vec3 p = mOrigin + mVoxel * Vec3(c.x(), c.y(), c.z());
+                const Vec3 p = centre(layer[i]);
+                openvdb::Int32 around[27];
+                neighbourhood(layer[i], closest, around);
                 double best = std::numeric_limits<double>::infinity();
                 openvdb::Int32 bestTriangle = kUnknown;
-                openvdb::Int32 tried[26];
+                openvdb::Int32 tried[27];
                 int triedCount = 0;
-                for (int dx = -1; dx <= 1; ++dx)
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dz = -1; dz <= 1; ++dz) {
-                            const openvdb::Int32 t = closest.getValue(c.offsetBy(dx, dy, dz));
-                            if (t < 0) continue;
-                            bool seen = false;
-                            for (int k = 0; k < triedCount && !seen; ++k) seen = tried[k] == t;
-                            if (seen) continue;
-                            tried[triedCount++] = t;
-                            const auto& tri = mMesh.triangles[size_t(t)];
-                            const double d2 = squaredDistanceToTriangle(
-                                p, mMesh.vertices[size_t(tri[0])], mMesh.vertices[size_t(tri[1])],
-                                mMesh.vertices[size_t(tri[2])]);
-                            if (d2 < best || (d2 == best && t < bestTriangle)) {
-                                best = d2;
-                                bestTriangle = t;
-                            }
-                        }
-                depth[i] = float(std::sqrt(best));
-                nearest[i] = bestTriangle;
+                for (openvdb::Int32 stored : around) {
+                    if (stored < 0) continue;
+                    const openvdb::Int32 t = stored & ~kBandBit;
+                    bool seen = false;
+                    for (int k = 0; k < triedCount && !seen; ++k) seen = tried[k] == t;
+                    if (seen) continue;
+                    tried[triedCount++] = t;
+                    const double d2 = squaredDistance(p, t);
+                    if (d2 < best || (d2 == best && t < bestTriangle)) {
+                        best = d2;
+                        bestTriangle = t;
+                    }
+                }
+                nearest[i] = bestTriangle < 0 ? bestTriangle : (bestTriangle | bandBit);
             }
         });
         openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-        openvdb::tree::ValueAccessor<openvdb::FloatTree> distance(mDistance);
-        for (size_t i = 0; i < layer.size(); ++i) {
-            closest.setValueOnly(layer[i], nearest[i]);
-            const bool outside = keepSign && distance.getValue(layer[i]) > 0.0f;
-            distance.setValueOnly(layer[i], outside ? depth[i] : -depth[i]);
+        for (size_t i = 0; i < layer.size(); ++i) closest.setValueOnly(layer[i], nearest[i]);
+    }
+
+    /// Every solved voxel's distance to its closest triangle: minus it inside, and with the
+    /// band's sign in the band. Index leaves are taken out of their tree and freed a batch at
+    /// a time as the distance leaves they become are filled in.
+    void writeDistances()
+    {
+        std::vector<IndexLeaf*> indexLeaves;
+        mClosest.stealNodes(indexLeaves);
+        constexpr size_t kBatch = 256;
+        std::vector<openvdb::FloatTree::LeafNodeType*> distanceLeaves;
+        for (size_t first = 0; first < indexLeaves.size(); first += kBatch) {
+            const size_t last = std::min(indexLeaves.size(), first + kBatch);
+            distanceLeaves.clear();
+            for (size_t l = first; l < last; ++l)  // the tree changes shape: one thread
+                distanceLeaves.push_back(mDistance.touchLeaf(indexLeaves[l]->origin()));
+            tbb::parallel_for(first, last, [&](size_t l) {
+                const IndexLeaf& index = *indexLeaves[l];
+                auto& distance = *distanceLeaves[l - first];
+                for (auto it = index.cbeginValueOn(); it; ++it) {
+                    const openvdb::Int32 stored = *it;
+                    if (stored < 0) continue;  // never reached: keeps the value it had
+                    const openvdb::Index offset = it.pos();
+                    const float depth =
+                        float(std::sqrt(squaredDistance(centre(it.getCoord()), stored & ~kBandBit)));
+                    const bool outside = (stored & kBandBit) && distance.getValue(offset) > 0.0f;
+                    distance.setValueOnly(offset, outside ? depth : -depth);
+                }
+            });
+            for (size_t l = first; l < last; ++l) delete indexLeaves[l];
         }
+        mClosest.clear();
     }
 
     openvdb::FloatTree& mDistance;
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
-    openvdb::Int32Tree mClosest;  ///< closest triangle per voxel; kUnknown, kPending
+    openvdb::Int32Tree mClosest;  ///< closest triangle per voxel (| kBandBit); kUnknown, kPending
 };
 
 } // namespace
@@ -149,6 +229,10 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
                                            int exteriorBandVoxels)
 {
     initializeOpenVdb();
+    if (mesh.triangles.size() >= (size_t(1) << 30))
+        throw Error("", "the mesh has " + std::to_string(mesh.triangles.size()) +
+                            " triangles; the level set takes at most 2^30",
+                    "simplify the mesh (a grain needs far fewer triangles than its voxels)");
     const auto bounds = meshBounds(mesh);
     const double vox = voxelSize;
     const double pad = (exteriorBandVoxels + 2) * vox;
@@ -184,23 +268,19 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     //    to the closest triangle, propagated inward from the band's (InteriorFill).
     openvdb::FloatTree& distance = grid->tree();
     std::vector<openvdb::Coord> seeds;
-    std::vector<openvdb::Int32> seedTriangles;
+    seeds.reserve(bandTriangles.activeVoxelCount());
     {
         openvdb::tree::ValueAccessor<const openvdb::Int32Tree> band(bandTriangles.tree());
         const auto triangleCount = openvdb::Int32(mesh.triangles.size());
         for (auto it = distance.cbeginValueOn(); it; ++it) {
             openvdb::Int32 t = -1;
             if (!it.isVoxelValue() || !band.probeValue(it.getCoord(), t)) continue;
-            if (t < 0 || t >= triangleCount) continue;
-            seeds.push_back(it.getCoord());
-            seedTriangles.push_back(t);
+            if (t >= 0 && t < triangleCount) seeds.push_back(it.getCoord());
         }
     }
-    bandTriangles.clear();
     for (auto it = distance.beginValueOff(); it; ++it)
         if (*it < 0.0f) it.setActiveState(true);
-    distance.voxelizeActiveTiles();
-    InteriorFill(distance, mesh, origin, vox).run(std::move(seeds), seedTriangles);
+    InteriorFill(distance, mesh, origin, vox).run(std::move(seeds), bandTriangles);
 
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();

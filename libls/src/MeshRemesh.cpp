@@ -37,6 +37,10 @@ std::string str(double value)
 SurfaceMesh toSurfaceMesh(const TriangleMesh& input)
 {
     SurfaceMesh mesh;
+    // Sized once: growing the connectivity arrays by doubling holds old and new at once.
+    mesh.reserve(SurfaceMesh::size_type(input.vertices.size()),
+                 SurfaceMesh::size_type(3 * input.triangles.size() / 2),
+                 SurfaceMesh::size_type(input.triangles.size()));
     std::vector<VertexIndex> ids;
     ids.reserve(input.vertices.size());
     for (const Vec3& v : input.vertices) {

@@ -35,20 +35,6 @@ void putHistory(std::vector<char>& out, const ShearHistory& h)
     }
 }
 
-/// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,
-/// sent as one flag.
-bool isEmpty(const PairForces& r)
-{
-    if (r.contactNodes != 0 || r.pointForcesOnFirst != 0) return false;
-    static const double zeros[9] = {};
-    const auto zero = [](const double* p, size_t n) {
-        return std::memcmp(p, zeros, n * sizeof(double)) == 0;
-    };
-    return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
-           zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
-           zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
-}
-
 class Reader
 {
 public:
@@ -96,6 +82,18 @@ private:
 };
 
 } // namespace
+
+bool isEmpty(const PairForces& r)
+{
+    if (r.contactNodes != 0 || r.pointForcesOnFirst != 0) return false;
+    static const double zeros[9] = {};
+    const auto zero = [](const double* p, size_t n) {
+        return std::memcmp(p, zeros, n * sizeof(double)) == 0;
+    };
+    return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
+           zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
+           zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
+}
 
 void pack(const ContactSlot& s, bool withForces, std::vector<char>& out)
 {

@@ -11,6 +11,10 @@
 
 namespace lsdem::slotresults {
 
+/// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact
+/// (sent as one flag; adding it to a sum that starts at +0 changes nothing).
+bool isEmpty(const PairForces& r);
+
 /// Append slot @a s to @a out (its point forces only if @a withForces).
 void pack(const ContactSlot& s, bool withForces, std::vector<char>& out);
 

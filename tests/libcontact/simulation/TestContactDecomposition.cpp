@@ -6,6 +6,7 @@
 // must travel between ranks as grains cross sub-domains.
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/ContactDecomposition.h"
+#include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/WorkBisection.h"
 #include "lsdem/ls/AssetIO.h"
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstring>
 #include <iostream>
@@ -152,6 +154,7 @@ public:
     }
 
     std::vector<char>& contribution(int rank) { return mContributions[size_t(rank)]; }
+    std::vector<std::vector<char>>& outbox(int rank) { return mOutboxes[size_t(rank)]; }
 
 private:
     int mRanks;
@@ -160,6 +163,7 @@ private:
     int mArrived = 0;
     long long mGeneration = 0;
     std::vector<std::vector<char>> mContributions;
+    std::vector<std::vector<std::vector<char>>> mOutboxes{size_t(mRanks)};
 };
 
 class ThreadRankGroup final : public RankGroup
@@ -184,7 +188,28 @@ public:
         mJob.barrier();  // every rank has read them before anyone writes again
     }
 
-    bool anyRank(bool) override { throw std::logic_error("not used by these tests"); }
+    void allToAll(const std::vector<std::vector<char>>& toEach, std::vector<char>& received,
+                  std::vector<size_t>& starts) override
+    {
+        mJob.outbox(mRank) = toEach;
+        mJob.barrier();  // every rank's bytes are in
+        received.clear();
+        starts.assign(1, 0);
+        for (int r = 0; r < ranks(); ++r) {
+            const std::vector<char>& c = mJob.outbox(r)[size_t(mRank)];
+            received.insert(received.end(), c.begin(), c.end());
+            starts.push_back(received.size());
+        }
+        mJob.barrier();  // every rank has read them before anyone writes again
+    }
+
+    bool anyRank(bool mine) override
+    {
+        std::vector<char> all;
+        std::vector<size_t> starts;
+        allGather(std::vector<char>(1, mine ? 1 : 0), all, starts);
+        return std::find(all.begin(), all.end(), 1) != all.end();
+    }
 
 private:
     ThreadJob& mJob;
@@ -208,10 +233,9 @@ const std::string& sphereFile()
     return path;
 }
 
-/// @a count spheres (up to 4 × 3 × 3) dropped with random velocities and spins into a box of
-/// a floor and four walls, with friction: within a few hundred steps they hit the walls, the
-/// floor and each other, and move across the box (so across the sub-domains).
-World droppedSpheres(int count)
+/// A box of a floor and four walls (x = ±11, y = ±9) with friction, under gravity, for spheres
+/// of radius 2 (no grains yet).
+Scene sphereBox()
 {
     Scene s;
     AssetSpec a;
@@ -229,16 +253,6 @@ World droppedSpheres(int count)
     c.model.friction = 0.5;
     c.restitution = 0.5;
     s.contacts.push_back(c);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (int i = 0; i < count; ++i) {
-        GrainSpec g;
-        g.pose.position = Vec3(-7.5 + 5.0 * (i % 4) + 0.2 * u(rng), -5.0 + 5.0 * ((i / 4) % 3),
-                               2.05 + 5.0 * (i / 12));
-        g.velocity = Vec3(1500.0 * u(rng), 1500.0 * u(rng), -500.0 + 300.0 * u(rng));
-        g.angularVelocity = Vec3(50.0 * u(rng), 50.0 * u(rng), 50.0 * u(rng));
-        s.grains.push_back(g);
-    }
     const Vec3 normals[] = {Vec3::UnitZ(), Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(),
                             -Vec3::UnitY()};
     const Vec3 points[] = {Vec3::Zero(), Vec3(-11, 0, 0), Vec3(11, 0, 0), Vec3(0, -9, 0),
@@ -252,13 +266,51 @@ World droppedSpheres(int count)
         s.boundaries.push_back(b);
     }
     s.gravity = Vec3(0, 0, -9810.0);
+    return s;
+}
+
+/// @a count spheres (up to 4 × 3 × 3) dropped with random velocities and spins into the box:
+/// within a few hundred steps they hit the walls, the floor and each other, and move across
+/// the box (so across the sub-domains).
+World droppedSpheres(int count)
+{
+    Scene s = sphereBox();
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 0; i < count; ++i) {
+        GrainSpec g;
+        g.pose.position = Vec3(-7.5 + 5.0 * (i % 4) + 0.2 * u(rng), -5.0 + 5.0 * ((i / 4) % 3),
+                               2.05 + 5.0 * (i / 12));
+        g.velocity = Vec3(1500.0 * u(rng), 1500.0 * u(rng), -500.0 + 300.0 * u(rng));
+        g.angularVelocity = Vec3(50.0 * u(rng), 50.0 * u(rng), 50.0 * u(rng));
+        s.grains.push_back(g);
+    }
+    std::vector<std::string> warnings;
+    return buildWorld(s, warnings);
+}
+
+/// Two spheres on the floor under a strong gravity, sliding, then rolling along +x: the one
+/// from x = -8 crosses x = -2.5 (the cut between the two, drawn by grain count) after about
+/// 1250 steps, in contact with the floor all along, so its floor contact's shear history must
+/// travel with it to its new rank.
+World slidingPair()
+{
+    Scene s = sphereBox();
+    s.gravity = Vec3(0, 0, -2e6);
+    for (double x : {-8.0, 3.0}) {
+        GrainSpec g;
+        g.pose.position = Vec3(x, 0.0, 1.999);
+        g.velocity = Vec3(1500.0, 0.0, 0.0);
+        s.grains.push_back(g);
+    }
     std::vector<std::string> warnings;
     return buildWorld(s, warnings);
 }
 
 
 /// Everything of a world that must be the same on every rank, as bytes.
-std::string stateBytes(const Simulation& sim)
+std::string stateBytes(const World& w, const Energies& energies, long long nodes,
+                       const std::vector<ContactForceRecord>& forces)
 {
     std::string out;
     auto put = [&](const void* p, size_t n) { out.append(static_cast<const char*>(p), n); };
@@ -270,7 +322,6 @@ std::string stateBytes(const Simulation& sim)
         }
         out += '|';
     };
-    const World& w = sim.world();
     for (const Grain& g : w.grains) {
         vec(g.body.pose.position);
         put(g.body.pose.orientation.coeffs().data(), 4 * sizeof(double));
@@ -289,16 +340,19 @@ std::string stateBytes(const Simulation& sim)
         put(&key, sizeof key);
         history(h);
     }
-    const Energies e = sim.energies();
-    put(&e, sizeof e);
-    const long long nodes = sim.contactNodes();
+    put(&energies, sizeof energies);
     put(&nodes, sizeof nodes);
-    for (const ContactForceRecord& f : sim.contactForces()) {
+    for (const ContactForceRecord& f : forces) {
         vec(f.point);
         vec(f.force);
         put(&f.grain, sizeof f.grain);
     }
     return out;
+}
+
+std::string stateBytes(const Simulation& sim)
+{
+    return stateBytes(sim.world(), sim.energies(), sim.contactNodes(), sim.contactForces());
 }
 
 struct RankOutcome
@@ -402,4 +456,134 @@ TEST(ContactDecomposition, ARankWithoutGrainsKeepsTheWholeWorld)
     const std::string serial = runInOneProcess(count, steps);
     const std::vector<RankOutcome> outcomes = runOnThreads(4, count, steps);
     for (const RankOutcome& o : outcomes) EXPECT_TRUE(o.state == serial);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Split by space: owned grains and ghosts (GhostDecomposition.h), on threads.
+// ---------------------------------------------------------------------------------------------
+
+namespace {
+
+struct GhostOutcome
+{
+    std::string state;           ///< the whole world gathered from the ranks, as bytes
+    GhostCounters counters;
+    bool everOwned = false;      ///< owned some grain at some step
+    int mostHeld = 0;            ///< most grains (owned + ghosts) held at once
+};
+
+/// Step @a world's scene on @a ranks thread-ranks split by space; one outcome per rank.
+std::vector<GhostOutcome> runGhostsOnThreads(int ranks, World (*scene)(), int steps,
+                                             double rebalanceAbove = 1.1)
+{
+    ThreadJob job(ranks);
+    std::vector<GhostOutcome> outcomes(static_cast<size_t>(ranks));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < ranks; ++r)
+        threads.emplace_back([&, r] {
+            ThreadRankGroup group(job, r);
+            GhostDecomposition ghosts(group, rebalanceAbove);
+            World world = scene();
+            const double dt = automaticTimeStep(world, 0.2);
+            Simulation sim(std::move(world), dt, true, false, ghosts);
+            GhostOutcome& o = outcomes[size_t(r)];
+            for (int k = 0; k < steps; ++k) {
+                sim.step();
+                o.everOwned |= ghosts.counters().owned > 0;
+                o.mostHeld = std::max(o.mostHeld, int(sim.world().grains.size()));
+            }
+            const World whole = ghosts.gatherWorld(sim.world());
+            const Energies e = sim.energies();
+            const long long nodes = sim.contactNodes();
+            o.state = stateBytes(whole, e, nodes, {});
+            o.counters = ghosts.counters();
+        });
+    for (std::thread& t : threads) t.join();
+    return outcomes;
+}
+
+std::string serialState(World (*scene)(), int steps)
+{
+    World world = scene();
+    const double dt = automaticTimeStep(world, 0.2);
+    Simulation sim(std::move(world), dt, true, false);
+    for (int k = 0; k < steps; ++k) sim.step();
+    return stateBytes(sim.world(), sim.energies(), sim.contactNodes(), {});
+}
+
+World droppedSpheres24() { return droppedSpheres(24); }
+World droppedSpheres3() { return droppedSpheres(3); }
+
+} // namespace
+
+// The 24 thrown spheres split by space on 1 to 4 thread-ranks: the world gathered from the
+// ranks (every grain, force, boundary reaction, shear history, energy) is the single process's,
+// byte for byte. The run is checked to test what it is meant to: every rank owns grains and
+// holds ghosts, grains migrate with their contact histories, and ghost states travel.
+TEST(GhostDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
+{
+    const int steps = 1500;
+    const std::string serial = serialState(droppedSpheres24, steps);
+    for (int ranks : {1, 2, 3, 4}) {
+        const std::vector<GhostOutcome> outcomes =
+            runGhostsOnThreads(ranks, droppedSpheres24, steps);
+        long long migrated = 0, histories = 0;
+        for (int r = 0; r < ranks; ++r) {
+            const GhostOutcome& o = outcomes[size_t(r)];
+            EXPECT_TRUE(o.state == serial) << ranks << " ranks: rank " << r << " differs";
+            EXPECT_TRUE(o.everOwned) << ranks << " ranks: rank " << r;
+            migrated += o.counters.grainsMigrated;
+            histories += o.counters.historiesMigrated;
+            if (ranks > 1) {
+                EXPECT_GT(o.counters.bytesReceived, 0) << ranks << " ranks";
+                EXPECT_GT(o.counters.ghostUpdates, 0) << ranks << " ranks";
+            } else {
+                EXPECT_EQ(o.counters.bytesReceived, 0);
+                EXPECT_EQ(o.counters.ghosts, 0);
+            }
+        }
+        std::cout << "[ measured ] " << ranks << " ranks: " << migrated << " grains and "
+                  << histories << " shear histories migrated; ghosts at the end:";
+        for (const GhostOutcome& o : outcomes) std::cout << " " << o.counters.ghosts;
+        std::cout << "\n";
+        if (ranks > 1) {
+            EXPECT_GT(migrated, 0) << ranks << " ranks: no grain crossed";
+            EXPECT_GT(histories, 0) << ranks << " ranks: no history travelled";
+        }
+    }
+}
+
+// 3 spheres on 4 ranks: some rank owns no grain; the gathered world is still the single
+// process's, bit for bit.
+TEST(GhostDecomposition, ARankWithoutGrains)
+{
+    const int steps = 400;
+    const std::string serial = serialState(droppedSpheres3, steps);
+    const std::vector<GhostOutcome> outcomes = runGhostsOnThreads(4, droppedSpheres3, steps);
+    int idle = 0;
+    for (const GhostOutcome& o : outcomes) {
+        EXPECT_TRUE(o.state == serial);
+        idle += o.counters.owned == 0;
+    }
+    EXPECT_GE(idle, 1);
+}
+
+// A sphere sliding on the floor across the cut between two ranks (redraws off, so the cut
+// stays): it migrates with the shear history of its floor contact, and the run ends as one
+// process's, bit for bit. Without the history the friction on the new rank would restart
+// from zero and the bytes would differ.
+TEST(GhostDecomposition, AGrainCrossingCarriesItsShearHistory)
+{
+    const int steps = 1600;
+    const std::string serial = serialState(slidingPair, steps);
+    const std::vector<GhostOutcome> outcomes =
+        runGhostsOnThreads(2, slidingPair, steps, 1e9);
+    EXPECT_TRUE(outcomes[0].state == serial);
+    EXPECT_TRUE(outcomes[1].state == serial);
+    EXPECT_EQ(outcomes[0].counters.rebalances, 1);  // the first draw only
+    // Rank 1 (above the cut) received grain 0 and its floor history.
+    EXPECT_EQ(outcomes[1].counters.grainsMigrated, 1);
+    EXPECT_GE(outcomes[1].counters.historiesMigrated, 1);
+    EXPECT_EQ(outcomes[1].counters.owned, 2);
+    EXPECT_EQ(outcomes[0].counters.owned, 0);
 }

@@ -51,6 +51,19 @@ public:
         *this = ContactList(other.mSkinFraction);
         return *this;
     }
+    /// The skin the list would choose for @a world (a fraction of its median bounding radius).
+    double skinFor(const World& world) const;
+    /// Use @a skin whatever the world holds: a rank holding part of the grains
+    /// (GhostDecomposition.h) uses the whole simulation's, so its list is the one-process
+    /// list's part.
+    void fixSkin(double skin) { mFixedSkin = skin; }
+    /// Keep only the pairs with a grain marked in @a owned (by grain index; null: every pair),
+    /// and boundary contacts of marked grains: the contacts a rank owning those grains
+    /// evaluates. @a owned must outlive the list or be replaced before the next rebuild.
+    void restrictTo(const std::vector<char>* owned) { mOwned = owned; }
+    /// Whether update() would rebuild: never built, marked stale, grains added or removed, or
+    /// a grain or boundary moved more than half the skin since the build.
+    bool needsRebuild(const World& world) const;
     ContactList(ContactList&&) = default;
     ContactList& operator=(ContactList&&) = default;
 
@@ -79,6 +92,8 @@ private:
     void rebuild(World& world, bool keepPairKnowledge);
 
     double mSkinFraction;
+    double mFixedSkin = -1.0;  ///< >= 0: fixSkin's
+    const std::vector<char>* mOwned = nullptr;
     double mSkin = 0.0;
     bool mBuilt = false;
     long long mRebuilds = 0;

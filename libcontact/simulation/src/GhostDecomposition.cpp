@@ -232,6 +232,7 @@ void GhostDecomposition::redistribute(World& world)
         if (!mOwned[i]) continue;
         const Grain& g = world.grains[i];
         const int asset = assetIndex(world, g.asset.get());
+        mCounters.grainsEmigrated += newOwner[i] != me;
         Writer& owner = to[size_t(newOwner[i])];
         owner.put(kOwnedGrain);
         owner.put(mGlobal[i]);
@@ -423,11 +424,15 @@ World GhostDecomposition::gatherWorld(const World& local)
         w.put(key.second);
         grainpacking::putHistory(w, h);
     }
+    // To rank 0 only: the others send, and hold no more than their part.
+    std::vector<std::vector<char>> toEach(size_t(mRanks.ranks()));
+    toEach[0].swap(mine);
     std::vector<char> all;
     std::vector<size_t> starts;
     const Stopwatch watch;
-    mRanks.allGather(mine, all, starts);
+    mRanks.allToAll(toEach, all, starts);
     mCounters.exchangeSeconds += watch.seconds();
+    if (mRanks.rank() != 0) return World();
 
     World out = local;
     out.grains.clear();

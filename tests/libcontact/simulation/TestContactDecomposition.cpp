@@ -466,7 +466,7 @@ namespace {
 
 struct GhostOutcome
 {
-    std::string state;           ///< the whole world gathered from the ranks, as bytes
+    std::string state;           ///< the whole world gathered from the ranks, as bytes (rank 0)
     GhostCounters counters;
     bool everOwned = false;      ///< owned some grain at some step
     int mostHeld = 0;            ///< most grains (owned + ghosts) held at once
@@ -517,7 +517,7 @@ World droppedSpheres3() { return droppedSpheres(3); }
 } // namespace
 
 // The 24 thrown spheres split by space on 1 to 4 thread-ranks: the world gathered from the
-// ranks (every grain, force, boundary reaction, shear history, energy) is the single process's,
+// ranks to rank 0 (every grain, force, boundary reaction, shear history, energy) is the single process's,
 // byte for byte. The run is checked to test what it is meant to: every rank owns grains and
 // holds ghosts, grains migrate with their contact histories, and ghost states travel.
 TEST(GhostDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
@@ -530,7 +530,9 @@ TEST(GhostDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
         long long migrated = 0, histories = 0;
         for (int r = 0; r < ranks; ++r) {
             const GhostOutcome& o = outcomes[size_t(r)];
-            EXPECT_TRUE(o.state == serial) << ranks << " ranks: rank " << r << " differs";
+            if (r == 0) {
+                EXPECT_TRUE(o.state == serial) << ranks << " ranks differ";
+            }
             EXPECT_TRUE(o.everOwned) << ranks << " ranks: rank " << r;
             migrated += o.counters.grainsMigrated;
             histories += o.counters.historiesMigrated;
@@ -561,10 +563,8 @@ TEST(GhostDecomposition, ARankWithoutGrains)
     const std::string serial = serialState(droppedSpheres3, steps);
     const std::vector<GhostOutcome> outcomes = runGhostsOnThreads(4, droppedSpheres3, steps);
     int idle = 0;
-    for (const GhostOutcome& o : outcomes) {
-        EXPECT_TRUE(o.state == serial);
-        idle += o.counters.owned == 0;
-    }
+    EXPECT_TRUE(outcomes[0].state == serial);
+    for (const GhostOutcome& o : outcomes) idle += o.counters.owned == 0;
     EXPECT_GE(idle, 1);
 }
 
@@ -579,7 +579,6 @@ TEST(GhostDecomposition, AGrainCrossingCarriesItsShearHistory)
     const std::vector<GhostOutcome> outcomes =
         runGhostsOnThreads(2, slidingPair, steps, 1e9);
     EXPECT_TRUE(outcomes[0].state == serial);
-    EXPECT_TRUE(outcomes[1].state == serial);
     EXPECT_EQ(outcomes[0].counters.rebalances, 1);  // the first draw only
     // Rank 1 (above the cut) received grain 0 and its floor history.
     EXPECT_EQ(outcomes[1].counters.grainsMigrated, 1);

@@ -44,6 +44,7 @@ struct GhostCounters
     long long redistributions = 0; ///< exchanges of grains and histories at list rebuilds
     long long rebalances = 0;      ///< redraws of the sub-domains
     long long grainsMigrated = 0;  ///< grains this rank received as owner from another rank
+    long long grainsEmigrated = 0; ///< grains this rank owned and handed to another rank
     long long historiesMigrated = 0;  ///< non-empty shear histories received from other ranks
     long long sumsGathered = 0;    ///< gatherSorted calls
     int owned = 0, ghosts = 0;     ///< at the last redistribution
@@ -67,6 +68,8 @@ public:
     explicit GhostDecomposition(RankGroup& ranks, double rebalanceAbove = 1.1);
 
     RankGroup& ranks() { return mRanks; }
+    int rank() const { return mRanks.rank(); }
+    int rankCount() const { return mRanks.ranks(); }
 
     /// Collective. @a world is the whole simulation, the same on every rank (built from the
     /// scene or a checkpoint); keep this rank's part of it: the grains whose centres lie in
@@ -99,8 +102,8 @@ public:
     std::vector<OrderedTerm> gatherSorted(const std::vector<OrderedTerm>& mine);
 
     /// Collective: the whole simulation as one process holds it (every grain in order, every
-    /// contact history including the empty ones of the list), on every rank: for checkpoints,
-    /// outputs and tests. @a local is this rank's world.
+    /// contact history including the empty ones of the list), on rank 0 (the others get an
+    /// empty world): for checkpoints, grains.csv and tests. @a local is this rank's world.
     World gatherWorld(const World& local);
 
     const WorkBisection& domains() const { return mDomains; }

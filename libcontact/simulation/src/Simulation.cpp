@@ -200,12 +200,12 @@ void Simulation::evaluateForces(double slipStep)
     if (mGhosts) {
         // Every rank rebuilds its list when one process would (some grain or boundary moved
         // more than half the skin), and grains change rank only then.
-        if (mGhosts->ranks().anyRank(mContacts.needsRebuild(w))) {
-            if (!mFreshlyDistributed) mGhosts->redistribute(w);
-            mContacts.markStale();  // the grains were renumbered
-        } else {
+        const bool rebuild = mGhosts->ranks().anyRank(mContacts.needsRebuild(w));
+        if (rebuild && !mFreshlyDistributed)
+            mGhosts->redistribute(w);
+        else  // (just distributed, a restart has stepped since: the ghosts have not)
             mGhosts->updateGhosts(w);
-        }
+        if (rebuild) mContacts.markStale();  // the grains were renumbered
         mFreshlyDistributed = false;
     }
     const int n = static_cast<int>(w.grains.size());

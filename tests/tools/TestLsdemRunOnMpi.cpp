@@ -1,6 +1,6 @@
-// lsdem-run under `mpirun --oversubscribe -n N` as a user runs it: one simulation with its
-// contacts split over N ranks, every rank stepping the same replicated state
-// (lsdem/simulation/ContactDecomposition.h), rank 0 writing the histories and checkpoints, each
+// lsdem-run under `mpirun --oversubscribe -n N` as a user runs it: one simulation split by
+// space over N ranks, each owning its sub-domain's grains with ghosts of its neighbours'
+// (lsdem/simulation/GhostDecomposition.h), rank 0 writing the histories and checkpoints, each
 // rank its piece of every ParaView frame. Every history, grains.csv and checkpoint must be the
 // single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, and across
 // a restart on another rank count; each frame is the single process's file, or a .pvtu whose

@@ -45,11 +45,12 @@ void printRunSummary(std::ostream& log, const RunResult& r)
         std::snprintf(split, sizeof split,
                       "split over %d ranks (rank 0's figures): sent %.3g bytes and received %.3g "
                       "per step, %.1f %% of the step time exchanging; %d grains owned and %d "
-                      "ghosts at the end, %lld grains migrated in and %lld out, %lld redraws of the "
-                      "sub-domains, work max/mean %.3g at the last\n",
+                      "ghosts at the end, %lld grains migrated in and %lld out, %lld redraws of "
+                      "the sub-domains, work max/mean %.3g at the last\n",
                       r.ranks, double(d.bytesSent) * perStep, double(d.bytesReceived) * perStep,
                       stepping > 0 ? 100.0 * (d.exchangeSeconds + d.packSeconds) / stepping : 0.0,
-                      d.owned, d.ghosts, d.grainsMigrated, d.grainsEmigrated, d.rebalances, d.lastImbalance);
+                      d.owned, d.ghosts, d.grainsMigrated, d.grainsEmigrated, d.rebalances,
+                      d.lastImbalance);
         log << split;
     }
 }

@@ -22,7 +22,12 @@ using grainpacking::Writer;
 constexpr long long kEvaluationsBetweenRedraws = 50;
 
 /// What a record in an exchange of grains holds.
-enum Tag : char { kOwnedGrain = 'O', kGhostGrain = 'G', kPairHistory = 'P', kBoundaryHistory = 'B' };
+enum Tag : char {
+    kOwnedGrain = 'O',
+    kGhostGrain = 'G',
+    kPairHistory = 'P',
+    kBoundaryHistory = 'B'
+};
 
 /// A grain as received by its new holder.
 struct Incoming
@@ -92,8 +97,17 @@ void GhostDecomposition::exchange(const std::vector<std::vector<char>>& toEach,
     for (int r = 0; r < mRanks.ranks(); ++r) {
         if (r == me) continue;
         mCounters.bytesSent += static_cast<long long>(toEach[size_t(r)].size());
-        mCounters.bytesReceived += static_cast<long long>(starts[size_t(r) + 1] - starts[size_t(r)]);
+        mCounters.bytesReceived +=
+            static_cast<long long>(starts[size_t(r) + 1] - starts[size_t(r)]);
     }
+}
+
+bool GhostDecomposition::anyRank(bool mine)
+{
+    const Stopwatch watch;
+    const bool any = mRanks.anyRank(mine);
+    mCounters.exchangeSeconds += watch.seconds();
+    return any;
 }
 
 std::vector<OrderedTerm> GhostDecomposition::gatherSorted(const std::vector<OrderedTerm>& mine)
@@ -186,7 +200,8 @@ void GhostDecomposition::maybeRebalance(const World& world)
     mLastRedraw = mEvaluations;
     ++mCounters.rebalances;
     std::fill(work.begin(), work.end(), 0.0);
-    for (size_t g = 0; g < points.size(); ++g) work[size_t(mDomains.partOf(points[g]))] += weights[g];
+    for (size_t g = 0; g < points.size(); ++g)
+        work[size_t(mDomains.partOf(points[g]))] += weights[g];
     mCounters.lastImbalance = imbalanceOf(work);
     // The best this split does with the work it was drawn for: work that cannot be split
     // finer (few grains, one heavy grain) must not redraw it at every rebuild.

@@ -2,11 +2,8 @@
 
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/simulation/BroadPhase.h"
-#include "lsdem/simulation/ContactDecomposition.h"
 #include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/ls/Error.h"
-
-#include "SlotResults.h"
 
 #include <tbb/parallel_for.h>
 
@@ -14,6 +11,7 @@
 
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -63,6 +61,20 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
     return damped;
 }
 
+/// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,
+/// which added to a sum that starts at +0 changes nothing.
+bool isEmpty(const PairForces& r)
+{
+    if (r.contactNodes != 0 || r.pointForcesOnFirst != 0) return false;
+    static const double zeros[9] = {};
+    const auto zero = [](const double* p, size_t n) {
+        return std::memcmp(p, zeros, n * sizeof(double)) == 0;
+    };
+    return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
+           zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
+           zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
+}
+
 [[noreturn]] void throwNonFinite(const std::string& grain, long long step, double time)
 {
     std::ostringstream s;
@@ -89,9 +101,9 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
 } // namespace
 
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
-                       bool recordContactForces, ContactDecomposition* decomposition)
+                       bool recordContactForces)
     : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
-      mStabilityLimit(std::numeric_limits<double>::infinity()), mDecomposition(decomposition)
+      mStabilityLimit(std::numeric_limits<double>::infinity())
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -127,6 +139,12 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
     }
 }
 
+double Simulation::exchangedSeconds() const
+{
+    if (!mGhosts) return 0.0;
+    return mGhosts->counters().exchangeSeconds + mGhosts->counters().packSeconds;
+}
+
 bool Simulation::integratesGrain(size_t i) const
 {
     return !mGhosts || mGhosts->owned()[i];
@@ -136,6 +154,7 @@ void Simulation::step()
 {
     const double dt = mDt;
     const auto integrateStart = SteadyClock::now();
+    const double integrateExchanged = exchangedSeconds();
     // Servo walls choose this step's velocity from the state it starts from.
     updateServoVelocities(mWorld, dt);
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
@@ -169,11 +188,13 @@ void Simulation::step()
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
     mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
     ++mWorld.step;
-    mCounters.integrateSeconds += secondsSince(integrateStart);
+    mCounters.integrateSeconds +=
+        secondsSince(integrateStart) - (exchangedSeconds() - integrateExchanged);
 
     evaluateForces(dt);
 
     const auto kickStart = SteadyClock::now();
+    const double kickExchanged = exchangedSeconds();
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         Grain& g = mWorld.grains[i];
         if (g.isFree() && integratesGrain(i)) kick(g.body, g.force, g.torque, 0.5 * dt);
@@ -190,17 +211,18 @@ void Simulation::step()
     mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
     ++mCounters.steps;
     checkStability();
-    mCounters.integrateSeconds += secondsSince(kickStart);
+    mCounters.integrateSeconds += secondsSince(kickStart) - (exchangedSeconds() - kickExchanged);
 }
 
 void Simulation::evaluateForces(double slipStep)
 {
     World& w = mWorld;
     const auto broadStart = SteadyClock::now();
+    const double broadExchanged = exchangedSeconds();
     if (mGhosts) {
         // Every rank rebuilds its list when one process would (some grain or boundary moved
         // more than half the skin), and grains change rank only then.
-        const bool rebuild = mGhosts->ranks().anyRank(mContacts.needsRebuild(w));
+        const bool rebuild = mGhosts->anyRank(mContacts.needsRebuild(w));
         if (rebuild && !mFreshlyDistributed)
             mGhosts->redistribute(w);
         else  // (just distributed, a restart has stepped since: the ghosts have not)
@@ -221,10 +243,7 @@ void Simulation::evaluateForces(double slipStep)
     });
     mBoundaryViews.clear();
     for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));
-    // Split over ranks, this rank evaluates its own slots and receives the others' after.
-    const std::vector<char>* mine =
-        mDecomposition ? &mDecomposition->assign(w, mContacts) : nullptr;
-    mCounters.broadSeconds += secondsSince(broadStart);
+    mCounters.broadSeconds += secondsSince(broadStart) - (exchangedSeconds() - broadExchanged);
     mCounters.candidatePairs += static_cast<long long>(pairSlots);
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
 
@@ -234,7 +253,6 @@ void Simulation::evaluateForces(double slipStep)
     const std::vector<ContactGrain>& views = mViews;
     const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
-        if (mine && !(*mine)[k]) return;
         ContactSlot& s = slots[k];
         ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
         s.stats = NodeCheckStats();
@@ -260,11 +278,11 @@ void Simulation::evaluateForces(double slipStep)
         }
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);
-    if (mDecomposition) mDecomposition->share(mContacts, record);
 
     // Sum each grain's slots in list order, grains in parallel: the same numbers whatever the
     // thread count (and the same as one pass over the slots in order).
     const auto reduceStart = SteadyClock::now();
+    const double reduceExchanged = exchangedSeconds();
     mGrainStiffness.resize(size_t(n));
     tbb::parallel_for(0, n, [&](int i) {
         if (!integratesGrain(size_t(i))) return;  // a ghost's sum is its owner's
@@ -326,7 +344,8 @@ void Simulation::evaluateForces(double slipStep)
         sumBoundaryReactions();
         mGhosts->recordWork(mContacts);
     }
-    mCounters.integrateSeconds += secondsSince(reduceStart);
+    mCounters.integrateSeconds +=
+        secondsSince(reduceStart) - (exchangedSeconds() - reduceExchanged);
 }
 
 void Simulation::checkStability()
@@ -413,7 +432,7 @@ void Simulation::sumBoundaryReactions()
     for (size_t k = mContacts.pairSlotCount(); k < slots.size(); ++k) {
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
-        if (slotresults::isEmpty(r)) continue;  // adds nothing
+        if (isEmpty(r)) continue;  // adds nothing
         OrderedTerm t;
         t.key[0] = ids[size_t(s.first)];
         t.key[1] = s.boundary;

@@ -98,6 +98,9 @@ public:
     /// Grains in the whole simulation.
     int globalCount() const { return mGlobalCount; }
 
+    /// Collective: whether @a mine is true on any rank (RankGroup::anyRank, timed).
+    bool anyRank(bool mine);
+
     /// Collective: every rank's @a mine, sorted by key (every key must be on one rank only).
     std::vector<OrderedTerm> gatherSorted(const std::vector<OrderedTerm>& mine);
 

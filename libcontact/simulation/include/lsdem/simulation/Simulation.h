@@ -14,7 +14,6 @@
 
 namespace lsdem {
 
-class ContactDecomposition;
 class GhostDecomposition;
 
 /// Energies now (force·length). Dissipated energy is what the balance leaves over:
@@ -51,12 +50,8 @@ public:
     /// the current state are computed (a fresh start); a restart passes false because the
     /// grains' forces come from the checkpoint. @a recordContactForces: as
     /// setRecordContactForces, from the initial evaluation on (so a first frame has them).
-    /// @a decomposition (null: this process evaluates every contact): the contacts are split
-    /// over its ranks, each of which steps its own copy of the same world in step with the
-    /// others (ContactDecomposition.h); it must outlive the simulation, which is then not to
-    /// be copied.
     Simulation(World world, double dt, bool evaluateInitialForces = true,
-               bool recordContactForces = false, ContactDecomposition* decomposition = nullptr);
+               bool recordContactForces = false);
     /// Split by space over the ranks of @a ghosts (GhostDecomposition.h): @a world is the
     /// whole simulation, the same on every rank; this rank keeps its owned grains and their
     /// ghosts, and world() is that part (grains in global order; globalIds() maps them).
@@ -93,8 +88,6 @@ public:
     std::vector<int> grainContactCounts() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
-    /// The split of the contacts over ranks given at construction (null: none).
-    const ContactDecomposition* decomposition() const { return mDecomposition; }
     /// The split by space given at construction (null: none).
     const GhostDecomposition* ghosts() const { return mGhosts; }
 
@@ -110,6 +103,9 @@ private:
     /// Split by space: the first grain (global order) whose state or stability fails on any
     /// rank throws, on every rank.
     void checkStabilityOverRanks(const std::vector<double>& limits);
+    /// Split by space: the time spent so far exchanging with the other ranks (kept out of the
+    /// broad phase and integration times).
+    double exchangedSeconds() const;
     /// Whether grain @a i of this world is integrated here (not a ghost).
     bool integratesGrain(size_t i) const;
 
@@ -124,7 +120,6 @@ private:
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
     StepCounters mCounters;
-    ContactDecomposition* mDecomposition = nullptr;
     GhostDecomposition* mGhosts = nullptr;
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated

@@ -1,11 +1,11 @@
-// One simulation split over ranks without MPI: the sub-domains of the recursive bisection
-// against hand-computed cuts and balance bounds, and the whole decomposition run on "ranks"
-// that are threads of this process (a RankGroup whose all-gather is a barrier and a shared
-// buffer), each stepping its own copy of the world: every copy must end bit for bit where one
-// process ends, for 1 to 4 ranks, with a rank that owns nothing, and with shear history that
-// must travel between ranks as grains cross sub-domains.
+// One simulation split by space over ranks without MPI: the sub-domains of the recursive
+// bisection against hand-computed cuts and balance bounds, and the whole decomposition
+// (GhostDecomposition.h) run on "ranks" that are threads of this process (a RankGroup whose
+// collectives are a barrier and shared buffers), each owning its sub-domain's grains with
+// ghosts of its neighbours': the world gathered from them must be bit for bit where one
+// process ends, for 1 to 4 ranks, with a rank that owns nothing, across a restart, and with
+// shear history that must travel between ranks as grains cross sub-domains.
 #include "lsdem/scene/BuildWorld.h"
-#include "lsdem/simulation/ContactDecomposition.h"
 #include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/WorkBisection.h"
@@ -45,7 +45,8 @@ std::vector<double> partWeights(const WorkBisection& b, const std::vector<Vec3>&
 } // namespace
 
 // 100 points of equal weight on a line at x = 0..99 in 4 parts: the cuts fall at the quartiles
-// (between 24 and 25, 49 and 50, 74 and 75), and the parts are numbered along the line.
+// (between 24 and 25, 49 and 50, 74 and 75), and the parts are numbered along the line; the
+// parts within a reach of a point are those the cube around it meets.
 TEST(WorkBisection, EqualWeightsOnALineCutAtTheQuartiles)
 {
     std::vector<Vec3> points;
@@ -57,6 +58,14 @@ TEST(WorkBisection, EqualWeightsOnALineCutAtTheQuartiles)
     EXPECT_EQ(b.partOf(Vec3(-1e9, 0, 0)), 0);
     EXPECT_EQ(b.partOf(Vec3(1e9, 0, 0)), 3);
     EXPECT_EQ(b.partOf(Vec3(24.6, 5, 5)), 1);
+    // The parts within reach (the ghosts' test): across the cut at 24.5 or not.
+    std::vector<int> near;
+    b.partsNear(Vec3(24.6, 0, 0), 0.5, near);
+    EXPECT_EQ(near, (std::vector<int>{0, 1}));
+    b.partsNear(Vec3(24.6, 0, 0), 0.05, near);
+    EXPECT_EQ(near, (std::vector<int>{1}));
+    b.partsNear(Vec3(50, 0, 0), 30.0, near);
+    EXPECT_EQ(near, (std::vector<int>{0, 1, 2, 3}));
 }
 
 // Random points with random weights: every part's work is the mean within what one cut can
@@ -128,7 +137,7 @@ TEST(WorkBisection, MorePartsThanPointsLeavesPartsEmpty)
 }
 
 // ---------------------------------------------------------------------------------------------
-// The decomposition on threads.
+// Ranks as threads.
 // ---------------------------------------------------------------------------------------------
 
 namespace {
@@ -350,113 +359,7 @@ std::string stateBytes(const World& w, const Energies& energies, long long nodes
     return out;
 }
 
-std::string stateBytes(const Simulation& sim)
-{
-    return stateBytes(sim.world(), sim.energies(), sim.contactNodes(), sim.contactForces());
-}
-
-struct RankOutcome
-{
-    std::string state;
-    DecompositionCounters counters;
-    std::set<int> ownersSeen;  ///< ranks that owned some grain at some step
-    int ownerChanges = 0;      ///< grains that changed rank from one step to the next
-};
-
-/// Step @a count spheres @a steps times on @a ranks thread-ranks; one outcome per rank.
-std::vector<RankOutcome> runOnThreads(int ranks, int count, int steps)
-{
-    ThreadJob job(ranks);
-    std::vector<RankOutcome> outcomes(static_cast<size_t>(ranks));
-    std::vector<std::thread> threads;
-    for (int r = 0; r < ranks; ++r)
-        threads.emplace_back([&, r] {
-            ThreadRankGroup group(job, r);
-            ContactDecomposition split(group);
-            World world = droppedSpheres(count);
-            const double dt = automaticTimeStep(world, 0.2);
-            Simulation sim(std::move(world), dt, true, true, &split);
-            RankOutcome& o = outcomes[size_t(r)];
-            std::vector<int> before = split.grainOwners();
-            for (int k = 0; k < steps; ++k) {
-                sim.step();
-                const std::vector<int>& now = split.grainOwners();
-                for (size_t g = 0; g < now.size(); ++g) {
-                    o.ownersSeen.insert(now[g]);
-                    o.ownerChanges += now[g] != before[g];
-                }
-                before = now;
-            }
-            o.state = stateBytes(sim);
-            o.counters = split.counters();
-        });
-    for (std::thread& t : threads) t.join();
-    return outcomes;
-}
-
-Simulation oneProcess(int count, bool recordForces)
-{
-    World world = droppedSpheres(count);
-    const double dt = automaticTimeStep(world, 0.2);
-    return Simulation(std::move(world), dt, true, recordForces);
-}
-
-std::string runInOneProcess(int count, int steps)
-{
-    Simulation sim = oneProcess(count, true);
-    for (int k = 0; k < steps; ++k) sim.step();
-    return stateBytes(sim);
-}
-
 } // namespace
-
-// 24 spheres thrown about a box, 1500 steps: on 1, 2, 3 and 4 thread-ranks every rank's world
-// (grains, forces, boundary reactions, every shear history, energies, recorded point forces)
-// is the single process's, byte for byte. The run is checked to do what it is meant to test:
-// grains change rank as they cross sub-domains, every rank owns grains, results cross between
-// ranks (bytes received), and contacts carry shear.
-TEST(ContactDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
-{
-    const int count = 24, steps = 1500;
-    const std::string serial = runInOneProcess(count, steps);
-    {
-        Simulation sim = oneProcess(count, false);
-        std::set<std::pair<int, int>> shearedPairs, shearedOnWalls;
-        for (int k = 0; k < steps; ++k) {
-            sim.step();
-            for (const auto& [key, h] : sim.world().pairHistory)
-                if (!h.empty()) shearedPairs.insert(key);
-            for (const auto& [key, h] : sim.world().boundaryHistory)
-                if (!h.empty()) shearedOnWalls.insert(key);
-        }
-        std::cout << "[ measured ] " << shearedPairs.size() << " grain pairs and "
-                  << shearedOnWalls.size() << " grain-wall contacts carried shear\n";
-        EXPECT_GE(shearedPairs.size(), 10u);
-        EXPECT_GE(shearedOnWalls.size(), 10u);
-    }
-    for (int ranks : {1, 2, 3, 4}) {
-        const std::vector<RankOutcome> outcomes = runOnThreads(ranks, count, steps);
-        for (int r = 0; r < ranks; ++r) {
-            const RankOutcome& o = outcomes[size_t(r)];
-            EXPECT_TRUE(o.state == serial) << ranks << " ranks: rank " << r << " differs";
-            EXPECT_EQ(o.ownersSeen.size(), size_t(ranks)) << ranks << " ranks";
-            if (ranks > 1) {
-                EXPECT_GT(o.counters.bytesReceived, 0) << ranks << " ranks";
-                EXPECT_GT(o.ownerChanges, 0) << ranks << " ranks: no grain crossed";
-            }
-        }
-    }
-}
-
-// 3 spheres on 4 ranks: at every step some rank owns no grain (and evaluates nothing), and
-// every rank still ends with the whole world, bit for bit.
-TEST(ContactDecomposition, ARankWithoutGrainsKeepsTheWholeWorld)
-{
-    const int count = 3, steps = 400;
-    const std::string serial = runInOneProcess(count, steps);
-    const std::vector<RankOutcome> outcomes = runOnThreads(4, count, steps);
-    for (const RankOutcome& o : outcomes) EXPECT_TRUE(o.state == serial);
-}
 
 // ---------------------------------------------------------------------------------------------
 // Split by space: owned grains and ghosts (GhostDecomposition.h), on threads.
@@ -518,8 +421,8 @@ World droppedSpheres3() { return droppedSpheres(3); }
 } // namespace
 
 // The 24 thrown spheres split by space on 1 to 4 thread-ranks: the world gathered from the
-// ranks to rank 0 (every grain, force, boundary reaction, shear history, energy) is the single process's,
-// byte for byte. The run is checked to test what it is meant to: every rank owns grains and
+// ranks to rank 0 (every grain, force, boundary reaction, shear history, energy) is the single
+// process's, byte for byte. The run is checked to test what it is meant to: every rank owns grains and
 // holds ghosts, grains migrate with their contact histories, and ghost states travel.
 TEST(GhostDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
 {

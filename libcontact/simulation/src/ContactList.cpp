@@ -41,8 +41,30 @@ bool ContactList::update(World& world)
     const bool stale = needsRebuild(world);
     // Built and only moved since: the same grains and assets, so what each pair learned about
     // its node blocks still applies.
-    if (stale) rebuild(world, mBuilt && !sizesChanged);
+    if (stale) rebuild(world, mRenumbered || (mBuilt && !sizesChanged));
+    mRenumbered = false;
     return stale;
+}
+
+void ContactList::renumber(const std::vector<int>& newIndex)
+{
+    // The order is kept, so the pairs that remain stay sorted; the rebuild takes their node
+    // blocks (valid for the same two grains) and points them into the world's new histories.
+    size_t kept = 0;
+    for (size_t k = 0; k < mPairSlots; ++k) {
+        ContactSlot& s = mSlots[k];
+        const int first = newIndex[size_t(s.first)], second = newIndex[size_t(s.second)];
+        if (first < 0 || second < 0) continue;
+        s.first = first;
+        s.second = second;
+        s.pairHistory = nullptr;
+        if (kept != k) mSlots[kept] = std::move(s);
+        ++kept;
+    }
+    mSlots.resize(kept);
+    mPairSlots = kept;
+    mBuilt = false;
+    mRenumbered = true;
 }
 
 double ContactList::skinFor(const World& w) const

@@ -337,6 +337,7 @@ void GhostDecomposition::redistribute(World& world)
     // list's part, in the same order.
     std::sort(grains.begin(), grains.end(),
               [](const Incoming& a, const Incoming& b) { return a.id < b.id; });
+    const std::vector<int> previous = mGlobal;
     const size_t n = grains.size();
     world.grains.clear();
     world.grains.reserve(n);
@@ -362,6 +363,8 @@ void GhostDecomposition::redistribute(World& world)
         else
             mReceiveGhosts[size_t(g.owner)].push_back(static_cast<int>(i));
     }
+    mRenumbering.resize(previous.size());
+    for (size_t i = 0; i < previous.size(); ++i) mRenumbering[i] = localOf(previous[i]);
     world.pairHistory.clear();
     for (IncomingPair& p : pairs) {
         const int a = localOf(p.first), b = localOf(p.second);

@@ -223,11 +223,13 @@ void Simulation::evaluateForces(double slipStep)
         // Every rank rebuilds its list when one process would (some grain or boundary moved
         // more than half the skin), and grains change rank only then.
         const bool rebuild = mGhosts->anyRank(mContacts.needsRebuild(w));
-        if (rebuild && !mFreshlyDistributed)
+        if (rebuild && !mFreshlyDistributed) {
             mGhosts->redistribute(w);
-        else  // (just distributed, a restart has stepped since: the ghosts have not)
+            mContacts.renumber(mGhosts->renumbering());
+        } else {  // (just distributed, a restart has stepped since: the ghosts have not)
             mGhosts->updateGhosts(w);
-        if (rebuild) mContacts.markStale();  // the grains were renumbered
+            if (rebuild) mContacts.markStale();
+        }
         mFreshlyDistributed = false;
     }
     const int n = static_cast<int>(w.grains.size());

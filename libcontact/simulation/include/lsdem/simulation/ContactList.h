@@ -74,6 +74,10 @@ public:
     bool update(World& world);
     /// Force a rebuild at the next update (the world was changed from outside).
     void markStale() { mBuilt = false; }
+    /// The world's grains were renumbered (a rank's grains after a migration): grain i is now
+    /// @a newIndex[i] (-1: gone), in the same order. Rebuild at the next update, the pairs
+    /// still on the list keeping their node blocks (CandidateBlocks.h).
+    void renumber(const std::vector<int>& newIndex);
 
     std::vector<ContactSlot>& slots() { return mSlots; }
     const std::vector<ContactSlot>& slots() const { return mSlots; }
@@ -96,6 +100,7 @@ private:
     const std::vector<char>* mOwned = nullptr;
     double mSkin = 0.0;
     bool mBuilt = false;
+    bool mRenumbered = false;  ///< the next rebuild keeps the pairs' knowledge anyway
     long long mRebuilds = 0;
     std::vector<Vec3> mGrainPositionsAtBuild, mBoundaryDisplacementsAtBuild;
     std::vector<ContactSlot> mSlots;  ///< grain pairs (sorted), then grain–boundary (sorted)

@@ -80,8 +80,11 @@ public:
     /// Collective, when the contact list is about to be rebuilt: grains whose centres left
     /// this rank's sub-domain go to their new owner with their contact histories, the
     /// sub-domains are redrawn if the work drifted, and the ghost sets are drawn anew. The
-    /// world's grains are renumbered (its contact list must be rebuilt).
+    /// world's grains are renumbered (its contact list must be rebuilt): renumbering() says how.
     void redistribute(World& world);
+    /// After redistribute(): the new index of each grain of this rank's world before it (-1:
+    /// no longer here).
+    const std::vector<int>& renumbering() const { return mRenumbering; }
 
     /// Collective, before an evaluation without a rebuild: every ghost takes its owner's
     /// pose and velocities.
@@ -131,6 +134,7 @@ private:
     int mGlobalCount = 0;
     long long mEvaluations = 0, mLastRedraw = 0;
     std::vector<int> mGlobal;
+    std::vector<int> mRenumbering;
     std::vector<char> mOwned;
     std::vector<double> mWork;  ///< per grain of this rank's world (owned ones meaningful)
     std::vector<std::vector<int>> mSendGhosts;     ///< per rank: our grains it holds as ghosts

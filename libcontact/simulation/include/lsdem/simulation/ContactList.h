@@ -45,10 +45,13 @@ public:
     explicit ContactList(double skinFraction = 0.25) : mSkinFraction(skinFraction) {}
     /// A copy (of a Simulation, say) starts unbuilt: the slots point into the shear
     /// histories of the world they were built for, not into the copy's.
-    ContactList(const ContactList& other) : mSkinFraction(other.mSkinFraction) {}
+    ContactList(const ContactList& other)
+        : mSkinFraction(other.mSkinFraction), mFixedSkin(other.mFixedSkin), mOwned(other.mOwned)
+    {
+    }
     ContactList& operator=(const ContactList& other)
     {
-        *this = ContactList(other.mSkinFraction);
+        *this = ContactList(other);
         return *this;
     }
     /// The skin the list would choose for @a world (a fraction of its median bounding radius).

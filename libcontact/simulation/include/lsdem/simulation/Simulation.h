@@ -76,7 +76,8 @@ public:
     Energies energies() const;
     const StepCounters& counters() const { return mCounters; }
 
-    /// Keep the point forces of the last evaluation (for VTK frames); off by default.
+    /// Keep the point forces of the last evaluation (for VTK frames); off by default. Split by
+    /// space, those on this rank's owned grains, by global grain index.
     void setRecordContactForces(bool on) { mRecordForces = on; }
     const std::vector<ContactForceRecord>& contactForces() const { return mForces; }
     /// Penetrating nodes at the last evaluation (collective when split by space).
@@ -85,6 +86,7 @@ public:
     double elasticEnergy() const { return mElastic; }
     /// How many other grains each grain touched (a penetrating node either way) at the last
     /// evaluation, by grain index: the coordination of granular mechanics (walls not counted).
+    /// Split by space: over this rank's contacts, by the index of its world (not collective).
     std::vector<int> grainContactCounts() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }

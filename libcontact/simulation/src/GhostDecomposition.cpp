@@ -102,14 +102,6 @@ void GhostDecomposition::exchange(const std::vector<std::vector<char>>& toEach,
     }
 }
 
-bool GhostDecomposition::anyRank(bool mine)
-{
-    const Stopwatch watch;
-    const bool any = mRanks.anyRank(mine);
-    mCounters.exchangeSeconds += watch.seconds();
-    return any;
-}
-
 std::vector<OrderedTerm> GhostDecomposition::gatherSorted(const std::vector<OrderedTerm>& mine)
 {
     std::vector<char> bytes(mine.size() * sizeof(OrderedTerm));
@@ -384,7 +376,7 @@ void GhostDecomposition::redistribute(World& world)
     ++mCounters.redistributions;
 }
 
-void GhostDecomposition::updateGhosts(World& world)
+bool GhostDecomposition::updateGhosts(World& world, bool rebuildHere)
 {
     const Stopwatch packing;
     const int ranks = mRanks.ranks();
@@ -393,13 +385,16 @@ void GhostDecomposition::updateGhosts(World& world)
         mToEach[size_t(r)].clear();
         Writer w(mToEach[size_t(r)]);
         for (int i : mSendGhosts[size_t(r)]) grainpacking::putState(w, world.grains[size_t(i)]);
+        w.put(static_cast<char>(rebuildHere));  // the vote, last
     }
     double packSeconds = packing.seconds();
     exchange(mToEach, mReceived, mStarts);
     const Stopwatch unpacking;
+    bool rebuild = false;
     for (int r = 0; r < ranks; ++r) {
         Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
         for (int i : mReceiveGhosts[size_t(r)]) grainpacking::getState(in, world.grains[size_t(i)]);
+        rebuild |= in.get<char>() != 0;
         if (!in.done())
             throw std::runtime_error("GhostDecomposition: rank " + std::to_string(r) +
                                      " sent more ghost states than expected");
@@ -407,6 +402,7 @@ void GhostDecomposition::updateGhosts(World& world)
     packSeconds += unpacking.seconds();
     mCounters.packSeconds += packSeconds;
     ++mCounters.ghostUpdates;
+    return rebuild;
 }
 
 void GhostDecomposition::recordWork(const ContactList& contacts)

@@ -222,13 +222,14 @@ void Simulation::evaluateForces(double slipStep)
     if (mGhosts) {
         // Every rank rebuilds its list when one process would (some grain or boundary moved
         // more than half the skin), and grains change rank only then.
-        const bool rebuild = mGhosts->anyRank(mContacts.needsRebuild(w));
-        if (rebuild && !mFreshlyDistributed) {
+        // (Just distributed, the list is built anyway; a restart has stepped since, and the
+        // ghosts must follow. Ghosts' own moves are their owners' to vote on.)
+        const bool rebuild = mGhosts->updateGhosts(w, mContacts.needsRebuild(w));
+        if (mFreshlyDistributed) {
+            mContacts.markStale();
+        } else if (rebuild) {
             mGhosts->redistribute(w);
             mContacts.renumber(mGhosts->renumbering());
-        } else {  // (just distributed, a restart has stepped since: the ghosts have not)
-            mGhosts->updateGhosts(w);
-            if (rebuild) mContacts.markStale();
         }
         mFreshlyDistributed = false;
     }

@@ -86,9 +86,10 @@ public:
     /// no longer here).
     const std::vector<int>& renumbering() const { return mRenumbering; }
 
-    /// Collective, before an evaluation without a rebuild: every ghost takes its owner's
-    /// pose and velocities.
-    void updateGhosts(World& world);
+    /// Collective, before an evaluation: every ghost takes its owner's pose and velocities;
+    /// and the vote on a rebuild of the contact lists, carried along (one exchange a step):
+    /// @return whether @a rebuildHere is true on any rank.
+    bool updateGhosts(World& world, bool rebuildHere = false);
 
     /// After an evaluation: the work of each owned grain (1 + the node checks of the contacts
     /// it is the first grain of), for the next balance.
@@ -100,9 +101,6 @@ public:
     const std::vector<int>& globalIds() const { return mGlobal; }
     /// Grains in the whole simulation.
     int globalCount() const { return mGlobalCount; }
-
-    /// Collective: whether @a mine is true on any rank (RankGroup::anyRank, timed).
-    bool anyRank(bool mine);
 
     /// Collective: every rank's @a mine, sorted by key (every key must be on one rank only).
     std::vector<OrderedTerm> gatherSorted(const std::vector<OrderedTerm>& mine);

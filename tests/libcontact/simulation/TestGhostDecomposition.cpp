@@ -281,9 +281,9 @@ Scene sphereBox()
 /// @a count spheres (up to 4 × 3 × 3) dropped with random velocities and spins into the box:
 /// within a few hundred steps they hit the walls, the floor and each other, and move across
 /// the box (so across the sub-domains).
-World droppedSpheres(int count)
+/// @a count spheres (up to 4 × 3 × 3) thrown into the box of @a s.
+World throwSpheres(Scene s, int count)
 {
-    Scene s = sphereBox();
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     for (int i = 0; i < count; ++i) {
@@ -296,6 +296,29 @@ World droppedSpheres(int count)
     }
     std::vector<std::string> warnings;
     return buildWorld(s, warnings);
+}
+
+World droppedSpheres(int count)
+{
+    return throwSpheres(sphereBox(), count);
+}
+
+/// The thrown spheres with the wall at x = 11 a servo keeping a stress (it moves by the sum of
+/// every grain's force on it), and one sphere prescribed to plough along +x with a spin (its
+/// work is summed over the grains).
+World servoAndPrescribed()
+{
+    Scene s = sphereBox();
+    StressServo& servo = s.boundaries[2].servo;
+    servo.targetStress = 1e-3;
+    servo.area = 360.0;
+    servo.maxSpeed = 300.0;
+    World w = throwSpheres(s, 24);
+    Grain& plough = w.grains[5];
+    plough.motion = GrainMotion::Prescribed;
+    plough.body.velocity = Vec3(800.0, 0.0, 0.0);
+    plough.prescribedAngularVelocity = Vec3(0.0, 0.0, 40.0);
+    return w;
 }
 
 /// Two spheres on the floor under a strong gravity, sliding, then rolling along +x: the one
@@ -422,8 +445,8 @@ World droppedSpheres3() { return droppedSpheres(3); }
 
 // The 24 thrown spheres split by space on 1 to 4 thread-ranks: the world gathered from the
 // ranks to rank 0 (every grain, force, boundary reaction, shear history, energy) is the single
-// process's, byte for byte. The run is checked to test what it is meant to: every rank owns grains and
-// holds ghosts, grains migrate with their contact histories, and ghost states travel.
+// process's, byte for byte. The run is checked to test what it is meant to: every rank owns
+// grains and holds ghosts, grains migrate with their contact histories, and ghost states travel.
 TEST(GhostDecomposition, ThreadRanksEndBitIdenticalToOneProcess)
 {
     const int steps = 1500;
@@ -512,4 +535,23 @@ TEST(GhostDecomposition, ARestartContinuesAsOneProcess)
             runGhostsOnThreads(3, droppedSpheres24, 100, 1.1, &saved);
         EXPECT_TRUE(outcomes[0].state == expected) << "restarted at step " << at;
     }
+}
+
+// A servo wall and a prescribed grain on 3 thread-ranks: the wall's velocity comes from the
+// sum of every grain's force on it, and the energy balance from the prescribed grain's work,
+// both summed over the ranks in one process's order; the gathered world ends as one process's.
+TEST(GhostDecomposition, AServoWallAndAPrescribedGrainSeeTheWholeSums)
+{
+    const int steps = 1200;
+    World world = servoAndPrescribed();
+    const double dt = automaticTimeStep(world, 0.2);
+    Simulation serial(std::move(world), dt, true, false);
+    for (int k = 0; k < steps; ++k) serial.step();
+    // What the test relies on: the wall moved, and the prescribed grain did work.
+    EXPECT_NE(serial.world().boundaries[2].displacement.x(), 0.0);
+    EXPECT_NE(serial.world().energy.boundaryWork, 0.0);
+    const std::string expected =
+        stateBytes(serial.world(), serial.energies(), serial.contactNodes(), {});
+    const std::vector<GhostOutcome> outcomes = runGhostsOnThreads(3, servoAndPrescribed, steps);
+    EXPECT_TRUE(outcomes[0].state == expected);
 }

@@ -1,7 +1,7 @@
-// lsdem-run's ranks over MPI (RunRanks.h): the all-gather of slot results and the stop vote
-// on one communicator, the agreement on a failure on another (so a failing rank's vote can
-// never be mistaken for a step's exchange). The only file of lsdem-run that includes mpi.h;
-// MPI is called from the main thread only (MPI_THREAD_FUNNELED).
+// lsdem-run's ranks over MPI (RunRanks.h): the all-gather, the all-to-all of ghosts and
+// the stop vote on one communicator, the agreement on a failure on another (so a failing
+// rank's vote can never be mistaken for a step's exchange). The only file of lsdem-run that
+// includes mpi.h; MPI is called from the main thread only (MPI_THREAD_FUNNELED).
 #include "run/RunRanks.h"
 
 #include "lsdem/ls/Error.h"
@@ -58,6 +58,35 @@ public:
                        mDisplacements.data(), MPI_BYTE, mComm);
     }
 
+    void allToAll(const std::vector<std::vector<char>>& toEach, std::vector<char>& received,
+                  std::vector<size_t>& starts) override
+    {
+        mSendCounts.resize(size_t(mRanks));
+        mSendDisplacements.resize(size_t(mRanks));
+        mCounts.resize(size_t(mRanks));
+        mDisplacements.resize(size_t(mRanks));
+        mSendBytes.clear();
+        for (int r = 0; r < mRanks; ++r) {
+            const std::vector<char>& bytes = toEach[size_t(r)];
+            if (mSendBytes.size() + bytes.size() > size_t(INT_MAX))
+                throw std::length_error("a rank's ghosts exceed one MPI message (2 GiB)");
+            mSendDisplacements[size_t(r)] = static_cast<int>(mSendBytes.size());
+            mSendCounts[size_t(r)] = static_cast<int>(bytes.size());
+            mSendBytes.insert(mSendBytes.end(), bytes.begin(), bytes.end());
+        }
+        MPI_Alltoall(mSendCounts.data(), 1, MPI_INT, mCounts.data(), 1, MPI_INT, mComm);
+        starts.assign(size_t(mRanks) + 1, 0);
+        for (int r = 0; r < mRanks; ++r) {
+            starts[size_t(r) + 1] = starts[size_t(r)] + size_t(mCounts[size_t(r)]);
+            if (starts[size_t(r) + 1] > size_t(INT_MAX))
+                throw std::length_error("the ghosts and grains a rank receives exceed 2 GiB");
+            mDisplacements[size_t(r)] = static_cast<int>(starts[size_t(r)]);
+        }
+        received.resize(starts.back());
+        MPI_Alltoallv(mSendBytes.data(), mSendCounts.data(), mSendDisplacements.data(), MPI_BYTE,
+                      received.data(), mCounts.data(), mDisplacements.data(), MPI_BYTE, mComm);
+    }
+
     bool anyRank(bool mine) override
     {
         int in = mine ? 1 : 0, out = 0;
@@ -68,7 +97,8 @@ public:
 private:
     MPI_Comm mComm;
     int mRank = 0, mRanks = 1;
-    std::vector<int> mCounts, mDisplacements;
+    std::vector<int> mCounts, mDisplacements, mSendCounts, mSendDisplacements;
+    std::vector<char> mSendBytes;
 };
 
 class MpiRunRanks final : public RunRanks

@@ -1,7 +1,7 @@
 #include "FrameWriter.h"
 
 #include "lsdem/ls/Inspection.h"
-#include "lsdem/simulation/ContactDecomposition.h"
+#include "lsdem/simulation/GhostDecomposition.h"
 
 namespace lsdem {
 
@@ -20,27 +20,23 @@ void FrameWriter::write(const Simulation& sim)
     const World& w = sim.world();
     // Split over ranks, each rank writes the grains it owns (and the forces on them) as its
     // piece of a parallel frame; otherwise the whole frame is written here.
-    const ContactDecomposition* split = sim.decomposition();
-    const int rank = split ? split->rankGroup().rank() : 0;
-    auto mine = [&](int grain) {
-        if (!split) return true;
-        if (grain < 0) return rank == 0;  // on no grain: rank 0 keeps it
-        return split->grainOwners()[size_t(grain)] == rank;
-    };
+    const GhostDecomposition* split = sim.ghosts();
     std::vector<VtkGrain> grains;
     for (size_t i = 0; i < w.grains.size(); ++i) {
         const Grain& g = w.grains[i];
-        if (!mine(static_cast<int>(i))) continue;
-        grains.push_back({&mSurfaces.at(g.asset.get()), g.body.pose, static_cast<int>(i),
+        if (split && !split->owned()[i]) continue;  // a ghost: its owner writes it
+        const int id = split ? split->globalIds()[i] : static_cast<int>(i);
+        grains.push_back({&mSurfaces.at(g.asset.get()), g.body.pose, id,
                           g.motion == GrainMotion::Fixed ? Vec3::Zero() : g.body.velocity,
                           g.angularVelocity()});
     }
     std::vector<VtkForcePoint> forces;
+    // (Split over ranks, the simulation records the forces on owned grains only.)
     for (const ContactForceRecord& f : sim.contactForces())
-        if (mine(f.grain)) forces.push_back({f.point, f.force, f.grain});
+        forces.push_back({f.point, f.force, f.grain});
     if (split)
-        mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, rank,
-                                   split->rankGroup().ranks(), grains, forces);
+        mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, split->rank(),
+                                   split->rankCount(), grains, forces);
     else
         mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces);
 }

@@ -21,9 +21,9 @@ void printRunSummary(std::ostream& log, const RunResult& r)
     row("broad phase", c.broadSeconds);
     row("narrow phase + laws", c.narrowSeconds);
     row("integration", c.integrateSeconds);
-    const DecompositionCounters& d = r.decomposition;
+    const GhostCounters& d = r.decomposition;
     if (r.ranks > 1) {
-        row("exchange (all-gather)", d.exchangeSeconds);
+        row("exchange", d.exchangeSeconds);
         row("exchange (pack)", d.packSeconds);
     }
     row("output", r.outputSeconds);
@@ -39,18 +39,18 @@ void printRunSummary(std::ostream& log, const RunResult& r)
                       ? 100.0 * double(c.nodes.nodesCulled) / double(c.nodes.nodesConsidered)
                       : 0.0);
     log << line;
-    if (r.ranks > 1 && d.exchanges > 0) {
-        const double perExchange = 1.0 / double(d.exchanges);
+    if (r.ranks > 1 && c.steps > 0) {
+        const double perStep = 1.0 / steps;
         char split[600];
         std::snprintf(split, sizeof split,
                       "split over %d ranks (rank 0's figures): sent %.3g bytes and received %.3g "
-                      "per step, %.1f %% of the step time exchanging; %lld redraws of the "
-                      "sub-domains, %lld changes of rank by grains, work max/mean %.3g at "
-                      "the end\n",
-                      r.ranks, double(d.bytesSent) * perExchange,
-                      double(d.bytesReceived) * perExchange,
+                      "per step, %.1f %% of the step time exchanging; %d grains owned and %d "
+                      "ghosts at the end, %lld grains migrated in and %lld out, %lld redraws of "
+                      "the sub-domains, work max/mean %.3g at the last\n",
+                      r.ranks, double(d.bytesSent) * perStep, double(d.bytesReceived) * perStep,
                       stepping > 0 ? 100.0 * (d.exchangeSeconds + d.packSeconds) / stepping : 0.0,
-                      d.rebalances, d.grainsMoved, d.lastImbalance);
+                      d.owned, d.ghosts, d.grainsMigrated, d.grainsEmigrated, d.rebalances,
+                      d.lastImbalance);
         log << split;
     }
 }

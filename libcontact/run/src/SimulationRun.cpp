@@ -43,9 +43,19 @@ public:
     void fillResult(RunResult& result) const;
 
 private:
-    void writeTextOutputs();
+    /// The histories, and unless @a withGrains is false grains.csv. Split over ranks it is
+    /// collective (the grains are gathered to rank 0), unless @a withGrains is false.
+    void writeTextOutputs(bool withGrains = true);
+    /// The checkpoint and the text outputs (collective when split over ranks).
     void writeCheckpoint();
+    /// The whole world: the simulation's own, or split over ranks, gathered from them into
+    /// @a gathered on rank 0 (collective; the other ranks get no grains).
+    const World& wholeWorld(World& gathered);
+    void writeFiles(const World& whole);
     void printProgress();
+    /// Whether to rewrite the text outputs now (10 s after the last time; split over ranks,
+    /// decided together at history steps, since it gathers the grains).
+    bool flushDue(long long step);
 
     const RunOptions& mOptions;
     std::ostream& mLog;
@@ -55,8 +65,8 @@ private:
     Checkpoint mCheckpoint;
     std::string mOutDir, mCheckpointPath;
     std::vector<Vec3> mInitialPositions;
-    /// Split over ranks: this rank's share of the contacts; only rank 0 writes.
-    std::unique_ptr<ContactDecomposition> mDecomposition;
+    /// Split over ranks: this rank's part of the grains; only rank 0 writes.
+    std::unique_ptr<GhostDecomposition> mDecomposition;
     bool mWrites = true;
     std::unique_ptr<Simulation> mSim;
     std::unique_ptr<FrameWriter> mFrames;
@@ -87,7 +97,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (options.ranks) {
         // One rank evaluates every contact: nothing to split, nothing to exchange.
         if (options.ranks->ranks() > 1)
-            mDecomposition = std::make_unique<ContactDecomposition>(*options.ranks);
+            mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
         mWrites = options.ranks->isRoot();
     }
     std::vector<std::string> warnings;
@@ -95,7 +105,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
     if (mWrites)  // once the scene is good
         prepareOutputFolder(mOutDir, "choose a writable --out folder");
-    for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
+    if (mWrites)  // for grains.csv's displacements
+        for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
 
     double dt = mScene.timeStep.fixed;
     if (mRestart) {
@@ -108,8 +119,10 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     const OutputSpec& out = mScene.output;
     const bool recordForces = out.vtkPeriod > 0.0 && out.contactForces;
     const Stopwatch firstEvaluation;
-    mSim = std::make_unique<Simulation>(std::move(world), dt, !mRestart, recordForces,
-                                        mDecomposition.get());
+    mSim = mDecomposition ? std::make_unique<Simulation>(std::move(world), dt, !mRestart,
+                                                         recordForces, *mDecomposition)
+                          : std::make_unique<Simulation>(std::move(world), dt, !mRestart,
+                                                         recordForces);
     mCheckpoint.timeStep = dt;
 
     mPlannedSteps = plannedSteps(mScene, mSim->world(), dt);
@@ -142,20 +155,38 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     mLoop.restart();
 }
 
-void Run::writeTextOutputs()
+const World& Run::wholeWorld(World& gathered)
 {
-    if (!mWrites) return;
-    writeHistoryFiles(mOutDir, mSim->world(), mCheckpoint.record);
-    writeGrainsFile((fs::path(mOutDir) / "grains.csv").string(), mSim->world(),
-                    mInitialPositions);
+    if (!mDecomposition) return mSim->world();
+    gathered = mDecomposition->gatherWorld(mSim->world());
+    return gathered;
+}
+
+void Run::writeFiles(const World& whole)
+{
+    writeHistoryFiles(mOutDir, whole, mCheckpoint.record);
+    writeGrainsFile((fs::path(mOutDir) / "grains.csv").string(), whole, mInitialPositions);
+}
+
+void Run::writeTextOutputs(bool withGrains)
+{
+    if (!withGrains) {  // the histories need only what every rank holds
+        if (mWrites) writeHistoryFiles(mOutDir, mSim->world(), mCheckpoint.record);
+        return;
+    }
+    World gathered;
+    const World& whole = wholeWorld(gathered);
+    if (mWrites) writeFiles(whole);
 }
 
 void Run::writeCheckpoint()
 {
+    World gathered;
+    const World& whole = wholeWorld(gathered);
     if (!mWrites) return;
     if (mFrames) mCheckpoint.record.vtkFrameTimes = mFrames->series().frameTimes();
-    saveCheckpoint(mCheckpointPath, mSim->world(), mCheckpoint);
-    writeTextOutputs();
+    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
+    writeFiles(whole);
 }
 
 bool Run::stepToEnd()
@@ -164,7 +195,9 @@ bool Run::stepToEnd()
         try {
             mSim->step();
         } catch (const Error&) {
-            writeTextOutputs();  // the history up to the failure helps to see what went wrong
+            // The history up to the failure helps to see what went wrong (split over ranks,
+            // without grains.csv: gathering it would wait for ranks that may not have failed).
+            writeTextOutputs(!mDecomposition);
             throw;
         }
         const long long step = mSim->world().step;
@@ -181,7 +214,7 @@ bool Run::stepToEnd()
         if (stop || (mCheckpointEvery > 0 && step % mCheckpointEvery == 0)) {
             writeCheckpoint();
             mSinceFlush.restart();
-        } else if (mSinceFlush.seconds() > 10.0) {  // keep the history files fresh
+        } else if (flushDue(step)) {  // keep the history files fresh
             writeTextOutputs();
             mSinceFlush.restart();
         }
@@ -193,6 +226,13 @@ bool Run::stepToEnd()
         }
     }
     return false;
+}
+
+bool Run::flushDue(long long step)
+{
+    const bool due = mSinceFlush.seconds() > 10.0;
+    if (!mDecomposition) return due;
+    return step % mHistoryEvery == 0 && mOptions.ranks->anyRank(due);
 }
 
 void Run::printProgress()
@@ -224,7 +264,8 @@ void Run::finish()
 void Run::fillResult(RunResult& result) const
 {
     result.timeStep = mSim->timeStep();
-    result.grains = static_cast<int>(mSim->world().grains.size());
+    result.grains = mDecomposition ? mDecomposition->globalCount()
+                                   : static_cast<int>(mSim->world().grains.size());
     result.checkpointPath = mCheckpointPath;
     result.setupSeconds = mSetupSeconds;
     result.outputSeconds = mOutputSeconds;
@@ -255,7 +296,9 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
             << (!options.ranks ? " process" : ranks == 1 ? " rank" : " ranks");
         if (options.threads > 0)
             log << " x " << options.threads << (options.threads == 1 ? " thread" : " threads");
-        log << (ranks > 1 ? " (contacts split over the ranks, state replicated)\n" : "\n");
+        log << (ranks > 1 ? " (split by space: each rank owns its sub-domain's grains, with "
+                            "ghosts of its neighbours')\n"
+                          : "\n");
     }
     Run run(options, log);
     RunResult result;

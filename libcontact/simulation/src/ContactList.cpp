@@ -10,32 +10,74 @@
 
 namespace lsdem {
 
-bool ContactList::update(World& world)
+bool ContactList::needsRebuild(const World& world) const
 {
     const bool sizesChanged = mGrainPositionsAtBuild.size() != world.grains.size() ||
                               mBoundaryDisplacementsAtBuild.size() != world.boundaries.size();
-    bool stale = !mBuilt || sizesChanged;
+    if (!mBuilt || sizesChanged) return true;
     // Two bodies within reach now were within reach plus the skin at the build as long as
     // neither moved more than half of it.
     const double half2 = 0.25 * mSkin * mSkin;
     // Checked for every grain every step: in parallel (any one moved too far decides).
-    if (!stale)
-        stale = tbb::parallel_reduce(
-            tbb::blocked_range<size_t>(0, world.grains.size(), 4096), false,
-            [&](const tbb::blocked_range<size_t>& r, bool moved) {
-                for (size_t i = r.begin(); !moved && i != r.end(); ++i)
-                    moved = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i])
-                                .squaredNorm() > half2;
-                return moved;
-            },
-            [](bool a, bool b) { return a || b; });
+    bool stale = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, world.grains.size(), 4096), false,
+        [&](const tbb::blocked_range<size_t>& r, bool moved) {
+            for (size_t i = r.begin(); !moved && i != r.end(); ++i)
+                moved = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i])
+                            .squaredNorm() > half2;
+            return moved;
+        },
+        [](bool a, bool b) { return a || b; });
     for (size_t b = 0; !stale && b < world.boundaries.size(); ++b)
         stale = (world.boundaries[b].displacement - mBoundaryDisplacementsAtBuild[b])
                     .squaredNorm() > half2;
+    return stale;
+}
+
+bool ContactList::update(World& world)
+{
+    const bool sizesChanged = mGrainPositionsAtBuild.size() != world.grains.size() ||
+                              mBoundaryDisplacementsAtBuild.size() != world.boundaries.size();
+    const bool stale = needsRebuild(world);
     // Built and only moved since: the same grains and assets, so what each pair learned about
     // its node blocks still applies.
-    if (stale) rebuild(world, mBuilt && !sizesChanged);
+    if (stale) rebuild(world, mRenumbered || (mBuilt && !sizesChanged));
+    mRenumbered = false;
     return stale;
+}
+
+void ContactList::renumber(const std::vector<int>& newIndex)
+{
+    // The order is kept, so the pairs that remain stay sorted; the rebuild takes their node
+    // blocks (valid for the same two grains) and points them into the world's new histories.
+    size_t kept = 0;
+    for (size_t k = 0; k < mPairSlots; ++k) {
+        ContactSlot& s = mSlots[k];
+        const int first = newIndex[size_t(s.first)], second = newIndex[size_t(s.second)];
+        if (first < 0 || second < 0) continue;
+        s.first = first;
+        s.second = second;
+        s.pairHistory = nullptr;
+        if (kept != k) mSlots[kept] = std::move(s);
+        ++kept;
+    }
+    mSlots.resize(kept);
+    mPairSlots = kept;
+    mBuilt = false;
+    mRenumbered = true;
+}
+
+double ContactList::skinFor(const World& w) const
+{
+    if (w.grains.empty()) return 0.0;
+    // A fraction of the median grain, so a polydisperse packing rebuilds when its typical
+    // grain, not its largest, has moved a fraction of its size.
+    std::vector<double> sorted;
+    sorted.reserve(w.grains.size());
+    for (const Grain& g : w.grains) sorted.push_back(g.asset->boundingRadius);
+    const size_t half = sorted.size() / 2;
+    std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(half), sorted.end());
+    return mSkinFraction * sorted[half];
 }
 
 void ContactList::rebuild(World& w, bool keepPairKnowledge)
@@ -47,21 +89,27 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
         centers[size_t(i)] = w.grains[size_t(i)].body.pose.position;
         radii[size_t(i)] = w.grains[size_t(i)].asset->boundingRadius;
     }
-    // The skin: a fraction of the median grain, so a polydisperse packing rebuilds when its
-    // typical grain, not its largest, has moved a fraction of its size.
-    if (n > 0) {
-        std::vector<double> sorted = radii;
-        std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
-        mSkin = mSkinFraction * sorted[size_t(n / 2)];
-    }
+    if (mFixedSkin >= 0.0)
+        mSkin = mFixedSkin;
+    else if (n > 0)
+        mSkin = skinFor(w);
 
     // Grain pairs whose spheres come within the skin (kinematic pairs too, so their forces
     // are recorded), and the boundaries each grain may touch within the skin, found in
     // parallel and joined in grain order (sorted as if found serially).
-    const std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii, mSkin);
+    std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii, mSkin);
+    if (mOwned) {  // only the pairs this rank evaluates
+        const std::vector<char>& owned = *mOwned;
+        pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                                   [&](const std::pair<int, int>& p) {
+                                       return !owned[size_t(p.first)] && !owned[size_t(p.second)];
+                                   }),
+                    pairs.end());
+    }
     const int boundaryCount = static_cast<int>(w.boundaries.size());
     std::vector<std::vector<int>> nearBoundaries(static_cast<size_t>(n));
     tbb::parallel_for(0, n, [&](int i) {
+        if (mOwned && !(*mOwned)[size_t(i)]) return;
         for (int b = 0; b < boundaryCount; ++b)
             if (w.boundaries[size_t(b)].mayTouch(centers[size_t(i)], radii[size_t(i)] + mSkin))
                 nearBoundaries[size_t(i)].push_back(b);

@@ -2,14 +2,16 @@
 
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/simulation/BroadPhase.h"
-#include "lsdem/simulation/ContactDecomposition.h"
+#include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/ls/Error.h"
 
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 
+#include <climits>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -59,12 +61,49 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
     return damped;
 }
 
+/// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,
+/// which added to a sum that starts at +0 changes nothing.
+bool isEmpty(const PairForces& r)
+{
+    if (r.contactNodes != 0 || r.pointForcesOnFirst != 0) return false;
+    static const double zeros[9] = {};
+    const auto zero = [](const double* p, size_t n) {
+        return std::memcmp(p, zeros, n * sizeof(double)) == 0;
+    };
+    return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
+           zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
+           zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
+}
+
+[[noreturn]] void throwNonFinite(const std::string& grain, long long step, double time)
+{
+    std::ostringstream s;
+    s << "grain '" << grain << "' reached a non-finite state at step " << step << " (t = " << time
+      << ")";
+    throw Error("", s.str(),
+                "lower the time step (time_step, or safety for \"auto\"); check the "
+                "stiffnesses and masses for consistent units");
+}
+
+[[noreturn]] void throwUnstable(const std::string& grain, double dt, double limit, long long step,
+                                double time)
+{
+    std::ostringstream s;
+    s << "the time step " << dt << " exceeds the stability limit " << limit
+      << " of the contacts of grain '" << grain << "' at step " << step << " (t = " << time
+      << "): the run would explode";
+    std::ostringstream fix;
+    fix << "set [simulation] time_step to at most " << 0.2 * limit
+        << " (a fifth of the limit), or lower safety for \"auto\"";
+    throw Error("", s.str(), fix.str());
+}
+
 } // namespace
 
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
-                       bool recordContactForces, ContactDecomposition* decomposition)
+                       bool recordContactForces)
     : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
-      mStabilityLimit(std::numeric_limits<double>::infinity()), mDecomposition(decomposition)
+      mStabilityLimit(std::numeric_limits<double>::infinity())
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -78,21 +117,61 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
     }
 }
 
+Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
+                       bool recordContactForces, GhostDecomposition& ghosts)
+    : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
+      mStabilityLimit(std::numeric_limits<double>::infinity()), mGhosts(&ghosts)
+{
+    if (!(dt > 0.0) || !std::isfinite(dt))
+        throw Error("", "the time step must be a positive number", "check time_step");
+    for (const Grain& g : mWorld.grains) mHasPrescribed |= g.motion == GrainMotion::Prescribed;
+    // The whole simulation's skin, so this rank's list is the one-process list's part.
+    const double skin = mContacts.skinFor(mWorld);
+    mContacts.fixSkin(skin);
+    mContacts.restrictTo(&ghosts.owned());
+    ghosts.distribute(mWorld, skin);
+    mFreshlyDistributed = true;
+    if (evaluateInitialForces) {
+        evaluateForces(0.0);
+        const Energies e = energies();
+        mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
+        checkStability();
+    }
+}
+
+double Simulation::exchangedSeconds() const
+{
+    if (!mGhosts) return 0.0;
+    return mGhosts->counters().exchangeSeconds + mGhosts->counters().packSeconds;
+}
+
+bool Simulation::integratesGrain(size_t i) const
+{
+    return !mGhosts || mGhosts->owned()[i];
+}
+
 void Simulation::step()
 {
     const double dt = mDt;
     const auto integrateStart = SteadyClock::now();
+    const double integrateExchanged = exchangedSeconds();
     // Servo walls choose this step's velocity from the state it starts from.
     updateServoVelocities(mWorld, dt);
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
     double workBefore = 0.0;
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
-    for (const Grain& g : mWorld.grains)
-        if (g.motion == GrainMotion::Prescribed)
-            workBefore -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    if (mGhosts)
+        addPrescribedWork(workBefore);
+    else
+        for (const Grain& g : mWorld.grains)
+            if (g.motion == GrainMotion::Prescribed)
+                workBefore -=
+                    g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
+    // A ghost is moved by its owner (and brought here before the forces).
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
+        if (!integratesGrain(i)) return;
         Grain& g = mWorld.grains[i];
         switch (g.motion) {
         case GrainMotion::Free:
@@ -109,43 +188,65 @@ void Simulation::step()
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
     mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
     ++mWorld.step;
-    mCounters.integrateSeconds += secondsSince(integrateStart);
+    mCounters.integrateSeconds +=
+        secondsSince(integrateStart) - (exchangedSeconds() - integrateExchanged);
 
     evaluateForces(dt);
 
     const auto kickStart = SteadyClock::now();
+    const double kickExchanged = exchangedSeconds();
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         Grain& g = mWorld.grains[i];
-        if (g.isFree()) kick(g.body, g.force, g.torque, 0.5 * dt);
+        if (g.isFree() && integratesGrain(i)) kick(g.body, g.force, g.torque, 0.5 * dt);
     });
     double workAfter = 0.0;
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
-    for (const Grain& g : mWorld.grains)
-        if (g.motion == GrainMotion::Prescribed)
-            workAfter -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    if (mGhosts)
+        addPrescribedWork(workAfter);
+    else
+        for (const Grain& g : mWorld.grains)
+            if (g.motion == GrainMotion::Prescribed)
+                workAfter -=
+                    g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
     mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
     ++mCounters.steps;
     checkStability();
-    mCounters.integrateSeconds += secondsSince(kickStart);
+    mCounters.integrateSeconds += secondsSince(kickStart) - (exchangedSeconds() - kickExchanged);
 }
 
 void Simulation::evaluateForces(double slipStep)
 {
     World& w = mWorld;
-    const int n = static_cast<int>(w.grains.size());
     const auto broadStart = SteadyClock::now();
+    const double broadExchanged = exchangedSeconds();
+    if (mGhosts) {
+        // Every rank rebuilds its list when one process would (some grain or boundary moved
+        // more than half the skin), and grains change rank only then.
+        // (Just distributed, the list is built anyway; a restart has stepped since, and the
+        // ghosts must follow. Ghosts' own moves are their owners' to vote on.)
+        const bool rebuild = mGhosts->updateGhosts(w, mContacts.needsRebuild(w));
+        if (mFreshlyDistributed) {
+            mContacts.markStale();
+        } else if (rebuild) {
+            mGhosts->redistribute(w);
+            mContacts.renumber(mGhosts->renumbering());
+        }
+        mFreshlyDistributed = false;
+    }
+    const int n = static_cast<int>(w.grains.size());
     if (mContacts.update(w)) ++mCounters.listRebuilds;
     std::vector<ContactSlot>& slots = mContacts.slots();
     const size_t pairSlots = mContacts.pairSlotCount();
     // Each body as the contact laws see it (pose, velocities), in parallel.
     mViews.resize(size_t(n));
-    tbb::parallel_for(0, n, [&](int i) { mViews[size_t(i)] = contactView(w.grains[size_t(i)], i); });
+    // (Split by space, a grain's index is its global one: the contact laws break ties by it.)
+    const std::vector<int>* ids = mGhosts ? &mGhosts->globalIds() : nullptr;
+    tbb::parallel_for(0, n, [&](int i) {
+        mViews[size_t(i)] = contactView(w.grains[size_t(i)], ids ? (*ids)[size_t(i)] : i);
+    });
     mBoundaryViews.clear();
     for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));
-    // Split over ranks, this rank evaluates its own slots and receives the others' after.
-    const std::vector<char>* mine =
-        mDecomposition ? &mDecomposition->assign(w, mContacts) : nullptr;
-    mCounters.broadSeconds += secondsSince(broadStart);
+    mCounters.broadSeconds += secondsSince(broadStart) - (exchangedSeconds() - broadExchanged);
     mCounters.candidatePairs += static_cast<long long>(pairSlots);
     mCounters.boundaryCandidates += static_cast<long long>(slots.size() - pairSlots);
 
@@ -155,7 +256,6 @@ void Simulation::evaluateForces(double slipStep)
     const std::vector<ContactGrain>& views = mViews;
     const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
-        if (mine && !(*mine)[k]) return;
         ContactSlot& s = slots[k];
         ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
         s.stats = NodeCheckStats();
@@ -181,13 +281,14 @@ void Simulation::evaluateForces(double slipStep)
         }
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);
-    if (mDecomposition) mDecomposition->share(mContacts, record);
 
     // Sum each grain's slots in list order, grains in parallel: the same numbers whatever the
     // thread count (and the same as one pass over the slots in order).
     const auto reduceStart = SteadyClock::now();
+    const double reduceExchanged = exchangedSeconds();
     mGrainStiffness.resize(size_t(n));
     tbb::parallel_for(0, n, [&](int i) {
+        if (!integratesGrain(size_t(i))) return;  // a ghost's sum is its owner's
         Grain& g = w.grains[size_t(i)];
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
         Mat3 stiffness = Mat3::Zero();
@@ -217,9 +318,12 @@ void Simulation::evaluateForces(double slipStep)
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         mCounters.nodes += s.stats;
-        mContactNodes += r.contactNodes;
-        mElastic += r.elasticEnergy;
-        if (s.boundary >= 0) {
+        // Split by space, a pair is counted by the owner of its first grain only.
+        if (!mGhosts || s.boundary >= 0 || integratesGrain(size_t(s.first))) {
+            mContactNodes += r.contactNodes;
+            mElastic += r.elasticEnergy;
+        }
+        if (s.boundary >= 0 && !mGhosts) {
             Boundary& b = w.boundaries[s.boundary];
             b.force += r.forceOnSecond;
             if (b.shape == BoundaryShape::Plane) {  // what a servo wall's gain is based on
@@ -233,11 +337,18 @@ void Simulation::evaluateForces(double slipStep)
         }
         for (size_t f = 0; f < s.forces.size(); ++f) {
             const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
+            const int grain = onFirst ? s.first : s.second;
+            if (!integratesGrain(size_t(grain))) continue;  // its owner records it
             mForces.push_back({s.forces[f].point, s.forces[f].force,
-                               onFirst ? s.first : s.second});
+                               ids ? (*ids)[size_t(grain)] : grain});
         }
     }
-    mCounters.integrateSeconds += secondsSince(reduceStart);
+    if (mGhosts) {
+        sumBoundaryReactions();
+        mGhosts->recordWork(mContacts);
+    }
+    mCounters.integrateSeconds +=
+        secondsSince(reduceStart) - (exchangedSeconds() - reduceExchanged);
 }
 
 void Simulation::checkStability()
@@ -250,7 +361,7 @@ void Simulation::checkStability()
     std::vector<double> limits(n, std::numeric_limits<double>::infinity());
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const Grain& g = w.grains[i];
-        if (!g.isFree()) return;
+        if (!g.isFree() || !integratesGrain(i)) return;
         const RigidBody& b = g.body;
         if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
             !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite()) {
@@ -265,29 +376,118 @@ void Simulation::checkStability()
         const double lambda = solver.eigenvalues().maxCoeff();
         if (lambda > 0.0) limits[i] = 2.0 * std::sqrt(b.mass / lambda);
     });
+    if (mGhosts) {
+        checkStabilityOverRanks(limits);
+        return;
+    }
     for (size_t i = 0; i < n; ++i) {
         const Grain& g = w.grains[i];
         const double limit = limits[i];
-        if (std::isnan(limit)) {
-            std::ostringstream s;
-            s << "grain '" << g.name << "' reached a non-finite state at step " << w.step
-              << " (t = " << w.time << ")";
-            throw Error("", s.str(),
-                        "lower the time step (time_step, or safety for \"auto\"); check the "
-                        "stiffnesses and masses for consistent units");
-        }
+        if (std::isnan(limit)) throwNonFinite(g.name, w.step, w.time);
         mStabilityLimit = std::min(mStabilityLimit, limit);
-        if (mDt > limit) {
-            std::ostringstream s;
-            s << "the time step " << mDt << " exceeds the stability limit " << limit
-              << " of the contacts of grain '" << g.name << "' at step " << w.step
-              << " (t = " << w.time << "): the run would explode";
-            std::ostringstream fix;
-            fix << "set [simulation] time_step to at most " << 0.2 * limit
-                << " (a fifth of the limit), or lower safety for \"auto\"";
-            throw Error("", s.str(), fix.str());
+        if (mDt > limit) throwUnstable(g.name, mDt, limit, w.step, w.time);
+    }
+}
+
+void Simulation::checkStabilityOverRanks(const std::vector<double>& limits)
+{
+    const World& w = mWorld;
+    const std::vector<int>& ids = mGhosts->globalIds();
+    // This rank's first failing grain (ghosts are infinite) and smallest limit; then the
+    // first failure in global order, as one process finds it, on every rank.
+    OrderedTerm mine;
+    mine.key[0] = LLONG_MAX;
+    mine.key[1] = mGhosts->ranks().rank();
+    mine.value[0] = std::numeric_limits<double>::infinity();
+    size_t failing = 0;
+    for (size_t i = 0; i < limits.size(); ++i) {
+        const double limit = limits[i];
+        if (std::isnan(limit) || mDt > limit) {
+            mine.key[0] = ids[i];
+            mine.value[1] = limit;
+            failing = i;
+            break;
+        }
+        mine.value[0] = std::min(mine.value[0], limit);
+    }
+    const std::vector<OrderedTerm> all = mGhosts->gatherSorted({mine});
+    for (const OrderedTerm& t : all) mStabilityLimit = std::min(mStabilityLimit, t.value[0]);
+    const OrderedTerm& first = all.front();
+    if (first.key[0] == LLONG_MAX) return;
+    // Its name is known to its owner only.
+    std::vector<char> name, names;
+    if (first.key[1] == mGhosts->ranks().rank())
+        name.assign(w.grains[failing].name.begin(), w.grains[failing].name.end());
+    std::vector<size_t> starts;
+    mGhosts->ranks().allGather(name, names, starts);
+    const std::string grain(names.begin(), names.end());
+    const double limit = first.value[1];
+    if (std::isnan(limit)) throwNonFinite(grain, w.step, w.time);
+    throwUnstable(grain, mDt, limit, w.step, w.time);
+}
+
+void Simulation::sumBoundaryReactions()
+{
+    const World& w = mWorld;
+    const std::vector<ContactSlot>& slots = mContacts.slots();
+    const std::vector<int>& ids = mGhosts->globalIds();
+    std::vector<OrderedTerm> terms;
+    for (size_t k = mContacts.pairSlotCount(); k < slots.size(); ++k) {
+        const ContactSlot& s = slots[k];
+        const PairForces& r = s.result;
+        if (isEmpty(r)) continue;  // adds nothing
+        OrderedTerm t;
+        t.key[0] = ids[size_t(s.first)];
+        t.key[1] = s.boundary;
+        for (int c = 0; c < 3; ++c) t.value[c] = r.forceOnSecond[c];
+        const Boundary& b = w.boundaries[size_t(s.boundary)];
+        if (b.shape == BoundaryShape::Plane) {
+            const double stiffness = b.plane.normal.dot(r.normalStiffness * b.plane.normal);
+            const ViscousDamping damping =
+                w.model(w.grains[size_t(s.first)].material, b.material).damping();
+            t.value[3] = stiffness;
+            t.value[4] = damping.dashpotPerStiffness(mViews[size_t(s.first)].mass, stiffness) *
+                         stiffness;
+        }
+        terms.push_back(t);
+    }
+    // In list order (grain, then boundary), as one process adds them.
+    for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
+        Boundary& b = mWorld.boundaries[size_t(t.key[1])];
+        b.force += Vec3(t.value[0], t.value[1], t.value[2]);
+        if (b.shape == BoundaryShape::Plane) {
+            b.normalStiffness += t.value[3];
+            b.normalDashpot += t.value[4];
         }
     }
+}
+
+void Simulation::addPrescribedWork(double& work)
+{
+    if (!mHasPrescribed) return;
+    const std::vector<int>& ids = mGhosts->globalIds();
+    std::vector<OrderedTerm> terms;
+    for (size_t i = 0; i < mWorld.grains.size(); ++i) {
+        const Grain& g = mWorld.grains[i];
+        if (g.motion != GrainMotion::Prescribed || !integratesGrain(i)) continue;
+        OrderedTerm t;
+        t.key[0] = ids[i];
+        t.value[0] = g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+        terms.push_back(t);
+    }
+    for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) work -= t.value[0];
+}
+
+long long Simulation::contactNodes() const
+{
+    if (!mGhosts) return mContactNodes;
+    OrderedTerm mine;
+    mine.key[0] = mGhosts->ranks().rank();
+    mine.value[0] = static_cast<double>(mContactNodes);
+    long long total = 0;
+    for (const OrderedTerm& t : mGhosts->gatherSorted({mine}))
+        total += static_cast<long long>(t.value[0]);
+    return total;
 }
 
 std::vector<int> Simulation::grainContactCounts() const
@@ -305,12 +505,50 @@ std::vector<int> Simulation::grainContactCounts() const
 Energies Simulation::energies() const
 {
     Energies e;
-    for (const Grain& g : mWorld.grains) {
-        if (!g.isFree()) continue;
-        e.kinetic += g.body.kineticEnergy();
-        e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+    if (mGhosts) {
+        // Each sum in the one-process order: grains, then the list's pairs and boundary
+        // contacts (each counted by the owner of its first grain).
+        const std::vector<int>& ids = mGhosts->globalIds();
+        std::vector<OrderedTerm> terms;
+        for (size_t i = 0; i < mWorld.grains.size(); ++i) {
+            const Grain& g = mWorld.grains[i];
+            if (!g.isFree() || !integratesGrain(i)) continue;
+            OrderedTerm t;
+            t.key[1] = ids[i];
+            t.value[0] = g.body.kineticEnergy();
+            t.value[1] = g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            terms.push_back(t);
+        }
+        const std::vector<ContactSlot>& slots = mContacts.slots();
+        for (size_t k = 0; k < slots.size(); ++k) {
+            const ContactSlot& s = slots[k];
+            const bool pair = s.boundary < 0;
+            if (s.result.elasticEnergy == 0.0 || !integratesGrain(size_t(s.first))) continue;
+            OrderedTerm t;
+            t.key[0] = pair ? 1 : 2;
+            t.key[1] = ids[size_t(s.first)];
+            t.key[2] = pair ? ids[size_t(s.second)] : s.boundary;
+            t.value[0] = s.result.elasticEnergy;
+            terms.push_back(t);
+        }
+        double elastic = 0.0;
+        for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
+            if (t.key[0] == 0) {
+                e.kinetic += t.value[0];
+                e.potential -= t.value[1];
+            } else {
+                elastic += t.value[0];
+            }
+        }
+        e.elastic = elastic;
+    } else {
+        for (const Grain& g : mWorld.grains) {
+            if (!g.isFree()) continue;
+            e.kinetic += g.body.kineticEnergy();
+            e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+        }
+        e.elastic = mElastic;
     }
-    e.elastic = mElastic;
     e.boundaryWork = mWorld.energy.boundaryWork;
     e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
                                      mWorld.energy.initialTotal);

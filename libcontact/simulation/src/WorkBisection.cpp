@@ -103,4 +103,24 @@ int WorkBisection::partOf(const Vec3& point) const
     return node->part;
 }
 
+void WorkBisection::partsNear(const Vec3& point, double reach, std::vector<int>& out) const
+{
+    out.clear();
+    collectNear(0, point, reach, out);
+    std::sort(out.begin(), out.end());
+}
+
+void WorkBisection::collectNear(int node, const Vec3& point, double reach,
+                                std::vector<int>& out) const
+{
+    const Node& n = mNodes[size_t(node)];
+    if (n.part >= 0) {
+        out.push_back(n.part);
+        return;
+    }
+    // The same test partOf makes, for the cube's two ends along the cut's axis.
+    if (point[n.axis] - reach < n.at) collectNear(n.below, point, reach, out);
+    if (point[n.axis] + reach >= n.at) collectNear(n.above, point, reach, out);
+}
+
 } // namespace lsdem

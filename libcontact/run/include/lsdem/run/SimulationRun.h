@@ -5,7 +5,7 @@
 ///        report where the time went.
 #pragma once
 
-#include "lsdem/simulation/ContactDecomposition.h"
+#include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <iosfwd>
@@ -21,8 +21,9 @@ struct RunOptions
     bool progress = false;    ///< a progress line with ETA on stderr
     /// Stop (as if interrupted, with a checkpoint) once the step count reaches this (0: never).
     long long stopAtStep = 0;
-    /// Split the run's contacts over these ranks (ContactDecomposition.h), each of which calls
-    /// runSimulation with the same options; rank 0 writes every output and the others none.
+    /// Split the run by space over these ranks (GhostDecomposition.h), each of which calls
+    /// runSimulation with the same options; rank 0 writes the histories, grains.csv and the
+    /// checkpoints (gathered from the ranks), each rank its piece of every ParaView frame.
     /// Null: one process.
     RankGroup* ranks = nullptr;
     /// Worker threads of this process, for the header (0: not said).
@@ -39,8 +40,8 @@ struct RunResult
     StepCounters counters;
     double outputSeconds = 0.0, setupSeconds = 0.0, wallSeconds = 0.0;
     int grains = 0;
-    int ranks = 1;                        ///< processes the contacts were split over
-    DecompositionCounters decomposition;  ///< this rank's, when split over ranks
+    int ranks = 1;                ///< processes the run was split over
+    GhostCounters decomposition;  ///< this rank's, when split over ranks
 };
 
 /// Perform the run described by @a options; messages and the summary go to @a log.

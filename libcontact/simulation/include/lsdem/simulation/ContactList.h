@@ -45,12 +45,28 @@ public:
     explicit ContactList(double skinFraction = 0.25) : mSkinFraction(skinFraction) {}
     /// A copy (of a Simulation, say) starts unbuilt: the slots point into the shear
     /// histories of the world they were built for, not into the copy's.
-    ContactList(const ContactList& other) : mSkinFraction(other.mSkinFraction) {}
+    ContactList(const ContactList& other)
+        : mSkinFraction(other.mSkinFraction), mFixedSkin(other.mFixedSkin), mOwned(other.mOwned)
+    {
+    }
     ContactList& operator=(const ContactList& other)
     {
-        *this = ContactList(other.mSkinFraction);
+        *this = ContactList(other);
         return *this;
     }
+    /// The skin the list would choose for @a world (a fraction of its median bounding radius).
+    double skinFor(const World& world) const;
+    /// Use @a skin whatever the world holds: a rank holding part of the grains
+    /// (GhostDecomposition.h) uses the whole simulation's, so its list is the one-process
+    /// list's part.
+    void fixSkin(double skin) { mFixedSkin = skin; }
+    /// Keep only the pairs with a grain marked in @a owned (by grain index; null: every pair),
+    /// and boundary contacts of marked grains: the contacts a rank owning those grains
+    /// evaluates. @a owned must outlive the list or be replaced before the next rebuild.
+    void restrictTo(const std::vector<char>* owned) { mOwned = owned; }
+    /// Whether update() would rebuild: never built, marked stale, grains added or removed, or
+    /// a grain or boundary moved more than half the skin since the build.
+    bool needsRebuild(const World& world) const;
     ContactList(ContactList&&) = default;
     ContactList& operator=(ContactList&&) = default;
 
@@ -61,6 +77,10 @@ public:
     bool update(World& world);
     /// Force a rebuild at the next update (the world was changed from outside).
     void markStale() { mBuilt = false; }
+    /// The world's grains were renumbered (a rank's grains after a migration): grain i is now
+    /// @a newIndex[i] (-1: gone), in the same order. Rebuild at the next update, the pairs
+    /// still on the list keeping their node blocks (CandidateBlocks.h).
+    void renumber(const std::vector<int>& newIndex);
 
     std::vector<ContactSlot>& slots() { return mSlots; }
     const std::vector<ContactSlot>& slots() const { return mSlots; }
@@ -79,8 +99,11 @@ private:
     void rebuild(World& world, bool keepPairKnowledge);
 
     double mSkinFraction;
+    double mFixedSkin = -1.0;  ///< >= 0: fixSkin's
+    const std::vector<char>* mOwned = nullptr;
     double mSkin = 0.0;
     bool mBuilt = false;
+    bool mRenumbered = false;  ///< the next rebuild keeps the pairs' knowledge anyway
     long long mRebuilds = 0;
     std::vector<Vec3> mGrainPositionsAtBuild, mBoundaryDisplacementsAtBuild;
     std::vector<ContactSlot> mSlots;  ///< grain pairs (sorted), then grain–boundary (sorted)

@@ -14,7 +14,7 @@
 
 namespace lsdem {
 
-class ContactDecomposition;
+class GhostDecomposition;
 
 /// Energies now (force·length). Dissipated energy is what the balance leaves over:
 /// boundary work − (kinetic + elastic + potential − their initial total).
@@ -50,12 +50,15 @@ public:
     /// the current state are computed (a fresh start); a restart passes false because the
     /// grains' forces come from the checkpoint. @a recordContactForces: as
     /// setRecordContactForces, from the initial evaluation on (so a first frame has them).
-    /// @a decomposition (null: this process evaluates every contact): the contacts are split
-    /// over its ranks, each of which steps its own copy of the same world in step with the
-    /// others (ContactDecomposition.h); it must outlive the simulation, which is then not to
-    /// be copied.
     Simulation(World world, double dt, bool evaluateInitialForces = true,
-               bool recordContactForces = false, ContactDecomposition* decomposition = nullptr);
+               bool recordContactForces = false);
+    /// Split by space over the ranks of @a ghosts (GhostDecomposition.h): @a world is the
+    /// whole simulation, the same on every rank; this rank keeps its owned grains and their
+    /// ghosts, and world() is that part (grains in global order; globalIds() maps them).
+    /// Every rank constructs and steps its simulation in step with the others; energies() and
+    /// contactNodes() are then collective. @a ghosts must outlive the simulation.
+    Simulation(World world, double dt, bool evaluateInitialForces, bool recordContactForces,
+               GhostDecomposition& ghosts);
 
     /// Advance one step: half kick, drift, forces, half kick.
     /// @throw Error if the state becomes non-finite or a contact is stiffer than dt allows.
@@ -69,27 +72,44 @@ public:
     World& world() { return mWorld; }
     /// Rebuild the contact list at the next step.
     void invalidateContacts() { mContacts.markStale(); }
+    /// Collective when split by space (every rank calls it, the same result on each).
     Energies energies() const;
     const StepCounters& counters() const { return mCounters; }
 
-    /// Keep the point forces of the last evaluation (for VTK frames); off by default.
+    /// Keep the point forces of the last evaluation (for VTK frames); off by default. Split by
+    /// space, those on this rank's owned grains, by global grain index.
     void setRecordContactForces(bool on) { mRecordForces = on; }
     const std::vector<ContactForceRecord>& contactForces() const { return mForces; }
-    /// Penetrating nodes at the last evaluation.
-    long long contactNodes() const { return mContactNodes; }
+    /// Penetrating nodes at the last evaluation (collective when split by space).
+    long long contactNodes() const;
     /// Elastic energy at the last evaluation.
     double elasticEnergy() const { return mElastic; }
     /// How many other grains each grain touched (a penetrating node either way) at the last
     /// evaluation, by grain index: the coordination of granular mechanics (walls not counted).
+    /// Split by space: over this rank's contacts, by the index of its world (not collective).
     std::vector<int> grainContactCounts() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
-    /// The split of the contacts over ranks given at construction (null: none).
-    const ContactDecomposition* decomposition() const { return mDecomposition; }
+    /// The split by space given at construction (null: none).
+    const GhostDecomposition* ghosts() const { return mGhosts; }
 
 private:
     void evaluateForces(double slipStep);
     void checkStability();
+    /// Split by space: this rank's part of the boundaries' reactions, summed over the ranks
+    /// in the one-process order.
+    void sumBoundaryReactions();
+    /// Split by space: the work of prescribed grains (−F·v − τ·ω), summed over the ranks in
+    /// grain order onto @a work.
+    void addPrescribedWork(double& work);
+    /// Split by space: the first grain (global order) whose state or stability fails on any
+    /// rank throws, on every rank.
+    void checkStabilityOverRanks(const std::vector<double>& limits);
+    /// Split by space: the time spent so far exchanging with the other ranks (kept out of the
+    /// broad phase and integration times).
+    double exchangedSeconds() const;
+    /// Whether grain @a i of this world is integrated here (not a ghost).
+    bool integratesGrain(size_t i) const;
 
     World mWorld;
     double mDt = 0.0;
@@ -102,7 +122,9 @@ private:
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
     StepCounters mCounters;
-    ContactDecomposition* mDecomposition = nullptr;
+    GhostDecomposition* mGhosts = nullptr;
+    bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed
+    bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
     /// Each thread's working memory for the contact laws (no allocation in the hot loop).
     tbb::enumerable_thread_specific<ContactScratch> mScratch;
 };

@@ -29,6 +29,9 @@ public:
     int parts() const { return mParts; }
     /// The part that holds @a point.
     int partOf(const Vec3& point) const;
+    /// Every part with a point within @a reach of @a point along each axis (a cube around it:
+    /// every part within that distance, and maybe a few just beyond), ascending, into @a out.
+    void partsNear(const Vec3& point, double reach, std::vector<int>& out) const;
 
 private:
     /// A node of the cut tree: a leaf (part >= 0), or a plane x[axis] = at whose lower side
@@ -43,6 +46,8 @@ private:
 
     int cut(const std::vector<Vec3>& points, const std::vector<double>& weights,
             std::vector<int>& indices, size_t begin, size_t end, int firstPart, int parts);
+
+    void collectNear(int node, const Vec3& point, double reach, std::vector<int>& out) const;
 
     int mParts = 1;
     std::vector<Node> mNodes{Node{}};

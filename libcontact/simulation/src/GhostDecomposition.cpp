@@ -1,0 +1,493 @@
+#include "lsdem/simulation/GhostDecomposition.h"
+
+#include "GrainPacking.h"
+
+#include "lsdem/ls/Stopwatch.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace lsdem {
+
+namespace {
+
+using grainpacking::Reader;
+using grainpacking::Writer;
+
+/// Evaluations between two redraws at least: a redraw moves grains (and their histories) and
+/// hands them to ranks whose cached node blocks (CandidateBlocks.h) are cold.
+constexpr long long kEvaluationsBetweenRedraws = 50;
+
+/// What a record in an exchange of grains holds.
+enum Tag : char {
+    kOwnedGrain = 'O',
+    kGhostGrain = 'G',
+    kPairHistory = 'P',
+    kBoundaryHistory = 'B'
+};
+
+/// A grain as received by its new holder.
+struct Incoming
+{
+    int id = 0;
+    bool owned = false;
+    int owner = -1;               ///< a ghost's owner
+    std::vector<int> ghostRanks;  ///< an owned grain's ranks that hold it as a ghost
+    Grain grain;
+    double work = 1.0;
+};
+
+struct IncomingPair
+{
+    int first = 0, second = 0;
+    PairHistory history;
+};
+
+struct IncomingBoundary
+{
+    int grain = 0, boundary = 0;
+    ShearHistory history;
+};
+
+/// A point of the bisection: a grain whose state is no longer finite is about to stop the run
+/// (Simulation's check); until then it must not upset the sort of the bisection.
+Vec3 finiteOrOrigin(const Vec3& p)
+{
+    return p.allFinite() ? p : Vec3::Zero();
+}
+
+bool keyLess(const OrderedTerm& a, const OrderedTerm& b)
+{
+    return std::lexicographical_compare(a.key, a.key + 3, b.key, b.key + 3);
+}
+
+} // namespace
+
+GhostDecomposition::GhostDecomposition(RankGroup& ranks, double rebalanceAbove)
+    : mRanks(ranks), mRebalanceAbove(rebalanceAbove)
+{
+    if (!(rebalanceAbove >= 1.0))
+        throw std::invalid_argument("GhostDecomposition: rebalanceAbove must be >= 1");
+}
+
+int GhostDecomposition::assetIndex(const World&, const GrainAsset* asset) const
+{
+    const auto it = mAssetIndex.find(asset);
+    if (it == mAssetIndex.end())
+        throw std::logic_error("GhostDecomposition: a grain's asset is not one of the world's");
+    return it->second;
+}
+
+int GhostDecomposition::localOf(int id) const
+{
+    const auto it = std::lower_bound(mGlobal.begin(), mGlobal.end(), id);
+    return it != mGlobal.end() && *it == id ? static_cast<int>(it - mGlobal.begin()) : -1;
+}
+
+void GhostDecomposition::exchange(const std::vector<std::vector<char>>& toEach,
+                                  std::vector<char>& received, std::vector<size_t>& starts)
+{
+    const Stopwatch watch;
+    mRanks.allToAll(toEach, received, starts);
+    mCounters.exchangeSeconds += watch.seconds();
+    const int me = mRanks.rank();
+    for (int r = 0; r < mRanks.ranks(); ++r) {
+        if (r == me) continue;
+        mCounters.bytesSent += static_cast<long long>(toEach[size_t(r)].size());
+        mCounters.bytesReceived +=
+            static_cast<long long>(starts[size_t(r) + 1] - starts[size_t(r)]);
+    }
+}
+
+std::vector<OrderedTerm> GhostDecomposition::gatherSorted(const std::vector<OrderedTerm>& mine)
+{
+    std::vector<char> bytes(mine.size() * sizeof(OrderedTerm));
+    if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+    std::vector<char> all;
+    std::vector<size_t> starts;
+    const Stopwatch watch;
+    mRanks.allGather(bytes, all, starts);
+    mCounters.exchangeSeconds += watch.seconds();
+    mCounters.bytesSent += static_cast<long long>(bytes.size());
+    mCounters.bytesReceived += static_cast<long long>(all.size() - bytes.size());
+    ++mCounters.sumsGathered;
+    std::vector<OrderedTerm> terms(all.size() / sizeof(OrderedTerm));
+    if (!terms.empty()) std::memcpy(terms.data(), all.data(), terms.size() * sizeof(OrderedTerm));
+    std::sort(terms.begin(), terms.end(), keyLess);
+    return terms;
+}
+
+void GhostDecomposition::distribute(World& world, double skin)
+{
+    const size_t n = world.grains.size();
+    mGlobalCount = static_cast<int>(n);
+    mAssetIndex.clear();
+    for (size_t k = 0; k < world.assets.size(); ++k)
+        mAssetIndex[world.assets[k].get()] = static_cast<int>(k);
+    double largest = 0.0;
+    for (const Grain& g : world.grains) largest = std::max(largest, g.asset->boundingRadius);
+    mReach = largest + skin;
+
+    // Every rank holds the same whole world: each draws the same cuts by grain count and
+    // takes the part it owns; the first redistribution then sends each grain where it goes.
+    std::vector<Vec3> centres(n);
+    for (size_t g = 0; g < n; ++g) centres[g] = finiteOrOrigin(world.grains[g].body.pose.position);
+    mDomains = WorkBisection::balance(centres, std::vector<double>(n, 1.0), mRanks.ranks());
+    ++mCounters.rebalances;
+    mEvaluations = 0;
+    mLastRedraw = -kEvaluationsBetweenRedraws;  // drawn by count: the first rebuild may redraw
+    mRedrawAbove = mRebalanceAbove;
+    const int me = mRanks.rank();
+    mGlobal.resize(n);
+    mOwned.resize(n);
+    for (size_t g = 0; g < n; ++g) {
+        mGlobal[g] = static_cast<int>(g);
+        mOwned[g] = mDomains.partOf(world.grains[g].body.pose.position) == me;
+    }
+    mWork.assign(n, 1.0);
+    redistribute(world);
+}
+
+void GhostDecomposition::maybeRebalance(const World& world)
+{
+    const int ranks = mRanks.ranks();
+    OrderedTerm mine;
+    mine.key[0] = mRanks.rank();
+    for (size_t i = 0; i < mOwned.size(); ++i)
+        if (mOwned[i]) mine.value[0] += mWork[i];
+    const auto imbalanceOf = [](const std::vector<double>& work) {
+        double total = 0.0, largest = 0.0;
+        for (double w : work) total += w, largest = std::max(largest, w);
+        return total > 0.0 ? largest / (total / double(work.size())) : 1.0;
+    };
+    std::vector<double> work(size_t(ranks), 0.0);
+    for (const OrderedTerm& t : gatherSorted({mine})) work[size_t(t.key[0])] = t.value[0];
+    mCounters.lastImbalance = imbalanceOf(work);
+    if (mEvaluations - mLastRedraw < kEvaluationsBetweenRedraws ||
+        !(mCounters.lastImbalance > mRedrawAbove))
+        return;
+
+    // Redraw from every grain's centre and work, in global order (every rank draws the same).
+    std::vector<OrderedTerm> grains;
+    for (size_t i = 0; i < mOwned.size(); ++i) {
+        if (!mOwned[i]) continue;
+        OrderedTerm t;
+        t.key[0] = mGlobal[i];
+        const Vec3 c = finiteOrOrigin(world.grains[i].body.pose.position);
+        for (int k = 0; k < 3; ++k) t.value[k] = c[k];
+        t.value[3] = mWork[i];
+        grains.push_back(t);
+    }
+    const std::vector<OrderedTerm> all = gatherSorted(grains);
+    std::vector<Vec3> points(all.size());
+    std::vector<double> weights(all.size());
+    for (size_t g = 0; g < all.size(); ++g) {
+        points[g] = Vec3(all[g].value[0], all[g].value[1], all[g].value[2]);
+        weights[g] = all[g].value[3];
+    }
+    mDomains = WorkBisection::balance(points, weights, ranks);
+    mLastRedraw = mEvaluations;
+    ++mCounters.rebalances;
+    std::fill(work.begin(), work.end(), 0.0);
+    for (size_t g = 0; g < points.size(); ++g)
+        work[size_t(mDomains.partOf(points[g]))] += weights[g];
+    mCounters.lastImbalance = imbalanceOf(work);
+    // The best this split does with the work it was drawn for: work that cannot be split
+    // finer (few grains, one heavy grain) must not redraw it at every rebuild.
+    mRedrawAbove = std::max(mRebalanceAbove, mRebalanceAbove * mCounters.lastImbalance);
+}
+
+void GhostDecomposition::route(const World& world, std::vector<int>& newOwner,
+                               std::vector<std::vector<int>>& ghostRanks) const
+{
+    const size_t n = world.grains.size();
+    newOwner.assign(n, -1);
+    ghostRanks.assign(n, {});
+    std::vector<int> near;
+    for (size_t i = 0; i < n; ++i) {
+        if (!mOwned[i]) continue;
+        const Grain& g = world.grains[i];
+        const Vec3& c = g.body.pose.position;
+        newOwner[i] = mDomains.partOf(c);
+        // Every rank whose sub-domain comes within this grain's reach of any grain there.
+        mDomains.partsNear(c, g.asset->boundingRadius + mReach, near);
+        for (int r : near)
+            if (r != newOwner[i]) ghostRanks[i].push_back(r);
+    }
+}
+
+void GhostDecomposition::redistribute(World& world)
+{
+    maybeRebalance(world);
+    const Stopwatch packing;
+    const int ranks = mRanks.ranks(), me = mRanks.rank();
+    std::vector<int> newOwner;
+    std::vector<std::vector<int>> ghostRanks;
+    route(world, newOwner, ghostRanks);
+
+    // Each owned grain to its new owner (with the ranks that will hold it as a ghost) and to
+    // those ranks (with its owner); the histories of its contacts wherever the grain goes
+    // (a pair's from the owner of its first grain, which holds them all).
+    mToEach.assign(size_t(ranks), {});
+    std::vector<Writer> to;
+    to.reserve(size_t(ranks));
+    for (int r = 0; r < ranks; ++r) to.emplace_back(mToEach[size_t(r)]);
+    for (size_t i = 0; i < world.grains.size(); ++i) {
+        if (!mOwned[i]) continue;
+        const Grain& g = world.grains[i];
+        const int asset = assetIndex(world, g.asset.get());
+        mCounters.grainsEmigrated += newOwner[i] != me;
+        Writer& owner = to[size_t(newOwner[i])];
+        owner.put(kOwnedGrain);
+        owner.put(mGlobal[i]);
+        owner.put(static_cast<int>(ghostRanks[i].size()));
+        for (int r : ghostRanks[i]) owner.put(r);
+        grainpacking::putGrain(owner, g, asset);
+        owner.put(mWork[i]);
+        for (int r : ghostRanks[i]) {
+            Writer& w = to[size_t(r)];
+            w.put(kGhostGrain);
+            w.put(mGlobal[i]);
+            w.put(newOwner[i]);
+            grainpacking::putGrain(w, g, asset);
+            w.put(mWork[i]);
+        }
+    }
+    for (const auto& [key, h] : world.pairHistory) {
+        const size_t a = size_t(key.first);
+        if (!mOwned[a] || h.empty()) continue;  // an empty history is the list's bookkeeping
+        const auto send = [&](int r) {
+            Writer& w = to[size_t(r)];
+            w.put(kPairHistory);
+            w.put(mGlobal[a]);
+            w.put(mGlobal[size_t(key.second)]);
+            grainpacking::putHistory(w, h.shearOnFirstNodes);
+            grainpacking::putHistory(w, h.shearOnSecondNodes);
+        };
+        send(newOwner[a]);
+        for (int r : ghostRanks[a]) send(r);
+    }
+    for (const auto& [key, h] : world.boundaryHistory) {
+        const size_t a = size_t(key.first);
+        if (!mOwned[a] || h.empty() ) continue;
+        Writer& w = to[size_t(newOwner[a])];
+        w.put(kBoundaryHistory);
+        w.put(mGlobal[a]);
+        w.put(key.second);
+        grainpacking::putHistory(w, h);
+    }
+    double packSeconds = packing.seconds();
+
+    exchange(mToEach, mReceived, mStarts);
+
+    const Stopwatch unpacking;
+    std::vector<Incoming> grains;
+    std::vector<IncomingPair> pairs;
+    std::vector<IncomingBoundary> boundaries;
+    std::vector<ShearHistory::Entry> buffer;
+    for (int r = 0; r < ranks; ++r) {
+        Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
+        while (!in.done()) {
+            const char tag = in.get<char>();
+            if (tag == kOwnedGrain || tag == kGhostGrain) {
+                Incoming& g = grains.emplace_back();
+                g.id = in.get<int>();
+                g.owned = tag == kOwnedGrain;
+                if (g.owned) {
+                    g.ghostRanks.resize(size_t(in.get<int>()));
+                    for (int& k : g.ghostRanks) k = in.get<int>();
+                    mCounters.grainsMigrated += r != me;
+                } else {
+                    g.owner = in.get<int>();
+                }
+                g.grain = grainpacking::getGrain(in, world);
+                g.work = in.get<double>();
+            } else if (tag == kPairHistory) {
+                IncomingPair& p = pairs.emplace_back();
+                p.first = in.get<int>();
+                p.second = in.get<int>();
+                grainpacking::getHistory(in, p.history.shearOnFirstNodes, buffer);
+                grainpacking::getHistory(in, p.history.shearOnSecondNodes, buffer);
+                mCounters.historiesMigrated += r != me;
+            } else if (tag == kBoundaryHistory) {
+                IncomingBoundary& b = boundaries.emplace_back();
+                b.grain = in.get<int>();
+                b.boundary = in.get<int>();
+                grainpacking::getHistory(in, b.history, buffer);
+                mCounters.historiesMigrated += r != me;
+            } else {
+                throw std::runtime_error("GhostDecomposition: a malformed exchange from rank " +
+                                         std::to_string(r));
+            }
+        }
+    }
+
+    // This rank's world anew, in global order: its contact list is then the one-process
+    // list's part, in the same order.
+    std::sort(grains.begin(), grains.end(),
+              [](const Incoming& a, const Incoming& b) { return a.id < b.id; });
+    const std::vector<int> previous = mGlobal;
+    const size_t n = grains.size();
+    world.grains.clear();
+    world.grains.reserve(n);
+    mGlobal.resize(n);
+    mOwned.resize(n);
+    mWork.resize(n);
+    mSendGhosts.assign(size_t(ranks), {});
+    mReceiveGhosts.assign(size_t(ranks), {});
+    int owned = 0;
+    for (size_t i = 0; i < n; ++i) {
+        Incoming& g = grains[i];
+        if (i > 0 && grains[i - 1].id == g.id)
+            throw std::logic_error("GhostDecomposition: grain " + std::to_string(g.id) +
+                                   " received twice");
+        world.grains.push_back(std::move(g.grain));
+        mGlobal[i] = g.id;
+        mOwned[i] = g.owned;
+        mWork[i] = g.work;
+        owned += g.owned;
+        // Both lists in global order, so a ghost update needs no indices.
+        if (g.owned)
+            for (int r : g.ghostRanks) mSendGhosts[size_t(r)].push_back(static_cast<int>(i));
+        else
+            mReceiveGhosts[size_t(g.owner)].push_back(static_cast<int>(i));
+    }
+    mRenumbering.resize(previous.size());
+    for (size_t i = 0; i < previous.size(); ++i) mRenumbering[i] = localOf(previous[i]);
+    world.pairHistory.clear();
+    for (IncomingPair& p : pairs) {
+        const int a = localOf(p.first), b = localOf(p.second);
+        if (a < 0 || b < 0 || (!mOwned[size_t(a)] && !mOwned[size_t(b)])) continue;
+        world.pairHistory.emplace(std::make_pair(a, b), std::move(p.history));
+    }
+    world.boundaryHistory.clear();
+    for (IncomingBoundary& b : boundaries) {
+        const int a = localOf(b.grain);
+        if (a < 0 || !mOwned[size_t(a)]) continue;
+        world.boundaryHistory.emplace(std::make_pair(a, b.boundary), std::move(b.history));
+    }
+    packSeconds += unpacking.seconds();
+    mCounters.packSeconds += packSeconds;
+    mCounters.owned = owned;
+    mCounters.ghosts = static_cast<int>(n) - owned;
+    ++mCounters.redistributions;
+}
+
+bool GhostDecomposition::updateGhosts(World& world, bool rebuildHere)
+{
+    const Stopwatch packing;
+    const int ranks = mRanks.ranks();
+    mToEach.resize(size_t(ranks));
+    for (int r = 0; r < ranks; ++r) {
+        mToEach[size_t(r)].clear();
+        Writer w(mToEach[size_t(r)]);
+        for (int i : mSendGhosts[size_t(r)]) grainpacking::putState(w, world.grains[size_t(i)]);
+        w.put(static_cast<char>(rebuildHere));  // the vote, last
+    }
+    double packSeconds = packing.seconds();
+    exchange(mToEach, mReceived, mStarts);
+    const Stopwatch unpacking;
+    bool rebuild = false;
+    for (int r = 0; r < ranks; ++r) {
+        Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
+        for (int i : mReceiveGhosts[size_t(r)]) grainpacking::getState(in, world.grains[size_t(i)]);
+        rebuild |= in.get<char>() != 0;
+        if (!in.done())
+            throw std::runtime_error("GhostDecomposition: rank " + std::to_string(r) +
+                                     " sent more ghost states than expected");
+    }
+    packSeconds += unpacking.seconds();
+    mCounters.packSeconds += packSeconds;
+    ++mCounters.ghostUpdates;
+    return rebuild;
+}
+
+void GhostDecomposition::recordWork(const ContactList& contacts)
+{
+    ++mEvaluations;
+    std::fill(mWork.begin(), mWork.end(), 1.0);
+    for (const ContactSlot& s : contacts.slots())
+        mWork[size_t(s.first)] += double(s.stats.nodesConsidered) + double(s.stats.nodesSampled);
+}
+
+World GhostDecomposition::gatherWorld(const World& local)
+{
+    std::vector<char> mine;
+    Writer w(mine);
+    for (size_t i = 0; i < local.grains.size(); ++i) {
+        if (!mOwned[i]) continue;
+        w.put(kOwnedGrain);
+        w.put(mGlobal[i]);
+        grainpacking::putGrain(w, local.grains[i], assetIndex(local, local.grains[i].asset.get()));
+    }
+    // Every history of the list, empty ones too: a pair's from the owner of its first grain.
+    for (const auto& [key, h] : local.pairHistory) {
+        if (!mOwned[size_t(key.first)]) continue;
+        w.put(kPairHistory);
+        w.put(mGlobal[size_t(key.first)]);
+        w.put(mGlobal[size_t(key.second)]);
+        grainpacking::putHistory(w, h.shearOnFirstNodes);
+        grainpacking::putHistory(w, h.shearOnSecondNodes);
+    }
+    for (const auto& [key, h] : local.boundaryHistory) {
+        w.put(kBoundaryHistory);
+        w.put(mGlobal[size_t(key.first)]);
+        w.put(key.second);
+        grainpacking::putHistory(w, h);
+    }
+    // To rank 0 only: the others send, and hold no more than their part.
+    std::vector<std::vector<char>> toEach(size_t(mRanks.ranks()));
+    toEach[0].swap(mine);
+    std::vector<char> all;
+    std::vector<size_t> starts;
+    const Stopwatch watch;
+    mRanks.allToAll(toEach, all, starts);
+    mCounters.exchangeSeconds += watch.seconds();
+    if (mRanks.rank() != 0) return World();
+
+    World out = local;
+    out.grains.clear();
+    out.pairHistory.clear();
+    out.boundaryHistory.clear();
+    std::vector<std::pair<int, Grain>> grains;
+    std::vector<ShearHistory::Entry> buffer;
+    Reader in(all.data(), all.data() + all.size());
+    while (!in.done()) {
+        const char tag = in.get<char>();
+        if (tag == kOwnedGrain) {
+            const int id = in.get<int>();
+            grains.emplace_back(id, grainpacking::getGrain(in, local));
+        } else if (tag == kPairHistory) {
+            const int a = in.get<int>(), b = in.get<int>();
+            PairHistory h;
+            grainpacking::getHistory(in, h.shearOnFirstNodes, buffer);
+            grainpacking::getHistory(in, h.shearOnSecondNodes, buffer);
+            out.pairHistory.emplace(std::make_pair(a, b), std::move(h));
+        } else if (tag == kBoundaryHistory) {
+            const int a = in.get<int>(), b = in.get<int>();
+            ShearHistory h;
+            grainpacking::getHistory(in, h, buffer);
+            out.boundaryHistory.emplace(std::make_pair(a, b), std::move(h));
+        } else {
+            throw std::runtime_error("GhostDecomposition: a malformed gathered world");
+        }
+    }
+    std::sort(grains.begin(), grains.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (grains.size() != size_t(mGlobalCount))
+        throw std::logic_error("GhostDecomposition: the ranks own " +
+                               std::to_string(grains.size()) + " grains, not " +
+                               std::to_string(mGlobalCount));
+    for (size_t g = 0; g < grains.size(); ++g) {
+        if (grains[g].first != static_cast<int>(g))
+            throw std::logic_error("GhostDecomposition: grain " + std::to_string(g) +
+                                   " is owned by no rank or by two");
+        out.grains.push_back(std::move(grains[g].second));
+    }
+    return out;
+}
+
+} // namespace lsdem

@@ -1,0 +1,224 @@
+#include "lsdem/ls/LevelSetBricks.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <bitset>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <utility>
+
+namespace lsdem {
+
+namespace {
+
+/// Brick coordinate of index @a i (floor division by the brick size).
+int brickOf(int i) { return i >> LevelSetBricks::kLog2Dim; }
+
+uint32_t floatBits(float v)
+{
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof(bits));
+    return bits;
+}
+
+/// Read the brick at @a origin: from its leaf's buffer, or the one tile value it lies in.
+/// Returns false when the brick is one value in one state (then @a raw holds it in [0]).
+bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord& origin,
+               LevelSetBricks::RawBrick& raw)
+{
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    static_assert(Leaf::DIM % LevelSetBricks::kDim == 0, "a brick lies within one leaf");
+    constexpr int kDim = LevelSetBricks::kDim;
+    const Leaf* leaf = accessor.probeConstLeaf(origin);
+    if (!leaf) {
+        raw.value[0] = accessor.getValue(origin);
+        raw.active[0] = accessor.isValueOn(origin) ? 1u : 0u;
+        return false;
+    }
+    std::memset(raw.active, 0, sizeof(raw.active));
+    for (int x = 0; x < kDim; ++x)
+        for (int y = 0; y < kDim; ++y)
+            for (int z = 0; z < kDim; ++z) {
+                const openvdb::Coord c = origin.offsetBy(x, y, z);
+                const openvdb::Index n = Leaf::coordToOffset(c);
+                const int k = LevelSetBricks::offset(c);
+                raw.value[k] = leaf->getValue(n);
+                if (leaf->isValueOn(n)) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
+            }
+    for (int k = 1; k < LevelSetBricks::kVoxels; ++k)
+        if (raw.value[k] != raw.value[0]) return true;
+    const bool on = (raw.active[0] & 1u) != 0;
+    for (int k = 0; k < LevelSetBricks::kVoxels; ++k)
+        if ((((raw.active[k >> 6] >> (k & 63)) & 1u) != 0) != on) return true;
+    raw.active[0] = on ? 1u : 0u;
+    return false;
+}
+
+/// The box of index space holding every voxel of @a grid that is active or differs from the
+/// background: its leaves and such tiles.
+openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
+{
+    openvdb::CoordBBox box;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) box.expand(leaf->getNodeBoundingBox());
+    auto it = grid.tree().cbeginValueAll();
+    it.setMaxDepth(openvdb::FloatTree::RootNodeType::LEVEL - 1);  // tiles only, no voxels
+    for (; it; ++it)
+        if (it.isValueOn() || *it != grid.background()) box.expand(it.getBoundingBox());
+    return box;
+}
+
+} // namespace
+
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
+    : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
+{
+    const float background = grid.background();
+    mUniformValue.push_back(background);
+    mUniformActive.push_back(0);
+    const openvdb::CoordBBox box = valueBox(grid);
+    if (box.empty()) return;
+    for (int k = 0; k < 3; ++k) {
+        mBrickMin[k] = brickOf(box.min()[k]);
+        mBricks[k] = uint32_t(brickOf(box.max()[k]) - mBrickMin[k] + 1);
+    }
+    mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kUniform);
+
+    // Uniform bricks get a table entry only; the others a brick index, in table order.
+    std::map<std::pair<uint32_t, uint8_t>, uint32_t> uniformIndex;  // (value bits, active)
+    uniformIndex[{floatBits(background), 0}] = 0;
+    auto accessor = grid.getConstAccessor();
+    forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
+                                  const RawBrick& raw) {
+        for (int k = 0; k < (varies ? kVoxels : 1); ++k)
+            if (!std::isfinite(raw.value[k]))
+                throw Error("level set",
+                            "the grid holds a value that is not a finite number near index (" +
+                                std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
+                                ", " + std::to_string(origin.z()) + ")",
+                            "rebuild the level set; lsdem samples finite distances only");
+        if (varies) {
+            const auto brick = uint32_t(mBrickStep.size());
+            mTable[slot] = brick;
+            mBrickStep.push_back(0.0f);
+            mCode.resize(mCode.size() + 3 * kVoxels);
+            mActive.insert(mActive.end(), raw.active, raw.active + kMaskWords);
+            encode(brick, raw);
+            return;
+        }
+        const auto key = std::make_pair(floatBits(raw.value[0]), uint8_t(raw.active[0]));
+        const auto [it, added] = uniformIndex.emplace(key, uint32_t(mUniformValue.size()));
+        if (added) {
+            mUniformValue.push_back(raw.value[0]);
+            mUniformActive.push_back(key.second);
+        }
+        mTable[slot] = kUniform | it->second;
+    });
+    mCode.shrink_to_fit();
+    mBrickStep.shrink_to_fit();
+    mActive.shrink_to_fit();
+}
+
+template <typename Visit>
+void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor,
+                                     Visit&& visit) const
+{
+    RawBrick raw;
+    size_t slot = 0;
+    for (uint32_t ix = 0; ix < mBricks[0]; ++ix)
+        for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
+            for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
+                const openvdb::Coord origin((mBrickMin[0] + int(ix)) * kDim,
+                                            (mBrickMin[1] + int(iy)) * kDim,
+                                            (mBrickMin[2] + int(iz)) * kDim);
+                const bool varies = readBrick(accessor, origin, raw);
+                visit(slot, origin, varies, raw);
+            }
+}
+
+void LevelSetBricks::encode(uint32_t brick, const RawBrick& raw)
+{
+    float largest = 0.0f;
+    for (float v : raw.value) largest = std::max(largest, std::abs(v));
+    // step = 2^(c − 22) with 2^c ≥ largest: every |q| ≤ 2^22.
+    int c = 0;
+    const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
+    if (mantissa == 0.5) --c;                                  // already a power of two
+    const double step = largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
+    mBrickStep[brick] = float(step);
+    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    for (int k = 0; k < kVoxels; ++k) {
+        // To the nearest step, but never across zero (the sign decides contact).
+        const double v = raw.value[k];
+        auto q = static_cast<int32_t>(std::llround(v / step));
+        if (v < 0.0 && q >= 0) q = -1;
+        if (v > 0.0 && q <= 0) q = 1;
+        const auto bits = static_cast<uint32_t>(q);
+        code[3 * k] = uint8_t(bits);
+        code[3 * k + 1] = uint8_t(bits >> 8);
+        code[3 * k + 2] = uint8_t(bits >> 16);
+    }
+}
+
+openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
+{
+    auto result = openvdb::FloatGrid::create(background());
+    static_cast<openvdb::MetaMap&>(*result) = *mMetadata;
+    result->setTransform(mTransform->copy());
+    auto accessor = result->getAccessor();
+    const float bg = background();
+    forEachBrick(
+        [&](const openvdb::Coord& c, float value, bool active) {
+            if (active)
+                accessor.setValueOn(c, value);
+            else if (value != bg)
+                accessor.setValueOff(c, value);
+        },
+        [&](const openvdb::CoordBBox& brick, float value, bool active) {
+            result->tree().fill(brick, value, active);
+        });
+    return result;
+}
+
+bool LevelSetBricks::isValueOn(const openvdb::Coord& c) const
+{
+    const uint32_t e = entry(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim);
+    if (e & kUniform) return mUniformActive[e & ~kUniform] != 0;
+    const int n = offset(c);
+    return ((mActive[size_t(e) * kMaskWords + size_t(n >> 6)] >> (n & 63)) & 1u) != 0;
+}
+
+openvdb::Index64 LevelSetBricks::activeVoxelCount() const
+{
+    openvdb::Index64 count = 0;
+    for (uint32_t e : mTable)
+        if (e & kUniform)
+            count += mUniformActive[e & ~kUniform] ? kVoxels : 0;
+    for (uint64_t word : mActive) count += openvdb::Index64(std::bitset<64>(word).count());
+    return count;
+}
+
+openvdb::CoordBBox LevelSetBricks::evalActiveVoxelBoundingBox() const
+{
+    openvdb::CoordBBox box;
+    forEachBrick(
+        [&](const openvdb::Coord& c, float, bool active) {
+            if (active) box.expand(c);
+        },
+        [&](const openvdb::CoordBBox& brick, float, bool active) {
+            if (active) box.expand(brick);
+        });
+    return box;
+}
+
+size_t LevelSetBricks::memUsage() const
+{
+    return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
+           mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
+           mActive.capacity() * sizeof(uint64_t) + mUniformValue.capacity() * sizeof(float) +
+           mUniformActive.capacity();
+}
+
+} // namespace lsdem

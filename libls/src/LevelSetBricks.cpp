@@ -75,46 +75,38 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
 {
-    const float background = grid.background();
-    mUniformValue.push_back(background);
-    mUniformActive.push_back(0);
-    const openvdb::CoordBBox box = valueBox(grid);
-    if (box.empty()) return;
-    for (int k = 0; k < 3; ++k) {
-        mBrickMin[k] = brickOf(box.min()[k]);
-        mBricks[k] = uint32_t(brickOf(box.max()[k]) - mBrickMin[k] + 1);
-    }
-    mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kUniform);
+    // Brick 0: the inactive background, shared by every such place and by all outside.
+    RawBrick raw{};
+    raw.value[0] = grid.background();
+    std::map<std::pair<uint32_t, uint8_t>, uint32_t> shared;  // (value bits, active) → brick
+    shared[{floatBits(raw.value[0]), 0}] = addBrick(raw, false);
 
-    // Uniform bricks get a table entry only; the others a brick index, in table order.
-    std::map<std::pair<uint32_t, uint8_t>, uint32_t> uniformIndex;  // (value bits, active)
-    uniformIndex[{floatBits(background), 0}] = 0;
+    const openvdb::CoordBBox box = valueBox(grid);
+    if (!box.empty()) {
+        for (int k = 0; k < 3; ++k) {
+            mBrickMin[k] = brickOf(box.min()[k]);
+            mBricks[k] = uint32_t(brickOf(box.max()[k]) - mBrickMin[k] + 1);
+        }
+        mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
+    }
     auto accessor = grid.getConstAccessor();
     forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
-                                  const RawBrick& raw) {
+                                  const RawBrick& brick) {
         for (int k = 0; k < (varies ? kVoxels : 1); ++k)
-            if (!std::isfinite(raw.value[k]))
+            if (!std::isfinite(brick.value[k]))
                 throw Error("level set",
                             "the grid holds a value that is not a finite number near index (" +
                                 std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
                                 ", " + std::to_string(origin.z()) + ")",
                             "rebuild the level set; lsdem samples finite distances only");
         if (varies) {
-            const auto brick = uint32_t(mBrickStep.size());
-            mTable[slot] = brick;
-            mBrickStep.push_back(0.0f);
-            mCode.resize(mCode.size() + 3 * kVoxels);
-            mActive.insert(mActive.end(), raw.active, raw.active + kMaskWords);
-            encode(brick, raw);
+            mTable[slot] = addBrick(brick, true);
             return;
         }
-        const auto key = std::make_pair(floatBits(raw.value[0]), uint8_t(raw.active[0]));
-        const auto [it, added] = uniformIndex.emplace(key, uint32_t(mUniformValue.size()));
-        if (added) {
-            mUniformValue.push_back(raw.value[0]);
-            mUniformActive.push_back(key.second);
-        }
-        mTable[slot] = kUniform | it->second;
+        const auto key = std::make_pair(floatBits(brick.value[0]), uint8_t(brick.active[0] & 1u));
+        auto it = shared.find(key);
+        if (it == shared.end()) it = shared.emplace(key, addBrick(brick, false)).first;
+        mTable[slot] = kShared | it->second;
     });
     mCode.shrink_to_fit();
     mBrickStep.shrink_to_fit();
@@ -138,8 +130,19 @@ void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor
             }
 }
 
-void LevelSetBricks::encode(uint32_t brick, const RawBrick& raw)
+uint32_t LevelSetBricks::addBrick(const RawBrick& raw, bool varies)
 {
+    const auto brick = uint32_t(mBrickStep.size());
+    mCode.resize(mCode.size() + 3 * kVoxels);
+    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    if (!varies) {
+        // One value v: q = 1 and step = v decode to v exactly.
+        const bool on = (raw.active[0] & 1u) != 0;
+        mBrickStep.push_back(raw.value[0]);
+        for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
+        mActive.insert(mActive.end(), kMaskWords, on ? ~uint64_t(0) : uint64_t(0));
+        return brick;
+    }
     float largest = 0.0f;
     for (float v : raw.value) largest = std::max(largest, std::abs(v));
     // step = 2^(c − 22) with 2^c ≥ largest: every |q| ≤ 2^22.
@@ -147,8 +150,8 @@ void LevelSetBricks::encode(uint32_t brick, const RawBrick& raw)
     const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
     if (mantissa == 0.5) --c;                                  // already a power of two
     const double step = largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
-    mBrickStep[brick] = float(step);
-    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    mBrickStep.push_back(float(step));
+    mActive.insert(mActive.end(), raw.active, raw.active + kMaskWords);
     for (int k = 0; k < kVoxels; ++k) {
         // To the nearest step, but never across zero (the sign decides contact).
         const double v = raw.value[k];
@@ -160,6 +163,7 @@ void LevelSetBricks::encode(uint32_t brick, const RawBrick& raw)
         code[3 * k + 1] = uint8_t(bits >> 8);
         code[3 * k + 2] = uint8_t(bits >> 16);
     }
+    return brick;
 }
 
 openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
@@ -182,21 +186,14 @@ openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
     return result;
 }
 
-bool LevelSetBricks::isValueOn(const openvdb::Coord& c) const
-{
-    const uint32_t e = entry(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim);
-    if (e & kUniform) return mUniformActive[e & ~kUniform] != 0;
-    const int n = offset(c);
-    return ((mActive[size_t(e) * kMaskWords + size_t(n >> 6)] >> (n & 63)) & 1u) != 0;
-}
-
 openvdb::Index64 LevelSetBricks::activeVoxelCount() const
 {
+    std::vector<openvdb::Index64> perBrick(mBrickStep.size(), 0);
+    for (size_t b = 0; b < perBrick.size(); ++b)
+        for (int w = 0; w < kMaskWords; ++w)
+            perBrick[b] += std::bitset<64>(mActive[b * kMaskWords + size_t(w)]).count();
     openvdb::Index64 count = 0;
-    for (uint32_t e : mTable)
-        if (e & kUniform)
-            count += mUniformActive[e & ~kUniform] ? kVoxels : 0;
-    for (uint64_t word : mActive) count += openvdb::Index64(std::bitset<64>(word).count());
+    for (uint32_t e : mTable) count += perBrick[e & kIndexMask];
     return count;
 }
 
@@ -217,8 +214,7 @@ size_t LevelSetBricks::memUsage() const
 {
     return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
            mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
-           mActive.capacity() * sizeof(uint64_t) + mUniformValue.capacity() * sizeof(float) +
-           mUniformActive.capacity();
+           mActive.capacity() * sizeof(uint64_t);
 }
 
 } // namespace lsdem

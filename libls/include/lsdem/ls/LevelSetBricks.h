@@ -43,12 +43,15 @@ public:
     /// The value at index @a c, as decoded (background outside the bricks).
     float value(const openvdb::Coord& c) const
     {
-        const uint32_t e = entry(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim);
-        return (e & kUniform) ? mUniformValue[e & ~kUniform] : decode(e, offset(c));
+        return decode(brick(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim), offset(c));
     }
-    bool isValueOn(const openvdb::Coord& c) const;
+    bool isValueOn(const openvdb::Coord& c) const
+    {
+        const uint32_t b = brick(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim);
+        return isOn(b, offset(c));
+    }
 
-    float background() const { return mUniformValue[0]; }
+    float background() const { return decode(kBackgroundBrick, 0); }
     /// Bound on |stored − original| of a value, relative to the largest |value| of its brick.
     static constexpr double kRelativeError = 1.0 / (1 << 21);
 
@@ -57,31 +60,31 @@ public:
     /// Bytes held (this object and its arrays).
     size_t memUsage() const;
 
-    /// Calls @a visit(coord, value, active) for every voxel of a brick (not the empty ones),
-    /// and @a visitUniform(bbox, value, active) for each brick of one value and state.
+    /// Calls @a visit(coord, value, active) for every voxel of a brick of the table that holds
+    /// varying values, and @a visitUniform(bbox, value, active) for each brick of one value
+    /// and state other than the inactive background.
     template <typename VisitVoxel, typename VisitUniform>
     void forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUniform) const;
 
-    // ---- for the sampler: a brick's entry in the table, and its decoded values ----
-    static constexpr uint32_t kUniform = 0x80000000u;  ///< entry flag: one value, index below
-    /// The entry of the brick with brick coordinates (bx, by, bz): a brick index, or kUniform
-    /// with an index into the uniform values (0: the background, outside the table too).
-    uint32_t entry(int bx, int by, int bz) const
+    // ---- for the sampler ----
+    /// The brick with brick coordinates (bx, by, bz); the background brick outside the table.
+    /// Bricks of one value and state (the background, interior tiles) are stored once and
+    /// shared, so every place has a brick and reading one never branches on its kind.
+    uint32_t brick(int bx, int by, int bz) const
     {
         const auto ux = static_cast<uint32_t>(bx - mBrickMin[0]);
         const auto uy = static_cast<uint32_t>(by - mBrickMin[1]);
         const auto uz = static_cast<uint32_t>(bz - mBrickMin[2]);
-        if (ux >= mBricks[0] || uy >= mBricks[1] || uz >= mBricks[2]) return kUniform;
-        return mTable[(size_t(ux) * mBricks[1] + uy) * mBricks[2] + uz];
+        if (ux >= mBricks[0] || uy >= mBricks[1] || uz >= mBricks[2]) return kBackgroundBrick;
+        return mTable[(size_t(ux) * mBricks[1] + uy) * mBricks[2] + uz] & kIndexMask;
     }
-    float uniformValue(uint32_t e) const { return mUniformValue[e & ~kUniform]; }
     /// Offset of voxel @a c within its brick: x-major, as in OpenVDB's leaves.
     static int offset(const openvdb::Coord& c)
     {
         constexpr int m = kDim - 1;
         return ((c.x() & m) << (2 * kLog2Dim)) | ((c.y() & m) << kLog2Dim) | (c.z() & m);
     }
-    /// The value of voxel @a offset of dense brick @a brick.
+    /// The value of voxel @a offset of brick @a brick.
     float decode(uint32_t brick, int offset) const
     {
         return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
@@ -91,7 +94,7 @@ public:
     {
         const uint32_t bits = uint32_t(code[0]) | uint32_t(code[1]) << 8 | uint32_t(code[2]) << 16;
         const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
-        return static_cast<float>(q) * step;  // both exact: |q| ≤ 2^22, step a power of two
+        return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
     }
     const uint8_t* codes(uint32_t brick) const { return mCode.data() + size_t(brick) * 3 * kVoxels; }
     float step(uint32_t brick) const { return mBrickStep[brick]; }
@@ -104,20 +107,26 @@ public:
     };
 
 private:
+    static constexpr uint32_t kBackgroundBrick = 0;
+    static constexpr uint32_t kShared = 0x80000000u;  ///< table flag: a brick of one value
+    static constexpr uint32_t kIndexMask = ~kShared;
+
+    bool isOn(uint32_t brick, int offset) const
+    {
+        return ((mActive[size_t(brick) * kMaskWords + size_t(offset >> 6)] >> (offset & 63)) & 1u) != 0;
+    }
     /// Calls @a visit(slot, origin, varies, raw) for each brick of the table, read from a grid.
     template <typename Visit>
     void forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor, Visit&& visit) const;
-    /// Encode @a raw as dense brick @a brick.
-    void encode(uint32_t brick, const RawBrick& raw);
+    /// Append a brick holding @a raw (all kVoxels values, or one if not @a varies).
+    uint32_t addBrick(const RawBrick& raw, bool varies);
 
     int mBrickMin[3] = {0, 0, 0};  ///< brick coordinates of the table's first brick
     uint32_t mBricks[3] = {0, 0, 0};
-    std::vector<uint32_t> mTable;        ///< per brick of the box, x-major
-    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per dense brick
-    std::vector<float> mBrickStep;       ///< per dense brick, a power of two
-    std::vector<uint64_t> mActive;       ///< kMaskWords per dense brick
-    std::vector<float> mUniformValue;    ///< [0]: the background (inactive)
-    std::vector<uint8_t> mUniformActive;
+    std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
+    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick
+    std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
+    std::vector<uint64_t> mActive;       ///< kMaskWords per brick
     openvdb::math::Transform::Ptr mTransform;
     openvdb::MetaMap::Ptr mMetadata;
 };
@@ -129,21 +138,21 @@ void LevelSetBricks::forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUnifor
         for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz) {
                 const uint32_t e = mTable[(size_t(ix) * mBricks[1] + iy) * mBricks[2] + iz];
+                const uint32_t b = e & kIndexMask;
                 const openvdb::Coord origin((mBrickMin[0] + int(ix)) * kDim,
                                             (mBrickMin[1] + int(iy)) * kDim,
                                             (mBrickMin[2] + int(iz)) * kDim);
-                if (e & kUniform) {
-                    if (e != kUniform)
-                        visitUniform(openvdb::CoordBBox::createCube(origin, kDim),
-                                     mUniformValue[e & ~kUniform], mUniformActive[e & ~kUniform] != 0);
+                if (e & kShared) {
+                    if (b != kBackgroundBrick)
+                        visitUniform(openvdb::CoordBBox::createCube(origin, kDim), decode(b, 0),
+                                     isOn(b, 0));
                     continue;
                 }
-                const uint64_t* mask = mActive.data() + size_t(e) * kMaskWords;
                 for (int n = 0; n < kVoxels; ++n) {
                     const openvdb::Coord c = origin.offsetBy(n >> (2 * kLog2Dim),
                                                              (n >> kLog2Dim) & (kDim - 1),
                                                              n & (kDim - 1));
-                    visit(c, decode(e, n), ((mask[n >> 6] >> (n & 63)) & 1u) != 0);
+                    visit(c, decode(b, n), isOn(b, n));
                 }
             }
 }

@@ -112,25 +112,20 @@ private:
     }
 
     /// The 8 corners of the cell whose lower corner is @a base.
-    void fetch(const openvdb::Coord& base, float value[8])
+    void fetch(const openvdb::Coord& base, float value[8]) const
     {
         // Read the corners straight from the bricks (4^3 voxels) that hold them: one brick
-        // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks, each looked up in
-        // the table once. Voxel offsets within a brick are x*16 + y*4 + z, 3 bytes each.
+        // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks. Every place has a
+        // brick (shared ones for uniform regions), so no corner needs a special case. Voxel
+        // offsets within a brick are x*16 + y*4 + z, 3 bytes each.
         using Bricks = LevelSetBricks;
         constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
-        const int crossX = (base.x() & kLast) == kLast, crossY = (base.y() & kLast) == kLast,
-                  crossZ = (base.z() & kLast) == kLast;
         const int bx = base.x() >> kLog2, by = base.y() >> kLog2, bz = base.z() >> kLog2;
-        if (!(crossX | crossY | crossZ)) {
-            const uint32_t e = mBricks->entry(bx, by, bz);
-            if (e & Bricks::kUniform) {
-                const float u = mBricks->uniformValue(e);
-                for (int corner = 0; corner < 8; ++corner) value[corner] = u;
-                return;
-            }
-            const uint8_t* d = mBricks->codes(e) + 3 * Bricks::offset(base);
-            const float step = mBricks->step(e);
+        if (((base.x() & kLast) != kLast) & ((base.y() & kLast) != kLast) &
+            ((base.z() & kLast) != kLast)) {
+            const uint32_t b = mBricks->brick(bx, by, bz);
+            const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(base);
+            const float step = mBricks->step(b);
             constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
             value[0] = Bricks::decode(d, step);
             value[1] = Bricks::decode(d + dx, step);
@@ -142,20 +137,26 @@ private:
             value[7] = Bricks::decode(d + dx + dy + dz, step);
             return;
         }
-        uint32_t entries[8];
-        bool looked[8] = {};
+        // Look up each distinct brick once: corner k lies in brick k's own place only along
+        // the axes the cell crosses.
+        const int cx = (base.x() & kLast) == kLast, cy = (base.y() & kLast) == kLast,
+                  cz = (base.z() & kLast) == kLast;
+        uint32_t brick[8];
+        brick[0] = mBricks->brick(bx, by, bz);
+        brick[1] = cx ? mBricks->brick(bx + 1, by, bz) : brick[0];
+        brick[2] = cy ? mBricks->brick(bx, by + 1, bz) : brick[0];
+        brick[3] = cy ? (cx ? mBricks->brick(bx + 1, by + 1, bz) : brick[2]) : brick[1];
+        if (cz) {
+            brick[4] = mBricks->brick(bx, by, bz + 1);
+            brick[5] = cx ? mBricks->brick(bx + 1, by, bz + 1) : brick[4];
+            brick[6] = cy ? mBricks->brick(bx, by + 1, bz + 1) : brick[4];
+            brick[7] = cy ? (cx ? mBricks->brick(bx + 1, by + 1, bz + 1) : brick[6]) : brick[5];
+        } else {
+            for (int k = 4; k < 8; ++k) brick[k] = brick[k - 4];
+        }
         for (int corner = 0; corner < 8; ++corner) {
-            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
-            const openvdb::Coord c = base.offsetBy(ox, oy, oz);
-            const int which = ((oz & crossZ) << 2) | ((oy & crossY) << 1) | (ox & crossX);
-            if (!looked[which]) {
-                entries[which] =
-                    mBricks->entry(c.x() >> kLog2, c.y() >> kLog2, c.z() >> kLog2);
-                looked[which] = true;
-            }
-            const uint32_t e = entries[which];
-            value[corner] = (e & Bricks::kUniform) ? mBricks->uniformValue(e)
-                                                   : mBricks->decode(e, Bricks::offset(c));
+            const openvdb::Coord c = base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
+            value[corner] = mBricks->decode(brick[corner], Bricks::offset(c));
         }
     }
 

@@ -14,9 +14,6 @@ namespace lsdem {
 
 namespace {
 
-/// Brick coordinate of index @a i (floor division by the brick size).
-int brickOf(int i) { return i >> LevelSetBricks::kLog2Dim; }
-
 uint32_t floatBits(float v)
 {
     uint32_t bits;
@@ -24,29 +21,29 @@ uint32_t floatBits(float v)
     return bits;
 }
 
-/// Read the brick at @a origin: from its leaf's buffer, or the one tile value it lies in.
-/// Returns false when the brick is one value in one state (then @a raw holds it in [0]).
+/// Read the brick whose first voxel is @a origin, voxel by voxel (the accessor keeps the last
+/// leaf). Returns false when the brick is one value in one state (then @a raw holds it in [0]).
 bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord& origin,
                LevelSetBricks::RawBrick& raw)
 {
     using Leaf = openvdb::FloatTree::LeafNodeType;
-    static_assert(Leaf::DIM % LevelSetBricks::kDim == 0, "a brick lies within one leaf");
     constexpr int kDim = LevelSetBricks::kDim;
-    const Leaf* leaf = accessor.probeConstLeaf(origin);
-    if (!leaf) {
-        raw.value[0] = accessor.getValue(origin);
-        raw.active[0] = accessor.isValueOn(origin) ? 1u : 0u;
-        return false;
-    }
     std::memset(raw.active, 0, sizeof(raw.active));
     for (int x = 0; x < kDim; ++x)
         for (int y = 0; y < kDim; ++y)
             for (int z = 0; z < kDim; ++z) {
                 const openvdb::Coord c = origin.offsetBy(x, y, z);
-                const openvdb::Index n = Leaf::coordToOffset(c);
-                const int k = LevelSetBricks::offset(c);
-                raw.value[k] = leaf->getValue(n);
-                if (leaf->isValueOn(n)) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
+                const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
+                bool on = false;
+                if (const Leaf* leaf = accessor.probeConstLeaf(c)) {
+                    const openvdb::Index n = Leaf::coordToOffset(c);
+                    raw.value[k] = leaf->getValue(n);
+                    on = leaf->isValueOn(n);
+                } else {
+                    raw.value[k] = accessor.getValue(c);
+                    on = accessor.isValueOn(c);
+                }
+                if (on) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
             }
     for (int k = 1; k < LevelSetBricks::kVoxels; ++k)
         if (raw.value[k] != raw.value[0]) return true;
@@ -58,15 +55,18 @@ bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord
 }
 
 /// The box of index space holding every voxel of @a grid that is active or differs from the
-/// background: its leaves and such tiles.
+/// background: such voxels of its leaves, and such tiles.
 openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 {
+    const float background = grid.background();
     openvdb::CoordBBox box;
-    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) box.expand(leaf->getNodeBoundingBox());
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        for (auto it = leaf->cbeginValueAll(); it; ++it)
+            if (it.isValueOn() || *it != background) box.expand(it.getCoord());
     auto it = grid.tree().cbeginValueAll();
     it.setMaxDepth(openvdb::FloatTree::RootNodeType::LEVEL - 1);  // tiles only, no voxels
     for (; it; ++it)
-        if (it.isValueOn() || *it != grid.background()) box.expand(it.getBoundingBox());
+        if (it.isValueOn() || *it != background) box.expand(it.getBoundingBox());
     return box;
 }
 
@@ -83,10 +83,9 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
 
     const openvdb::CoordBBox box = valueBox(grid);
     if (!box.empty()) {
-        for (int k = 0; k < 3; ++k) {
-            mBrickMin[k] = brickOf(box.min()[k]);
-            mBricks[k] = uint32_t(brickOf(box.max()[k]) - mBrickMin[k] + 1);
-        }
+        mOrigin = box.min();
+        for (int k = 0; k < 3; ++k)
+            mBricks[k] = uint32_t((box.max()[k] - box.min()[k]) / kDim + 1);
         mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
     }
     auto accessor = grid.getConstAccessor();
@@ -122,9 +121,8 @@ void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor
     for (uint32_t ix = 0; ix < mBricks[0]; ++ix)
         for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
-                const openvdb::Coord origin((mBrickMin[0] + int(ix)) * kDim,
-                                            (mBrickMin[1] + int(iy)) * kDim,
-                                            (mBrickMin[2] + int(iz)) * kDim);
+                const openvdb::Coord origin =
+                    mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
                 const bool varies = readBrick(accessor, origin, raw);
                 visit(slot, origin, varies, raw);
             }

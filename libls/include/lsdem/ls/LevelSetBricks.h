@@ -43,12 +43,13 @@ public:
     /// The value at index @a c, as decoded (background outside the bricks).
     float value(const openvdb::Coord& c) const
     {
-        return decode(brick(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim), offset(c));
+        const openvdb::Coord l = c - mOrigin;
+        return decode(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
     }
     bool isValueOn(const openvdb::Coord& c) const
     {
-        const uint32_t b = brick(c.x() >> kLog2Dim, c.y() >> kLog2Dim, c.z() >> kLog2Dim);
-        return isOn(b, offset(c));
+        const openvdb::Coord l = c - mOrigin;
+        return isOn(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
     }
 
     float background() const { return decode(kBackgroundBrick, 0); }
@@ -66,19 +67,22 @@ public:
     template <typename VisitVoxel, typename VisitUniform>
     void forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUniform) const;
 
-    // ---- for the sampler ----
-    /// The brick with brick coordinates (bx, by, bz); the background brick outside the table.
-    /// Bricks of one value and state (the background, interior tiles) are stored once and
-    /// shared, so every place has a brick and reading one never branches on its kind.
+    // ---- for the sampler: "local" coordinates are index coordinates minus origin() ----
+    /// The index of the first voxel of the table's first brick: the lowest corner of the
+    /// voxels that are active or differ from the background (so bricks waste no more than
+    /// 3 voxels per axis beyond them, whatever their alignment).
+    const openvdb::Coord& origin() const { return mOrigin; }
+    /// The brick at local brick coordinates (bx, by, bz); the background brick outside the
+    /// table. Bricks of one value and state (the background, interior tiles) are stored once
+    /// and shared, so every place has a brick and reading one never branches on its kind.
     uint32_t brick(int bx, int by, int bz) const
     {
-        const auto ux = static_cast<uint32_t>(bx - mBrickMin[0]);
-        const auto uy = static_cast<uint32_t>(by - mBrickMin[1]);
-        const auto uz = static_cast<uint32_t>(bz - mBrickMin[2]);
+        const auto ux = static_cast<uint32_t>(bx), uy = static_cast<uint32_t>(by),
+                   uz = static_cast<uint32_t>(bz);
         if (ux >= mBricks[0] || uy >= mBricks[1] || uz >= mBricks[2]) return kBackgroundBrick;
         return mTable[(size_t(ux) * mBricks[1] + uy) * mBricks[2] + uz] & kIndexMask;
     }
-    /// Offset of voxel @a c within its brick: x-major, as in OpenVDB's leaves.
+    /// Offset of the voxel at local coordinates @a c within its brick: x-major.
     static int offset(const openvdb::Coord& c)
     {
         constexpr int m = kDim - 1;
@@ -121,7 +125,7 @@ private:
     /// Append a brick holding @a raw (all kVoxels values, or one if not @a varies).
     uint32_t addBrick(const RawBrick& raw, bool varies);
 
-    int mBrickMin[3] = {0, 0, 0};  ///< brick coordinates of the table's first brick
+    openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};
     std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
     std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick
@@ -139,9 +143,8 @@ void LevelSetBricks::forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUnifor
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz) {
                 const uint32_t e = mTable[(size_t(ix) * mBricks[1] + iy) * mBricks[2] + iz];
                 const uint32_t b = e & kIndexMask;
-                const openvdb::Coord origin((mBrickMin[0] + int(ix)) * kDim,
-                                            (mBrickMin[1] + int(iy)) * kDim,
-                                            (mBrickMin[2] + int(iz)) * kDim);
+                const openvdb::Coord origin =
+                    mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
                 if (e & kShared) {
                     if (b != kBackgroundBrick)
                         visitUniform(openvdb::CoordBBox::createCube(origin, kDim), decode(b, 0),

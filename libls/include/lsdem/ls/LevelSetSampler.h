@@ -23,7 +23,8 @@ class LevelSetSampler
 {
 public:
     explicit LevelSetSampler(const LevelSetGrid& levelSet)
-        : mBricks(levelSet.grid.get()), mOrigin(levelSet.origin),
+        : mBricks(levelSet.grid.get()), mBrickOrigin(levelSet.grid->origin()),
+          mOrigin(levelSet.origin),
           mInvVoxel(1.0 / levelSet.voxelSize)
     {
     }
@@ -120,11 +121,13 @@ private:
         // offsets within a brick are x*16 + y*4 + z, 3 bytes each.
         using Bricks = LevelSetBricks;
         constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
-        const int bx = base.x() >> kLog2, by = base.y() >> kLog2, bz = base.z() >> kLog2;
-        if (((base.x() & kLast) != kLast) & ((base.y() & kLast) != kLast) &
-            ((base.z() & kLast) != kLast)) {
+        const openvdb::Coord local = base - mBrickOrigin;
+        const int bx = local.x() >> kLog2, by = local.y() >> kLog2, bz = local.z() >> kLog2;
+        const int cx = (local.x() & kLast) == kLast, cy = (local.y() & kLast) == kLast,
+                  cz = (local.z() & kLast) == kLast;
+        if (!(cx | cy | cz)) {
             const uint32_t b = mBricks->brick(bx, by, bz);
-            const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(base);
+            const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(local);
             const float step = mBricks->step(b);
             constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
             value[0] = Bricks::decode(d, step);
@@ -139,8 +142,6 @@ private:
         }
         // Look up each distinct brick once: corner k lies in brick k's own place only along
         // the axes the cell crosses.
-        const int cx = (base.x() & kLast) == kLast, cy = (base.y() & kLast) == kLast,
-                  cz = (base.z() & kLast) == kLast;
         uint32_t brick[8];
         brick[0] = mBricks->brick(bx, by, bz);
         brick[1] = cx ? mBricks->brick(bx + 1, by, bz) : brick[0];
@@ -155,12 +156,13 @@ private:
             for (int k = 4; k < 8; ++k) brick[k] = brick[k - 4];
         }
         for (int corner = 0; corner < 8; ++corner) {
-            const openvdb::Coord c = base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
+            const openvdb::Coord c = local.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
             value[corner] = mBricks->decode(brick[corner], Bricks::offset(c));
         }
     }
 
     const LevelSetBricks* mBricks;
+    openvdb::Coord mBrickOrigin;  ///< index of the bricks' first voxel
     Vec3 mOrigin;
     double mInvVoxel;
 };

@@ -4,8 +4,9 @@
 ///        turned back into one for files and OpenVDB's tools (toFloatGrid); never modified.
 ///
 /// Why: a sphere-like grain of radius 20 voxels in OpenVDB's 8³ float leaves takes ~415 KiB;
-/// here about half. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value,
-/// and the table replaces the tree walk (one multiply-add finds a brick).
+/// here ~213 KiB. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value,
+/// and the table replaces the tree walk (one multiply-add finds a brick). 16 bits a value
+/// would not do: tests rely on float accuracy at the surface (see docs/assets.md).
 ///
 /// Storage: a value is q · step, q a signed 24-bit integer, step a power of two per brick:
 /// 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of two, so

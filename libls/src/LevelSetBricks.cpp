@@ -84,8 +84,20 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     const openvdb::CoordBBox box = valueBox(grid);
     if (!box.empty()) {
         mOrigin = box.min();
-        for (int k = 0; k < 3; ++k)
-            mBricks[k] = uint32_t((box.max()[k] - box.min()[k]) / kDim + 1);
+        double places = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            mBricks[k] = uint32_t((int64_t(box.max()[k]) - box.min()[k]) / kDim + 1);
+            places *= mBricks[k];
+        }
+        // The table is dense: a grid whose values spread over a huge box (a fog volume's
+        // tiles, say) would need more than its voxels are worth.
+        if (places > double(1u << 28))
+            throw Error("level set",
+                        "the grid's values span " + std::to_string(box.dim().x()) + " x " +
+                            std::to_string(box.dim().y()) + " x " +
+                            std::to_string(box.dim().z()) +
+                            " voxels, too large a box for lsdem's level-set table",
+                        "lsdem samples grain-sized level sets; crop or rebuild the grid");
         mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
     }
     auto accessor = grid.getConstAccessor();

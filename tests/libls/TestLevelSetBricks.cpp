@@ -1,6 +1,7 @@
 // The level set as held in memory (24-bit bricks): every stored value against the float grid it
 // was made from, the sign kept, tiles kept, and a save/load round trip to the same bits.
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <gtest/gtest.h>
@@ -133,4 +134,18 @@ TEST(LevelSetBricks, TilesAndRoundTripsAreKeptExactly)
         ASSERT_EQ(again->value(*c), bricks->value(*c)) << *c;
         ASSERT_EQ(again->isValueOn(*c), bricks->isValueOn(*c)) << *c;
     }
+}
+
+// Grids lsdem cannot hold as bricks are refused with an lsdem::Error naming the problem: a
+// value that is not a number, and values spread over a box too large for a dense table.
+TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)
+{
+    initializeOpenVdb();
+    auto nan = openvdb::FloatGrid::create(1.0f);
+    nan->tree().setValue(openvdb::Coord(3, 4, 5), std::nanf(""));
+    EXPECT_THROW(toLevelSetGrid(*nan), Error);
+    auto spread = openvdb::FloatGrid::create(1.0f);
+    spread->tree().setValue(openvdb::Coord(0, 0, 0), -1.0f);
+    spread->tree().setValue(openvdb::Coord(8000, 8000, 8000), -1.0f);
+    EXPECT_THROW(toLevelSetGrid(*spread), Error);
 }

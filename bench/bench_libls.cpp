@@ -248,7 +248,7 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
         for (int i = 0; i < 1000; ++i) {
             GrainAsset copy = baked[size_t(i % 10)];
             auto levelSet = std::make_shared<LevelSetGrid>(*copy.levelSet);
-            levelSet->grid = levelSet->grid->deepCopy();
+            levelSet->grid = std::make_shared<const LevelSetBricks>(*levelSet->grid);
             grids += double(levelSet->grid->memUsage());
             copy.levelSet = levelSet;
             assets.push_back(std::move(copy));

@@ -183,7 +183,7 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     initializeOpenVdb();
     if (!asset.levelSet || !asset.levelSet->grid)
         throw Error(path, "the asset has no level set to write");
-    // Copy the grid's tree pointer, not the tree: metadata lives on a shallow copy.
+    // The stored values as a standard FloatGrid (a fresh copy: metadata is set on it).
     openvdb::FloatGrid::Ptr phi = toFloatGrid(*asset.levelSet->grid);
     phi->setName(kLevelSetGridName);
     phi->setGridClass(openvdb::GRID_LEVEL_SET);
@@ -258,11 +258,11 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     auto levelSet = std::make_shared<LevelSetGrid>();
     levelSet->voxelSize = readMeta<double>(*phi, "voxel_size", path);
     levelSet->origin = readVec3(*phi, "grid_origin", path);
-    levelSet->grid = toLevelSetGrid(*phi);
     if (!(levelSet->voxelSize > 0.0 && std::isfinite(levelSet->voxelSize)) ||
         !levelSet->origin.allFinite())
         throw Error(path, "the voxel size or the grid origin is not a finite length",
                     "the file is corrupt; bake the asset again");
+    levelSet->grid = toLevelSetGrid(*phi);
     const Vec3 transformOrigin = fromVdb(xform.indexToWorld(openvdb::Vec3d(0, 0, 0)));
     if (std::abs(xform.voxelSize()[0] - levelSet->voxelSize) > 1e-9 * levelSet->voxelSize ||
         (transformOrigin - levelSet->origin).norm() > 1e-6 * levelSet->voxelSize)

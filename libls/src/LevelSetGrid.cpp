@@ -2,48 +2,15 @@
 
 #include <limits>
 #include <mutex>
-#include <vector>
 
 namespace lsdem {
 
-namespace {
-
-/// Copy the tiles of @a from (not its leaves' voxels) into @a to, and its transform and
-/// metadata; values equal to the background in inactive tiles are left to the background.
-template <typename FromGrid, typename ToGrid>
-void copyTilesAndMetadata(const FromGrid& from, ToGrid& to)
+std::shared_ptr<const LevelSetBricks> toLevelSetGrid(const openvdb::FloatGrid& grid)
 {
-    static_cast<openvdb::MetaMap&>(to) = static_cast<const openvdb::MetaMap&>(from);
-    to.setTransform(from.transform().copy());
-    auto it = from.tree().cbeginValueAll();
-    it.setMaxDepth(FromGrid::TreeType::RootNodeType::LEVEL - 1);  // tiles only, no voxels
-    for (; it; ++it)
-        if (it.isValueOn() || *it != from.background())
-            to.tree().fill(it.getBoundingBox(), *it, it.isValueOn());
+    return std::make_shared<const LevelSetBricks>(grid);
 }
 
-} // namespace
-
-LevelSetFloatGrid::Ptr toLevelSetGrid(openvdb::FloatGrid& grid)
-{
-    auto result = LevelSetFloatGrid::create(grid.background());
-    copyTilesAndMetadata(grid, *result);
-    std::vector<openvdb::FloatTree::LeafNodeType*> leaves;
-    leaves.reserve(grid.tree().leafCount());
-    grid.tree().stealNodes(leaves);
-    for (auto* leaf : leaves) result->tree().addLeaf(leaf);  // takes ownership
-    grid.tree().clear();
-    return result;
-}
-
-openvdb::FloatGrid::Ptr toFloatGrid(const LevelSetFloatGrid& grid)
-{
-    auto result = openvdb::FloatGrid::create(grid.background());
-    copyTilesAndMetadata(grid, *result);
-    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
-        result->tree().addLeaf(new openvdb::FloatTree::LeafNodeType(*leaf));
-    return result;
-}
+openvdb::FloatGrid::Ptr toFloatGrid(const LevelSetBricks& grid) { return grid.toFloatGrid(); }
 
 void initializeOpenVdb()
 {
@@ -54,10 +21,15 @@ void initializeOpenVdb()
 void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max)
 {
     openvdb::CoordBBox box;  // empty
-    // Active voxels and tiles; the interior is filled, and inactive values outside it are the
+    // Active voxels and bricks; the interior is filled, and inactive values outside it are the
     // positive background.
-    for (auto it = levelSet.grid->cbeginValueOn(); it; ++it)
-        if (*it < 0.0f) box.expand(it.getBoundingBox());
+    levelSet.grid->forEachBrick(
+        [&](const openvdb::Coord& c, float value, bool active) {
+            if (active && value < 0.0f) box.expand(c);
+        },
+        [&](const openvdb::CoordBBox& brick, float value, bool active) {
+            if (active && value < 0.0f) box.expand(brick);
+        });
     if (box.empty()) {
         min = Vec3::Constant(std::numeric_limits<double>::infinity());
         max = -min;

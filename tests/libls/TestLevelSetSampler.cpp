@@ -19,14 +19,15 @@ TEST(LevelSetSampler, ReproducesTrilinearFunctionsAndTheirGradients)
     LevelSetGrid ls;
     ls.voxelSize = 0.25;
     ls.origin = Vec3(-1.0, -2.0, 0.5);
-    ls.grid = lsdem::LevelSetFloatGrid::create(100.0f);
+    const auto grid = openvdb::FloatGrid::create(100.0f);
     auto f = [](const Vec3& p) { return 0.5 + 2 * p.x() - p.y() + 3 * p.z() + 0.25 * p.x() * p.y(); };
-    auto accessor = ls.grid->getAccessor();
+    auto accessor = grid->getAccessor();
     for (int i = 0; i < 16; ++i)
         for (int j = 0; j < 16; ++j)
             for (int k = 0; k < 16; ++k)
                 accessor.setValue(openvdb::Coord(i, j, k),
                                   float(f(ls.origin + ls.voxelSize * Vec3(i, j, k))));
+    ls.grid = toLevelSetGrid(*grid);
     LevelSetSampler sampler(ls);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(0.0, 14.5 * 0.25);  // all 8 corners set

@@ -85,7 +85,8 @@ TEST(MeshLevelSet, InteriorFillIsTheExactDistanceToTheNearestTriangle)
     const auto ls = lsdem::meshLevelSet(mesh, vox, 3);
     size_t inside = 0;
     double deepest = 0.0;
-    for (auto it = ls->grid->cbeginValueOn(); it; ++it) {
+    const openvdb::FloatGrid::Ptr stored = lsdem::toFloatGrid(*ls->grid);
+    for (auto it = stored->cbeginValueOn(); it; ++it) {
         ASSERT_TRUE(it.isVoxelValue()) << "the interior is stored voxel by voxel";
         if (*it >= 0.0f) continue;
         ++inside;
@@ -120,7 +121,8 @@ TEST(MeshLevelSet, EveryVoxelInsideIsActiveAndNegativeAndTheBandIsExact)
     const double sagitta = 1.0 - rInscribed;
     ASSERT_LT(sagitta, 0.1 * vox);  // the test's premise: the mesh is a sphere to 0.1 voxel
 
-    auto accessor = ls->grid->getConstAccessor();
+    const openvdb::FloatGrid::Ptr stored = lsdem::toFloatGrid(*ls->grid);
+    auto accessor = stored->getConstAccessor();
     const int n = int(std::ceil((1.0 + 4 * vox) / vox)) + 4;
     const openvdb::Coord centre(int(std::lround(-ls->origin.x() / vox)),
                                 int(std::lround(-ls->origin.y() / vox)),
@@ -158,7 +160,8 @@ TEST(MeshLevelSet, BoxMeshGivesTheAnalyticBoxDistance)
     const int band = 3;
     const auto ls = lsdem::meshLevelSet(mesh, vox, band);
     size_t inside = 0;
-    for (auto it = ls->grid->cbeginValueOn(); it; ++it) {
+    const openvdb::FloatGrid::Ptr stored = lsdem::toFloatGrid(*ls->grid);
+    for (auto it = stored->cbeginValueOn(); it; ++it) {
         const Vec3 p = voxelCentre(*ls, it.getCoord());
         const double exact = box.signedDistance(p);
         EXPECT_NEAR(*it, exact, kBandVoxels * vox) << it.getCoord();

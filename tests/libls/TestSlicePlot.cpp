@@ -37,14 +37,15 @@ InspectionTarget sphereTarget()
     auto ls = std::make_shared<LevelSetGrid>();
     ls->voxelSize = kVoxel;
     ls->origin = kOrigin;
-    ls->grid = lsdem::LevelSetFloatGrid::create(kBand);
-    auto accessor = ls->grid->getAccessor();
+    const auto grid = openvdb::FloatGrid::create(kBand);
+    auto accessor = grid->getAccessor();
     for (int i = 0; i <= kCells[0]; ++i)
         for (int j = 0; j <= kCells[1]; ++j)
             for (int k = 0; k <= kCells[2]; ++k) {
                 const double phi = exactPhi(kOrigin + kVoxel * Vec3(i, j, k));
                 accessor.setValue(openvdb::Coord(i, j, k), std::min(float(phi), kBand));
             }
+    ls->grid = toLevelSetGrid(*grid);
     InspectionTarget t;
     t.path = "sphere";
     t.levelSet = ls;

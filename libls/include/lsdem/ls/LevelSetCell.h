@@ -2,8 +2,8 @@
 /// @brief The eight corner values of one voxel cell of a level set, as a sampler read them,
 ///        kept by a caller that samples near the same place again and again. A grain's level
 ///        set never changes during a run, so a node that is still in the same cell at the next
-///        step can be interpolated from these values without walking the tree or touching the
-///        leaf buffers (scattered in memory) again; the result is the same to the bit.
+///        step can be interpolated from these values without finding its bricks or touching
+///        their data (scattered in memory) again; the result is the same to the bit.
 #pragma once
 
 #include <array>

@@ -1,10 +1,8 @@
 /// @file LevelSetSampler.h
 /// @brief Samples a grain's signed distance φ and the gradient ∇φ of its trilinear interpolant
-///        from one 8-voxel fetch. One sampler per thread: it owns a cached OpenVDB accessor,
-///        which is not thread-safe, over a grid that is never modified. The accessor is not
-///        registered with the tree (OpenVDB's "unsafe" accessor): registering costs a
-///        concurrent hash-map insertion per sampler, and an immutable tree never needs to
-///        clear its accessors' caches.
+///        from one 8-voxel fetch. A sampler is a pure function of a level set that is never
+///        modified; it is cheap to make, so keep one per thread (the LevelSetCell overload
+///        lets a caller keep corner values between calls).
 #pragma once
 
 #include "lsdem/ls/LevelSetCell.h"
@@ -25,7 +23,8 @@ class LevelSetSampler
 {
 public:
     explicit LevelSetSampler(const LevelSetGrid& levelSet)
-        : mAccessor(levelSet.grid->getConstUnsafeAccessor()), mOrigin(levelSet.origin),
+        : mBricks(levelSet.grid.get()), mBrickOrigin(levelSet.grid->origin()),
+          mOrigin(levelSet.origin),
           mInvVoxel(1.0 / levelSet.voxelSize)
     {
     }
@@ -114,47 +113,56 @@ private:
     }
 
     /// The 8 corners of the cell whose lower corner is @a base.
-    void fetch(const openvdb::Coord& base, float value[8])
+    void fetch(const openvdb::Coord& base, float value[8]) const
     {
-        // Read the corners straight from the buffers of the leaves (8^3 voxels) that hold
-        // them: one leaf 7 times in 8 per axis, otherwise 2, 4 or 8 neighbouring leaves, each
-        // looked up once. Offsets within a leaf are x*64 + y*8 + z. A corner whose leaf does
-        // not exist (a tile, or outside the band) asks the accessor for its value.
-        using Leaf = LevelSetTree::LeafNodeType;
-        constexpr int kLast = Leaf::DIM - 1;
-        const int crossX = (base.x() & kLast) == kLast, crossY = (base.y() & kLast) == kLast,
-                  crossZ = (base.z() & kLast) == kLast;
-        if (!(crossX | crossY | crossZ)) {
-            if (const Leaf* leaf = mAccessor.probeConstLeaf(base)) {
-                const float* data = leaf->buffer().data() + Leaf::coordToOffset(base);
-                constexpr int dx = 1 << (2 * Leaf::LOG2DIM), dy = 1 << Leaf::LOG2DIM;
-                value[0] = data[0];
-                value[1] = data[dx];
-                value[2] = data[dy];
-                value[3] = data[dx + dy];
-                value[4] = data[1];
-                value[5] = data[dx + 1];
-                value[6] = data[dy + 1];
-                value[7] = data[dx + dy + 1];
-                return;
-            }
+        // Read the corners straight from the bricks (4^3 voxels) that hold them: one brick
+        // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks. Every place has a
+        // brick (shared ones for uniform regions), so no corner needs a special case. Voxel
+        // offsets within a brick are x*16 + y*4 + z, 3 bytes each.
+        using Bricks = LevelSetBricks;
+        constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
+        const openvdb::Coord local = base - mBrickOrigin;
+        const int bx = local.x() >> kLog2, by = local.y() >> kLog2, bz = local.z() >> kLog2;
+        const int cx = (local.x() & kLast) == kLast, cy = (local.y() & kLast) == kLast,
+                  cz = (local.z() & kLast) == kLast;
+        if (!(cx | cy | cz)) {
+            const uint32_t b = mBricks->brick(bx, by, bz);
+            const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(local);
+            const float step = mBricks->step(b);
+            constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
+            value[0] = Bricks::decode(d, step);
+            value[1] = Bricks::decode(d + dx, step);
+            value[2] = Bricks::decode(d + dy, step);
+            value[3] = Bricks::decode(d + dx + dy, step);
+            value[4] = Bricks::decode(d + dz, step);
+            value[5] = Bricks::decode(d + dx + dz, step);
+            value[6] = Bricks::decode(d + dy + dz, step);
+            value[7] = Bricks::decode(d + dx + dy + dz, step);
+            return;
         }
-        const Leaf* leaves[8] = {};
-        bool probed[8] = {};
+        // Look up each distinct brick once: corner k lies in brick k's own place only along
+        // the axes the cell crosses.
+        uint32_t brick[8];
+        brick[0] = mBricks->brick(bx, by, bz);
+        brick[1] = cx ? mBricks->brick(bx + 1, by, bz) : brick[0];
+        brick[2] = cy ? mBricks->brick(bx, by + 1, bz) : brick[0];
+        brick[3] = cy ? (cx ? mBricks->brick(bx + 1, by + 1, bz) : brick[2]) : brick[1];
+        if (cz) {
+            brick[4] = mBricks->brick(bx, by, bz + 1);
+            brick[5] = cx ? mBricks->brick(bx + 1, by, bz + 1) : brick[4];
+            brick[6] = cy ? mBricks->brick(bx, by + 1, bz + 1) : brick[4];
+            brick[7] = cy ? (cx ? mBricks->brick(bx + 1, by + 1, bz + 1) : brick[6]) : brick[5];
+        } else {
+            for (int k = 4; k < 8; ++k) brick[k] = brick[k - 4];
+        }
         for (int corner = 0; corner < 8; ++corner) {
-            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
-            const openvdb::Coord c = base.offsetBy(ox, oy, oz);
-            const int which = ((oz & crossZ) << 2) | ((oy & crossY) << 1) | (ox & crossX);
-            if (!probed[which]) {
-                leaves[which] = mAccessor.probeConstLeaf(c);
-                probed[which] = true;
-            }
-            value[corner] = leaves[which] ? leaves[which]->buffer().data()[Leaf::coordToOffset(c)]
-                                          : mAccessor.getValue(c);
+            const openvdb::Coord c = local.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
+            value[corner] = mBricks->decode(brick[corner], Bricks::offset(c));
         }
     }
 
-    LevelSetFloatGrid::ConstUnsafeAccessor mAccessor;
+    const LevelSetBricks* mBricks;
+    openvdb::Coord mBrickOrigin;  ///< index of the bricks' first voxel
     Vec3 mOrigin;
     double mInvVoxel;
 };

@@ -1,0 +1,164 @@
+/// @file LevelSetBricks.h
+/// @brief A grain's level set as held in memory: 4³-voxel bricks of 24-bit values under one
+///        dense table of the grid's bounding box. Built from a float grid (toLevelSetGrid),
+///        turned back into one for files and OpenVDB's tools (toFloatGrid); never modified.
+///
+/// Why: a sphere-like grain of radius 20 voxels in OpenVDB's 8³ float leaves takes ~415 KiB;
+/// here ~213 KiB. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value,
+/// and the table replaces the tree walk (one multiply-add finds a brick). 16 bits a value
+/// would not do: tests rely on float accuracy at the surface (see docs/assets.md).
+///
+/// Storage: a value is q · step, q a signed 24-bit integer, step a power of two per brick:
+/// 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of two, so
+/// |q| ≤ 2^22 and the decoded value is exact in float. The stored value differs from the float
+/// it came from by less than 2^-21 of the brick's largest |value| (half a step when rounded to
+/// nearest; a full step only where that would lose the sign: a negative value never decodes
+/// to 0 or more, a positive one never to 0 or less). Near the surface (|φ| ≤ 3√3 voxels in a
+/// brick that it crosses) that is under 2.5e-6 voxel. Encoding decoded values again gives the
+/// same values, so a saved and loaded asset samples to the same bits as the one saved.
+#pragma once
+
+#include <openvdb/openvdb.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace lsdem {
+
+class LevelSetBricks
+{
+public:
+    static constexpr int kLog2Dim = 2;
+    static constexpr int kDim = 1 << kLog2Dim;                 ///< voxels along a brick edge
+    static constexpr int kVoxels = kDim * kDim * kDim;         ///< voxels in a brick
+    static constexpr int kMaskWords = (kVoxels + 63) / 64;     ///< 64-bit active-state words
+
+    /// The values and active states of every voxel of @a grid (tiles included), its
+    /// background, transform and metadata. Throws lsdem::Error if a value is not finite.
+    explicit LevelSetBricks(const openvdb::FloatGrid& grid);
+
+    /// A standard FloatGrid of the decoded values, with the same active states, background,
+    /// transform and metadata as the grid this was built from (for files and OpenVDB's tools).
+    openvdb::FloatGrid::Ptr toFloatGrid() const;
+
+    /// The value at index @a c, as decoded (background outside the bricks).
+    float value(const openvdb::Coord& c) const
+    {
+        const openvdb::Coord l = c - mOrigin;
+        return decode(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
+    }
+    bool isValueOn(const openvdb::Coord& c) const
+    {
+        const openvdb::Coord l = c - mOrigin;
+        return isOn(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
+    }
+
+    float background() const { return decode(kBackgroundBrick, 0); }
+    /// Bound on |stored − original| of a value, relative to the largest |value| of its brick.
+    static constexpr double kRelativeError = 1.0 / (1 << 21);
+
+    openvdb::Index64 activeVoxelCount() const;
+    openvdb::CoordBBox evalActiveVoxelBoundingBox() const;
+    /// Bytes held (this object and its arrays).
+    size_t memUsage() const;
+
+    /// Calls @a visit(coord, value, active) for every voxel of a brick of the table that holds
+    /// varying values, and @a visitUniform(bbox, value, active) for each brick of one value
+    /// and state other than the inactive background.
+    template <typename VisitVoxel, typename VisitUniform>
+    void forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUniform) const;
+
+    // ---- for the sampler: "local" coordinates are index coordinates minus origin() ----
+    /// The index of the first voxel of the table's first brick: the lowest corner of the
+    /// voxels that are active or differ from the background (so bricks waste no more than
+    /// 3 voxels per axis beyond them, whatever their alignment).
+    const openvdb::Coord& origin() const { return mOrigin; }
+    /// The brick at local brick coordinates (bx, by, bz); the background brick outside the
+    /// table. Bricks of one value and state (the background, interior tiles) are stored once
+    /// and shared, so every place has a brick and reading one never branches on its kind.
+    uint32_t brick(int bx, int by, int bz) const
+    {
+        const auto ux = static_cast<uint32_t>(bx), uy = static_cast<uint32_t>(by),
+                   uz = static_cast<uint32_t>(bz);
+        if (ux >= mBricks[0] || uy >= mBricks[1] || uz >= mBricks[2]) return kBackgroundBrick;
+        return mTable[(size_t(ux) * mBricks[1] + uy) * mBricks[2] + uz] & kIndexMask;
+    }
+    /// Offset of the voxel at local coordinates @a c within its brick: x-major.
+    static int offset(const openvdb::Coord& c)
+    {
+        constexpr int m = kDim - 1;
+        return ((c.x() & m) << (2 * kLog2Dim)) | ((c.y() & m) << kLog2Dim) | (c.z() & m);
+    }
+    /// The value of voxel @a offset of brick @a brick.
+    float decode(uint32_t brick, int offset) const
+    {
+        return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
+    }
+    /// The value whose 3-byte code (little-endian, two's complement) starts at @a code.
+    static float decode(const uint8_t* code, float step)
+    {
+        const uint32_t bits = uint32_t(code[0]) | uint32_t(code[1]) << 8 | uint32_t(code[2]) << 16;
+        const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
+        return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
+    }
+    const uint8_t* codes(uint32_t brick) const { return mCode.data() + size_t(brick) * 3 * kVoxels; }
+    float step(uint32_t brick) const { return mBrickStep[brick]; }
+
+    /// One brick's voxels as a float grid holds them (while building).
+    struct RawBrick
+    {
+        float value[kVoxels];
+        uint64_t active[kMaskWords];
+    };
+
+private:
+    static constexpr uint32_t kBackgroundBrick = 0;
+    static constexpr uint32_t kShared = 0x80000000u;  ///< table flag: a brick of one value
+    static constexpr uint32_t kIndexMask = ~kShared;
+
+    bool isOn(uint32_t brick, int offset) const
+    {
+        return ((mActive[size_t(brick) * kMaskWords + size_t(offset >> 6)] >> (offset & 63)) & 1u) != 0;
+    }
+    /// Calls @a visit(slot, origin, varies, raw) for each brick of the table, read from a grid.
+    template <typename Visit>
+    void forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor, Visit&& visit) const;
+    /// Append a brick holding @a raw (all kVoxels values, or one if not @a varies).
+    uint32_t addBrick(const RawBrick& raw, bool varies);
+
+    openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
+    uint32_t mBricks[3] = {0, 0, 0};
+    std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
+    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick
+    std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
+    std::vector<uint64_t> mActive;       ///< kMaskWords per brick
+    openvdb::math::Transform::Ptr mTransform;
+    openvdb::MetaMap::Ptr mMetadata;
+};
+
+template <typename VisitVoxel, typename VisitUniform>
+void LevelSetBricks::forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUniform) const
+{
+    for (uint32_t ix = 0; ix < mBricks[0]; ++ix)
+        for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
+            for (uint32_t iz = 0; iz < mBricks[2]; ++iz) {
+                const uint32_t e = mTable[(size_t(ix) * mBricks[1] + iy) * mBricks[2] + iz];
+                const uint32_t b = e & kIndexMask;
+                const openvdb::Coord origin =
+                    mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
+                if (e & kShared) {
+                    if (b != kBackgroundBrick)
+                        visitUniform(openvdb::CoordBBox::createCube(origin, kDim), decode(b, 0),
+                                     isOn(b, 0));
+                    continue;
+                }
+                for (int n = 0; n < kVoxels; ++n) {
+                    const openvdb::Coord c = origin.offsetBy(n >> (2 * kLog2Dim),
+                                                             (n >> kLog2Dim) & (kDim - 1),
+                                                             n & (kDim - 1));
+                    visit(c, decode(b, n), isOn(b, n));
+                }
+            }
+}
+
+} // namespace lsdem

@@ -1,0 +1,230 @@
+#include "lsdem/ls/LevelSetBricks.h"
+
+#include "lsdem/ls/Error.h"
+
+#include <algorithm>
+#include <bitset>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <utility>
+
+namespace lsdem {
+
+namespace {
+
+uint32_t floatBits(float v)
+{
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof(bits));
+    return bits;
+}
+
+/// Read the brick whose first voxel is @a origin, voxel by voxel (the accessor keeps the last
+/// leaf). Returns false when the brick is one value in one state (then @a raw holds it in [0]).
+bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord& origin,
+               LevelSetBricks::RawBrick& raw)
+{
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    constexpr int kDim = LevelSetBricks::kDim;
+    std::memset(raw.active, 0, sizeof(raw.active));
+    for (int x = 0; x < kDim; ++x)
+        for (int y = 0; y < kDim; ++y)
+            for (int z = 0; z < kDim; ++z) {
+                const openvdb::Coord c = origin.offsetBy(x, y, z);
+                const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
+                bool on = false;
+                if (const Leaf* leaf = accessor.probeConstLeaf(c)) {
+                    const openvdb::Index n = Leaf::coordToOffset(c);
+                    raw.value[k] = leaf->getValue(n);
+                    on = leaf->isValueOn(n);
+                } else {
+                    raw.value[k] = accessor.getValue(c);
+                    on = accessor.isValueOn(c);
+                }
+                if (on) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
+            }
+    for (int k = 1; k < LevelSetBricks::kVoxels; ++k)
+        if (raw.value[k] != raw.value[0]) return true;
+    const bool on = (raw.active[0] & 1u) != 0;
+    for (int k = 0; k < LevelSetBricks::kVoxels; ++k)
+        if ((((raw.active[k >> 6] >> (k & 63)) & 1u) != 0) != on) return true;
+    raw.active[0] = on ? 1u : 0u;
+    return false;
+}
+
+/// The box of index space holding every voxel of @a grid that is active or differs from the
+/// background: such voxels of its leaves, and such tiles.
+openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
+{
+    const float background = grid.background();
+    openvdb::CoordBBox box;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        for (auto it = leaf->cbeginValueAll(); it; ++it)
+            if (it.isValueOn() || *it != background) box.expand(it.getCoord());
+    auto it = grid.tree().cbeginValueAll();
+    it.setMaxDepth(openvdb::FloatTree::RootNodeType::LEVEL - 1);  // tiles only, no voxels
+    for (; it; ++it)
+        if (it.isValueOn() || *it != background) box.expand(it.getBoundingBox());
+    return box;
+}
+
+} // namespace
+
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
+    : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
+{
+    // Brick 0: the inactive background, shared by every such place and by all outside.
+    RawBrick raw{};
+    raw.value[0] = grid.background();
+    std::map<std::pair<uint32_t, uint8_t>, uint32_t> shared;  // (value bits, active) → brick
+    shared[{floatBits(raw.value[0]), 0}] = addBrick(raw, false);
+
+    const openvdb::CoordBBox box = valueBox(grid);
+    if (!box.empty()) {
+        mOrigin = box.min();
+        double places = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            mBricks[k] = uint32_t((int64_t(box.max()[k]) - box.min()[k]) / kDim + 1);
+            places *= mBricks[k];
+        }
+        // The table is dense: a grid whose values spread over a huge box (a fog volume's
+        // tiles, say) would need more than its voxels are worth.
+        if (places > double(1u << 28))
+            throw Error("level set",
+                        "the grid's values span " + std::to_string(box.dim().x()) + " x " +
+                            std::to_string(box.dim().y()) + " x " +
+                            std::to_string(box.dim().z()) +
+                            " voxels, too large a box for lsdem's level-set table",
+                        "lsdem samples grain-sized level sets; crop or rebuild the grid");
+        mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
+    }
+    auto accessor = grid.getConstAccessor();
+    forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
+                                  const RawBrick& brick) {
+        for (int k = 0; k < (varies ? kVoxels : 1); ++k)
+            if (!std::isfinite(brick.value[k]))
+                throw Error("level set",
+                            "the grid holds a value that is not a finite number near index (" +
+                                std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
+                                ", " + std::to_string(origin.z()) + ")",
+                            "rebuild the level set; lsdem samples finite distances only");
+        if (varies) {
+            mTable[slot] = addBrick(brick, true);
+            return;
+        }
+        const auto key = std::make_pair(floatBits(brick.value[0]), uint8_t(brick.active[0] & 1u));
+        auto it = shared.find(key);
+        if (it == shared.end()) it = shared.emplace(key, addBrick(brick, false)).first;
+        mTable[slot] = kShared | it->second;
+    });
+    mCode.shrink_to_fit();
+    mBrickStep.shrink_to_fit();
+    mActive.shrink_to_fit();
+}
+
+template <typename Visit>
+void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor,
+                                     Visit&& visit) const
+{
+    RawBrick raw;
+    size_t slot = 0;
+    for (uint32_t ix = 0; ix < mBricks[0]; ++ix)
+        for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
+            for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
+                const openvdb::Coord origin =
+                    mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
+                const bool varies = readBrick(accessor, origin, raw);
+                visit(slot, origin, varies, raw);
+            }
+}
+
+uint32_t LevelSetBricks::addBrick(const RawBrick& raw, bool varies)
+{
+    const auto brick = uint32_t(mBrickStep.size());
+    mCode.resize(mCode.size() + 3 * kVoxels);
+    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    if (!varies) {
+        // One value v: q = 1 and step = v decode to v exactly.
+        const bool on = (raw.active[0] & 1u) != 0;
+        mBrickStep.push_back(raw.value[0]);
+        for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
+        mActive.insert(mActive.end(), kMaskWords, on ? ~uint64_t(0) : uint64_t(0));
+        return brick;
+    }
+    float largest = 0.0f;
+    for (float v : raw.value) largest = std::max(largest, std::abs(v));
+    // step = 2^(c − 22) with 2^c ≥ largest: every |q| ≤ 2^22.
+    int c = 0;
+    const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
+    if (mantissa == 0.5) --c;                                  // already a power of two
+    const double step = largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
+    mBrickStep.push_back(float(step));
+    mActive.insert(mActive.end(), raw.active, raw.active + kMaskWords);
+    for (int k = 0; k < kVoxels; ++k) {
+        // To the nearest step, but never across zero (the sign decides contact).
+        const double v = raw.value[k];
+        auto q = static_cast<int32_t>(std::llround(v / step));
+        if (v < 0.0 && q >= 0) q = -1;
+        if (v > 0.0 && q <= 0) q = 1;
+        const auto bits = static_cast<uint32_t>(q);
+        code[3 * k] = uint8_t(bits);
+        code[3 * k + 1] = uint8_t(bits >> 8);
+        code[3 * k + 2] = uint8_t(bits >> 16);
+    }
+    return brick;
+}
+
+openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
+{
+    auto result = openvdb::FloatGrid::create(background());
+    static_cast<openvdb::MetaMap&>(*result) = *mMetadata;
+    result->setTransform(mTransform->copy());
+    auto accessor = result->getAccessor();
+    const float bg = background();
+    forEachBrick(
+        [&](const openvdb::Coord& c, float value, bool active) {
+            if (active)
+                accessor.setValueOn(c, value);
+            else if (value != bg)
+                accessor.setValueOff(c, value);
+        },
+        [&](const openvdb::CoordBBox& brick, float value, bool active) {
+            result->tree().fill(brick, value, active);
+        });
+    return result;
+}
+
+openvdb::Index64 LevelSetBricks::activeVoxelCount() const
+{
+    std::vector<openvdb::Index64> perBrick(mBrickStep.size(), 0);
+    for (size_t b = 0; b < perBrick.size(); ++b)
+        for (int w = 0; w < kMaskWords; ++w)
+            perBrick[b] += std::bitset<64>(mActive[b * kMaskWords + size_t(w)]).count();
+    openvdb::Index64 count = 0;
+    for (uint32_t e : mTable) count += perBrick[e & kIndexMask];
+    return count;
+}
+
+openvdb::CoordBBox LevelSetBricks::evalActiveVoxelBoundingBox() const
+{
+    openvdb::CoordBBox box;
+    forEachBrick(
+        [&](const openvdb::Coord& c, float, bool active) {
+            if (active) box.expand(c);
+        },
+        [&](const openvdb::CoordBBox& brick, float, bool active) {
+            if (active) box.expand(brick);
+        });
+    return box;
+}
+
+size_t LevelSetBricks::memUsage() const
+{
+    return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
+           mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
+           mActive.capacity() * sizeof(uint64_t);
+}
+
+} // namespace lsdem

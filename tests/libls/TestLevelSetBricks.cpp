@@ -1,0 +1,151 @@
+// The level set as held in memory (24-bit bricks): every stored value against the float grid it
+// was made from, the sign kept, tiles kept, and a save/load round trip to the same bits.
+#include "lsdem/ls/Bake.h"
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/LevelSetSampler.h"
+
+#include <gtest/gtest.h>
+
+#include <openvdb/tools/LevelSetSphere.h>
+
+#include <cmath>
+#include <random>
+
+using namespace lsdem;
+
+namespace {
+
+/// The float value bakeAnalytic stores at voxel @a c of a sphere of @a radius centred at the
+/// asset origin (the exact distance, rounded to float, capped at the background).
+float bakedSphereValue(const LevelSetGrid& ls, double radius, float background,
+                       const openvdb::Coord& c)
+{
+    const Vec3 p = ls.origin + ls.voxelSize * Vec3(c.x(), c.y(), c.z());
+    const double d = p.norm() - radius;
+    return d >= background ? background : float(d);
+}
+
+} // namespace
+
+// The asset: a sphere at R/20 (a grain 40 voxels across). Every voxel of the baked grid
+// holds the float value within 2^-21 of the largest |φ| of its 4³ brick (at most |φ| + 3√3
+// voxels, φ being a distance); in the band, where contacts are decided, that is under 4e-6
+// voxel. Storage of 16 bits per value over a brick's span of up to 5.2 voxels would err by
+// 4e-5 voxel and fail here. For comparison, trilinear interpolation of this sphere's distance
+// already errs by up to 3h²/(8R) = 0.019 voxel: the storage adds 1/5000 of that.
+TEST(LevelSetBricks, BakedSphereValuesAreTheFloatGridsWithinTheBound)
+{
+    const double radius = 1.0, vox = 0.05;
+    BakeOptions o;
+    o.voxelSize = vox;
+    o.nodeSpacing = 0.2;
+    std::vector<std::string> warnings;
+    const GrainAsset asset = bakeAnalytic(AnalyticShape::sphere(radius), o, warnings);
+    const LevelSetGrid& ls = *asset.levelSet;
+    const LevelSetBricks& bricks = *ls.grid;
+    const float background = bricks.background();
+    ASSERT_FLOAT_EQ(background, float(o.exteriorBandVoxels * vox));
+
+    const int n = int(std::ceil(radius / vox)) + o.exteriorBandVoxels + 1;  // as bakeAnalytic
+    double bandError = 0.0;  // voxels
+    size_t inBand = 0, differ = 0;
+    for (int i = 0; i <= 2 * n; ++i)
+        for (int j = 0; j <= 2 * n; ++j)
+            for (int k = 0; k <= 2 * n; ++k) {
+                const openvdb::Coord c(i, j, k);
+                const float v = bakedSphereValue(ls, radius, background, c);
+                const float s = bricks.value(c);
+                ASSERT_EQ(bricks.isValueOn(c), v != background) << c;
+                // The sign is kept exactly: it decides contact.
+                ASSERT_EQ(v < 0.0f, s < 0.0f) << c << " " << v << " " << s;
+                ASSERT_EQ(v > 0.0f, s > 0.0f) << c << " " << v << " " << s;
+                const double error = std::abs(double(s) - double(v));
+                ASSERT_LE(error, LevelSetBricks::kRelativeError *
+                                     (std::abs(double(v)) + 3.0 * std::sqrt(3.0) * vox))
+                    << c;
+                differ += error > 0.0;
+                if (std::abs(v) <= background) {
+                    ++inBand;
+                    bandError = std::max(bandError, error / vox);
+                }
+            }
+    EXPECT_GT(inBand, 20000u);
+    EXPECT_GT(differ, inBand / 2);  // values are really quantised ...
+    EXPECT_LT(bandError, 4e-6);     // ... and within 4e-6 voxel in the band
+    EXPECT_GT(bandError, 1e-8);
+
+    // The sampler interpolates the stored values: it is within the same bound of the trilinear
+    // interpolant of the float values (a convex combination of the corners).
+    LevelSetSampler sampler(ls);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> direction(-1.0, 1.0), depth(-3.0 * vox, 3.0 * vox);
+    for (int m = 0; m < 2000; ++m) {
+        const Vec3 p = Vec3(direction(rng), direction(rng), direction(rng)).normalized() *
+                       (radius + depth(rng));
+        const Vec3 index = (p - ls.origin) / vox;
+        const openvdb::Coord base(int(std::floor(index.x())), int(std::floor(index.y())),
+                                  int(std::floor(index.z())));
+        const Vec3 f = index - Vec3(base.x(), base.y(), base.z());
+        double floatTrilinear = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
+            const double w = (ox ? f.x() : 1 - f.x()) * (oy ? f.y() : 1 - f.y()) *
+                             (oz ? f.z() : 1 - f.z());
+            floatTrilinear +=
+                w * bakedSphereValue(ls, radius, background, base.offsetBy(ox, oy, oz));
+        }
+        EXPECT_NEAR(sampler.phi(p), floatTrilinear, 4e-6 * vox) << p.transpose();
+    }
+}
+
+// An OpenVDB narrow-band level set (inactive interior tiles at −background): the tiles keep
+// their value and sign, and turning the bricks back into a float grid and into bricks again
+// gives the same values, states and memory, bit for bit (what a saved and loaded asset needs).
+TEST(LevelSetBricks, TilesAndRoundTripsAreKeptExactly)
+{
+    initializeOpenVdb();
+    const float vox = 0.05f;
+    const auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+        1.3f, openvdb::Vec3f(0.11f, -0.07f, 0.03f), vox, 3.0f);
+    const auto bricks = toLevelSetGrid(*grid);
+    EXPECT_EQ(bricks->activeVoxelCount(), grid->activeVoxelCount());
+    EXPECT_EQ(bricks->evalActiveVoxelBoundingBox(), grid->evalActiveVoxelBoundingBox());
+    EXPECT_EQ(bricks->background(), grid->background());
+    const openvdb::Coord centre(2, -1, 1);  // deep inside: an interior tile
+    ASSERT_FALSE(grid->tree().isValueOn(centre));
+    EXPECT_EQ(bricks->value(centre), -grid->background());
+    auto accessor = grid->getConstAccessor();
+    openvdb::CoordBBox all = grid->evalActiveVoxelBoundingBox();
+    all.expand(4);
+    for (auto c = all.begin(); c; ++c) {
+        const float v = accessor.getValue(*c), s = bricks->value(*c);
+        ASSERT_EQ(accessor.isValueOn(*c), bricks->isValueOn(*c)) << *c;
+        ASSERT_EQ(v < 0.0f, s < 0.0f) << *c;
+        ASSERT_LE(std::abs(s - v), LevelSetBricks::kRelativeError * 2.0f * grid->background())
+            << *c;
+    }
+
+    const openvdb::FloatGrid::Ptr standard = toFloatGrid(*bricks);
+    EXPECT_EQ(standard->transform(), grid->transform());
+    const auto again = toLevelSetGrid(*standard);
+    EXPECT_EQ(again->memUsage(), bricks->memUsage());
+    EXPECT_EQ(again->activeVoxelCount(), bricks->activeVoxelCount());
+    for (auto c = all.begin(); c; ++c) {
+        ASSERT_EQ(again->value(*c), bricks->value(*c)) << *c;
+        ASSERT_EQ(again->isValueOn(*c), bricks->isValueOn(*c)) << *c;
+    }
+}
+
+// Grids lsdem cannot hold as bricks are refused with an lsdem::Error naming the problem: a
+// value that is not a number, and values spread over a box too large for a dense table.
+TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)
+{
+    initializeOpenVdb();
+    auto nan = openvdb::FloatGrid::create(1.0f);
+    nan->tree().setValue(openvdb::Coord(3, 4, 5), std::nanf(""));
+    EXPECT_THROW(toLevelSetGrid(*nan), Error);
+    auto spread = openvdb::FloatGrid::create(1.0f);
+    spread->tree().setValue(openvdb::Coord(0, 0, 0), -1.0f);
+    spread->tree().setValue(openvdb::Coord(8000, 8000, 8000), -1.0f);
+    EXPECT_THROW(toLevelSetGrid(*spread), Error);
+}

@@ -28,6 +28,7 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TILE_COUNT = (5, 5, 10)       # grains per tile along x, y, z
 TILE_SPACING = 1.9            # mm between lattice points: clear of each other however turned
 ASSETS = 16                   # assets/meshes/sand/grain_0000 ... 0015
+TIME = "/usr/bin/time"         # GNU time (Debian package time), if installed
 LAYOUTS = {1000: (2, 2), 10000: (8, 5), 100000: (20, 20)}  # tiles along x, y
 
 SCENE_HEAD = """# Made by bench/mpi_scaling.py. Units: mm, tonne, s, N.
@@ -188,6 +189,9 @@ def summary_figures(text):
     m = re.search(r"setup \(assets, scene\)\s+([0-9.]+) s", text)
     if m:
         figures["setup_s"] = float(m.group(1))
+    peaks = [int(k) for k in re.findall(r"peak resident memory: (\d+) KiB", text)]
+    if peaks:
+        figures["peak_MiB_per_rank"] = round(max(peaks) / 1024.0, 1)
     figures["exchange"] = " | ".join(line.strip() for line in text.splitlines()
                                      if re.search(r"exchang|bytes|ghost", line))
     return figures
@@ -221,6 +225,8 @@ def main():
                 out = os.path.join(args.out, "heap%d" % grains, "run_%s_%d" % (config, round_))
                 command = [lsdem_run, scene, "--out", out, "--stop-at-step", str(args.steps),
                            "--threads", str(threads)]
+                if os.path.exists(TIME):  # each rank's peak resident memory
+                    command = [TIME, "-f", "peak resident memory: %M KiB"] + command
                 if ranks > 1:
                     command = ["mpirun", "--oversubscribe", "--bind-to", "none", "-n",
                                str(ranks)] + command
@@ -229,11 +235,12 @@ def main():
                 f.update(grains=grains, ranks=ranks, threads=threads, round=round_,
                          wall_s=round(wall, 2), load=os.getloadavg()[0])
                 results.append(f)
-                print("%6d grains  %d rank(s) x %d thread(s): %s ms/step  %s" %
-                      (grains, ranks, threads, f.get("ms_per_step"), f["exchange"]), flush=True)
+                print("%6d grains  %d rank(s) x %d thread(s): %s ms/step, peak %s MiB per rank  %s"
+                      % (grains, ranks, threads, f.get("ms_per_step"),
+                         f.get("peak_MiB_per_rank"), f["exchange"]), flush=True)
     table = os.path.join(args.out, "scaling.csv")
     columns = ["grains", "ranks", "threads", "round", "ms_per_step", "steps", "setup_s",
-               "wall_s", "load", "exchange"]
+               "peak_MiB_per_rank", "wall_s", "load", "exchange"]
     with open(table + ".tmp", "w", newline="") as f:
         out = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         out.writeheader()

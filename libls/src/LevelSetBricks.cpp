@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <set>
 #include <utility>
 
 namespace lsdem {
@@ -101,6 +102,21 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
     }
     auto accessor = grid.getConstAccessor();
+    // Two passes: the first counts the bricks of varying values, so the arrays are sized once
+    // (grown by doubling they would hold up to twice their size, and a copy on shrinking).
+    size_t varying = 0;
+    std::set<std::pair<uint32_t, uint8_t>> uniform;  // the values of bricks of one value
+    for (const auto& entry : shared) uniform.insert(entry.first);
+    forEachRawBrick(accessor, [&](size_t, const openvdb::Coord&, bool varies, const RawBrick& b) {
+        if (varies)
+            ++varying;
+        else
+            uniform.emplace(floatBits(b.value[0]), uint8_t(b.active[0] & 1u));
+    });
+    const size_t bricks = varying + uniform.size();
+    mCode.reserve(bricks * 3 * kVoxels);
+    mBrickStep.reserve(bricks);
+    mActive.reserve(bricks * kMaskWords);
     forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
                                   const RawBrick& brick) {
         for (int k = 0; k < (varies ? kVoxels : 1); ++k)
@@ -119,9 +135,6 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         if (it == shared.end()) it = shared.emplace(key, addBrick(brick, false)).first;
         mTable[slot] = kShared | it->second;
     });
-    mCode.shrink_to_fit();
-    mBrickStep.shrink_to_fit();
-    mActive.shrink_to_fit();
 }
 
 template <typename Visit>

@@ -160,13 +160,7 @@ void Simulation::step()
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
     double workBefore = 0.0;
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
-    if (mGhosts)
-        addPrescribedWork(workBefore);
-    else
-        for (const Grain& g : mWorld.grains)
-            if (g.motion == GrainMotion::Prescribed)
-                workBefore -=
-                    g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    subtractPrescribedPower(workBefore);
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
     // A ghost is moved by its owner (and brought here before the forces).
@@ -201,13 +195,7 @@ void Simulation::step()
     });
     double workAfter = 0.0;
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
-    if (mGhosts)
-        addPrescribedWork(workAfter);
-    else
-        for (const Grain& g : mWorld.grains)
-            if (g.motion == GrainMotion::Prescribed)
-                workAfter -=
-                    g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+    subtractPrescribedPower(workAfter);
     mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
     ++mCounters.steps;
     checkStability();
@@ -462,9 +450,15 @@ void Simulation::sumBoundaryReactions()
     }
 }
 
-void Simulation::addPrescribedWork(double& work)
+void Simulation::subtractPrescribedPower(double& work)
 {
-    if (!mHasPrescribed) return;
+    if (!mGhosts) {
+        for (const Grain& g : mWorld.grains)
+            if (g.motion == GrainMotion::Prescribed)
+                work -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+        return;
+    }
+    if (!mHasPrescribed) return;  // the same on every rank: decided from the whole world
     const std::vector<int>& ids = mGhosts->globalIds();
     std::vector<OrderedTerm> terms;
     for (size_t i = 0; i < mWorld.grains.size(); ++i) {

@@ -99,9 +99,9 @@ private:
     /// Split by space: this rank's part of the boundaries' reactions, summed over the ranks
     /// in the one-process order.
     void sumBoundaryReactions();
-    /// Split by space: the work of prescribed grains (−F·v − τ·ω), summed over the ranks in
-    /// grain order onto @a work.
-    void addPrescribedWork(double& work);
+    /// The power the prescribed grains take (F·v + τ·ω) subtracted from @a work in grain
+    /// order (split by space: gathered from their owners, in the same order).
+    void subtractPrescribedPower(double& work);
     /// Split by space: the first grain (global order) whose state or stability fails on any
     /// rank throws, on every rank.
     void checkStabilityOverRanks(const std::vector<double>& limits);

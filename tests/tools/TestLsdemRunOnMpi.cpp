@@ -2,15 +2,25 @@
 // space over N ranks, each owning its sub-domain's grains with ghosts of its neighbours'
 // (lsdem/simulation/GhostDecomposition.h), rank 0 writing the histories and checkpoints, each
 // rank its piece of every ParaView frame. Every history, grains.csv and checkpoint must be the
-// single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, and across
-// a restart on another rank count; each frame is the single process's file, or a .pvtu whose
-// pieces hold together exactly its points and cells. Skipped when lsdem was built without MPI.
+// single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, across
+// a restart on another rank count and for the interlocked slab's loaded flat faces; each frame
+// is the single process's file, or a .pvtu whose pieces hold together exactly its points and
+// cells. Skipped when lsdem was built without MPI.
 // Open MPI refuses to start as root without OMPI_ALLOW_RUN_AS_ROOT*: ctest sets those for this
 // program (tests/CMakeLists.txt).
+#include "studies/SlabModel.h"
+#include "studies/SlabScene.h"
+
 #include "support/TestSupport.h"
+
+#include "lsdem/ls/AssetIO.h"
+#include "lsdem/run/Checkpoint.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/SceneFile.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -219,6 +229,67 @@ std::string onRanks(int ranks, const std::string& args)
     return kMpiexec + " --oversubscribe -n " + std::to_string(ranks) + " " + kRun + " " + args;
 }
 
+/// The interlocked slab as `lsdem-study slab` writes it for lsdem-run (its 5×5 blocks in a
+/// frame of fixed level-set blocks, the indenter a prescribed sphere pushed down onto the
+/// central block), with the block baked coarse (SDP @a sdp, VDP @a vdp, adapted contacts): the
+/// scene file and its block asset in @a dir. Returns the scene's path.
+std::string slabScene(const ScratchDir& dir, double sdp, double vdp)
+{
+    lsdem::SlabStudyOptions o;
+    o.deltaMax = 0.3;  // mm: the periods below are fractions of the whole push
+    o.samples = 300;   // a history row every 1e-6 s of the 3e-4 s push
+    const lsdem::SlabPanel panel(o.panel);
+    const auto block = lsdem::bakeSlabBlock(panel, vdp, sdp);
+    const double dt = lsdem::slabTimeStep(o, panel, *block, lsdem::Formulation::Adapted);
+    lsdem::Scene scene = lsdem::makeSlabScene(o, lsdem::Formulation::Adapted, block, dt);
+    scene.assets.front().file = dir.file("block.vdb");
+    lsdem::saveAsset(*block, scene.assets.front().file);
+    const std::string path = dir.file("slab_scene.toml");
+    lsdem::writeSlabScene(scene, o, path);
+    return path;
+}
+
+/// The last row's value in column @a column of a CSV file (its header names the columns).
+double lastValue(const std::string& path, const std::string& column)
+{
+    std::istringstream in(readFile(path));
+    std::string line, header, last;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (header.empty()) header = line;
+        else last = line;
+    }
+    auto split = [](const std::string& row) {
+        std::vector<std::string> cells;
+        std::istringstream s(row);
+        for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+        return cells;
+    };
+    const std::vector<std::string> names = split(header), values = split(last);
+    for (size_t k = 0; k < names.size() && k < values.size(); ++k)
+        if (names[k] == column) return std::stod(values[k]);
+    return -1.0;
+}
+
+/// How many block pairs, and how many (block, boundary) pairs, carry shear force in the
+/// checkpoint @a checkpoint of the scene @a scene.
+std::pair<int, int> contactsWithShear(const std::string& scene, const std::string& checkpoint)
+{
+    std::vector<std::string> warnings;
+    lsdem::World world = lsdem::buildWorld(lsdem::readSceneFile(scene), warnings);
+    lsdem::restoreWorldState(checkpoint, world);
+    auto loaded = [](const lsdem::ShearHistory& h) {
+        for (const auto& e : h.entries())
+            if (e.force.norm() > 0.0) return true;
+        return false;
+    };
+    int pairs = 0, boundaries = 0;
+    for (const auto& [ids, h] : world.pairHistory)
+        pairs += loaded(h.shearOnFirstNodes) || loaded(h.shearOnSecondNodes);
+    for (const auto& [ids, h] : world.boundaryHistory) boundaries += loaded(h);
+    return {pairs, boundaries};
+}
+
 #define SKIP_WITHOUT_MPI() \
     if (kMpiexec.empty()) GTEST_SKIP() << "built without MPI"
 
@@ -264,6 +335,56 @@ TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
                       std::string::npos)
                 << r.output;
         }
+    }
+}
+
+// The interlocked slab at a coarse resolution (SDP 0.5 mm, VDP 0.1 mm): flat faces against
+// flat faces carrying load and shear history, fixed level-set frame blocks, a prescribed
+// indenter. Stopped at step 400 (the indenter 0.26 mm down, pressing the central block), every
+// file of 2 ranks of 2 threads, 3 and 4 ranks is the single process's, byte for byte: the
+// histories, grains.csv, each frame (or its pieces' points and cells) and the checkpoint, so
+// the contacts' shear springs too.
+TEST(LsdemRunOnMpi, SlabGivesTheSerialBytesOnTwoToFourRanks)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = slabScene(dir, 0.5, 0.1);
+    const std::string steps = " --stop-at-step 400";
+    const CommandResult serial =
+        runCommand(kRun + " -q " + scene + steps + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 130) << serial.output;
+    // Loaded: nodes of the indenter, the frame and the blocks' faces penetrating at the end.
+    const double contactNodes = lastValue(dir.file("serial/energy.csv"), "contact_nodes");
+    EXPECT_GT(contactNodes, 0.0);
+    EXPECT_LT(lastValue(dir.file("serial/boundary_indenter.csv"), "uz"), -0.25);
+    EXPECT_GT(lastValue(dir.file("serial/boundary_indenter.csv"), "fz"), 0.0);
+    // Every shared face carries shear at the end: the 2·5·4 faces between neighbouring
+    // blocks, the 20 between the border blocks and the frame, and the indenter's.
+    const auto [pairs, boundaries] = contactsWithShear(scene, dir.file("serial/checkpoint.lsdem"));
+    EXPECT_EQ(pairs, 40);
+    EXPECT_EQ(boundaries, 21);
+    std::printf("serial: %g contact nodes, %d block pairs and %d block-boundary pairs carrying "
+                "shear at the end\n",
+                contactNodes, pairs, boundaries);
+    for (int ranks = 2; ranks <= 4; ++ranks) {
+        // Threads inside the ranks too: 2 ranks of 2 threads.
+        const std::string threads = ranks == 2 ? "2" : "1";
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(
+            onRanks(ranks, "-q --threads " + threads + " " + scene + steps + " --out " + out));
+        ASSERT_EQ(r.exitCode, 130) << r.output;
+        expectSameFiles(dir.file("serial"), out, "slab on " + std::to_string(ranks) + " ranks");
+        EXPECT_NE(r.output.find("split over " + std::to_string(ranks) + " ranks"),
+                  std::string::npos)
+            << r.output;
+        // Rank 0 held ghosts of its neighbours' blocks: faces in contact across the cuts.
+        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
+        std::printf("%d ranks: rank 0 owns %lld blocks and holds %lld ghosts at the end; %lld "
+                    "migrated in, %lld out, %lld redraws of the sub-domains\n",
+                    ranks, numberBefore(r.output, "grains owned"),
+                    numberBefore(r.output, "ghosts at the end"),
+                    numberBefore(r.output, "grains migrated in"), numberBefore(r.output, "out, "),
+                    numberBefore(r.output, "redraws of"));
     }
 }
 

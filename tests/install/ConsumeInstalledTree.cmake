@@ -70,8 +70,10 @@ endforeach()
 
 # The installed Python package (when the build has one), imported from the prefix with no
 # LD_LIBRARY_PATH: its RPATH must find the installed libraries too.
+# Not in sanitizer builds: a sanitized module cannot be imported by an unsanitized interpreter
+# (python/CMakeLists.txt leaves its tests out there too).
 file(GLOB installedPackage ${prefix}/lib*/python3*/*-packages/lsdem/__init__.py)
-if(installedPackage)
+if(installedPackage AND NOT CXX_FLAGS MATCHES "-fsanitize")
     get_filename_component(packageDir ${installedPackage} DIRECTORY)
     get_filename_component(sitePackages ${packageDir} DIRECTORY)
     find_program(python NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)

@@ -14,6 +14,7 @@
 #include "support/TestSupport.h"
 
 #include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/CsvText.h"
 #include "lsdem/run/Checkpoint.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
@@ -26,6 +27,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 using namespace lsdem::test;
 
@@ -252,23 +254,13 @@ std::string slabScene(const ScratchDir& dir, double sdp, double vdp)
 /// The last row's value in column @a column of a CSV file (its header names the columns).
 double lastValue(const std::string& path, const std::string& column)
 {
-    std::istringstream in(readFile(path));
-    std::string line, header, last;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        if (header.empty()) header = line;
-        else last = line;
-    }
-    auto split = [](const std::string& row) {
-        std::vector<std::string> cells;
-        std::istringstream s(row);
-        for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-        return cells;
-    };
-    const std::vector<std::string> names = split(header), values = split(last);
-    for (size_t k = 0; k < names.size() && k < values.size(); ++k)
-        if (names[k] == column) return std::stod(values[k]);
-    return -1.0;
+    const auto records = lsdem::readCsvRecords(readFile(path), path);
+    if (records.size() < 2) throw std::runtime_error(path + ": no rows");
+    const auto& names = records.front();
+    const auto& last = records.back();
+    for (size_t k = 0; k < names.size() && k < last.size(); ++k)
+        if (names[k] == column) return std::stod(last[k]);
+    throw std::runtime_error(path + ": no column '" + column + "'");
 }
 
 /// How many block pairs, and how many (block, boundary) pairs, carry shear force in the

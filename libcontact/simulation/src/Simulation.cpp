@@ -75,6 +75,38 @@ bool isEmpty(const PairForces& r)
            zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
 }
 
+/// What a grain–boundary slot adds to its boundary: the reaction and, for a plane, the
+/// contact's stiffness along the normal and its dashpot (what a servo wall's gain is based on).
+struct BoundaryReaction
+{
+    Vec3 force = Vec3::Zero();
+    double stiffness = 0.0, dashpot = 0.0;
+};
+
+BoundaryReaction boundaryReaction(const World& w, const ContactSlot& s, double grainMass)
+{
+    BoundaryReaction reaction;
+    const Boundary& b = w.boundaries[size_t(s.boundary)];
+    reaction.force = s.result.forceOnSecond;
+    if (b.shape == BoundaryShape::Plane) {
+        reaction.stiffness = b.plane.normal.dot(s.result.normalStiffness * b.plane.normal);
+        const ViscousDamping damping =
+            w.model(w.grains[size_t(s.first)].material, b.material).damping();
+        reaction.dashpot =
+            damping.dashpotPerStiffness(grainMass, reaction.stiffness) * reaction.stiffness;
+    }
+    return reaction;
+}
+
+void addReaction(Boundary& b, const BoundaryReaction& reaction)
+{
+    b.force += reaction.force;
+    if (b.shape == BoundaryShape::Plane) {
+        b.normalStiffness += reaction.stiffness;
+        b.normalDashpot += reaction.dashpot;
+    }
+}
+
 [[noreturn]] void throwNonFinite(const std::string& grain, long long step, double time)
 {
     std::ostringstream s;
@@ -311,18 +343,8 @@ void Simulation::evaluateForces(double slipStep)
             mContactNodes += r.contactNodes;
             mElastic += r.elasticEnergy;
         }
-        if (s.boundary >= 0 && !mGhosts) {
-            Boundary& b = w.boundaries[s.boundary];
-            b.force += r.forceOnSecond;
-            if (b.shape == BoundaryShape::Plane) {  // what a servo wall's gain is based on
-                const double stiffness = b.plane.normal.dot(r.normalStiffness * b.plane.normal);
-                const ViscousDamping damping =
-                    w.model(w.grains[s.first].material, b.material).damping();
-                b.normalStiffness += stiffness;
-                b.normalDashpot +=
-                    damping.dashpotPerStiffness(mViews[s.first].mass, stiffness) * stiffness;
-            }
-        }
+        if (s.boundary >= 0 && !mGhosts)
+            addReaction(w.boundaries[s.boundary], boundaryReaction(w, s, mViews[s.first].mass));
         for (size_t f = 0; f < s.forces.size(); ++f) {
             const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
             const int grain = onFirst ? s.first : s.second;
@@ -424,29 +446,22 @@ void Simulation::sumBoundaryReactions()
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         if (isEmpty(r)) continue;  // adds nothing
+        const BoundaryReaction reaction = boundaryReaction(w, s, mViews[size_t(s.first)].mass);
         OrderedTerm t;
         t.key[0] = ids[size_t(s.first)];
         t.key[1] = s.boundary;
-        for (int c = 0; c < 3; ++c) t.value[c] = r.forceOnSecond[c];
-        const Boundary& b = w.boundaries[size_t(s.boundary)];
-        if (b.shape == BoundaryShape::Plane) {
-            const double stiffness = b.plane.normal.dot(r.normalStiffness * b.plane.normal);
-            const ViscousDamping damping =
-                w.model(w.grains[size_t(s.first)].material, b.material).damping();
-            t.value[3] = stiffness;
-            t.value[4] = damping.dashpotPerStiffness(mViews[size_t(s.first)].mass, stiffness) *
-                         stiffness;
-        }
+        for (int c = 0; c < 3; ++c) t.value[c] = reaction.force[c];
+        t.value[3] = reaction.stiffness;
+        t.value[4] = reaction.dashpot;
         terms.push_back(t);
     }
     // In list order (grain, then boundary), as one process adds them.
     for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
-        Boundary& b = mWorld.boundaries[size_t(t.key[1])];
-        b.force += Vec3(t.value[0], t.value[1], t.value[2]);
-        if (b.shape == BoundaryShape::Plane) {
-            b.normalStiffness += t.value[3];
-            b.normalDashpot += t.value[4];
-        }
+        BoundaryReaction reaction;
+        reaction.force = Vec3(t.value[0], t.value[1], t.value[2]);
+        reaction.stiffness = t.value[3];
+        reaction.dashpot = t.value[4];
+        addReaction(mWorld.boundaries[size_t(t.key[1])], reaction);
     }
 }
 

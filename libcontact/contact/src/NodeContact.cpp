@@ -62,12 +62,24 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         return sampler->sample(inB, next.cell);
     };
     auto visit = [&](int begin, int end) {
+        // Most nodes of a run lie outside B's bounding sphere. That test is made in A's frame
+        // (a difference and a square, no rotation); only the nodes inside are carried to B's
+        // frame. The loop's constants are copied to locals so they stay in registers.
+        const Vec3 sphereCentre = centerOfB;
+        const double sphereReach2 = reach2;
+        const Eigen::Matrix3d toBRotation = rotation;
+        const Vec3 toBTranslation = translation;
+        const Vec3 boxMin = b.insideBoxMin, boxMax = b.insideBoxMax;
+        long long culled = 0;
         for (int i = begin; i < end; ++i) {
-            const Vec3 inB = rotation * positions[i] + translation;
-            if (inB.squaredNorm() > reach2 ||  // outside B's sphere, or its inside box
-                (inB - b.insideBoxMin).minCoeff() < 0.0 ||
-                (b.insideBoxMax - inB).minCoeff() < 0.0) {
-                ++stats.nodesCulled;  // φ_B > 0 there
+            const Vec3& inA = positions[i];
+            if ((inA - sphereCentre).squaredNorm() > sphereReach2) {
+                ++culled;  // outside B's sphere: φ_B > 0 there
+                continue;
+            }
+            const Vec3 inB = toBRotation * inA + toBTranslation;
+            if ((inB - boxMin).minCoeff() < 0.0 || (boxMax - inB).minCoeff() < 0.0) {
+                ++culled;  // outside the box where φ_B can be negative
                 continue;
             }
             ++stats.nodesSampled;
@@ -86,6 +98,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             c.area = a.nodes.areas[i];
             out.push_back(c);
         }
+        stats.nodesCulled += culled;
     };
     const NodeBlocks& groups = a.nodeBlocks;
     if (!candidates || groups.empty() || !groups.matches(a.nodes.size())) {

@@ -1,5 +1,7 @@
 #include "lsdem/simulation/RigidBody.h"
 
+#include <cmath>
+
 namespace lsdem {
 
 Vec3 RigidBody::angularVelocity() const
@@ -30,14 +32,22 @@ void kick(RigidBody& body, const Vec3& force, const Vec3& torque, double halfSte
 namespace {
 
 /// The exact flow of T_k = L_k²/(2 I_k) for time @a t: the body turns about its axis k by
-/// ω_k·t, so the body-frame momentum turns the other way; the world momentum is unchanged.
+/// θ = ω_k·t, so the body-frame momentum turns by −θ; the world momentum is unchanged. One
+/// sine and cosine of θ/2 serve both: the quaternion of the turn takes them as they are, the
+/// momentum's rotation takes cos θ = 1 − 2 sin²(θ/2) and sin θ = 2 sin(θ/2) cos(θ/2).
 void rotateAboutPrincipalAxis(Quat& orientation, Vec3& bodyMomentum, const Vec3& inertia, int k,
                               double t)
 {
-    const double angle = bodyMomentum[k] / inertia[k] * t;
-    const Eigen::AngleAxisd turn(angle, Vec3::Unit(k));
-    orientation = (orientation * Quat(turn)).normalized();
-    bodyMomentum = turn.inverse() * bodyMomentum;
+    const double half = 0.5 * bodyMomentum[k] / inertia[k] * t;
+    const double s = std::sin(half), c = std::cos(half);
+    Quat turn(c, 0.0, 0.0, 0.0);
+    turn.vec()[k] = s;
+    orientation = orientation * turn;
+    const double cosine = 1.0 - 2.0 * s * s, sine = 2.0 * s * c;
+    const int i = (k + 1) % 3, j = (k + 2) % 3;  // (i, j, k) cyclic: turning by θ takes i to j
+    const double li = bodyMomentum[i], lj = bodyMomentum[j];
+    bodyMomentum[i] = cosine * li + sine * lj;
+    bodyMomentum[j] = cosine * lj - sine * li;
 }
 
 } // namespace
@@ -53,6 +63,7 @@ void drift(RigidBody& body, double dt)
     rotateAboutPrincipalAxis(q, bodyMomentum, inertia, 2, dt);
     rotateAboutPrincipalAxis(q, bodyMomentum, inertia, 1, 0.5 * dt);
     rotateAboutPrincipalAxis(q, bodyMomentum, inertia, 0, 0.5 * dt);
+    q.normalize();  // once per step: five exact turns leave it unit to round-off
     // World momentum is invariant under the free flow; recompute it from the body frame
     // only to keep orientation and momentum consistent after renormalisation.
     body.angularMomentum = q * bodyMomentum;

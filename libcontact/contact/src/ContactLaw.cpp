@@ -75,7 +75,11 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             if (size == 0.0 || f.stiffness <= 0.0) continue;
             const Vec3 n = f.force / size;
             elasticEnergy += 0.5 * size * size / f.stiffness;
-            normalStiffness += f.stiffness * n * n.transpose();
+            // += k·n·nᵀ, entry by entry (the same products as Eigen's expression, which goes
+            // through a temporary matrix in memory and stalls reading it back).
+            const Vec3 kn = f.stiffness * n;
+            for (int col = 0; col < 3; ++col)
+                for (int row = 0; row < 3; ++row) normalStiffness(row, col) += kn[row] * n[col];
             const Vec3 relativeVelocity =
                 side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
             Vec3 total = f.force;

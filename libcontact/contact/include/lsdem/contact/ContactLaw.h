@@ -27,7 +27,15 @@ struct ContactGrain
     /// Velocity of the material point at world point @a p.
     Vec3 pointVelocity(const Vec3& p) const
     {
-        return velocity + angularVelocity.cross(p - pose.position);
+        // v + ω × (p − c), written out by component: the same operations as Eigen's, but
+        // kept in registers (Eigen's cross product goes through memory and then stalls the
+        // vector addition that reads it back; this is on the contact law's hot path).
+        const double rx = p.x() - pose.position.x(), ry = p.y() - pose.position.y(),
+                     rz = p.z() - pose.position.z();
+        const Vec3& w = angularVelocity;
+        return Vec3(velocity.x() + (w.y() * rz - w.z() * ry),
+                    velocity.y() + (w.z() * rx - w.x() * rz),
+                    velocity.z() + (w.x() * ry - w.y() * rx));
     }
 };
 

@@ -15,6 +15,19 @@ double effectiveMass(const ContactGrain& a, const ContactGrain& b)
     return std::max(a.mass, b.mass);
 }
 
+/// @a sum += (p − c) × f, or −= with @a subtract; component by component, the same operations
+/// as Eigen's cross product, which would go through memory and stall the sum reading it back.
+void accumulateMoment(Vec3& sum, const Vec3& p, const Vec3& c, const Vec3& f, bool subtract)
+{
+    const double rx = p.x() - c.x(), ry = p.y() - c.y(), rz = p.z() - c.z();
+    const double mx = ry * f.z() - rz * f.y(), my = rz * f.x() - rx * f.z(),
+                 mz = rx * f.y() - ry * f.x();
+    if (subtract)
+        sum = Vec3(sum.x() - mx, sum.y() - my, sum.z() - mz);
+    else
+        sum = Vec3(sum.x() + mx, sum.y() + my, sum.z() + mz);
+}
+
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
@@ -117,9 +130,9 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         const Vec3 testerCentre = side.tester->pose.position, otherCentre = side.other->pose.position;
         for (const PointForce& f : forces) {
             testerForce += f.force;
-            testerTorque += (f.point - testerCentre).cross(f.force);
+            accumulateMoment(testerTorque, f.point, testerCentre, f.force, false);
             otherForce -= f.force;
-            otherTorque -= (f.point - otherCentre).cross(f.force);
+            accumulateMoment(otherTorque, f.point, otherCentre, f.force, true);
         }
         forceOnTester = testerForce;
         torqueOnTester = testerTorque;

@@ -98,11 +98,11 @@ def plot_convergence(runs, out_dir):
             ax.plot([float(r[key]) for r in mine], [float(r[column]) for r in mine],
                     marker=marker, label="adapted, %s refined (against the finest)" % key.upper())
     converged = [r for r in runs if r["role"] == "converged"]
+    verdict = None  # the legend's title, so the two never overlap
     if converged:
         c = converged[0]
-        ax.text(0.02, 0.02, "converged: SDP %s, VDP %s mm, VDP/SDP = %.2f"
-                % (c["sdp"], c["vdp"], float(c["vdp"]) / float(c["sdp"])),
-                transform=ax.transAxes, fontsize=8)
+        verdict = "converged: SDP %s, VDP %s mm, VDP/SDP = %.2f" % (
+            c["sdp"], c["vdp"], float(c["vdp"]) / float(c["sdp"]))
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.invert_xaxis()
@@ -110,7 +110,7 @@ def plot_convergence(runs, out_dir):
     ax.set_ylabel("difference to the finest run / its peak P\n(larger of loading-branch RMS and peak)")
     ax.set_title("convergence of the P–δ curve")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, title=verdict, title_fontsize=8)
     save(fig, out_dir, "slab_convergence.png")
 
 

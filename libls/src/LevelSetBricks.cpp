@@ -114,7 +114,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
             uniform.emplace(floatBits(b.value[0]), uint8_t(b.active[0] & 1u));
     });
     const size_t bricks = varying + uniform.size();
-    mCode.reserve(bricks * 3 * kVoxels);
+    mCode.reserve(bricks * 3 * kVoxels + 1);  // + the padding byte that decode() may read
     mBrickStep.reserve(bricks);
     mActive.reserve(bricks * kMaskWords);
     forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
@@ -135,6 +135,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         if (it == shared.end()) it = shared.emplace(key, addBrick(brick, false)).first;
         mTable[slot] = kShared | it->second;
     });
+    mCode.push_back(0);  // decode() reads each code as 4 bytes: the last one's fourth
 }
 
 template <typename Visit>

@@ -21,6 +21,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace lsdem {
@@ -94,10 +95,15 @@ public:
     {
         return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
     }
-    /// The value whose 3-byte code (little-endian, two's complement) starts at @a code.
+    /// The value whose 3-byte code (little-endian, two's complement) starts at @a code, which
+    /// must lie in codes(): it is read as 4 bytes, one load instead of three (the array keeps
+    /// a byte of padding after its last code), and the fourth byte is shifted out.
     static float decode(const uint8_t* code, float step)
     {
-        const uint32_t bits = uint32_t(code[0]) | uint32_t(code[1]) << 8 | uint32_t(code[2]) << 16;
+        static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+                      "LevelSetBricks reads its 3-byte codes as little-endian words");
+        uint32_t bits = 0;
+        std::memcpy(&bits, code, sizeof bits);
         const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
         return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
     }
@@ -129,7 +135,7 @@ private:
     openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};
     std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
-    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick
+    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick; 1 padding byte
     std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
     std::vector<uint64_t> mActive;       ///< kMaskWords per brick
     openvdb::math::Transform::Ptr mTransform;

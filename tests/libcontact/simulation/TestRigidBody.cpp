@@ -88,3 +88,23 @@ TEST(RigidBody, ConstantForceAndTorqueGiveTheExpectedMotion)
     // Angle turned: ∫ ω dt = τ t² / (2I) = 0.25 rad about z.
     EXPECT_NEAR(Eigen::AngleAxisd(b.pose.orientation).angle(), 0.25, 1e-6);
 }
+
+TEST(RigidBody, SpinAboutAPrincipalAxisTurnsByExactlyOmegaDt)
+{
+    // Spinning about a principal axis is a stationary free rotation: one step turns the body
+    // by ω·dt about it, with nothing else to split. The step's sine and cosine come from a
+    // series below 1e-3 rad and from the library above: both must give the exact rotation to
+    // round-off, on either side of the switch and far from it.
+    for (const double halfAngle : {1e-7, 3e-4, 0.999e-3, 1.001e-3, 0.05, 0.7}) {
+        RigidBody b;
+        b.mass = 1.0;
+        b.principalInertia = Vec3(1.0, 2.0, 3.0);
+        const double omega = 4.0, dt = 2.0 * halfAngle / omega;
+        b.setAngularVelocity(Vec3(0.0, 0.0, omega));
+        drift(b, dt);
+        const Quat exact(std::cos(halfAngle), 0.0, 0.0, std::sin(halfAngle));
+        EXPECT_NEAR((b.pose.orientation.coeffs() - exact.coeffs()).norm(), 0.0, 4e-16)
+            << "half-angle " << halfAngle;
+        EXPECT_NEAR((b.angularMomentum - Vec3(0.0, 0.0, 3.0 * omega)).norm(), 0.0, 1e-15);
+    }
+}

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <malloc.h>
 #include <fstream>
 #include <random>
@@ -138,11 +139,33 @@ void BM_BakeStageMass(benchmark::State& state)
 }
 BENCHMARK(BM_BakeStageMass)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
 
+/// A 48-bit FNV-1a hash of every voxel's value and state (exact in a double counter): a
+/// change to the level-set code that should not change the grid must leave it as it was.
+double gridHash(const LevelSetBricks& grid)
+{
+    uint64_t h = 14695981039346656037ull;
+    auto mix = [&h](uint64_t word) { h = (h ^ word) * 1099511628211ull; };
+    auto bits = [](float v) {
+        uint32_t b = 0;
+        std::memcpy(&b, &v, sizeof b);
+        return uint64_t(b);
+    };
+    auto voxel = [&](const openvdb::Coord& c, float v, bool on) {
+        for (int k = 0; k < 3; ++k) mix(uint64_t(uint32_t(c[k])));
+        mix(bits(v));
+        mix(on ? 1u : 0u);
+    };
+    grid.forEachBrick(voxel, [&](const openvdb::CoordBBox& box, float v, bool on) {
+        voxel(box.min(), v, on);  // a brick of one value: its corner stands for it
+    });
+    return double(h >> 16);
+}
+
 void BM_BakeStageLevelSet(benchmark::State& state)
 {
     const TriangleMesh& mesh = framedPebble();
     const BakeOptions o = pebbleOptions();
-    double peak = 0, grid = 0, active = 0;
+    double peak = 0, grid = 0, active = 0, hash = 0;
     for (auto _ : state) {
         resetPeakRss();
         const double before = statusBytes("VmRSS");
@@ -150,11 +173,15 @@ void BM_BakeStageLevelSet(benchmark::State& state)
         peak = statusBytes("VmHWM") - before;
         grid = double(levelSet->grid->memUsage());
         active = double(levelSet->grid->activeVoxelCount());
+        state.PauseTiming();  // the hash is for checking, not part of the stage
+        hash = gridHash(*levelSet->grid);
+        state.ResumeTiming();
     }
     state.counters["grid_MiB"] = grid / kMiB;
     state.counters["peak_MiB"] = peak / kMiB;
     state.counters["peak_over_grid"] = peak / grid;
     state.counters["active_voxels"] = active;
+    state.counters["grid_hash"] = hash;
 }
 BENCHMARK(BM_BakeStageLevelSet)->Unit(benchmark::kMillisecond)->Iterations(1)->MeasureProcessCPUTime()->UseRealTime();
 

@@ -298,6 +298,7 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     asset->nodes = readNodesGrid(*nodesGrid, size_t(count), path);
     asset->nodeBlocks = groupNodesIntoBlocks(asset->nodes);
     insideBox(*asset->levelSet, asset->insideBoxMin, asset->insideBoxMax);
+    asset->levelSetSlope = levelSetSlopeBound(*asset->levelSet);
     return asset;
 }
 

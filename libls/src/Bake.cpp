@@ -127,6 +127,7 @@ void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::strin
     sortNodesSpatially(asset.nodes, cell);
     asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
     insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
+    asset.levelSetSlope = levelSetSlopeBound(*asset.levelSet);
     asset.areaRule = o.areaRule;
     asset.spacing = nodeSpacing(asset.nodes);
     asset.voxelSize = o.voxelSize;

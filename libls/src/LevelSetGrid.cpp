@@ -1,5 +1,10 @@
 #include "lsdem/ls/LevelSetGrid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <mutex>
 
@@ -39,6 +44,31 @@ void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max)
     const openvdb::Coord lo = box.min(), hi = box.max();
     min = levelSet.origin + h * Vec3(lo.x() - 1, lo.y() - 1, lo.z() - 1);
     max = levelSet.origin + h * Vec3(hi.x() + 1, hi.y() + 1, hi.z() + 1);
+}
+
+double levelSetSlopeBound(const LevelSetGrid& levelSet)
+{
+    const LevelSetBricks& grid = *levelSet.grid;
+    const openvdb::CoordBBox table = grid.tableBox();
+    if (table.empty()) return 0.0;  // the background everywhere: flat
+    // Every edge with a voxel in the table, including those to the background around it.
+    const openvdb::Coord lo = table.min().offsetBy(-1), hi = table.max();
+    const double largest = tbb::parallel_reduce(
+        tbb::blocked_range<int>(lo.x(), hi.x() + 1), 0.0,
+        [&](const tbb::blocked_range<int>& xs, double found) {
+            for (int x = xs.begin(); x != xs.end(); ++x)
+                for (int y = lo.y(); y <= hi.y(); ++y)
+                    for (int z = lo.z(); z <= hi.z(); ++z) {
+                        const openvdb::Coord c(x, y, z);
+                        const double v = grid.value(c);
+                        found = std::max({found, std::abs(grid.value(c.offsetBy(1, 0, 0)) - v),
+                                          std::abs(grid.value(c.offsetBy(0, 1, 0)) - v),
+                                          std::abs(grid.value(c.offsetBy(0, 0, 1)) - v)});
+                    }
+            return found;
+        },
+        [](double a, double b) { return std::max(a, b); });
+    return std::sqrt(3.0) * largest / levelSet.voxelSize;
 }
 
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin)

@@ -8,6 +8,7 @@
 
 #include <openvdb/tools/LevelSetSphere.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -148,4 +149,44 @@ TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)
     spread->tree().setValue(openvdb::Coord(0, 0, 0), -1.0f);
     spread->tree().setValue(openvdb::Coord(8000, 8000, 8000), -1.0f);
     EXPECT_THROW(toLevelSetGrid(*spread), Error);
+}
+
+// levelSetSlopeBound: φ of a baked sphere (a distance, so neighbouring voxels differ by at
+// most a voxel) has a bound just under √3, and the interpolant never changes faster than it:
+// |φ(x) − φ(y)| ≤ L·|x − y| for random pairs of nearby and distant points, inside, across the
+// surface and out into the background. A grid with a steeper step gets a steeper bound.
+TEST(LevelSetBricks, SlopeBoundHoldsForTheInterpolant)
+{
+    BakeOptions o;
+    o.voxelSize = 0.05;
+    o.nodeSpacing = 0.2;
+    std::vector<std::string> warnings;
+    const GrainAsset asset = bakeAnalytic(AnalyticShape::sphere(1.0), o, warnings);
+    const double slope = levelSetSlopeBound(*asset.levelSet);
+    EXPECT_EQ(slope, asset.levelSetSlope);  // derived when baked
+    EXPECT_GT(slope, 0.95 * std::sqrt(3.0));
+    EXPECT_LE(slope, std::sqrt(3.0) * (1.0 + 1e-4));  // float and 24-bit rounding
+
+    LevelSetSampler sampler(*asset.levelSet);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> coordinate(-1.4, 1.4), step(-0.2, 0.2);
+    double steepest = 0.0;
+    for (int k = 0; k < 200000; ++k) {
+        const Vec3 x(coordinate(rng), coordinate(rng), coordinate(rng));
+        const Vec3 y = x + (k % 2 ? Vec3(step(rng), step(rng), step(rng))
+                                  : Vec3(coordinate(rng), coordinate(rng), coordinate(rng)));
+        const double ratio = std::abs(sampler.phi(x) - sampler.phi(y)) / (x - y).norm();
+        steepest = std::max(steepest, ratio);
+        ASSERT_LE(ratio, slope) << x.transpose() << " / " << y.transpose();
+    }
+    EXPECT_GT(steepest, 0.9);  // the pairs did cross the distance field
+
+    // One voxel raised by 10 voxels: the bound follows (√3 · 10 voxels / voxel = 17.3).
+    openvdb::FloatGrid::Ptr grid = toFloatGrid(*asset.levelSet->grid);
+    const openvdb::Coord c(20, 20, 20);
+    auto accessor = grid->getAccessor();
+    accessor.setValue(c, accessor.getValue(c) + float(10 * o.voxelSize));
+    LevelSetGrid stepped = *asset.levelSet;
+    stepped.grid = toLevelSetGrid(*grid);
+    EXPECT_GT(levelSetSlopeBound(stepped), std::sqrt(3.0) * 10.0);
 }

@@ -4,6 +4,9 @@
 #include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 
 namespace lsdem {
@@ -61,6 +64,18 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             next.cell = (*lastCells)[cursor].cell;
         return sampler->sample(inB, next.cell);
     };
+    // How near the visited nodes came to contact, for CandidateBlocks::clearGap: the smallest
+    // squared distance to B's centre of those outside its sphere, the smallest distance outside
+    // the inside box along an axis, the smallest φ_B ≥ 0 sampled; and whether any φ_B < 0.
+    double nearestOutsideSphere2 = std::numeric_limits<double>::infinity();
+    double nearestOutsideBox = std::numeric_limits<double>::infinity();
+    double smallestPhi = std::numeric_limits<double>::infinity();
+    bool anyInside = false;
+    // A node just outside B's sphere may be far from B's surface, but the sphere alone would
+    // say it is a hair from contact: within this of the sphere, the gap takes φ_B there too
+    // (sampled for the gap only; such a node is still culled). 0: no gap is kept.
+    double sphereBand = 0.0;
+    double nearestInBand = std::numeric_limits<double>::infinity();  // their gaps
     auto visit = [&](int begin, int end) {
         // Most nodes of a run lie outside B's bounding sphere. That test is made in A's frame
         // (a difference and a square, no rotation); only the nodes inside are carried to B's
@@ -71,21 +86,43 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         const Vec3 toBTranslation = translation;
         const Vec3 boxMin = b.insideBoxMin, boxMax = b.insideBoxMax;
         long long culled = 0;
+        double outsideSphere2 = nearestOutsideSphere2, outsideBox = nearestOutsideBox;
+        const double bandReach = reachB + sphereBand, bandReach2 = bandReach * bandReach;
         for (int i = begin; i < end; ++i) {
             const Vec3& inA = positions[i];
-            if ((inA - sphereCentre).squaredNorm() > sphereReach2) {
+            const double d2 = (inA - sphereCentre).squaredNorm();
+            if (d2 > sphereReach2) {
                 ++culled;  // outside B's sphere: φ_B > 0 there
+                if (d2 > bandReach2) {
+                    outsideSphere2 = std::min(outsideSphere2, d2);
+                } else {  // near the sphere: its gap is the larger of the two bounds
+                    const Vec3 inB = toBRotation * inA + toBTranslation;
+                    const double beyondBox =
+                        std::max((boxMin - inB).maxCoeff(), (inB - boxMax).maxCoeff());
+                    if (!sampler) sampler.emplace(*b.levelSet);
+                    const double fromSurface =
+                        beyondBox > 0.0 ? beyondBox : sampler->phi(inB) / b.levelSetSlope;
+                    nearestInBand = std::min(
+                        nearestInBand, std::max(std::sqrt(d2) - reachB, fromSurface));
+                }
                 continue;
             }
             const Vec3 inB = toBRotation * inA + toBTranslation;
-            if ((inB - boxMin).minCoeff() < 0.0 || (boxMax - inB).minCoeff() < 0.0) {
+            const double outside = std::max((boxMin - inB).maxCoeff(), (inB - boxMax).maxCoeff());
+            if (outside > 0.0) {
                 ++culled;  // outside the box where φ_B can be negative
+                outsideBox = std::min(outsideBox, outside);
                 continue;
             }
             ++stats.nodesSampled;
             if (!sampler) sampler.emplace(*b.levelSet);
             const LevelSetSample s = sampleNode(i, inB);
-            if (!(s.phi < 0.0)) continue;
+            if (!(s.phi < 0.0)) {
+                smallestPhi = std::min(smallestPhi, s.phi);  // (a NaN φ leaves it: see below)
+                anyInside |= std::isnan(s.phi);
+                continue;
+            }
+            anyInside = true;
             const double gradientLength = s.gradient.norm();
             if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
             ++stats.nodesInContact;
@@ -99,11 +136,18 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             out.push_back(c);
         }
         stats.nodesCulled += culled;
+        nearestOutsideSphere2 = outsideSphere2;
+        nearestOutsideBox = outsideBox;
     };
     const NodeBlocks& groups = a.nodeBlocks;
     if (!candidates || groups.empty() || !groups.matches(a.nodes.size())) {
         forEachBlockNotClear(a, [&](const NodeBlock& run) { return isClearWithin(run, 0.0); },
                              visit, stats);
+        return;
+    }
+    if (candidates->holds(toB, translation, a.boundingRadius) &&
+        candidates->clearOfContact(toB, translation, a.boundingRadius)) {
+        stats.nodesCulled += count;  // no node can have come into contact since it was clear
         return;
     }
     if (!candidates->holds(toB, translation, a.boundingRadius)) {
@@ -127,7 +171,8 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             },
             ignored);
     }
-    // The remembered nodes, each tested as a full walk would.
+    // The remembered nodes, each tested as a full walk would; and how far from contact.
+    sphereBand = candidates->margin;
     nextCells.clear();
     lastCells = &candidates->cells;
     long long visited = 0;
@@ -139,6 +184,20 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     // largest pair it served, and thousands of pairs would each end up that large.
     candidates->cells.assign(nextCells.begin(), nextCells.end());
     stats.nodesCulled += count - visited;
+    // No node in contact: each visited node is at least this far from coming into contact
+    // (outside B's sphere, outside the box, or φ_B ≥ 0 with φ_B changing by at most
+    // levelSetSlope per unit of distance), and the nodes outside the runs stay clear while
+    // the runs hold. Until a node may have moved that far, this direction can be skipped.
+    candidates->clearGap = 0.0;
+    if (!anyInside) {
+        const double gap = std::min({std::sqrt(nearestOutsideSphere2) - reachB, nearestInBand,
+                                     nearestOutsideBox, smallestPhi / b.levelSetSlope});
+        if (gap > 0.0) {
+            candidates->clearGap = gap;
+            candidates->clearRotation = toB;
+            candidates->clearTranslation = translation;
+        }
+    }
 }
 
 } // namespace lsdem

@@ -71,16 +71,68 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
             ASSERT_EQ(full[k].normal, withList[k].normal);
             ASSERT_EQ(full[k].point, withList[k].point);
         }
-        // The counters add up the same way: every node is either culled or sampled.
+        // The counters add up the same way: every node is either culled or sampled (and the
+        // list samples the same nodes, unless it knows A clear of B and samples none).
         EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
-        EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
-        EXPECT_EQ(listStats.nodesCulled, fullStats.nodesCulled);
-        // Every node sampled this step left its cell for the next one.
-        EXPECT_EQ(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
+        EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
+                  fullStats.nodesCulled + fullStats.nodesSampled);
+        if (listStats.nodesSampled > 0) {
+            EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
+            // Every node sampled this step left its cell for the next one.
+            EXPECT_EQ(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
+        }
     }
     EXPECT_GT(stepsInContact, steps * 9 / 10);  // the trajectory stays in contact
     EXPECT_GT(refreshes, 5);                    // the list had to follow the motion
     EXPECT_LT(refreshes, steps / 2);            // and was reused most of the time
+}
+
+// Two equal grains, A coming at B along the diagonal of their x-z planes (there the surface is
+// 0.81 from the centre, the bounding sphere 1.0 and the box of the inside further still, so
+// A's nodes are sampled long before contact) from a gap of 0.12 in small steps with small
+// turns, until the two overlap by 0.06: while A is clear of B the list skips it once it knows
+// how far every node is from
+// contact (outside B's sphere, its inside box, or at φ_B ≥ g with φ_B's slope bounded), and
+// samples again before any node could have crossed that distance. The contacts equal a full
+// walk's at every step, the first contact included.
+TEST(CandidateBlocks, SkipsAClearPairOnlyUntilANodeCouldReachContact)
+{
+    const GrainAsset& a = grain(1.0);
+    const GrainAsset& b = a;
+    ASSERT_LT(b.levelSetSlope, 1.8);
+    RigidPose poseA, poseB;
+    // Symmetric about the midpoint: they touch when it is on the surface, 0.811 along u.
+    const Vec3 u = Vec3(1.0, 0.0, 1.0).normalized();
+    poseA.position = 1.742 * u;
+    std::mt19937_64 rng(3);
+    CandidateBlocks remembered;
+    int skipped = 0, sampledWhileClear = 0, stepsInContact = 0, firstContact = -1;
+    for (int step = 0; step < 1200; ++step) {
+        poseA.position -= 0.00015 * u;
+        poseA.position.y() += 0.0004 * uniform(rng);
+        poseA.orientation = (Quat(Eigen::AngleAxisd(0.001 * uniform(rng), Vec3::UnitZ())) *
+                             poseA.orientation).normalized();
+        std::vector<NodeContact> full, withList;
+        NodeCheckStats fullStats, listStats;
+        findNodeContacts(a, poseA, b, poseB, full, fullStats);
+        findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
+        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
+        for (size_t k = 0; k < full.size(); ++k) {
+            ASSERT_EQ(full[k].node, withList[k].node);
+            ASSERT_EQ(full[k].depth, withList[k].depth);
+            ASSERT_EQ(full[k].normal, withList[k].normal);
+        }
+        if (!full.empty()) {
+            ++stepsInContact;
+            if (firstContact < 0) firstContact = step;
+        } else if (fullStats.nodesSampled > 0) {
+            (listStats.nodesSampled == 0 ? skipped : sampledWhileClear) += 1;
+        }
+    }
+    EXPECT_GT(firstContact, 500);       // a long approach (0.12 at 0.00015 a step: ~800)
+    EXPECT_GT(stepsInContact, 200);     // and then in contact
+    EXPECT_GT(skipped, 300);            // about half the clear steps with nodes near B
+    EXPECT_GT(sampledWhileClear, 5);    // but sampled again as the gap closed
 }
 
 TEST(CandidateBlocks, HoldsOnlyWhileEveryNodeMovedLessThanTheMargin)

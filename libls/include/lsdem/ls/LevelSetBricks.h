@@ -74,6 +74,15 @@ public:
     /// voxels that are active or differ from the background (so bricks waste no more than
     /// 3 voxels per axis beyond them, whatever their alignment).
     const openvdb::Coord& origin() const { return mOrigin; }
+    /// The voxels the table covers (empty if it holds no brick): everywhere else the value is
+    /// the background.
+    openvdb::CoordBBox tableBox() const
+    {
+        if (!mBricks[0] || !mBricks[1] || !mBricks[2]) return openvdb::CoordBBox();
+        return openvdb::CoordBBox(mOrigin, mOrigin.offsetBy(int(mBricks[0]) * kDim - 1,
+                                                            int(mBricks[1]) * kDim - 1,
+                                                            int(mBricks[2]) * kDim - 1));
+    }
     /// The brick at local brick coordinates (bx, by, bz); the background brick outside the
     /// table. Bricks of one value and state (the background, interior tiles) are stored once
     /// and shared, so every place has a brick and reading one never branches on its kind.

@@ -38,6 +38,12 @@ void initializeOpenVdb();
 /// negative.
 void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max);
 
+/// An upper bound on the slope |∇φ| of the trilinear interpolant of @a levelSet, anywhere:
+/// √3 times the largest difference between two face-neighbouring voxels, over the voxel size
+/// (in a cell each partial derivative is a mean of its four edges' differences). So φ at two
+/// points differs by at most this times their distance. About √3 for a signed distance.
+double levelSetSlopeBound(const LevelSetGrid& levelSet);
+
 /// A linear transform with the given voxel size whose index (0,0,0) sits at @a origin.
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin);
 

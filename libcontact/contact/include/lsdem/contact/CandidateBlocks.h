@@ -37,6 +37,13 @@ struct CandidateBlocks
     double margin = 0.0;                  ///< length
     std::vector<std::pair<int, int>> runs;  ///< A's nodes [begin, end) in those blocks, ascending
 
+    /// When A last found no contact with B: the map from A's frame to B's then, and a gap
+    /// below which no node of the runs could have moved into contact (see clearOfContact).
+    /// 0: not known clear.
+    Quat clearRotation = Quat::Identity();
+    Vec3 clearTranslation = Vec3::Zero();
+    double clearGap = 0.0;  ///< length
+
     /// A node of A sampled in B at the last step, and the cell of B it was in.
     struct SampledCell
     {
@@ -49,12 +56,27 @@ struct CandidateBlocks
     /// @a translation) for a grain A whose nodes lie within @a reachA of its origin.
     bool holds(const Quat& rotationNow, const Vec3& translationNow, double reachA) const
     {
-        if (!valid) return false;
+        return valid && largestMove(rotation, translation, rotationNow, translationNow, reachA) <
+                            margin;
+    }
+
+    /// Whether A's runs are still sure to be clear of B: A found none of their nodes in contact
+    /// under the map (clearRotation, clearTranslation), each at least clearGap from it, and no
+    /// node has moved half that far since. Half: a margin for round-off far larger than it.
+    bool clearOfContact(const Quat& rotationNow, const Vec3& translationNow, double reachA) const
+    {
+        return clearGap > 0.0 && largestMove(clearRotation, clearTranslation, rotationNow,
+                                             translationNow, reachA) < 0.5 * clearGap;
+    }
+
+    /// How far a node of A within @a reachA of its origin has moved relative to B from the map
+    /// (q0, t0) to (q1, t1), at most: |Δt| + 2 sin(θ/2)·reachA.
+    static double largestMove(const Quat& q0, const Vec3& t0, const Quat& q1, const Vec3& t1,
+                              double reachA)
+    {
         // |vec(q)| = sin(θ/2) for the unit quaternion of the change of rotation.
-        const Quat change = rotationNow * rotation.conjugate();
-        const double moved = (translationNow - translation).norm() +
-                             2.0 * change.vec().norm() * reachA;
-        return moved < margin;
+        const Quat change = q1 * q0.conjugate();
+        return (t1 - t0).norm() + 2.0 * change.vec().norm() * reachA;
     }
 };
 

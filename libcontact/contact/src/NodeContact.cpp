@@ -172,7 +172,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             ignored);
     }
     // The remembered nodes, each tested as a full walk would; and how far from contact.
-    sphereBand = candidates->margin;
+    sphereBand = candidates->wasClear ? candidates->margin : 0.0;
     nextCells.clear();
     lastCells = &candidates->cells;
     long long visited = 0;
@@ -189,6 +189,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     // levelSetSlope per unit of distance), and the nodes outside the runs stay clear while
     // the runs hold. Until a node may have moved that far, this direction can be skipped.
     candidates->clearGap = 0.0;
+    candidates->wasClear = !anyInside;
     if (!anyInside) {
         const double gap = std::min({std::sqrt(nearestOutsideSphere2) - reachB, nearestInBand,
                                      nearestOutsideBox, smallestPhi / b.levelSetSlope});

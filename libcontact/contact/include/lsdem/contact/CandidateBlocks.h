@@ -43,6 +43,10 @@ struct CandidateBlocks
     Quat clearRotation = Quat::Identity();
     Vec3 clearTranslation = Vec3::Zero();
     double clearGap = 0.0;  ///< length
+    /// Whether the last walk found A clear of B: only then does the next one also sample φ_B
+    /// at the nodes just outside B's sphere, for a gap worth keeping (a pair in contact
+    /// would pay for it at every step and never use it).
+    bool wasClear = false;
 
     /// A node of A sampled in B at the last step, and the cell of B it was in.
     struct SampledCell

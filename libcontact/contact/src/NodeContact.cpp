@@ -55,14 +55,18 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     thread_local std::vector<CandidateBlocks::SampledCell> nextCells;
     const std::vector<CandidateBlocks::SampledCell>* lastCells = nullptr;
     size_t cursor = 0;
+    auto samplerOfB = [&]() -> LevelSetSampler& {
+        if (!sampler) sampler.emplace(*b.levelSet);
+        return *sampler;
+    };
     auto sampleNode = [&](int i, const Vec3& inB) {
-        if (!lastCells) return sampler->sample(inB);
+        if (!lastCells) return samplerOfB().sample(inB);
         while (cursor < lastCells->size() && (*lastCells)[cursor].node < i) ++cursor;
         CandidateBlocks::SampledCell& next = nextCells.emplace_back();
         next.node = i;
         if (cursor < lastCells->size() && (*lastCells)[cursor].node == i)
             next.cell = (*lastCells)[cursor].cell;
-        return sampler->sample(inB, next.cell);
+        return samplerOfB().sample(inB, next.cell);
     };
     // How near the visited nodes came to contact, for CandidateBlocks::clearGap: the smallest
     // squared distance to B's centre of those outside its sphere, the smallest distance outside
@@ -88,6 +92,10 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         long long culled = 0;
         double outsideSphere2 = nearestOutsideSphere2, outsideBox = nearestOutsideBox;
         const double bandReach = reachB + sphereBand, bandReach2 = bandReach * bandReach;
+        // How far a point is outside the box of B's inside along an axis (≤ 0: in it).
+        auto beyondBox = [&](const Vec3& inB) {
+            return std::max((boxMin - inB).maxCoeff(), (inB - boxMax).maxCoeff());
+        };
         for (int i = begin; i < end; ++i) {
             const Vec3& inA = positions[i];
             const double d2 = (inA - sphereCentre).squaredNorm();
@@ -97,25 +105,22 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
                     outsideSphere2 = std::min(outsideSphere2, d2);
                 } else {  // near the sphere: its gap is the larger of the two bounds
                     const Vec3 inB = toBRotation * inA + toBTranslation;
-                    const double beyondBox =
-                        std::max((boxMin - inB).maxCoeff(), (inB - boxMax).maxCoeff());
-                    if (!sampler) sampler.emplace(*b.levelSet);
+                    const double outside = beyondBox(inB);
                     const double fromSurface =
-                        beyondBox > 0.0 ? beyondBox : sampler->phi(inB) / b.levelSetSlope;
+                        outside > 0.0 ? outside : samplerOfB().phi(inB) / b.levelSetSlope;
                     nearestInBand = std::min(
                         nearestInBand, std::max(std::sqrt(d2) - reachB, fromSurface));
                 }
                 continue;
             }
             const Vec3 inB = toBRotation * inA + toBTranslation;
-            const double outside = std::max((boxMin - inB).maxCoeff(), (inB - boxMax).maxCoeff());
+            const double outside = beyondBox(inB);
             if (outside > 0.0) {
                 ++culled;  // outside the box where φ_B can be negative
                 outsideBox = std::min(outsideBox, outside);
                 continue;
             }
             ++stats.nodesSampled;
-            if (!sampler) sampler.emplace(*b.levelSet);
             const LevelSetSample s = sampleNode(i, inB);
             if (!(s.phi < 0.0)) {
                 smallestPhi = std::min(smallestPhi, s.phi);  // (a NaN φ leaves it: see below)
@@ -145,12 +150,12 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
                              visit, stats);
         return;
     }
-    if (candidates->holds(toB, translation, a.boundingRadius) &&
-        candidates->clearOfContact(toB, translation, a.boundingRadius)) {
+    const bool runsHold = candidates->holds(toB, translation, a.boundingRadius);
+    if (runsHold && candidates->clearOfContact(toB, translation, a.boundingRadius)) {
         stats.nodesCulled += count;  // no node can have come into contact since it was clear
         return;
     }
-    if (!candidates->holds(toB, translation, a.boundingRadius)) {
+    if (!runsHold) {
         // Walk every cluster and block with the margin, and remember the blocks let through.
         candidates->valid = true;
         candidates->rotation = toB;

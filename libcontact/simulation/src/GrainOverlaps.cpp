@@ -1,5 +1,6 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
+#include "lsdem/contact/ContactLaw.h"
 #include "lsdem/simulation/BroadPhase.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -20,9 +21,13 @@ std::vector<GrainOverlap> findGrainOverlaps(const World& world)
     }
     const std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
     std::vector<double> depth(pairs.size(), 0.0);
-    tbb::enumerable_thread_specific<std::vector<NodeContact>> buffers;
+    struct alignas(kThreadPrivateAlignment) Buffer
+    {
+        std::vector<NodeContact> contacts;
+    };
+    tbb::enumerable_thread_specific<Buffer> buffers;
     tbb::parallel_for(size_t(0), pairs.size(), [&](size_t k) {
-        std::vector<NodeContact>& contacts = buffers.local();
+        std::vector<NodeContact>& contacts = buffers.local().contacts;
         const Grain& a = world.grains[size_t(pairs[k].first)];
         const Grain& b = world.grains[size_t(pairs[k].second)];
         NodeCheckStats stats;

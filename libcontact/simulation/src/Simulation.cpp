@@ -275,6 +275,7 @@ void Simulation::evaluateForces(double slipStep)
     const bool record = mRecordForces;
     const std::vector<ContactGrain>& views = mViews;
     const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
+    mSlotTotals.resize(slots.size());
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
         ContactSlot& s = slots[k];
         ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
@@ -299,6 +300,7 @@ void Simulation::evaluateForces(double slipStep)
                                       &scratch);
             side.contacts.swap(scratch.contacts[0]);
         }
+        mSlotTotals[k] = {s.stats, s.result.elasticEnergy, s.result.contactNodes};
     });
     mCounters.narrowSeconds += secondsSince(narrowStart);
 
@@ -335,14 +337,17 @@ void Simulation::evaluateForces(double slipStep)
     mContactNodes = 0;
     mElastic = 0.0;
     for (size_t k = 0; k < slots.size(); ++k) {
+        const SlotTotals& totals = mSlotTotals[k];
+        const bool boundary = k >= pairSlots;  // pairs first, then grain–boundary slots
+        mCounters.nodes += totals.stats;
+        // Split by space, a pair is counted by the owner of its first grain only.
+        if (!mGhosts || boundary || integratesGrain(size_t(slots[k].first))) {
+            mContactNodes += totals.contactNodes;
+            mElastic += totals.elasticEnergy;
+        }
+        if (!boundary && !record) continue;  // nothing more to take from a pair's slot
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
-        mCounters.nodes += s.stats;
-        // Split by space, a pair is counted by the owner of its first grain only.
-        if (!mGhosts || s.boundary >= 0 || integratesGrain(size_t(s.first))) {
-            mContactNodes += r.contactNodes;
-            mElastic += r.elasticEnergy;
-        }
         if (s.boundary >= 0 && !mGhosts)
             addReaction(w.boundaries[s.boundary], boundaryReaction(w, s, mViews[s.first].mass));
         for (size_t f = 0; f < s.forces.size(); ++f) {

@@ -121,6 +121,17 @@ private:
     std::vector<Mat3> mGrainStiffness;  ///< Σ k n nᵀ per grain at the last evaluation
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
+    /// Of each slot, what the pass after the narrow phase sums, side by side: read in order
+    /// from one array, it streams; read from the slots (688 bytes apart, each last written by
+    /// whichever thread computed it) it cost a cache miss or a transfer from the other core
+    /// per slot.
+    struct SlotTotals
+    {
+        NodeCheckStats stats;
+        double elasticEnergy = 0.0;
+        int contactNodes = 0;
+    };
+    std::vector<SlotTotals> mSlotTotals;
     StepCounters mCounters;
     GhostDecomposition* mGhosts = nullptr;
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed

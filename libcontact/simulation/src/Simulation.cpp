@@ -221,16 +221,19 @@ void Simulation::step()
 
     const auto kickStart = SteadyClock::now();
     const double kickExchanged = exchangedSeconds();
+    // The second half kick and each grain's stable step limit after it, in one pass.
+    mStepLimits.resize(mWorld.grains.size());
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         Grain& g = mWorld.grains[i];
         if (g.isFree() && integratesGrain(i)) kick(g.body, g.force, g.torque, 0.5 * dt);
+        mStepLimits[i] = stepLimitOf(i);
     });
     double workAfter = 0.0;
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
     subtractPrescribedPower(workAfter);
     mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
     ++mCounters.steps;
-    checkStability();
+    judgeStepLimits();
     mCounters.integrateSeconds += secondsSince(kickStart) - (exchangedSeconds() - kickExchanged);
 }
 
@@ -368,39 +371,42 @@ void Simulation::evaluateForces(double slipStep)
 
 void Simulation::checkStability()
 {
+    mStepLimits.resize(mWorld.grains.size());
+    tbb::parallel_for(size_t(0), mWorld.grains.size(),
+                      [&](size_t i) { mStepLimits[i] = stepLimitOf(i); });
+    judgeStepLimits();
+}
+
+double Simulation::stepLimitOf(size_t i) const
+{
+    const Grain& g = mWorld.grains[i];
+    if (!g.isFree() || !integratesGrain(i)) return std::numeric_limits<double>::infinity();
+    const RigidBody& b = g.body;
+    if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
+        !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite())
+        return std::numeric_limits<double>::quiet_NaN();
+    if (mGrainStiffness[i].isZero()) return std::numeric_limits<double>::infinity();
+    // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
+    // stable for dt < 2/ω.
+    Eigen::SelfAdjointEigenSolver<Mat3> solver;
+    solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
+    const double lambda = solver.eigenvalues().maxCoeff();
+    return lambda > 0.0 ? 2.0 * std::sqrt(b.mass / lambda)
+                        : std::numeric_limits<double>::infinity();
+}
+
+void Simulation::judgeStepLimits()
+{
     const World& w = mWorld;
-    // Each free grain's stable step limit (infinite without contacts; NaN if its state is no
-    // longer finite), in parallel; then the verdict in grain order, so the message is the same
-    // on any thread count.
-    const size_t n = w.grains.size();
-    std::vector<double> limits(n, std::numeric_limits<double>::infinity());
-    tbb::parallel_for(size_t(0), n, [&](size_t i) {
-        const Grain& g = w.grains[i];
-        if (!g.isFree() || !integratesGrain(i)) return;
-        const RigidBody& b = g.body;
-        if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
-            !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite()) {
-            limits[i] = std::numeric_limits<double>::quiet_NaN();
-            return;
-        }
-        if (mGrainStiffness[i].isZero()) return;
-        // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
-        // stable for dt < 2/ω.
-        Eigen::SelfAdjointEigenSolver<Mat3> solver;
-        solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
-        const double lambda = solver.eigenvalues().maxCoeff();
-        if (lambda > 0.0) limits[i] = 2.0 * std::sqrt(b.mass / lambda);
-    });
     if (mGhosts) {
-        checkStabilityOverRanks(limits);
+        checkStabilityOverRanks(mStepLimits);
         return;
     }
-    for (size_t i = 0; i < n; ++i) {
-        const Grain& g = w.grains[i];
-        const double limit = limits[i];
-        if (std::isnan(limit)) throwNonFinite(g.name, w.step, w.time);
+    for (size_t i = 0; i < mStepLimits.size(); ++i) {
+        const double limit = mStepLimits[i];
+        if (std::isnan(limit)) throwNonFinite(w.grains[i].name, w.step, w.time);
         mStabilityLimit = std::min(mStabilityLimit, limit);
-        if (mDt > limit) throwUnstable(g.name, mDt, limit, w.step, w.time);
+        if (mDt > limit) throwUnstable(w.grains[i].name, mDt, limit, w.step, w.time);
     }
 }
 

@@ -95,7 +95,14 @@ public:
 
 private:
     void evaluateForces(double slipStep);
+    /// Throws if a grain's state is no longer finite or the step exceeds its stable limit.
     void checkStability();
+    /// Grain @a i's stable step limit: infinite for a grain that is not free, integrated here
+    /// and in contact; NaN if its state is no longer finite.
+    double stepLimitOf(size_t i) const;
+    /// The verdict on mStepLimits (one per grain), in grain order, so the message is the
+    /// same on any thread count.
+    void judgeStepLimits();
     /// Split by space: this rank's part of the boundaries' reactions, summed over the ranks
     /// in the one-process order.
     void sumBoundaryReactions();
@@ -132,6 +139,7 @@ private:
         int contactNodes = 0;
     };
     std::vector<SlotTotals> mSlotTotals;
+    std::vector<double> mStepLimits;  ///< per grain, at the last stability check
     StepCounters mCounters;
     GhostDecomposition* mGhosts = nullptr;
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed

@@ -20,7 +20,7 @@ bool ContactList::needsRebuild(const World& world) const
     const double half2 = 0.25 * mSkin * mSkin;
     // Checked for every grain every step: in parallel (any one moved too far decides).
     bool stale = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, world.grains.size(), 4096), false,
+        tbb::blocked_range<size_t>(0, world.grains.size(), 256), false,
         [&](const tbb::blocked_range<size_t>& r, bool moved) {
             for (size_t i = r.begin(); !moved && i != r.end(); ++i)
                 moved = (world.grains[i].body.pose.position - mGrainPositionsAtBuild[i])

@@ -336,19 +336,34 @@ void Simulation::evaluateForces(double slipStep)
         mGrainStiffness[size_t(i)] = stiffness;
     });
     for (Boundary& b : w.boundaries) b.force = Vec3::Zero(), b.normalStiffness = b.normalDashpot = 0.0;
-    mForces.clear();
+    // The slots' totals in runs of a fixed length, each run summed in order and the runs in
+    // order: in parallel, and the same numbers on any thread count.
+    constexpr size_t kRun = 512;
+    const size_t runs = (slots.size() + kRun - 1) / kRun;
+    mRunTotals.assign(runs, SlotTotals());
+    tbb::parallel_for(size_t(0), runs, [&](size_t run) {
+        SlotTotals sum;
+        for (size_t k = run * kRun; k < std::min(slots.size(), (run + 1) * kRun); ++k) {
+            const SlotTotals& totals = mSlotTotals[k];
+            sum.stats += totals.stats;
+            // Split by space, a pair is counted by the owner of its first grain only.
+            if (!mGhosts || k >= pairSlots || integratesGrain(size_t(slots[k].first))) {
+                sum.contactNodes += totals.contactNodes;
+                sum.elasticEnergy += totals.elasticEnergy;
+            }
+        }
+        mRunTotals[run] = sum;
+    });
     mContactNodes = 0;
     mElastic = 0.0;
-    for (size_t k = 0; k < slots.size(); ++k) {
-        const SlotTotals& totals = mSlotTotals[k];
-        const bool boundary = k >= pairSlots;  // pairs first, then grain–boundary slots
-        mCounters.nodes += totals.stats;
-        // Split by space, a pair is counted by the owner of its first grain only.
-        if (!mGhosts || boundary || integratesGrain(size_t(slots[k].first))) {
-            mContactNodes += totals.contactNodes;
-            mElastic += totals.elasticEnergy;
-        }
-        if (!boundary && !record) continue;  // nothing more to take from a pair's slot
+    for (const SlotTotals& sum : mRunTotals) {
+        mCounters.nodes += sum.stats;
+        mContactNodes += sum.contactNodes;
+        mElastic += sum.elasticEnergy;
+    }
+    // The boundaries' reactions, and the point forces when recorded, in slot order.
+    mForces.clear();
+    for (size_t k = record ? 0 : pairSlots; k < slots.size(); ++k) {
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         if (s.boundary >= 0 && !mGhosts)

@@ -136,9 +136,10 @@ private:
     {
         NodeCheckStats stats;
         double elasticEnergy = 0.0;
-        int contactNodes = 0;
+        long long contactNodes = 0;
     };
     std::vector<SlotTotals> mSlotTotals;
+    std::vector<SlotTotals> mRunTotals;  ///< mSlotTotals summed by runs of slots
     std::vector<double> mStepLimits;  ///< per grain, at the last stability check
     StepCounters mCounters;
     GhostDecomposition* mGhosts = nullptr;

@@ -37,10 +37,11 @@ SlabRunCost slabRunCost(const SlabStudyOptions& o, const SlabCase& run)
     const double blocks = double(panel.n()) * panel.n();
     const SlabStiffness k = slabStiffness(o);
     const double mass = o.material.density * panel.blockVolume();
-    // Measured on this machine (2 cores, see docs/slab.md): about 21 ns of wall time per block
-    // node and step when the cores are idle (bench_slab, 2026-11-25), both directions of
-    // symmetric testing and the shear history included; 25 ns leaves room for a little load.
-    const double secondsPerNodeStep = 25e-9;
+    // Measured on this machine (2 cores, see docs/slab.md): 16–18 ns of wall time per block
+    // node and step when the cores are idle (bench_slab, from 4,132 to 74,528 nodes per block,
+    // 2026-11-25), both directions of symmetric testing and the shear history included; 20 ns
+    // leaves room for a little load.
+    const double secondsPerNodeStep = 20e-9;
     SlabRunCost c;
     c.nodes = nodesForSpacing(area, run.sdp);
     const ContactModel model = slabContactModel(o, run.formulation);

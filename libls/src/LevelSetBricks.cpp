@@ -8,8 +8,9 @@
 #include <cstring>
 #include <limits>
 #include <map>
-#include <set>
 #include <utility>
+
+#include <tbb/parallel_for.h>
 
 namespace lsdem {
 
@@ -76,12 +77,6 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
 {
-    // Brick 0: the inactive background, shared by every such place and by all outside.
-    RawBrick raw{};
-    raw.value[0] = grid.background();
-    std::map<std::pair<uint32_t, uint8_t>, uint32_t> shared;  // (value bits, active) → brick
-    shared[{floatBits(raw.value[0]), 0}] = addBrick(raw, false);
-
     const openvdb::CoordBBox box = valueBox(grid);
     if (!box.empty()) {
         mOrigin = box.min();
@@ -101,50 +96,81 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
                         "lsdem samples grain-sized level sets; crop or rebuild the grid");
         mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
     }
-    auto accessor = grid.getConstAccessor();
-    // Two passes: the first counts the bricks of varying values, so the arrays are sized once
-    // (grown by doubling they would hold up to twice their size, and a copy on shrinking).
-    size_t varying = 0;
-    std::set<std::pair<uint32_t, uint8_t>> uniform;  // the values of bricks of one value
-    for (const auto& entry : shared) uniform.insert(entry.first);
-    forEachRawBrick(accessor, [&](size_t, const openvdb::Coord&, bool varies, const RawBrick& b) {
-        if (varies)
-            ++varying;
-        else
-            uniform.emplace(floatBits(b.value[0]), uint8_t(b.active[0] & 1u));
+
+    // Pass 1, in parallel: what each place of the table holds (varying values, or one value
+    // and state), and whether its values are all finite.
+    struct Place
+    {
+        bool varies = false;
+        bool finite = true;
+        std::pair<uint32_t, uint8_t> uniform{0, 0};  ///< (value bits, active) of one value
+    };
+    std::vector<Place> places(mTable.size());
+    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+        Place& p = places[slot];
+        p.varies = varies;
+        for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
+        if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
-    const size_t bricks = varying + uniform.size();
-    mCode.reserve(bricks * 3 * kVoxels + 1);  // + the padding byte that decode() may read
-    mBrickStep.reserve(bricks);
-    mActive.reserve(bricks * kMaskWords);
-    forEachRawBrick(accessor, [&](size_t slot, const openvdb::Coord& origin, bool varies,
-                                  const RawBrick& brick) {
-        for (int k = 0; k < (varies ? kVoxels : 1); ++k)
-            if (!std::isfinite(brick.value[k]))
-                throw Error("level set",
-                            "the grid holds a value that is not a finite number near index (" +
-                                std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
-                                ", " + std::to_string(origin.z()) + ")",
-                            "rebuild the level set; lsdem samples finite distances only");
-        if (varies) {
-            mTable[slot] = addBrick(brick, true);
-            return;
+
+    // In place order, one thread: each place's brick. Brick 0 is the inactive background,
+    // shared by every such place and by all outside; the bricks of varying values and each
+    // new value of one come next in the order of their first place, so the layout does not
+    // depend on the thread count.
+    using Uniform = std::pair<uint32_t, uint8_t>;  // (value bits, active)
+    std::map<Uniform, uint32_t> shared;             // → its brick
+    shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
+    uint32_t bricks = 1;
+    for (size_t slot = 0; slot < places.size(); ++slot) {
+        const Place& p = places[slot];
+        if (!p.finite) {
+            const openvdb::Coord origin = placeOrigin(slot);
+            throw Error("level set",
+                        "the grid holds a value that is not a finite number near index (" +
+                            std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
+                            ", " + std::to_string(origin.z()) + ")",
+                        "rebuild the level set; lsdem samples finite distances only");
         }
-        const auto key = std::make_pair(floatBits(brick.value[0]), uint8_t(brick.active[0] & 1u));
-        auto it = shared.find(key);
-        if (it == shared.end()) it = shared.emplace(key, addBrick(brick, false)).first;
+        if (p.varies) {
+            mTable[slot] = bricks++;
+            continue;
+        }
+        auto it = shared.find(p.uniform);
+        if (it == shared.end()) it = shared.emplace(p.uniform, bricks++).first;
         mTable[slot] = kShared | it->second;
+    }
+
+    // Sized once (grown by doubling they would hold up to twice their size), plus the
+    // padding byte that decode() may read after the last code.
+    mCode.assign(size_t(bricks) * 3 * kVoxels + 1, 0);
+    mBrickStep.assign(bricks, 0.0f);
+    mActive.assign(size_t(bricks) * kMaskWords, 0);
+    for (const auto& [uniform, brick] : shared) {
+        float value = 0.0f;
+        std::memcpy(&value, &uniform.first, sizeof value);
+        writeUniformBrick(brick, value, uniform.second != 0);
+    }
+    // Pass 2, in parallel: the bricks of varying values, each into its own place.
+    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+        if (varies) writeVaryingBrick(mTable[slot] & kIndexMask, b);
     });
-    mCode.push_back(0);  // decode() reads each code as 4 bytes: the last one's fourth
+}
+
+openvdb::Coord LevelSetBricks::placeOrigin(size_t slot) const
+{
+    const size_t yz = size_t(mBricks[1]) * mBricks[2];
+    const auto ix = int(slot / yz), iy = int((slot % yz) / mBricks[2]), iz = int(slot % mBricks[2]);
+    return mOrigin.offsetBy(ix * kDim, iy * kDim, iz * kDim);
 }
 
 template <typename Visit>
-void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor,
-                                     Visit&& visit) const
+void LevelSetBricks::forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const
 {
-    RawBrick raw;
-    size_t slot = 0;
-    for (uint32_t ix = 0; ix < mBricks[0]; ++ix)
+    // Slabs of constant x in parallel, each with its own accessor; every place once.
+    tbb::parallel_for(uint32_t(0), mBricks[0], [&](uint32_t ix) {
+        auto accessor = grid.getConstAccessor();
+        RawBrick raw;
+        size_t slot = size_t(ix) * mBricks[1] * mBricks[2];
         for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
                 const openvdb::Coord origin =
@@ -152,21 +178,21 @@ void LevelSetBricks::forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor
                 const bool varies = readBrick(accessor, origin, raw);
                 visit(slot, origin, varies, raw);
             }
+    });
 }
 
-uint32_t LevelSetBricks::addBrick(const RawBrick& raw, bool varies)
+void LevelSetBricks::writeUniformBrick(uint32_t brick, float value, bool active)
 {
-    const auto brick = uint32_t(mBrickStep.size());
-    mCode.resize(mCode.size() + 3 * kVoxels);
+    // One value v: q = 1 and step = v decode to v exactly.
+    mBrickStep[brick] = value;
     uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
-    if (!varies) {
-        // One value v: q = 1 and step = v decode to v exactly.
-        const bool on = (raw.active[0] & 1u) != 0;
-        mBrickStep.push_back(raw.value[0]);
-        for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
-        mActive.insert(mActive.end(), kMaskWords, on ? ~uint64_t(0) : uint64_t(0));
-        return brick;
-    }
+    for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
+    std::fill_n(mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords), kMaskWords,
+                active ? ~uint64_t(0) : uint64_t(0));
+}
+
+void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
+{
     float largest = 0.0f;
     for (float v : raw.value) largest = std::max(largest, std::abs(v));
     // step = 2^(c − 22) with 2^c ≥ largest: every |q| ≤ 2^22.
@@ -174,8 +200,10 @@ uint32_t LevelSetBricks::addBrick(const RawBrick& raw, bool varies)
     const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
     if (mantissa == 0.5) --c;                                  // already a power of two
     const double step = largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
-    mBrickStep.push_back(float(step));
-    mActive.insert(mActive.end(), raw.active, raw.active + kMaskWords);
+    mBrickStep[brick] = float(step);
+    std::copy(raw.active, raw.active + kMaskWords,
+              mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
+    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
     for (int k = 0; k < kVoxels; ++k) {
         // To the nearest step, but never across zero (the sign decides contact).
         const double v = raw.value[k];
@@ -187,7 +215,6 @@ uint32_t LevelSetBricks::addBrick(const RawBrick& raw, bool varies)
         code[3 * k + 1] = uint8_t(bits >> 8);
         code[3 * k + 2] = uint8_t(bits >> 16);
     }
-    return brick;
 }
 
 openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const

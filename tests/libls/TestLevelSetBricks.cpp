@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <openvdb/tools/LevelSetSphere.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -134,6 +135,42 @@ TEST(LevelSetBricks, TilesAndRoundTripsAreKeptExactly)
     for (auto c = all.begin(); c; ++c) {
         ASSERT_EQ(again->value(*c), bricks->value(*c)) << *c;
         ASSERT_EQ(again->isValueOn(*c), bricks->isValueOn(*c)) << *c;
+    }
+}
+
+// The bricks are read and encoded in parallel, but numbered in the order of their places: one
+// thread and two give the same table, the same brick for every place and the same bytes.
+TEST(LevelSetBricks, SameBricksOnAnyThreadCount)
+{
+    initializeOpenVdb();
+    const auto grid = openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
+        1.3f, openvdb::Vec3f(0.11f, -0.07f, 0.03f), 0.05f, 3.0f);
+    auto bricksOn = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        return toLevelSetGrid(*grid);
+    };
+    const auto one = bricksOn(1), two = bricksOn(2);
+    ASSERT_EQ(one->memUsage(), two->memUsage());
+    ASSERT_EQ(one->origin(), two->origin());
+    const openvdb::CoordBBox table = one->tableBox();
+    ASSERT_EQ(table, two->tableBox());
+    ASSERT_FALSE(table.empty());
+    const openvdb::Coord size = table.dim();
+    const openvdb::Coord places(size.x() / LevelSetBricks::kDim, size.y() / LevelSetBricks::kDim,
+                                size.z() / LevelSetBricks::kDim);
+    uint32_t highest = 0;
+    for (int x = 0; x < places.x(); ++x)
+        for (int y = 0; y < places.y(); ++y)
+            for (int z = 0; z < places.z(); ++z) {
+                ASSERT_EQ(one->brick(x, y, z), two->brick(x, y, z)) << x << " " << y << " " << z;
+                highest = std::max(highest, one->brick(x, y, z));
+            }
+    EXPECT_GT(highest, 100u);  // many bricks, in both threads' shares
+    for (uint32_t b = 0; b <= highest; ++b) {
+        ASSERT_EQ(one->step(b), two->step(b)) << b;
+        ASSERT_TRUE(std::equal(one->codes(b), one->codes(b) + 3 * LevelSetBricks::kVoxels,
+                               two->codes(b)))
+            << b;
     }
 }
 

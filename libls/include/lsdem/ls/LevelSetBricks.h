@@ -135,11 +135,17 @@ private:
     {
         return ((mActive[size_t(brick) * kMaskWords + size_t(offset >> 6)] >> (offset & 63)) & 1u) != 0;
     }
-    /// Calls @a visit(slot, origin, varies, raw) for each brick of the table, read from a grid.
+    /// Calls @a visit(slot, origin, varies, raw) for each place of the table, read from
+    /// @a grid; places in parallel (slabs of constant x), so @a visit must only write what
+    /// belongs to its slot.
     template <typename Visit>
-    void forEachRawBrick(openvdb::FloatGrid::ConstAccessor& accessor, Visit&& visit) const;
-    /// Append a brick holding @a raw (all kVoxels values, or one if not @a varies).
-    uint32_t addBrick(const RawBrick& raw, bool varies);
+    void forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const;
+    /// The first voxel of the table's place @a slot.
+    openvdb::Coord placeOrigin(size_t slot) const;
+    /// Brick @a brick (already allocated) holding one value and state.
+    void writeUniformBrick(uint32_t brick, float value, bool active);
+    /// Brick @a brick (already allocated) holding @a raw's values, encoded, and states.
+    void writeVaryingBrick(uint32_t brick, const RawBrick& raw);
 
     openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};

@@ -1,6 +1,6 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
-#include "lsdem/contact/ContactLaw.h"
+#include "lsdem/ls/ThreadPrivate.h"
 #include "lsdem/simulation/BroadPhase.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -21,13 +21,9 @@ std::vector<GrainOverlap> findGrainOverlaps(const World& world)
     }
     const std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii);
     std::vector<double> depth(pairs.size(), 0.0);
-    struct alignas(kThreadPrivateAlignment) Buffer
-    {
-        std::vector<NodeContact> contacts;
-    };
-    tbb::enumerable_thread_specific<Buffer> buffers;
+    tbb::enumerable_thread_specific<ThreadPrivate<std::vector<NodeContact>>> buffers;
     tbb::parallel_for(size_t(0), pairs.size(), [&](size_t k) {
-        std::vector<NodeContact>& contacts = buffers.local().contacts;
+        std::vector<NodeContact>& contacts = buffers.local().value;
         const Grain& a = world.grains[size_t(pairs[k].first)];
         const Grain& b = world.grains[size_t(pairs[k].second)];
         NodeCheckStats stats;

@@ -281,7 +281,7 @@ void Simulation::evaluateForces(double slipStep)
     mSlotTotals.resize(slots.size());
     tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
         ContactSlot& s = slots[k];
-        ContactScratch& scratch = mScratch.local();  // this thread's buffers, reused
+        ContactScratch& scratch = mScratch.local().value;  // this thread's buffers, reused
         s.stats = NodeCheckStats();
         s.forces.clear();
         std::vector<PointForce>* out = record ? &s.forces : nullptr;

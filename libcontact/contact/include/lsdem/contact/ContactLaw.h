@@ -10,7 +10,6 @@
 #include "lsdem/contact/PointForce.h"
 #include "lsdem/contact/ShearHistory.h"
 
-#include <cstddef>
 #include <vector>
 
 namespace lsdem {
@@ -50,16 +49,10 @@ struct ContactSide
     ShearHistory* history = nullptr;     ///< per-node shear; null: no shear carried over
 };
 
-/// Alignment of memory that one thread writes and no other reads (its scratch buffers): every
-/// such object starts a block of its own this large. TBB pads each thread's copy of a value to
-/// 128 bytes; with the two threads' scratch in adjacent 128-byte blocks, the contact laws took
-/// about 20 % more time on 2 threads than on 1 on the 2-core machine; 256 apart, none
-/// (bench_dynamics, docs/dynamics.md).
-inline constexpr size_t kThreadPrivateAlignment = 256;
-
 /// Working memory of the contact laws, kept by each thread and reused from contact to
-/// contact, so that computing a contact allocates nothing once the buffers have grown.
-struct alignas(kThreadPrivateAlignment) ContactScratch
+/// contact, so that computing a contact allocates nothing once the buffers have grown. Keep
+/// one per thread in a ThreadPrivate (lsdem/ls/ThreadPrivate.h).
+struct ContactScratch
 {
     std::vector<NodeContact> contacts[2];
     std::vector<PointForce> forces[2];

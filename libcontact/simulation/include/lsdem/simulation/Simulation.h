@@ -5,6 +5,7 @@
 ///        contact and summed in a fixed order, so results are identical for any thread count.
 #pragma once
 
+#include "lsdem/ls/ThreadPrivate.h"
 #include "lsdem/simulation/ContactList.h"
 #include "lsdem/simulation/World.h"
 
@@ -146,7 +147,7 @@ private:
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
     /// Each thread's working memory for the contact laws (no allocation in the hot loop).
-    tbb::enumerable_thread_specific<ContactScratch> mScratch;
+    tbb::enumerable_thread_specific<ThreadPrivate<ContactScratch>> mScratch;
 };
 
 /// The automatic time step: safety · 2·sqrt(m / k) for the stiffest single node (original,

@@ -296,9 +296,7 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     const int64_t count = readMeta<int64_t>(*phi, "node_count", path);
     if (count <= 0) throw Error(path, "the asset has no surface nodes", "bake it again");
     asset->nodes = readNodesGrid(*nodesGrid, size_t(count), path);
-    asset->nodeBlocks = groupNodesIntoBlocks(asset->nodes);
-    insideBox(*asset->levelSet, asset->insideBoxMin, asset->insideBoxMax);
-    asset->levelSetSlope = levelSetSlopeBound(*asset->levelSet);
+    deriveContactBounds(*asset);
     return asset;
 }
 

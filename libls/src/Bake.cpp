@@ -125,9 +125,7 @@ void finishAsset(GrainAsset& asset, const BakeOptions& o, std::vector<std::strin
     double cell = 8.0 * o.voxelSize;
     while (cell > 0.5 * patch) cell *= 0.5;
     sortNodesSpatially(asset.nodes, cell);
-    asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
-    insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
-    asset.levelSetSlope = levelSetSlopeBound(*asset.levelSet);
+    deriveContactBounds(asset);
     asset.areaRule = o.areaRule;
     asset.spacing = nodeSpacing(asset.nodes);
     asset.voxelSize = o.voxelSize;

@@ -1,5 +1,7 @@
 #include "lsdem/ls/LevelSetGrid.h"
 
+#include "lsdem/ls/GrainAsset.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
@@ -69,6 +71,13 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
         },
         [](double a, double b) { return std::max(a, b); });
     return std::sqrt(3.0) * largest / levelSet.voxelSize;
+}
+
+void deriveContactBounds(GrainAsset& asset)
+{
+    asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
+    insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
+    asset.levelSetSlope = levelSetSlopeBound(*asset.levelSet);
 }
 
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin)

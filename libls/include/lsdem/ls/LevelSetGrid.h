@@ -44,6 +44,13 @@ void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max);
 /// points differs by at most this times their distance. About √3 for a signed distance.
 double levelSetSlopeBound(const LevelSetGrid& levelSet);
 
+struct GrainAsset;
+
+/// What the narrow phase derives from @a asset's nodes and level set, never stored in its file:
+/// the node blocks, the inside box (insideBox) and the slope bound (levelSetSlopeBound). Called
+/// once an asset is baked or loaded.
+void deriveContactBounds(GrainAsset& asset);
+
 /// A linear transform with the given voxel size whose index (0,0,0) sits at @a origin.
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin);
 

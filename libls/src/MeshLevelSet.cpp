@@ -6,6 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -82,29 +83,52 @@ public:
     }
 
 private:
-    static constexpr openvdb::Int32 kUnknown = -1, kPending = -2;
+    static constexpr openvdb::Int32 kUnknown = -1;
     /// Set on the closest triangle of a band voxel: its distance keeps the band's sign (the
     /// voxels filled inward are inside). Triangle indices stay below it (checked by the caller).
     static constexpr openvdb::Int32 kBandBit = openvdb::Int32(1) << 30;
 
     using IndexLeaf = openvdb::Int32Tree::LeafNodeType;
 
-    /// The unknown voxels face-adjacent to @a layer, marked pending (in a fixed order, so the
-    /// result does not depend on the thread count).
-    std::vector<openvdb::Coord> nextLayer(const std::vector<openvdb::Coord>& layer)
+    /// The unknown voxels face-adjacent to @a layer, each once, in an order set by the layer's
+    /// alone (the same on any thread count). Found in parallel without marking: an unknown
+    /// voxel's solved face neighbours all belong to the last layer (each earlier layer's
+    /// unknown neighbours went into the layer after it), and the first of them in kFaces order
+    /// is the one that adds it.
+    std::vector<openvdb::Coord> nextLayer(const std::vector<openvdb::Coord>& layer) const
     {
         static const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                                  {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-        std::vector<openvdb::Coord> next;
-        for (const openvdb::Coord& c : layer)
-            for (const openvdb::Coord& step : kFaces) {
-                const openvdb::Coord n = c + step;
-                openvdb::Int32 state = kUnknown;
-                if (!closest.probeValue(n, state) || state != kUnknown) continue;
-                closest.setValueOnly(n, kPending);
-                next.push_back(n);
+        constexpr size_t kChunk = 2048;
+        std::vector<std::vector<openvdb::Coord>> found((layer.size() + kChunk - 1) / kChunk);
+        tbb::parallel_for(size_t(0), found.size(), [&](size_t chunk) {
+            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
+            auto isSolved = [&](const openvdb::Coord& c) { return closest.getValue(c) >= 0; };
+            const size_t end = std::min(layer.size(), (chunk + 1) * kChunk);
+            for (size_t i = chunk * kChunk; i < end; ++i) {
+                const openvdb::Coord& c = layer[i];
+                for (const openvdb::Coord& step : kFaces) {
+                    const openvdb::Coord n = c + step;
+                    openvdb::Int32 state = kUnknown;
+                    if (!closest.probeValue(n, state) || state != kUnknown) continue;
+                    bool addedByAnother = false;
+                    for (const openvdb::Coord& back : kFaces) {
+                        const openvdb::Coord m = n + back;
+                        if (m == c) break;
+                        if (isSolved(m)) {
+                            addedByAnother = true;
+                            break;
+                        }
+                    }
+                    if (!addedByAnother) found[chunk].push_back(n);
+                }
             }
+        });
+        size_t total = 0;
+        for (const auto& part : found) total += part.size();
+        std::vector<openvdb::Coord> next;
+        next.reserve(total);
+        for (const auto& part : found) next.insert(next.end(), part.begin(), part.end());
         return next;
     }
 
@@ -180,8 +204,18 @@ private:
                 nearest[i] = bestTriangle < 0 ? bestTriangle : (bestTriangle | bandBit);
             }
         });
-        openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-        for (size_t i = 0; i < layer.size(); ++i) closest.setValueOnly(layer[i], nearest[i]);
+        // Written once the whole layer is solved (its voxels read each other's old values).
+        // Every layer voxel lies in a leaf of the tree, whose shape does not change here, so
+        // the writes go to distinct values of existing leaves and can run in parallel.
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 4096),
+                          [&](const tbb::blocked_range<size_t>& range) {
+            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                IndexLeaf* leaf = closest.probeLeaf(layer[i]);
+                if (!leaf) throw Error("", "internal: a filled voxel outside the tree's leaves");
+                leaf->setValueOnly(IndexLeaf::coordToOffset(layer[i]), nearest[i]);
+            }
+        });
     }
 
     /// Every solved voxel's distance to its closest triangle: minus it inside, and with the
@@ -220,7 +254,7 @@ private:
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
-    openvdb::Int32Tree mClosest;  ///< closest triangle per voxel (| kBandBit); kUnknown, kPending
+    openvdb::Int32Tree mClosest;  ///< closest triangle per voxel (| kBandBit) or kUnknown
 };
 
 } // namespace

@@ -99,11 +99,12 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
 
     // Pass 1, in parallel: what each place of the table holds (varying values, or one value
     // and state), and whether its values are all finite.
+    using Uniform = std::pair<uint32_t, uint8_t>;  // (value bits, active) of one value
     struct Place
     {
         bool varies = false;
         bool finite = true;
-        std::pair<uint32_t, uint8_t> uniform{0, 0};  ///< (value bits, active) of one value
+        Uniform uniform{0, 0};
     };
     std::vector<Place> places(mTable.size());
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
@@ -117,8 +118,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     // shared by every such place and by all outside; the bricks of varying values and each
     // new value of one come next in the order of their first place, so the layout does not
     // depend on the thread count.
-    using Uniform = std::pair<uint32_t, uint8_t>;  // (value bits, active)
-    std::map<Uniform, uint32_t> shared;             // → its brick
+    std::map<Uniform, uint32_t> shared;  // → its brick
     shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
     uint32_t bricks = 1;
     for (size_t slot = 0; slot < places.size(); ++slot) {

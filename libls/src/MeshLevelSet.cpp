@@ -1,6 +1,7 @@
 #include "lsdem/ls/MeshLevelSet.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/OrderedCollect.h"
 
 #include <openvdb/tools/MeshToVolume.h>
 #include <tbb/blocked_range.h>
@@ -99,37 +100,28 @@ private:
     {
         static const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                                  {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        constexpr size_t kChunk = 2048;
-        std::vector<std::vector<openvdb::Coord>> found((layer.size() + kChunk - 1) / kChunk);
-        tbb::parallel_for(size_t(0), found.size(), [&](size_t chunk) {
+        auto unknownNeighbours = [&](size_t begin, size_t end, std::vector<openvdb::Coord>& out) {
             openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
-            auto isSolved = [&](const openvdb::Coord& c) { return closest.getValue(c) >= 0; };
-            const size_t end = std::min(layer.size(), (chunk + 1) * kChunk);
-            for (size_t i = chunk * kChunk; i < end; ++i) {
+            // Whether @a c is the first solved face neighbour of @a n in kFaces order.
+            auto addsIt = [&](const openvdb::Coord& c, const openvdb::Coord& n) {
+                for (const openvdb::Coord& back : kFaces) {
+                    const openvdb::Coord m = n + back;
+                    if (m == c) return true;
+                    if (closest.getValue(m) >= 0) return false;
+                }
+                return true;
+            };
+            for (size_t i = begin; i < end; ++i) {
                 const openvdb::Coord& c = layer[i];
                 for (const openvdb::Coord& step : kFaces) {
                     const openvdb::Coord n = c + step;
                     openvdb::Int32 state = kUnknown;
                     if (!closest.probeValue(n, state) || state != kUnknown) continue;
-                    bool addedByAnother = false;
-                    for (const openvdb::Coord& back : kFaces) {
-                        const openvdb::Coord m = n + back;
-                        if (m == c) break;
-                        if (isSolved(m)) {
-                            addedByAnother = true;
-                            break;
-                        }
-                    }
-                    if (!addedByAnother) found[chunk].push_back(n);
+                    if (addsIt(c, n)) out.push_back(n);
                 }
             }
-        });
-        size_t total = 0;
-        for (const auto& part : found) total += part.size();
-        std::vector<openvdb::Coord> next;
-        next.reserve(total);
-        for (const auto& part : found) next.insert(next.end(), part.begin(), part.end());
-        return next;
+        };
+        return collectInOrder<openvdb::Coord>(layer.size(), 2048, unknownNeighbours);
     }
 
     /// The closest triangles of the 27 voxels around @a c (itself included), as stored.

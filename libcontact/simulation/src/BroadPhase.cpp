@@ -1,5 +1,7 @@
 #include "lsdem/simulation/BroadPhase.h"
 
+#include "lsdem/ls/OrderedCollect.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -37,9 +39,8 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
                                                     const std::vector<double>& radii,
                                                     double margin)
 {
-    std::vector<std::pair<int, int>> pairs;
     const int n = static_cast<int>(centers.size());
-    if (n < 2) return pairs;
+    if (n < 2) return {};
     // Cells as wide as the largest reach, so overlapping spheres sit in neighbouring cells;
     // wider if the grains spread over more than 2²⁰ of them (a grain flung far away): pairs
     // are still decided by their distance, only more of them are looked at.
@@ -66,14 +67,10 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
 
     // Each chunk of grains finds its grains' partners of higher index into its own list; the
     // chunks are joined in order, so the result is sorted and thread-count independent.
-    constexpr int kChunk = 512;
-    const int chunks = (n + kChunk - 1) / kChunk;
-    std::vector<std::vector<std::pair<int, int>>> found(static_cast<size_t>(chunks));
-    tbb::parallel_for(0, chunks, [&](int chunk) {
-        std::vector<std::pair<int, int>>& out = found[size_t(chunk)];
+    using Pair = std::pair<int, int>;
+    auto partnersAbove = [&](size_t begin, size_t end, std::vector<Pair>& out) {
         std::vector<int> partners;
-        const int end = std::min(n, (chunk + 1) * kChunk);
-        for (int i = chunk * kChunk; i < end; ++i) {
+        for (int i = int(begin); i < int(end); ++i) {
             partners.clear();
             const auto& c = cells[size_t(i)];
             for (int64_t dx = -1; dx <= 1; ++dx)
@@ -94,12 +91,8 @@ std::vector<std::pair<int, int>> findCandidatePairs(const std::vector<Vec3>& cen
             std::sort(partners.begin(), partners.end());
             for (int j : partners) out.emplace_back(i, j);
         }
-    });
-    size_t total = 0;
-    for (const auto& chunk : found) total += chunk.size();
-    pairs.reserve(total);
-    for (const auto& chunk : found) pairs.insert(pairs.end(), chunk.begin(), chunk.end());
-    return pairs;
+    };
+    return collectInOrder<Pair>(size_t(n), 512, partnersAbove);
 }
 
 } // namespace lsdem

@@ -25,8 +25,18 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     }
     // One rigid map from A's asset frame to B's: x_B = R x_A + t.
     const Quat toB = poseB.orientation.conjugate() * poseA.orientation;
-    const Eigen::Matrix3d rotation = toB.toRotationMatrix();
     const Vec3 translation = poseB.orientation.conjugate() * (poseA.position - poseB.position);
+    // Remembered blocks need blocks that match the nodes; without them every block is walked.
+    const NodeBlocks& groups = a.nodeBlocks;
+    if (candidates && (groups.empty() || !groups.matches(a.nodes.size()))) candidates = nullptr;
+    // A near pair found clear a few steps ago, and not moved enough since, is done here: most
+    // near pairs of a settled heap, so this check comes before anything else is computed.
+    const bool runsHold = candidates && candidates->holds(toB, translation, a.boundingRadius);
+    if (runsHold && candidates->clearOfContact(toB, translation, a.boundingRadius)) {
+        stats.nodesCulled += count;  // no node can have come into contact since it was clear
+        return;
+    }
+    const Eigen::Matrix3d rotation = toB.toRotationMatrix();
     const Eigen::Matrix3d bToWorld = poseB.orientation.toRotationMatrix();
     const double reach2 = reachB * reachB;
 
@@ -144,15 +154,9 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         nearestOutsideSphere2 = outsideSphere2;
         nearestOutsideBox = outsideBox;
     };
-    const NodeBlocks& groups = a.nodeBlocks;
-    if (!candidates || groups.empty() || !groups.matches(a.nodes.size())) {
+    if (!candidates) {
         forEachBlockNotClear(a, [&](const NodeBlock& run) { return isClearWithin(run, 0.0); },
                              visit, stats);
-        return;
-    }
-    const bool runsHold = candidates->holds(toB, translation, a.boundingRadius);
-    if (runsHold && candidates->clearOfContact(toB, translation, a.boundingRadius)) {
-        stats.nodesCulled += count;  // no node can have come into contact since it was clear
         return;
     }
     if (!runsHold) {
@@ -164,15 +168,27 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         candidates->runs.clear();
         const double m = candidates->margin;
         NodeCheckStats ignored;
+        // Each node of a block let through is kept only if it too is within the margin of
+        // B's sphere and box: most nodes of a block near B are not, and every step would
+        // cull them again. Kept nodes that follow each other join into one run.
+        const double keepReach = (reachB + m) * slack, keepReach2 = keepReach * keepReach;
+        const double keepBox2 = (m * slack) * (m * slack);
+        std::vector<std::pair<int, int>>& runs = candidates->runs;
         forEachBlockNotClear(
             a, [&](const NodeBlock& run) { return isClearWithin(run, m); },
             [&](int begin, int end) {
-                // Adjacent blocks join into one run of nodes: the same nodes, fewer loops.
-                std::vector<std::pair<int, int>>& runs = candidates->runs;
-                if (!runs.empty() && runs.back().second == begin)
-                    runs.back().second = end;
-                else
-                    runs.emplace_back(begin, end);
+                for (int i = begin; i < end; ++i) {
+                    const Vec3& inA = positions[i];
+                    if ((inA - centerOfB).squaredNorm() > keepReach2) continue;
+                    const Vec3 inB = rotation * inA + translation;
+                    const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
+                                         (inB - b.insideBoxMax).cwiseMax(0.0);
+                    if (outside.squaredNorm() > keepBox2) continue;
+                    if (!runs.empty() && runs.back().second == i)
+                        ++runs.back().second;
+                    else
+                        runs.emplace_back(i, i + 1);
+                }
             },
             ignored);
     }

@@ -76,6 +76,14 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
         EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
         EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
                   fullStats.nodesCulled + fullStats.nodesSampled);
+        // Only nodes within the margin of B's bounding sphere are kept, not whole blocks.
+        const double keep = (b.boundingRadius + remembered.margin) * (1.0 + 1e-9);
+        for (const auto& [begin, end] : remembered.runs)
+            for (int i = begin; i < end; ++i) {
+                const Vec3 inB = remembered.rotation * a.nodes.positions[static_cast<size_t>(i)] +
+                                 remembered.translation;
+                ASSERT_LE(inB.norm(), keep) << "node " << i << ", step " << step;
+            }
         if (listStats.nodesSampled > 0) {
             EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
             // Every node sampled this step left its cell for the next one.

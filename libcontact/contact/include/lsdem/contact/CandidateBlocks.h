@@ -7,7 +7,9 @@
 /// frame to B's at that moment. While no node of A has since moved more than m relative to B,
 /// every block clear of B now was clear of B with the margin then, so visiting only the listed
 /// blocks (each still tested node by node) finds exactly the contacts a full walk finds, in
-/// the same order. A node x of A moves relative to B by at most |Δt| + 2 sin(θ/2)·|x|, where
+/// the same order. The same holds node by node, so of the blocks let through only the nodes
+/// themselves within the margin of B's sphere and of the box of B's inside are kept: a block
+/// near B often has most of its nodes clear of it. A node x of A moves relative to B by at most |Δt| + 2 sin(θ/2)·|x|, where
 /// Δt and θ are the change of the map's translation and the angle of its change of rotation,
 /// and |x| is at most A's bounding radius.
 ///
@@ -35,7 +37,7 @@ struct CandidateBlocks
     Quat rotation = Quat::Identity();     ///< A's frame to B's when the list was made
     Vec3 translation = Vec3::Zero();
     double margin = 0.0;                  ///< length
-    std::vector<std::pair<int, int>> runs;  ///< A's nodes [begin, end) in those blocks, ascending
+    std::vector<std::pair<int, int>> runs;  ///< A's nodes [begin, end) kept, ascending
 
     /// When A last found no contact with B: the map from A's frame to B's then, and a gap
     /// below which no node of the runs could have moved into contact (see clearOfContact).

@@ -41,8 +41,14 @@ void checkOptions(const BakeOptions& o, const std::string& source)
     if (o.nodePlacement == NodePlacement::Count && o.nodeCount < 4)
         throw Error(source, "the node count must be at least 4",
                     "pass e.g. --nodes 2000");
-    if (o.exteriorBandVoxels < 1 || o.exteriorBandVoxels > 64)
-        throw Error(source, "the exterior band must be 1 to 64 voxels wide");
+    // A cell the surface crosses has corners up to √3 voxels outside it: a band of 1 would
+    // give those corners the background instead of their distance, and bend φ near the surface.
+    if (o.exteriorBandVoxels < 2 || o.exteriorBandVoxels > 64)
+        throw Error(source,
+                    "the exterior band must be 2 to 64 voxels wide, got " +
+                        std::to_string(o.exteriorBandVoxels),
+                    "pass --band 2 (the default) or more: interpolation near the surface reads "
+                    "values up to 1.73 voxels outside it");
 }
 
 /// Refuse voxels too coarse for the shape, or grids that would not fit the memory budget.

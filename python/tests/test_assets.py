@@ -97,10 +97,16 @@ def test_sample_shapes_and_threads(sphere):
     phi, grad = sphere.sample(points)
     assert phi.shape == (20000,) and grad.shape == (20000, 3)
     assert phi.dtype == np.float64 and grad.dtype == np.float64
-    # Near the surface φ is the distance to it, to a fraction of a voxel.
+    # Near the surface φ is the distance to it, to a fraction of a voxel: inside, and outside
+    # where every corner of the cell lies in the exterior band (2 voxels = 0.5 by default;
+    # a corner is up to √3 voxels from the point). Beyond, φ is positive and never more than
+    # the distance (the background is the band's width).
     r = np.linalg.norm(points, axis=1)
-    near = np.abs(r - 5.0) < 0.5
+    near = (r - 5.0 > -0.5) & (r - 5.0 < 0.5 - np.sqrt(3) * 0.25)
+    assert near.sum() > 100
     assert np.allclose(phi[near], r[near] - 5.0, atol=0.02)
+    outside = r - 5.0 > 0.1
+    assert np.all(phi[outside] > 0.0) and np.all(phi[outside] <= r[outside] - 5.0 + 0.02)
     # Results do not depend on the threads; any leading shape is kept; lists are accepted.
     one = sphere.sample(points, threads=1)
     assert np.array_equal(one[0], phi) and np.array_equal(one[1], grad)

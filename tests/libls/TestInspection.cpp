@@ -40,8 +40,10 @@ TEST(Inspection, SphereReportMatchesClosedForms)
     ASSERT_TRUE(t.asset);
     const InspectionReport r = inspect(t);
     EXPECT_EQ(r.voxelSize, vox);
-    // The filled interior makes the active voxels about the ball plus a 3-voxel shell.
-    const double ballVoxels = 4.0 / 3.0 * kPi * std::pow(radius + 3 * vox, 3) / (vox * vox * vox);
+    // The filled interior makes the active voxels about the ball plus a shell as wide as the
+    // exterior band.
+    const double band = BakeOptions().exteriorBandVoxels * vox;
+    const double ballVoxels = 4.0 / 3.0 * kPi * std::pow(radius + band, 3) / (vox * vox * vox);
     EXPECT_NEAR(double(r.activeVoxels), ballVoxels, 0.05 * ballVoxels);
     EXPECT_NEAR(r.levelSetArea, 4 * kPi * radius * radius, 0.5 * vox / radius * 4 * kPi * radius * radius);
     EXPECT_NEAR(r.nodeAreaSum, 4 * kPi * radius * radius, 0.02 * 4 * kPi * radius * radius);

@@ -24,7 +24,9 @@ struct BakeOptions
     double nodeSpacing = 0.0;        ///< SDP for NodePlacement::Spacing
     int nodeCount = 0;               ///< for NodePlacement::Count
     AreaRule areaRule = AreaRule::Mesh;
-    int exteriorBandVoxels = 3;      ///< exterior narrow band width, voxels (interior is filled)
+    /// Exterior narrow band width, voxels (the interior is filled). At least 2: a cell the
+    /// surface crosses has every corner within √3 voxels of it, and contact reads only those.
+    int exteriorBandVoxels = 2;
     double memoryBudgetBytes = 4.0 * 1024 * 1024 * 1024;  ///< refuse grids estimated larger
     std::string optionsText;         ///< the options as the user gave them (provenance)
 };

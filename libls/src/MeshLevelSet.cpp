@@ -2,6 +2,7 @@
 
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/OrderedCollect.h"
+#include "lsdem/ls/TriangleOffset.h"
 
 #include <openvdb/tools/MeshToVolume.h>
 #include <tbb/blocked_range.h>
@@ -16,28 +17,10 @@ namespace lsdem {
 
 namespace {
 
-/// Squared distance from @a p to the triangle (a, b, c): the closest point by its Voronoi
-/// region (vertex, edge or face), after Ericson, Real-Time Collision Detection, 5.1.5.
+/// Squared distance from @a p to the triangle (a, b, c).
 double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
-    const Vec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return ap.squaredNorm();
-    const Vec3 bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0.0 && d4 <= d3) return bp.squaredNorm();
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return (ap - d1 / (d1 - d3) * ab).squaredNorm();
-    const Vec3 cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0.0 && d5 <= d6) return cp.squaredNorm();
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return (ap - d2 / (d2 - d6) * ac).squaredNorm();
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-        return (bp - (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)).squaredNorm();
-    const double denom = 1.0 / (va + vb + vc);
-    return (ap - (vb * denom) * ab - (vc * denom) * ac).squaredNorm();
+    return offsetFromTriangle(p, a, b, c).squaredNorm();
 }
 
 /// The inward propagation of closest triangles: each voxel inside the band takes the nearest

@@ -1,5 +1,6 @@
 #include "lsdem/ls/MeshRemesh.h"
 
+#include "lsdem/ls/ClosestPointGrid.h"
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
@@ -155,6 +156,40 @@ void markCorners(const SurfaceMesh& mesh, FeatureMap isFeature, double angleDeg,
     }
 }
 
+/// The surface of @a mesh for closest-point queries, in cells of about @a cellSize.
+ClosestPointGrid closestPointGridOf(const SurfaceMesh& mesh, double cellSize)
+{
+    std::vector<Vec3> vertices(mesh.number_of_vertices());
+    for (VertexIndex v : mesh.vertices()) {
+        const Point& p = mesh.point(v);
+        vertices[v.idx()] = Vec3(p.x(), p.y(), p.z());
+    }
+    std::vector<std::array<int, 3>> triangles;
+    triangles.reserve(mesh.number_of_faces());
+    for (auto f : mesh.faces()) {
+        std::array<int, 3> tri{};
+        int k = 0;
+        for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+            if (k < 3) tri[size_t(k++)] = static_cast<int>(v.idx());
+        triangles.push_back(tri);
+    }
+    return ClosestPointGrid(std::move(vertices), std::move(triangles), cellSize);
+}
+
+/// CGAL's projection functor: a vertex of the mesh being remeshed, put on the closest point
+/// of the surface it started from.
+struct ProjectOnto
+{
+    const SurfaceMesh* mesh;
+    const ClosestPointGrid* surface;
+    Point operator()(VertexIndex v) const
+    {
+        const Point& p = mesh->point(v);
+        const Vec3 q = surface->closestPoint(Vec3(p.x(), p.y(), p.z()));
+        return Point(q.x(), q.y(), q.z());
+    }
+};
+
 /// Remesh @a mesh in place with CGAL's target edge length @a target.
 void remeshInPlace(SurfaceMesh& mesh, double target, const RemeshOptions& options)
 {
@@ -174,6 +209,12 @@ void remeshInPlace(SurfaceMesh& mesh, double target, const RemeshOptions& option
     refineBelow(mesh, (fine ? kFineInputEdgeOverCgalTarget : kRefinedEdgeOverCgalTarget) * target,
                 isFeature);
 
+    // Moved and new vertices go back onto the surface as it is now (midpoint splits left it
+    // where it was): its closest point, found through a grid of cells as wide as the target.
+    // CGAL's own projection builds a bounding-volume tree per patch with a distance
+    // accelerator: about 0.4 s and 12 MiB more for a 100k-triangle scan.
+    const ClosestPointGrid surface = closestPointGridOf(mesh, target);
+
     // Feature edges are constrained: never flipped, split and collapsed only along their
     // line, their vertices moved only along it (relax_constraints); corners never move.
     // (protect_constraints would forbid collapsing them, so refined features stayed fine.)
@@ -181,7 +222,8 @@ void remeshInPlace(SurfaceMesh& mesh, double target, const RemeshOptions& option
                              CGAL::parameters::number_of_iterations(options.iterations)
                                  .edge_is_constrained_map(isFeature)
                                  .vertex_is_constrained_map(isCorner)
-                                 .relax_constraints(true));
+                                 .relax_constraints(true)
+                                 .projection_functor(ProjectOnto{&mesh, &surface}));
 }
 
 } // namespace

@@ -1,0 +1,52 @@
+/// @file ClosestPointGrid.h
+/// @brief The closest point of a triangle mesh to a query point, through a uniform grid of
+///        cells that lists the triangles whose bounding box meets each cell.
+///
+/// Made for points near the surface (a remesher putting its vertices back onto its input):
+/// the query reads the point's own cell, then only the cells within the distance found so
+/// far. A few megabytes for a 100k-triangle mesh, where a bounding-volume tree with its
+/// distance accelerator holds tens.
+#pragma once
+
+#include "lsdem/ls/TriangleMesh.h"
+
+#include <array>
+#include <vector>
+
+namespace lsdem {
+
+class ClosestPointGrid
+{
+public:
+    /// @a vertices and @a triangles are copied. Cells are about @a cellSize wide, wider when
+    /// the box of the mesh would need more than a few cells per triangle. Triangles of zero
+    /// area are left out (they add no point that their edges' neighbours lack).
+    ClosestPointGrid(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> triangles,
+                     double cellSize);
+
+    /// The point of the mesh closest to @a p (of several at the same distance, the first
+    /// triangle's). Exact up to round-off, wherever @a p is.
+    Vec3 closestPoint(const Vec3& p) const;
+
+    double cellSize() const { return mCell; }
+
+private:
+    std::array<int, 3> cellOf(const Vec3& p) const;  // clamped into the grid
+    size_t indexOf(int i, int j, int k) const
+    {
+        return (size_t(k) * size_t(mDims[1]) + size_t(j)) * size_t(mDims[0]) + size_t(i);
+    }
+    /// Tests the triangles of cell (i, j, k) against @a p, keeping the nearest in @a best.
+    void testCell(int i, int j, int k, const Vec3& p, double& best2, Vec3& bestOffset,
+                  int& bestTriangle) const;
+
+    std::vector<Vec3> mVertices;
+    std::vector<std::array<int, 3>> mTriangles;
+    Vec3 mOrigin = Vec3::Zero();
+    double mCell = 1.0;
+    std::array<int, 3> mDims{1, 1, 1};
+    std::vector<int> mCellStart;   ///< per cell, where its triangles begin in mCellTriangles
+    std::vector<int> mCellTriangles;
+};
+
+} // namespace lsdem

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -161,15 +162,18 @@ private:
                 neighbourhood(layer[i], closest, around);
                 double best = std::numeric_limits<double>::infinity();
                 openvdb::Int32 bestTriangle = kUnknown;
-                openvdb::Int32 tried[27];
-                int triedCount = 0;
+                // The 27 hold a few distinct triangles, each many times: a triangle already
+                // tried is skipped by a look in a small table by its low bits. Two sharing a
+                // slot are both tried, which costs time only: the nearest (ties to the lower
+                // index) does not depend on the order or on repeats.
+                openvdb::Int32 tried[32];
+                std::fill(std::begin(tried), std::end(tried), kUnknown);
                 for (openvdb::Int32 stored : around) {
                     if (stored < 0) continue;
                     const openvdb::Int32 t = stored & ~kBandBit;
-                    bool seen = false;
-                    for (int k = 0; k < triedCount && !seen; ++k) seen = tried[k] == t;
-                    if (seen) continue;
-                    tried[triedCount++] = t;
+                    openvdb::Int32& slot = tried[t & 31];
+                    if (slot == t) continue;
+                    slot = t;
                     const double d2 = squaredDistance(p, t);
                     if (d2 < best || (d2 == best && t < bestTriangle)) {
                         best = d2;

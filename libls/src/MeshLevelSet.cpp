@@ -242,6 +242,10 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
                                            int exteriorBandVoxels)
 {
     initializeOpenVdb();
+    if (exteriorBandVoxels < 2)
+        throw Error("", "the exterior band must be at least 2 voxels wide, got " +
+                            std::to_string(exteriorBandVoxels),
+                    "interpolation near the surface reads values up to 1.73 voxels outside it");
     if (mesh.triangles.size() >= (size_t(1) << 30))
         throw Error("", "the mesh has " + std::to_string(mesh.triangles.size()) +
                             " triangles; the level set takes at most 2^30",

@@ -1,6 +1,7 @@
 #include "lsdem/ls/SurfaceNodes.h"
 
 #include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <unordered_map>
+#include <vector>
 
 namespace lsdem {
 
@@ -126,10 +128,10 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
     for (size_t i = 0; i < n; ++i) grid[key(cellOf(nodes.positions[i]))].push_back(int(i));
     const int maxShell = static_cast<int>(((hi - lo) / cell).maxCoeff()) + 2;
 
-    double sum = 0.0;
-    stats.min = std::numeric_limits<double>::infinity();
-    stats.max = 0.0;
-    for (size_t i = 0; i < n; ++i) {
+    // Each node's nearest neighbour in parallel (the grid is only read), then the sums in
+    // node order: the same numbers on any thread count.
+    std::vector<double> nearest(n);
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const Vec3& p = nodes.positions[i];
         const Eigen::Vector3i c = cellOf(p);
         double best = std::numeric_limits<double>::infinity();
@@ -146,6 +148,12 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
                             if (j != int(i)) best = std::min(best, (nodes.positions[j] - p).norm());
                     }
         }
+        nearest[i] = best;
+    });
+    double sum = 0.0;
+    stats.min = std::numeric_limits<double>::infinity();
+    stats.max = 0.0;
+    for (const double best : nearest) {
         sum += best;
         stats.min = std::min(stats.min, best);
         stats.max = std::max(stats.max, best);

@@ -28,7 +28,10 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     const Vec3 translation = poseB.orientation.conjugate() * (poseA.position - poseB.position);
     // Remembered blocks need blocks that match the nodes; without them every block is walked.
     const NodeBlocks& groups = a.nodeBlocks;
-    if (candidates && (groups.empty() || !groups.matches(a.nodes.size()))) candidates = nullptr;
+    if (candidates && (groups.empty() || !groups.matches(a.nodes.size()))) {
+        candidates->valid = false;  // not trusted again should the blocks be regrouped later
+        candidates = nullptr;
+    }
     // A near pair found clear a few steps ago, and not moved enough since, is done here: most
     // near pairs of a settled heap, so this check comes before anything else is computed.
     const bool runsHold = candidates && candidates->holds(toB, translation, a.boundingRadius);
@@ -160,7 +163,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         return;
     }
     if (!runsHold) {
-        // Walk every cluster and block with the margin, and remember the blocks let through.
+        // Walk every cluster and block with the margin, and remember the nodes let through.
         candidates->valid = true;
         candidates->rotation = toB;
         candidates->translation = translation;

@@ -76,13 +76,18 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
         EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
         EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
                   fullStats.nodesCulled + fullStats.nodesSampled);
-        // Only nodes within the margin of B's bounding sphere are kept, not whole blocks.
-        const double keep = (b.boundingRadius + remembered.margin) * (1.0 + 1e-9);
+        // Only nodes within the margin of B's bounding sphere and of the box of its inside
+        // are kept, not whole blocks.
+        const double slack = 1.0 + 1e-9;
+        const double keep = (b.boundingRadius + remembered.margin) * slack;
         for (const auto& [begin, end] : remembered.runs)
             for (int i = begin; i < end; ++i) {
                 const Vec3 inB = remembered.rotation * a.nodes.positions[static_cast<size_t>(i)] +
                                  remembered.translation;
                 ASSERT_LE(inB.norm(), keep) << "node " << i << ", step " << step;
+                const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
+                                     (inB - b.insideBoxMax).cwiseMax(0.0);
+                ASSERT_LE(outside.norm(), remembered.margin * slack) << "node " << i;
             }
         if (listStats.nodesSampled > 0) {
             EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
@@ -93,6 +98,28 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
     EXPECT_GT(stepsInContact, steps * 9 / 10);  // the trajectory stays in contact
     EXPECT_GT(refreshes, 5);                    // the list had to follow the motion
     EXPECT_LT(refreshes, steps / 2);            // and was reused most of the time
+}
+
+// A grain without node blocks cannot remember any: the list is walked in full every step and
+// marked not valid, so it is not trusted should blocks be made later.
+TEST(CandidateBlocks, WithoutNodeBlocksEveryStepIsAFullWalk)
+{
+    GrainAsset a = grain(1.4);
+    a.nodeBlocks = NodeBlocks();
+    const GrainAsset& b = grain(1.0);
+    RigidPose poseA, poseB;
+    poseA.position = Vec3(2.2, 0.1, 0.0);
+    CandidateBlocks remembered;
+    remembered.valid = true;  // as if left from earlier blocks
+    std::vector<NodeContact> full, withList;
+    NodeCheckStats fullStats, listStats;
+    findNodeContacts(a, poseA, b, poseB, full, fullStats);
+    findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
+    ASSERT_FALSE(full.empty());
+    ASSERT_EQ(full.size(), withList.size());
+    for (size_t k = 0; k < full.size(); ++k) EXPECT_EQ(full[k].node, withList[k].node);
+    EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
+    EXPECT_FALSE(remembered.valid);
 }
 
 // Two equal grains, A coming at B along the diagonal of their x-z planes (there the surface is

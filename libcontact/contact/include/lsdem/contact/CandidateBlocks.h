@@ -1,17 +1,16 @@
 /// @file CandidateBlocks.h
-/// @brief The node blocks of grain A that may touch grain B, remembered over several steps.
+/// @brief The nodes of grain A that may touch grain B, remembered over several steps.
 ///
-/// Finding which of A's blocks are near B walks every cluster and block of A; two grains that
-/// stay in contact for thousands of steps find the same few blocks every time. The list is
-/// found with every bounding sphere grown by a margin m, together with the rigid map from A's
+/// Finding which of A's nodes are near B walks every cluster and block of A; two grains that
+/// stay in contact for thousands of steps find the same few nodes every time. The list is
+/// found with every bounding sphere grown by a margin m (blocks, then their nodes, each
+/// within m of B's sphere and of the box of B's inside), together with the rigid map from A's
 /// frame to B's at that moment. While no node of A has since moved more than m relative to B,
-/// every block clear of B now was clear of B with the margin then, so visiting only the listed
-/// blocks (each still tested node by node) finds exactly the contacts a full walk finds, in
-/// the same order. The same holds node by node, so of the blocks let through only the nodes
-/// themselves within the margin of B's sphere and of the box of B's inside are kept: a block
-/// near B often has most of its nodes clear of it. A node x of A moves relative to B by at most |Δt| + 2 sin(θ/2)·|x|, where
-/// Δt and θ are the change of the map's translation and the angle of its change of rotation,
-/// and |x| is at most A's bounding radius.
+/// every node clear of B now was clear of B with the margin then, so visiting only the listed
+/// nodes (each still tested as a full walk tests it) finds exactly the contacts a full walk
+/// finds, in the same order. A node x of A moves relative to B by at most
+/// |Δt| + 2 sin(θ/2)·|x|, where Δt and θ are the change of the map's translation and the angle
+/// of its change of rotation, and |x| is at most A's bounding radius.
 ///
 /// It also keeps, for each node sampled in B at the last step, the voxel cell of B it fell in
 /// and that cell's corner values: contacts last thousands of steps and a node moves a tiny
@@ -29,7 +28,7 @@ namespace lsdem {
 
 struct CandidateBlocks
 {
-    /// The margin as a fraction of A's bounding radius: larger visits more blocks each step,
+    /// The margin as a fraction of A's bounding radius: larger visits more nodes each step,
     /// smaller refreshes the list more often.
     static constexpr double kMarginFraction = 0.02;
 
@@ -86,7 +85,7 @@ struct CandidateBlocks
     }
 };
 
-/// Both directions of a grain pair: the first grain's blocks near the second, and back.
+/// Both directions of a grain pair: the first grain's nodes near the second, and back.
 struct PairCandidates
 {
     CandidateBlocks ofFirst, ofSecond;

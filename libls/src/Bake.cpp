@@ -41,12 +41,11 @@ void checkOptions(const BakeOptions& o, const std::string& source)
     if (o.nodePlacement == NodePlacement::Count && o.nodeCount < 4)
         throw Error(source, "the node count must be at least 4",
                     "pass e.g. --nodes 2000");
-    // A cell the surface crosses has corners up to √3 voxels outside it: a band of 1 would
-    // give those corners the background instead of their distance, and bend φ near the surface.
-    if (o.exteriorBandVoxels < 2 || o.exteriorBandVoxels > 64)
+    // Analytic shapes are checked here too (meshLevelSet checks its own callers).
+    if (o.exteriorBandVoxels < kMinExteriorBandVoxels || o.exteriorBandVoxels > 64)
         throw Error(source,
-                    "the exterior band must be 2 to 64 voxels wide, got " +
-                        std::to_string(o.exteriorBandVoxels),
+                    "the exterior band must be " + std::to_string(kMinExteriorBandVoxels) +
+                        " to 64 voxels wide, got " + std::to_string(o.exteriorBandVoxels),
                     "pass --band 2 (the default) or more: interpolation near the surface reads "
                     "values up to 1.73 voxels outside it");
 }

@@ -18,12 +18,6 @@ namespace lsdem {
 
 namespace {
 
-/// Squared distance from @a p to the triangle (a, b, c).
-double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-    return offsetFromTriangle(p, a, b, c).squaredNorm();
-}
-
 /// The inward propagation of closest triangles: each voxel inside the band takes the nearest
 /// of the triangles closest to its 26 neighbours, layer after layer inward from the band.
 ///
@@ -137,9 +131,9 @@ private:
     double squaredDistance(const Vec3& p, openvdb::Int32 t) const
     {
         const auto& tri = mMesh.triangles[size_t(t)];
-        return squaredDistanceToTriangle(p, mMesh.vertices[size_t(tri[0])],
-                                         mMesh.vertices[size_t(tri[1])],
-                                         mMesh.vertices[size_t(tri[2])]);
+        return offsetFromTriangle(p, mMesh.vertices[size_t(tri[0])],
+                                  mMesh.vertices[size_t(tri[1])], mMesh.vertices[size_t(tri[2])])
+            .squaredNorm();
     }
 
     Vec3 centre(const openvdb::Coord& c) const
@@ -242,8 +236,9 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
                                            int exteriorBandVoxels)
 {
     initializeOpenVdb();
-    if (exteriorBandVoxels < 2)
-        throw Error("", "the exterior band must be at least 2 voxels wide, got " +
+    if (exteriorBandVoxels < kMinExteriorBandVoxels)
+        throw Error("", "the exterior band must be at least " +
+                            std::to_string(kMinExteriorBandVoxels) + " voxels wide, got " +
                             std::to_string(exteriorBandVoxels),
                     "interpolation near the surface reads values up to 1.73 voxels outside it");
     if (mesh.triangles.size() >= (size_t(1) << 30))

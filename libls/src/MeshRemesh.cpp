@@ -160,28 +160,14 @@ void markCorners(const SurfaceMesh& mesh, FeatureMap isFeature, double angleDeg,
 }
 
 /// The surface of @a mesh for closest-point queries, in cells of about @a cellSize, each
-/// triangle labelled with its patch.
-ClosestPointGrid closestPointGridOf(const SurfaceMesh& mesh, double cellSize, PatchMap patch)
+/// triangle labelled with its patch (toTriangleMesh lists the faces in the mesh's order).
+ClosestPointGrid closestPointGridOf(SurfaceMesh& mesh, double cellSize, PatchMap patch)
 {
-    // Indexed by vertex index, removed vertices included (there are none after splits only).
-    std::vector<Vec3> vertices(mesh.num_vertices(), Vec3::Zero());
-    for (VertexIndex v : mesh.vertices()) {
-        const Point& p = mesh.point(v);
-        vertices[v.idx()] = Vec3(p.x(), p.y(), p.z());
-    }
-    std::vector<std::array<int, 3>> triangles;
+    TriangleMesh surface = toTriangleMesh(mesh);
     std::vector<int> labels;
-    triangles.reserve(mesh.number_of_faces());
     labels.reserve(mesh.number_of_faces());
-    for (auto f : mesh.faces()) {
-        std::array<int, 3> tri{};
-        int k = 0;
-        for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-            if (k < 3) tri[size_t(k++)] = static_cast<int>(v.idx());
-        triangles.push_back(tri);
-        labels.push_back(static_cast<int>(patch[f]));
-    }
-    return ClosestPointGrid(std::move(vertices), std::move(triangles), cellSize,
+    for (auto f : mesh.faces()) labels.push_back(static_cast<int>(patch[f]));
+    return ClosestPointGrid(std::move(surface.vertices), std::move(surface.triangles), cellSize,
                             std::move(labels));
 }
 

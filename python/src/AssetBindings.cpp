@@ -246,7 +246,7 @@ void bindAssets(py::module_& m)
           },
           py::arg("path"), py::kw_only(), py::arg("voxel"), py::arg("node_spacing") = py::none(),
           py::arg("nodes") = py::none(), py::arg("mesh_nodes") = false,
-          py::arg("areas") = "mesh", py::arg("band") = 2,
+          py::arg("areas") = "mesh", py::arg("band") = BakeOptions().exteriorBandVoxels,
           (std::string("Bake the closed mesh in path (OBJ, STL, PLY, or anything assimp "
                        "reads) into an Asset, as lsdem-bake does.\n"
                        "mesh_nodes=True: use the mesh's own vertices as nodes.\n") +
@@ -259,7 +259,7 @@ void bindAssets(py::module_& m)
           },
           py::arg("radius"), py::kw_only(), py::arg("voxel"),
           py::arg("node_spacing") = py::none(), py::arg("nodes") = py::none(),
-          py::arg("areas") = "mesh", py::arg("band") = 2,
+          py::arg("areas") = "mesh", py::arg("band") = BakeOptions().exteriorBandVoxels,
           (std::string("Bake a sphere of the given radius with its exact signed distance.\n") +
            kBakeKeywords)
               .c_str());
@@ -270,7 +270,7 @@ void bindAssets(py::module_& m)
           },
           py::arg("a"), py::arg("b"), py::arg("c"), py::kw_only(), py::arg("voxel"),
           py::arg("node_spacing") = py::none(), py::arg("nodes") = py::none(),
-          py::arg("areas") = "mesh", py::arg("band") = 2,
+          py::arg("areas") = "mesh", py::arg("band") = BakeOptions().exteriorBandVoxels,
           (std::string("Bake a box with full edge lengths a, b, c.\n") + kBakeKeywords).c_str());
     m.def("bake_ellipsoid",
           [](double a, double b, double c, double voxel, std::optional<double> spacing,
@@ -280,7 +280,7 @@ void bindAssets(py::module_& m)
           },
           py::arg("a"), py::arg("b"), py::arg("c"), py::kw_only(), py::arg("voxel"),
           py::arg("node_spacing") = py::none(), py::arg("nodes") = py::none(),
-          py::arg("areas") = "mesh", py::arg("band") = 2,
+          py::arg("areas") = "mesh", py::arg("band") = BakeOptions().exteriorBandVoxels,
           (std::string("Bake an ellipsoid with semi-axes a, b, c.\n") + kBakeKeywords).c_str());
 }
 

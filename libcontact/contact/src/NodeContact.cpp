@@ -50,13 +50,17 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     const Vec3 centerOfB = -(rotation.transpose() * translation);  // B's origin in A's frame
     const double slack = 1.0 + 1e-9;
     // With a margin m > 0 the test answers for every pose of A within m of this one.
-    auto isClearWithin = [&](const NodeBlock& run, double m) {
-        const double reach = (reachB + run.radius + m) * slack;
-        if ((run.center - centerOfB).squaredNorm() > reach * reach) return true;
-        const Vec3 c = rotation * run.center + translation;
+    // A single node is a ball of radius 0.
+    auto isBallClearWithin = [&](const Vec3& center, double radius, double m) {
+        const double reach = (reachB + radius + m) * slack;
+        if ((center - centerOfB).squaredNorm() > reach * reach) return true;
+        const Vec3 c = rotation * center + translation;
         const Vec3 outside = (b.insideBoxMin - c).cwiseMax(0.0) + (c - b.insideBoxMax).cwiseMax(0.0);
-        const double r = (run.radius + m) * slack;
+        const double r = (radius + m) * slack;
         return outside.squaredNorm() > r * r;
+    };
+    auto isClearWithin = [&](const NodeBlock& run, double m) {
+        return isBallClearWithin(run.center, run.radius, m);
     };
 
     // An unregistered accessor costs next to nothing, but only when some node gets near B.
@@ -174,19 +178,12 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
         // Each node of a block let through is kept only if it too is within the margin of
         // B's sphere and box: most nodes of a block near B are not, and every step would
         // cull them again. Kept nodes that follow each other join into one run.
-        const double keepReach = (reachB + m) * slack, keepReach2 = keepReach * keepReach;
-        const double keepBox2 = (m * slack) * (m * slack);
         std::vector<std::pair<int, int>>& runs = candidates->runs;
         forEachBlockNotClear(
             a, [&](const NodeBlock& run) { return isClearWithin(run, m); },
             [&](int begin, int end) {
                 for (int i = begin; i < end; ++i) {
-                    const Vec3& inA = positions[i];
-                    if ((inA - centerOfB).squaredNorm() > keepReach2) continue;
-                    const Vec3 inB = rotation * inA + translation;
-                    const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
-                                         (inB - b.insideBoxMax).cwiseMax(0.0);
-                    if (outside.squaredNorm() > keepBox2) continue;
+                    if (isBallClearWithin(positions[i], 0.0, m)) continue;
                     if (!runs.empty() && runs.back().second == i)
                         ++runs.back().second;
                     else

@@ -24,9 +24,8 @@ struct BakeOptions
     double nodeSpacing = 0.0;        ///< SDP for NodePlacement::Spacing
     int nodeCount = 0;               ///< for NodePlacement::Count
     AreaRule areaRule = AreaRule::Mesh;
-    /// Exterior narrow band width, voxels (the interior is filled). At least 2: a cell the
-    /// surface crosses has every corner within √3 voxels of it, and contact reads only those.
-    int exteriorBandVoxels = 2;
+    /// Exterior narrow band width, voxels (the interior is filled); at least the default.
+    int exteriorBandVoxels = kMinExteriorBandVoxels;
     double memoryBudgetBytes = 4.0 * 1024 * 1024 * 1024;  ///< refuse grids estimated larger
     std::string optionsText;         ///< the options as the user gave them (provenance)
 };

@@ -4,6 +4,7 @@
 ///        Heavy header (OpenVDB): include it only where grids are built.
 #pragma once
 
+#include "lsdem/ls/GrainAsset.h"
 #include "lsdem/ls/LevelSetGrid.h"
 
 #include <memory>

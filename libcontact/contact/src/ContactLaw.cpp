@@ -15,11 +15,19 @@ double effectiveMass(const ContactGrain& a, const ContactGrain& b)
     return std::max(a.mass, b.mass);
 }
 
+/// A point as three numbers. A Vec3 copied into a local may be stored in a 16- and an 8-byte
+/// piece and then read back across both, which stalls until the stores complete.
+struct Point3
+{
+    double x, y, z;
+    explicit Point3(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
+};
+
 /// @a sum += (p − c) × f, or −= with @a subtract; component by component, the same operations
 /// as Eigen's cross product, which would go through memory and stall the sum reading it back.
-void accumulateMoment(Vec3& sum, const Vec3& p, const Vec3& c, const Vec3& f, bool subtract)
+void accumulateMoment(Vec3& sum, const Vec3& p, const Point3& c, const Vec3& f, bool subtract)
 {
-    const double rx = p.x() - c.x(), ry = p.y() - c.y(), rz = p.z() - c.z();
+    const double rx = p.x() - c.x, ry = p.y() - c.y, rz = p.z() - c.z;
     const double mx = ry * f.z() - rz * f.y(), my = rz * f.x() - rx * f.z(),
                  mz = rx * f.y() - ry * f.x();
     if (subtract)
@@ -54,6 +62,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     const double dashpotPerStiffness = model.damping().dashpotPerStiffness(
         effectiveMass(*sides[0].tester, *sides[0].other), totalStiffness);
     const bool perNodeShear = shearSprings.active(normalLaw);
+    // Per-node laws give forces[k] = (k·d)·n for contacts[k], n its unit normal: the size and
+    // direction are read from the contact instead of recovered by a root and a division.
+    const bool perNodeForces = normalLaw.perNodeForces();
+    const bool shearPerArea = normalLaw.stiffnessPerArea();
 
     // Sums kept in locals (registers), not in `result`, which the compiler must assume the
     // stores to the point forces may alias; the additions happen in the same order.
@@ -84,10 +96,20 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         };
         for (size_t k = 0; k < forces.size(); ++k) {
             PointForce& f = forces[k];
-            const double size = f.force.norm();
+            double size = 0.0, normalEnergy = 0.0;
+            Vec3 n;
+            if (perNodeForces) {
+                const NodeContact& c = side.contacts[k];
+                size = f.stiffness * c.depth;
+                n = c.normal;
+                normalEnergy = 0.5 * size * c.depth;  // ½|F|²/k with |F| = k·d
+            } else {
+                size = f.force.norm();
+                n = f.force * (1.0 / size);
+                normalEnergy = 0.5 * size * size / f.stiffness;
+            }
             if (size == 0.0 || f.stiffness <= 0.0) continue;
-            const Vec3 n = f.force / size;
-            elasticEnergy += 0.5 * size * size / f.stiffness;
+            elasticEnergy += normalEnergy;
             // += k·n·nᵀ, entry by entry (the same products as Eigen's expression, which goes
             // through a temporary matrix in memory and stalls reading it back).
             const Vec3 kn = f.stiffness * n;
@@ -103,7 +125,8 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                 // their history; nodes that entered start from zero.
                 const NodeContact& c = side.contacts[k];
                 const double shearStiffness =
-                    shearSprings.nodeStiffness(normalLaw, c.area, side.weight);
+                    side.weight *
+                    (shearPerArea ? shearSprings.stiffness * c.area : shearSprings.stiffness);
                 const Vec3 shear = updateShearForce(storedShear(c.node), c.normal,
                                                     relativeVelocity * dt, shearStiffness,
                                                     shearSprings.friction * size);
@@ -127,7 +150,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         Vec3& torqueOnOther = testerIsFirst ? result.torqueOnSecond : result.torqueOnFirst;
         Vec3 testerForce = forceOnTester, testerTorque = torqueOnTester;
         Vec3 otherForce = forceOnOther, otherTorque = torqueOnOther;
-        const Vec3 testerCentre = side.tester->pose.position, otherCentre = side.other->pose.position;
+        const Point3 testerCentre(side.tester->pose.position), otherCentre(side.other->pose.position);
         for (const PointForce& f : forces) {
             testerForce += f.force;
             accumulateMoment(testerTorque, f.point, testerCentre, f.force, false);

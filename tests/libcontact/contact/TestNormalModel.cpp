@@ -188,6 +188,32 @@ TEST(NormalModel, WeightScalesForcesAndStiffnesses)
     }
 }
 
+// The contact law reads a per-node force's size and direction from its contact (k·d along
+// the unit normal) instead of recovering them from the force: every per-node law must give
+// contacts[k] the force k·d·n with stiffness k, in order, and the others must say they do not.
+TEST(NormalModel, PerNodeForcesAreStiffnessTimesDepthAlongEachContactsNormal)
+{
+    const auto contacts = handMadeContacts();
+    int perNodeLaws = 0;
+    for (Formulation f : allFormulations()) {
+        std::vector<PointForce> out;
+        normalModel(f).forces(contacts, 8.0, 0.5, out);
+        if (!normalModel(f).perNodeForces()) {
+            EXPECT_NE(out.size(), contacts.size()) << formulationName(f);
+            continue;
+        }
+        ++perNodeLaws;
+        ASSERT_EQ(out.size(), contacts.size()) << formulationName(f);
+        for (size_t k = 0; k < contacts.size(); ++k) {
+            EXPECT_EQ(out[k].node, contacts[k].node) << formulationName(f);
+            const Vec3 expected = out[k].stiffness * contacts[k].depth * contacts[k].normal;
+            expectVecNear(out[k].force, expected, expected.norm());
+            EXPECT_GT(out[k].stiffness, 0.0) << formulationName(f);
+        }
+    }
+    EXPECT_EQ(perNodeLaws, 2);  // original and adapted
+}
+
 TEST(NormalModel, FormulationNamesRoundTripAndUnknownNamesAreRefused)
 {
     const std::vector<Formulation> expected = {Formulation::Original, Formulation::Adapted,

@@ -37,6 +37,8 @@ public:
     /// overlap volume): a node of tributary area A then stands for k·A.
     virtual bool stiffnessPerArea() const = 0;
     /// Whether every penetrating node gets a force of its own (so it may carry a shear spring).
+    /// If so, forces() gives contacts[k] the point force k·d·n with stiffness k (n its unit
+    /// normal, d its depth), in the same order: the contact law relies on that.
     virtual bool perNodeForces() const = 0;
     /// The stiffness of the paper's studies (Feldfogel et al. 2024): kn = 1 GN/mm per node,
     /// kn* = 1 GPa/mm = 1e3 N/mm³ per area (in mm, N).

@@ -8,6 +8,8 @@
 #include "lsdem/contact/NormalModel.h"
 #include "lsdem/ls/TriangleMesh.h"
 
+#include <cmath>
+
 namespace lsdem {
 
 /// The spring's step.
@@ -18,8 +20,23 @@ namespace lsdem {
 /// @param stiffness k_t of this node (force/length)
 /// @param limit    μ·|F_n|, the largest shear the node can carry
 /// @return the new shear force (tangent to @a normal, at most @a limit long)
-Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
-                      double stiffness, double limit);
+/// Inline: it runs once per node in contact and per step, and a call passes its vectors
+/// through memory. One square root per node while it sticks (two while it slides).
+inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
+                             double stiffness, double limit)
+{
+    // Turn the stored force onto the new tangent plane without changing its size: a turning
+    // normal must neither create nor destroy shear. (|stored| / |turned| as one root.)
+    Vec3 shear = stored - stored.dot(normal) * normal;
+    const double before2 = stored.squaredNorm(), after2 = shear.squaredNorm();
+    if (after2 > 0.0) shear *= std::sqrt(before2 / after2);
+    const Vec3 tangentialSlip = slip - slip.dot(normal) * normal;
+    shear -= stiffness * tangentialSlip;
+    const double size2 = shear.squaredNorm();
+    if (size2 > limit * limit)  // sliding: Coulomb cap
+        shear *= (limit > 0.0 ? limit / std::sqrt(size2) : 0.0);
+    return shear;
+}
 
 /// Shear springs with Coulomb friction, for the formulations with per-node forces.
 struct ShearSpringModel

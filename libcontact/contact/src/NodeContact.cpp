@@ -100,11 +100,20 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     auto visit = [&](int begin, int end) {
         // Most nodes of a run lie outside B's bounding sphere. That test is made in A's frame
         // (a difference and a square, no rotation); only the nodes inside are carried to B's
-        // frame. The loop's constants are copied to locals so they stay in registers.
+        // frame. The loop's constants are copied to locals so they stay in registers; the map
+        // to B's frame as twelve numbers: a copied Matrix3d is stored in 16-byte pieces and its
+        // columns (24 bytes apart) read back across two of them, a stall on every call.
         const Vec3 sphereCentre = centerOfB;
         const double sphereReach2 = reach2;
-        const Eigen::Matrix3d toBRotation = rotation;
-        const Vec3 toBTranslation = translation;
+        const double r00 = rotation(0, 0), r01 = rotation(0, 1), r02 = rotation(0, 2),
+                     r10 = rotation(1, 0), r11 = rotation(1, 1), r12 = rotation(1, 2),
+                     r20 = rotation(2, 0), r21 = rotation(2, 1), r22 = rotation(2, 2);
+        const double t0 = translation.x(), t1 = translation.y(), t2 = translation.z();
+        auto intoB = [&](const Vec3& p) {
+            return Vec3(r00 * p.x() + r01 * p.y() + r02 * p.z() + t0,
+                        r10 * p.x() + r11 * p.y() + r12 * p.z() + t1,
+                        r20 * p.x() + r21 * p.y() + r22 * p.z() + t2);
+        };
         const Vec3 boxMin = b.insideBoxMin, boxMax = b.insideBoxMax;
         long long culled = 0;
         double outsideSphere2 = nearestOutsideSphere2, outsideBox = nearestOutsideBox;
@@ -121,7 +130,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
                 if (d2 > bandReach2) {
                     outsideSphere2 = std::min(outsideSphere2, d2);
                 } else {  // near the sphere: its gap is the larger of the two bounds
-                    const Vec3 inB = toBRotation * inA + toBTranslation;
+                    const Vec3 inB = intoB(inA);
                     const double outside = beyondBox(inB);
                     const double fromSurface =
                         outside > 0.0 ? outside : samplerOfB().phi(inB) / b.levelSetSlope;
@@ -130,7 +139,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
                 }
                 continue;
             }
-            const Vec3 inB = toBRotation * inA + toBTranslation;
+            const Vec3 inB = intoB(inA);
             const double outside = beyondBox(inB);
             if (outside > 0.0) {
                 ++culled;  // outside the box where φ_B can be negative
@@ -151,7 +160,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             NodeContact c;
             c.node = i;
             c.depth = -s.phi;
-            c.normal = bToWorld * (s.gradient / gradientLength);
+            c.normal = bToWorld * (s.gradient * (1.0 / gradientLength));  // one division
             const Vec3 nodeWorld = poseB.position + bToWorld * inB;
             c.point = nodeWorld + 0.5 * c.depth * c.normal;
             c.area = a.nodes.areas[i];

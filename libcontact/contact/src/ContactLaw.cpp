@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace lsdem {
 
@@ -62,8 +64,9 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     const double dashpotPerStiffness = model.damping().dashpotPerStiffness(
         effectiveMass(*sides[0].tester, *sides[0].other), totalStiffness);
     const bool perNodeShear = shearSprings.active(normalLaw);
-    // Per-node laws give forces[k] = (k·d)·n for contacts[k], n its unit normal: the size and
-    // direction are read from the contact instead of recovered by a root and a division.
+    // A per-node law gives contact i exactly one force, k_i·d_i along its unit normal n_i
+    // (NormalModel::perNodeForces): its size and direction are read from the contact rather
+    // than recovered from the force with a root and divisions.
     const bool perNodeForces = normalLaw.perNodeForces();
     const bool shearPerArea = normalLaw.stiffnessPerArea();
 
@@ -94,22 +97,18 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                        ? (*stored)[cursor].force
                        : Vec3::Zero();
         };
+        if (perNodeForces && forces.size() != side.contacts.size())
+            throw std::logic_error("resolveContact: a per-node normal law gave " +
+                                   std::to_string(forces.size()) + " forces for " +
+                                   std::to_string(side.contacts.size()) + " contacts");
         for (size_t k = 0; k < forces.size(); ++k) {
             PointForce& f = forces[k];
-            double size = 0.0, normalEnergy = 0.0;
-            Vec3 n;
-            if (perNodeForces) {
-                const NodeContact& c = side.contacts[k];
-                size = f.stiffness * c.depth;
-                n = c.normal;
-                normalEnergy = 0.5 * size * c.depth;  // ½|F|²/k with |F| = k·d
-            } else {
-                size = f.force.norm();
-                n = f.force * (1.0 / size);
-                normalEnergy = 0.5 * size * size / f.stiffness;
-            }
+            const NodeContact* c = perNodeForces ? &side.contacts[k] : nullptr;
+            const double size = c ? f.stiffness * c->depth : f.force.norm();
             if (size == 0.0 || f.stiffness <= 0.0) continue;
-            elasticEnergy += normalEnergy;
+            const Vec3 n = c ? c->normal : Vec3(f.force / size);
+            // ½|F|²/k, which is ½·(k·d)·d for a per-node force.
+            elasticEnergy += c ? 0.5 * size * c->depth : 0.5 * size * size / f.stiffness;
             // += k·n·nᵀ, entry by entry (the same products as Eigen's expression, which goes
             // through a temporary matrix in memory and stalls reading it back).
             const Vec3 kn = f.stiffness * n;
@@ -121,16 +120,14 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             if (dashpotPerStiffness > 0.0)
                 total -= (dashpotPerStiffness * f.stiffness * relativeVelocity.dot(n)) * n;
             if (perNodeShear && side.history) {
-                // Per-node laws give forces[k] for contacts[k]. Nodes that left contact lose
-                // their history; nodes that entered start from zero.
-                const NodeContact& c = side.contacts[k];
+                // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
+                // that left contact lose their history; nodes that entered start from zero.
                 const double shearStiffness =
-                    side.weight *
-                    (shearPerArea ? shearSprings.stiffness * c.area : shearSprings.stiffness);
-                const Vec3 shear = updateShearForce(storedShear(c.node), c.normal,
+                    shearSprings.nodeStiffness(shearPerArea, c->area, side.weight);
+                const Vec3 shear = updateShearForce(storedShear(c->node), c->normal,
                                                     relativeVelocity * dt, shearStiffness,
                                                     shearSprings.friction * size);
-                nextHistory.push_back({c.node, shear});
+                nextHistory.push_back({c->node, shear});
                 total += shear;
                 elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
             }

@@ -190,25 +190,28 @@ TEST(NormalModel, WeightScalesForcesAndStiffnesses)
 
 // The contact law reads a per-node force's size and direction from its contact (k·d along
 // the unit normal) instead of recovering them from the force: every per-node law must give
-// contacts[k] the force k·d·n with stiffness k, in order, and the others must say they do not.
+// each contact exactly one force k·d·n with stiffness k, in the contacts' order, whatever that
+// order is (here also reversed, not sorted by node).
 TEST(NormalModel, PerNodeForcesAreStiffnessTimesDepthAlongEachContactsNormal)
 {
-    const auto contacts = handMadeContacts();
+    const std::vector<NodeContact> ascending = handMadeContacts();
+    const std::vector<NodeContact> reversed(ascending.rbegin(), ascending.rend());
     int perNodeLaws = 0;
     for (Formulation f : allFormulations()) {
-        std::vector<PointForce> out;
-        normalModel(f).forces(contacts, 8.0, 0.5, out);
-        if (!normalModel(f).perNodeForces()) {
-            EXPECT_NE(out.size(), contacts.size()) << formulationName(f);
-            continue;
-        }
+        if (!normalModel(f).perNodeForces()) continue;
         ++perNodeLaws;
-        ASSERT_EQ(out.size(), contacts.size()) << formulationName(f);
-        for (size_t k = 0; k < contacts.size(); ++k) {
-            EXPECT_EQ(out[k].node, contacts[k].node) << formulationName(f);
-            const Vec3 expected = out[k].stiffness * contacts[k].depth * contacts[k].normal;
-            expectVecNear(out[k].force, expected, expected.norm());
-            EXPECT_GT(out[k].stiffness, 0.0) << formulationName(f);
+        for (const std::vector<NodeContact>* contacts : {&ascending, &reversed}) {
+            SCOPED_TRACE(formulationName(f) + (contacts == &reversed ? ", reversed" : ""));
+            std::vector<PointForce> out;
+            normalModel(f).forces(*contacts, 8.0, 0.5, out);
+            ASSERT_EQ(out.size(), contacts->size());
+            for (size_t k = 0; k < contacts->size(); ++k) {
+                const NodeContact& c = (*contacts)[k];
+                EXPECT_EQ(out[k].node, c.node);
+                EXPECT_GT(out[k].stiffness, 0.0);
+                const Vec3 expected = out[k].stiffness * c.depth * c.normal;
+                expectVecNear(out[k].force, expected, expected.norm());
+            }
         }
     }
     EXPECT_EQ(perNodeLaws, 2);  // original and adapted

@@ -26,6 +26,17 @@ TEST(ShearSpring, ElasticBelowTheLimitAndSaturatesAtIt)
     EXPECT_NEAR(shear.x(), -9.9, 1e-12);
 }
 
+// No normal force, no shear: a limit of zero (or below, which a law should never give) leaves
+// nothing, whatever was stored or slipped; a limit exactly met is not cut.
+TEST(ShearSpring, ALimitOfZeroOrLessCarriesNoShear)
+{
+    const Vec3 n = Vec3::UnitZ(), stored(3, 4, 0), slip(1e-3, 2e-3, 0);
+    EXPECT_EQ(updateShearForce(stored, n, slip, 100.0, 0.0), Vec3::Zero());
+    EXPECT_EQ(updateShearForce(stored, n, slip, 100.0, -1.0), Vec3::Zero());
+    EXPECT_EQ(updateShearForce(Vec3::Zero(), n, Vec3::Zero(), 100.0, -1.0), Vec3::Zero());
+    EXPECT_EQ(updateShearForce(stored, n, Vec3::Zero(), 100.0, 5.0), stored);  // |stored| = 5
+}
+
 TEST(ShearSpring, TurnsWithTheNormalWithoutGainingOrLosing)
 {
     const Vec3 stored(3, 4, 0);  // tangent to z

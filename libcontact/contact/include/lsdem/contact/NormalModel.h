@@ -37,8 +37,10 @@ public:
     /// overlap volume): a node of tributary area A then stands for k·A.
     virtual bool stiffnessPerArea() const = 0;
     /// Whether every penetrating node gets a force of its own (so it may carry a shear spring).
-    /// If so, forces() gives contacts[k] the point force k·d·n with stiffness k (n its unit
-    /// normal, d its depth), in the same order: the contact law relies on that.
+    /// If so, forces() gives each contact i exactly one point force, in the contacts' order:
+    /// k_i·d_i·n_i with stiffness k_i (d_i > 0 its depth, n_i its unit normal, k_i a linear
+    /// spring). The contact law relies on that (resolveContact reads |F| = k_i·d_i and n_i
+    /// from the contact).
     virtual bool perNodeForces() const = 0;
     /// The stiffness of the paper's studies (Feldfogel et al. 2024): kn = 1 GN/mm per node,
     /// kn* = 1 GPa/mm = 1e3 N/mm³ per area (in mm, N).
@@ -57,7 +59,8 @@ public:
     virtual double patchStiffness(double stiffness, double area, double nodeArea) const = 0;
 
     /// Append the point forces of the penetrating nodes @a contacts of A in B, for stiffness
-    /// @a stiffness scaled by @a weight (1/2 per side in symmetric testing).
+    /// @a stiffness scaled by @a weight (1/2 per side in symmetric testing). A per-node law
+    /// must keep the contract of perNodeForces().
     virtual void forces(const std::vector<NodeContact>& contacts, double stiffness,
                         double weight, std::vector<PointForce>& out) const = 0;
 };

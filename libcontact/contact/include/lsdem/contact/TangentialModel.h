@@ -12,16 +12,16 @@
 
 namespace lsdem {
 
-/// The spring's step.
+/// The spring's step. Inline: it runs for every node in contact at every step, and a call
+/// would pass its vectors through memory. At most one square root while the node sticks.
 /// @param stored   shear force from the last step (zero for a node just entering contact)
 /// @param normal   current unit contact normal
 /// @param slip     relative displacement of the contact point in the step (any direction;
 ///                 only its tangential part counts)
 /// @param stiffness k_t of this node (force/length)
 /// @param limit    μ·|F_n|, the largest shear the node can carry
-/// @return the new shear force (tangent to @a normal, at most @a limit long)
-/// Inline: it runs once per node in contact and per step, and a call passes its vectors
-/// through memory. One square root per node while it sticks (two while it slides).
+/// @return the new shear force (tangent to @a normal, at most @a limit long; zero if
+///         @a limit ≤ 0)
 inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
                              double stiffness, double limit)
 {
@@ -33,7 +33,7 @@ inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3&
     const Vec3 tangentialSlip = slip - slip.dot(normal) * normal;
     shear -= stiffness * tangentialSlip;
     const double size2 = shear.squaredNorm();
-    if (size2 > limit * limit)  // sliding: Coulomb cap
+    if (limit < 0.0 || size2 > limit * limit)  // sliding: Coulomb cap
         shear *= (limit > 0.0 ? limit / std::sqrt(size2) : 0.0);
     return shear;
 }
@@ -53,7 +53,13 @@ struct ShearSpringModel
     /// k_t of a node of tributary area @a area, at testing weight @a weight.
     double nodeStiffness(const NormalModel& normal, double area, double weight) const
     {
-        return weight * normal.nodeStiffness(stiffness, area);
+        return nodeStiffness(normal.stiffnessPerArea(), area, weight);
+    }
+    /// The same, for a normal law whose stiffnessPerArea() is @a perArea (asked once, not per
+    /// node).
+    double nodeStiffness(bool perArea, double area, double weight) const
+    {
+        return weight * (perArea ? stiffness * area : stiffness);
     }
 };
 

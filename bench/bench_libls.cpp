@@ -11,6 +11,8 @@
 #include "lsdem/ls/MeshLevelSet.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -306,6 +308,46 @@ void BM_AssetMemory(benchmark::State& state)
     state.counters["active_voxels"] = double(grid.activeVoxelCount());
 }
 BENCHMARK(BM_AssetMemory)->Iterations(1);
+
+/// The slope bound that every bake and load derives (levelSetSlopeBound), on the R/100
+/// sphere's grid (about the size of the 100k-triangle scan's): as the library finds it, window
+/// by window over the bricks, against arg 1: its definition voxel by voxel, four look-ups per
+/// voxel over the whole table, in parallel by x (how it was found until 2026-11-27).
+void BM_SlopeBound(benchmark::State& state)
+{
+    const LevelSetGrid& levelSet = *sphereAsset().levelSet;
+    const LevelSetBricks& grid = *levelSet.grid;
+    double bound = 0.0;
+    for (auto _ : state) {
+        if (state.range(0) == 0) {
+            bound = levelSetSlopeBound(levelSet);
+        } else {
+            const openvdb::CoordBBox table = grid.tableBox();
+            const openvdb::Coord lo = table.min().offsetBy(-1), hi = table.max();
+            const double largest = tbb::parallel_reduce(
+                tbb::blocked_range<int>(lo.x(), hi.x() + 1), 0.0,
+                [&](const tbb::blocked_range<int>& xs, double found) {
+                    for (int x = xs.begin(); x != xs.end(); ++x)
+                        for (int y = lo.y(); y <= hi.y(); ++y)
+                            for (int z = lo.z(); z <= hi.z(); ++z) {
+                                const openvdb::Coord c(x, y, z);
+                                const double v = grid.value(c);
+                                found = std::max(
+                                    {found, std::abs(grid.value(c.offsetBy(1, 0, 0)) - v),
+                                     std::abs(grid.value(c.offsetBy(0, 1, 0)) - v),
+                                     std::abs(grid.value(c.offsetBy(0, 0, 1)) - v)});
+                            }
+                    return found;
+                },
+                [](double a, double b) { return std::max(a, b); });
+            bound = std::sqrt(3.0) * largest / levelSet.voxelSize;
+        }
+        benchmark::DoNotOptimize(bound);
+    }
+    state.counters["bound"] = bound;
+    state.counters["table_MVoxels"] = double(grid.tableBox().volume()) * 1e-6;
+}
+BENCHMARK(BM_SlopeBound)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// φ+∇φ at every node of the asset, offset slightly inward (as a penetrating node of a
 /// neighbour would be), in the stored (Morton) order or shuffled.

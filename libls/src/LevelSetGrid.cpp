@@ -53,19 +53,43 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
     const LevelSetBricks& grid = *levelSet.grid;
     const openvdb::CoordBBox table = grid.tableBox();
     if (table.empty()) return 0.0;  // the background everywhere: flat
-    // Every edge with a voxel in the table, including those to the background around it.
-    const openvdb::Coord lo = table.min().offsetBy(-1), hi = table.max();
+    // Every edge with a voxel in the table, including those to the background around it, is
+    // in the window of some place of the table or of the layer of places before it: a place's
+    // voxels and one more voxel along +x, +y and +z, read from at most 8 bricks. A window of
+    // one shared brick (the background, an interior tile) holds one value and no slope.
+    constexpr int kDim = LevelSetBricks::kDim, kWindow = kDim + 1;
+    const openvdb::Coord extent = (table.max() - grid.origin()).offsetBy(1);  // voxels
+    const openvdb::Coord places(extent.x() / kDim, extent.y() / kDim, extent.z() / kDim);
     const double largest = tbb::parallel_reduce(
-        tbb::blocked_range<int>(lo.x(), hi.x() + 1), 0.0,
-        [&](const tbb::blocked_range<int>& xs, double found) {
-            for (int x = xs.begin(); x != xs.end(); ++x)
-                for (int y = lo.y(); y <= hi.y(); ++y)
-                    for (int z = lo.z(); z <= hi.z(); ++z) {
-                        const openvdb::Coord c(x, y, z);
-                        const double v = grid.value(c);
-                        found = std::max({found, std::abs(grid.value(c.offsetBy(1, 0, 0)) - v),
-                                          std::abs(grid.value(c.offsetBy(0, 1, 0)) - v),
-                                          std::abs(grid.value(c.offsetBy(0, 0, 1)) - v)});
+        tbb::blocked_range<int>(-1, places.x()), 0.0,
+        [&](const tbb::blocked_range<int>& bxs, double found) {
+            float window[kWindow][kWindow][kWindow];
+            for (int bx = bxs.begin(); bx != bxs.end(); ++bx)
+                for (int by = -1; by < places.y(); ++by)
+                    for (int bz = -1; bz < places.z(); ++bz) {
+                        uint32_t bricks[2][2][2];
+                        bool oneBrick = true;
+                        for (int i = 0; i < 2; ++i)
+                            for (int j = 0; j < 2; ++j)
+                                for (int k = 0; k < 2; ++k) {
+                                    bricks[i][j][k] = grid.brick(bx + i, by + j, bz + k);
+                                    oneBrick &= bricks[i][j][k] == bricks[0][0][0];
+                                }
+                        if (oneBrick) continue;  // a varying brick is at one place only
+                        for (int x = 0; x < kWindow; ++x)
+                            for (int y = 0; y < kWindow; ++y)
+                                for (int z = 0; z < kWindow; ++z)
+                                    window[x][y][z] = grid.decode(
+                                        bricks[x / kDim][y / kDim][z / kDim],
+                                        LevelSetBricks::offset(openvdb::Coord(x, y, z)));
+                        for (int x = 0; x < kDim; ++x)
+                            for (int y = 0; y < kDim; ++y)
+                                for (int z = 0; z < kDim; ++z) {
+                                    const double v = window[x][y][z];
+                                    found = std::max({found, std::abs(window[x + 1][y][z] - v),
+                                                      std::abs(window[x][y + 1][z] - v),
+                                                      std::abs(window[x][y][z + 1] - v)});
+                                }
                     }
             return found;
         },

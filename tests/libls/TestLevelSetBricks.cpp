@@ -1,5 +1,6 @@
 // The level set as held in memory (24-bit bricks): every stored value against the float grid it
 // was made from, the sign kept, tiles kept, and a save/load round trip to the same bits.
+#include "lsdem/ls/AnalyticShape.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
@@ -186,6 +187,94 @@ TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)
     spread->tree().setValue(openvdb::Coord(0, 0, 0), -1.0f);
     spread->tree().setValue(openvdb::Coord(8000, 8000, 8000), -1.0f);
     EXPECT_THROW(toLevelSetGrid(*spread), Error);
+}
+
+namespace {
+
+/// levelSetSlopeBound's definition, voxel by voxel: √3 times the largest difference along an
+/// edge with a voxel in the table (or the layer before it), over the voxel size.
+double slopeBoundVoxelByVoxel(const LevelSetGrid& levelSet)
+{
+    const LevelSetBricks& grid = *levelSet.grid;
+    const openvdb::CoordBBox table = grid.tableBox();
+    if (table.empty()) return 0.0;
+    double largest = 0.0;
+    const openvdb::Coord lo = table.min().offsetBy(-1), hi = table.max();
+    for (int x = lo.x(); x <= hi.x(); ++x)
+        for (int y = lo.y(); y <= hi.y(); ++y)
+            for (int z = lo.z(); z <= hi.z(); ++z) {
+                const openvdb::Coord c(x, y, z);
+                const double v = grid.value(c);
+                largest = std::max({largest, std::abs(grid.value(c.offsetBy(1, 0, 0)) - v),
+                                    std::abs(grid.value(c.offsetBy(0, 1, 0)) - v),
+                                    std::abs(grid.value(c.offsetBy(0, 0, 1)) - v)});
+            }
+    return std::sqrt(3.0) * largest / levelSet.voxelSize;
+}
+
+} // namespace
+
+// The bound is found brick by brick (a window of each brick and one voxel more on its far
+// sides, windows of one shared brick skipped): the same number as voxel by voxel, for a
+// sphere, a box (flat faces, interior tiles), an ellipsoid, and grids with one voxel raised or
+// lowered in a brick's first or last layer, at the table's corners and just outside them.
+TEST(LevelSetBricks, SlopeBoundBrickByBrickEqualsVoxelByVoxel)
+{
+    BakeOptions o;
+    o.voxelSize = 0.05;
+    o.nodeSpacing = 0.25;
+    std::vector<std::string> warnings;
+    for (const AnalyticShape& shape :
+         {AnalyticShape::sphere(1.0), AnalyticShape::box(1.2, 0.7, 0.45),
+          AnalyticShape::ellipsoid(1.0, 0.6, 0.35)}) {
+        const GrainAsset asset = bakeAnalytic(shape, o, warnings);
+        const double reference = slopeBoundVoxelByVoxel(*asset.levelSet);
+        EXPECT_EQ(levelSetSlopeBound(*asset.levelSet), reference);
+        EXPECT_GT(reference, 0.0);
+
+        const openvdb::CoordBBox table = asset.levelSet->grid->tableBox();
+        const openvdb::Coord sum = table.min() + table.max();
+        const openvdb::Coord middle(sum.x() / 2, sum.y() / 2, sum.z() / 2);
+        for (const openvdb::Coord& raised :
+             {table.min(), table.max(), table.min().offsetBy(-1), table.max().offsetBy(1),
+              middle, middle.offsetBy(3), middle.offsetBy(4)}) {
+            for (const double by : {7.0, -7.0}) {  // lowered: its edge to the outside is the largest
+                openvdb::FloatGrid::Ptr grid = toFloatGrid(*asset.levelSet->grid);
+                auto accessor = grid->getAccessor();
+                accessor.setValue(raised, accessor.getValue(raised) + float(by * o.voxelSize));
+                LevelSetGrid stepped = *asset.levelSet;
+                stepped.grid = toLevelSetGrid(*grid);
+                const double steppedReference = slopeBoundVoxelByVoxel(stepped);
+                EXPECT_EQ(levelSetSlopeBound(stepped), steppedReference) << raised << " " << by;
+                EXPECT_GT(steppedReference, std::sqrt(3.0) * 5.0);  // the changed voxel counts
+            }
+        }
+    }
+}
+
+// The steepest edge of a grid can be the one from the background just before the table to the
+// table's first voxel: a voxel at −0.5 on the table's low face along one axis, its other five
+// neighbours at −0.45, the background at 0.1. Only that edge differs by 0.6.
+TEST(LevelSetBricks, SlopeBoundCountsTheEdgeIntoTheTableFromBelow)
+{
+    for (int axis = 0; axis < 3; ++axis) {
+        auto grid = openvdb::FloatGrid::create(0.1f);
+        const openvdb::Coord c(10, 10, 10);
+        grid->tree().setValue(c, -0.5f);
+        for (int other = 0; other < 3; ++other)
+            for (int sign : {-1, 1}) {
+                if (other == axis && sign == -1) continue;
+                openvdb::Coord n = c;
+                n[other] += sign;
+                grid->tree().setValue(n, -0.45f);
+            }
+        LevelSetGrid levelSet;
+        levelSet.grid = toLevelSetGrid(*grid);
+        levelSet.voxelSize = 1.0;
+        EXPECT_EQ(levelSet.grid->tableBox().min()[axis], c[axis]) << axis;
+        EXPECT_NEAR(levelSetSlopeBound(levelSet), std::sqrt(3.0) * 0.6, 1e-6) << axis;
+        EXPECT_EQ(levelSetSlopeBound(levelSet), slopeBoundVoxelByVoxel(levelSet)) << axis;
+    }
 }
 
 // levelSetSlopeBound: φ of a baked sphere (a distance, so neighbouring voxels differ by at

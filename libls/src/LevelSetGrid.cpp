@@ -48,6 +48,34 @@ void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max)
     max = levelSet.origin + h * Vec3(hi.x() + 1, hi.y() + 1, hi.z() + 1);
 }
 
+namespace {
+
+/// The largest difference along an edge from a voxel of the 4³ place whose brick is
+/// @a bricks[0][0][0] to its +x, +y or +z neighbour, the neighbours read from the bricks after
+/// it (@a bricks[i][j][k] is the brick i, j, k places further along x, y, z).
+double largestStepFromPlace(const LevelSetBricks& grid, const uint32_t (&bricks)[2][2][2])
+{
+    constexpr int kDim = LevelSetBricks::kDim, kWindow = kDim + 1;
+    float window[kWindow][kWindow][kWindow];
+    for (int x = 0; x < kWindow; ++x)
+        for (int y = 0; y < kWindow; ++y)
+            for (int z = 0; z < kWindow; ++z)
+                window[x][y][z] = grid.decode(bricks[x / kDim][y / kDim][z / kDim],
+                                              LevelSetBricks::offset(openvdb::Coord(x, y, z)));
+    double largest = 0.0;
+    for (int x = 0; x < kDim; ++x)
+        for (int y = 0; y < kDim; ++y)
+            for (int z = 0; z < kDim; ++z) {
+                const double v = window[x][y][z];
+                largest = std::max({largest, std::abs(window[x + 1][y][z] - v),
+                                    std::abs(window[x][y + 1][z] - v),
+                                    std::abs(window[x][y][z + 1] - v)});
+            }
+    return largest;
+}
+
+} // namespace
+
 double levelSetSlopeBound(const LevelSetGrid& levelSet)
 {
     const LevelSetBricks& grid = *levelSet.grid;
@@ -57,13 +85,12 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
     // in the window of some place of the table or of the layer of places before it: a place's
     // voxels and one more voxel along +x, +y and +z, read from at most 8 bricks. A window of
     // one shared brick (the background, an interior tile) holds one value and no slope.
-    constexpr int kDim = LevelSetBricks::kDim, kWindow = kDim + 1;
-    const openvdb::Coord extent = (table.max() - grid.origin()).offsetBy(1);  // voxels
+    constexpr int kDim = LevelSetBricks::kDim;
+    const openvdb::Coord extent = table.dim();  // voxels, whole bricks
     const openvdb::Coord places(extent.x() / kDim, extent.y() / kDim, extent.z() / kDim);
     const double largest = tbb::parallel_reduce(
         tbb::blocked_range<int>(-1, places.x()), 0.0,
         [&](const tbb::blocked_range<int>& bxs, double found) {
-            float window[kWindow][kWindow][kWindow];
             for (int bx = bxs.begin(); bx != bxs.end(); ++bx)
                 for (int by = -1; by < places.y(); ++by)
                     for (int bz = -1; bz < places.z(); ++bz) {
@@ -75,21 +102,8 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
                                     bricks[i][j][k] = grid.brick(bx + i, by + j, bz + k);
                                     oneBrick &= bricks[i][j][k] == bricks[0][0][0];
                                 }
-                        if (oneBrick) continue;  // a varying brick is at one place only
-                        for (int x = 0; x < kWindow; ++x)
-                            for (int y = 0; y < kWindow; ++y)
-                                for (int z = 0; z < kWindow; ++z)
-                                    window[x][y][z] = grid.decode(
-                                        bricks[x / kDim][y / kDim][z / kDim],
-                                        LevelSetBricks::offset(openvdb::Coord(x, y, z)));
-                        for (int x = 0; x < kDim; ++x)
-                            for (int y = 0; y < kDim; ++y)
-                                for (int z = 0; z < kDim; ++z) {
-                                    const double v = window[x][y][z];
-                                    found = std::max({found, std::abs(window[x + 1][y][z] - v),
-                                                      std::abs(window[x][y + 1][z] - v),
-                                                      std::abs(window[x][y][z + 1] - v)});
-                                }
+                        // A varying brick is at one place only, so 8 equal ones are shared.
+                        if (!oneBrick) found = std::max(found, largestStepFromPlace(grid, bricks));
                     }
             return found;
         },

@@ -50,7 +50,12 @@ public:
     /// k per node.
     double nodeStiffness(double stiffness, double area) const
     {
-        return stiffnessPerArea() ? stiffness * area : stiffness;
+        return nodeStiffness(stiffnessPerArea(), stiffness, area);
+    }
+    /// The same for a law whose stiffnessPerArea() is @a perArea (asked once, not per node).
+    static double nodeStiffness(bool perArea, double stiffness, double area)
+    {
+        return perArea ? stiffness * area : stiffness;
     }
     /// The normal stiffness (force/length) of a flat patch of area @a area in full contact,
     /// covered by nodes of tributary area @a nodeArea each: the integral of the traction for

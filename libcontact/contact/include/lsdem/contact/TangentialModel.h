@@ -59,7 +59,7 @@ struct ShearSpringModel
     /// node).
     double nodeStiffness(bool perArea, double area, double weight) const
     {
-        return weight * (perArea ? stiffness * area : stiffness);
+        return weight * NormalModel::nodeStiffness(perArea, stiffness, area);
     }
 };
 

@@ -77,6 +77,14 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
 {
+    // The deep bricks' step: the power of two in (2^-13, 2^-12] voxel (cubic voxels only).
+    const openvdb::Vec3d voxel = grid.voxelSize();
+    if (voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2]) {
+        int e = 0;
+        std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
+        mDeepStep = float(std::ldexp(1.0, e - 1));
+        mDeepBelow = float(-kDeepVoxels * voxel[0]);
+    }
     const openvdb::CoordBBox box = valueBox(grid);
     if (!box.empty()) {
         mOrigin = box.min();
@@ -103,6 +111,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     struct Place
     {
         bool varies = false;
+        bool deep = false;
         bool finite = true;
         Uniform uniform{0, 0};
     };
@@ -110,14 +119,15 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         Place& p = places[slot];
         p.varies = varies;
+        p.deep = varies && isDeepBrick(b);
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
         if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
 
     // In place order, one thread: each place's brick. Brick 0 is the inactive background,
     // shared by every such place and by all outside; the bricks of varying values and each
-    // new value of one come next in the order of their first place, so the layout does not
-    // depend on the thread count.
+    // new value of one come next in the order of their first place, then the deep bricks in
+    // the order of their places, so the layout does not depend on the thread count.
     std::map<Uniform, uint32_t> shared;  // → its brick
     shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
     uint32_t bricks = 1;
@@ -131,6 +141,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
                             ", " + std::to_string(origin.z()) + ")",
                         "rebuild the level set; lsdem samples finite distances only");
         }
+        if (p.deep) continue;
         if (p.varies) {
             mTable[slot] = bricks++;
             continue;
@@ -139,11 +150,16 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         if (it == shared.end()) it = shared.emplace(p.uniform, bricks++).first;
         mTable[slot] = kShared | it->second;
     }
+    mWideBricks = bricks;
+    for (size_t slot = 0; slot < places.size(); ++slot)
+        if (places[slot].deep) mTable[slot] = bricks++;
 
     // Sized once (grown by doubling they would hold up to twice their size), plus the
     // padding byte that decode() may read after the last code.
-    mCode.assign(size_t(bricks) * 3 * kVoxels + 1, 0);
+    const size_t deep = bricks - mWideBricks;
+    mCode.assign(size_t(mWideBricks) * 3 * kVoxels + deep * 2 * kVoxels + 1, 0);
     mBrickStep.assign(bricks, 0.0f);
+    mDeepBase.assign(deep, 0);
     mActive.assign(size_t(bricks) * kMaskWords, 0);
     for (const auto& [uniform, brick] : shared) {
         float value = 0.0f;
@@ -152,7 +168,12 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     }
     // Pass 2, in parallel: the bricks of varying values, each into its own place.
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
-        if (varies) writeVaryingBrick(mTable[slot] & kIndexMask, b);
+        if (!varies) return;
+        const uint32_t brick = mTable[slot] & kIndexMask;
+        if (isDeep(brick))
+            writeDeepBrick(brick, b);
+        else
+            writeVaryingBrick(brick, b);
     });
 }
 
@@ -185,7 +206,7 @@ void LevelSetBricks::writeUniformBrick(uint32_t brick, float value, bool active)
 {
     // One value v: q = 1 and step = v decode to v exactly.
     mBrickStep[brick] = value;
-    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    uint8_t* code = writableCodes(brick);
     for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
     std::fill_n(mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords), kMaskWords,
                 active ? ~uint64_t(0) : uint64_t(0));
@@ -203,7 +224,7 @@ void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
     mBrickStep[brick] = float(step);
     std::copy(raw.active, raw.active + kMaskWords,
               mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
-    uint8_t* code = mCode.data() + size_t(brick) * 3 * kVoxels;
+    uint8_t* code = writableCodes(brick);
     for (int k = 0; k < kVoxels; ++k) {
         // To the nearest step, but never across zero (the sign decides contact).
         const double v = raw.value[k];
@@ -214,6 +235,45 @@ void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
         code[3 * k] = uint8_t(bits);
         code[3 * k + 1] = uint8_t(bits >> 8);
         code[3 * k + 2] = uint8_t(bits >> 16);
+    }
+}
+
+namespace {
+
+/// Deep codes: below this in size a value in deep steps converts to float exactly.
+constexpr double kDeepCodeLimit = double(1 << 24);
+
+} // namespace
+
+bool LevelSetBricks::isDeepBrick(const RawBrick& raw) const
+{
+    if (!(mDeepStep > 0.0f)) return false;
+    double lowest = 0.0, highest = -kDeepCodeLimit;
+    for (int k = 0; k < kVoxels; ++k) {
+        if (!(raw.value[k] <= mDeepBelow)) return false;  // also refuses NaN
+        // Rounded down, so the stored value stays at least as deep as the float.
+        const double code = std::floor(double(raw.value[k]) / mDeepStep);
+        if (!(code > -kDeepCodeLimit)) return false;
+        lowest = k == 0 ? code : std::min(lowest, code);
+        highest = std::max(highest, code);
+    }
+    return highest - lowest <= double(std::numeric_limits<uint16_t>::max());
+}
+
+void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
+{
+    int32_t code[kVoxels];
+    for (int k = 0; k < kVoxels; ++k)
+        code[k] = static_cast<int32_t>(std::floor(double(raw.value[k]) / mDeepStep));
+    const int32_t base = *std::min_element(code, code + kVoxels);
+    mDeepBase[brick - mWideBricks] = base;
+    mBrickStep[brick] = mDeepStep;
+    std::copy(raw.active, raw.active + kMaskWords,
+              mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
+    uint8_t* out = writableCodes(brick);
+    for (int k = 0; k < kVoxels; ++k) {
+        const auto q = static_cast<uint16_t>(code[k] - base);
+        std::memcpy(out + 2 * k, &q, sizeof q);
     }
 }
 
@@ -265,6 +325,7 @@ size_t LevelSetBricks::memUsage() const
 {
     return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
            mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
+           mDeepBase.capacity() * sizeof(int32_t) +
            mActive.capacity() * sizeof(uint64_t);
 }
 

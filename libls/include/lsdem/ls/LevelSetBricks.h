@@ -1,25 +1,39 @@
 /// @file LevelSetBricks.h
-/// @brief A grain's level set as held in memory: 4³-voxel bricks of 24-bit values under one
-///        dense table of the grid's bounding box. Built from a float grid (toLevelSetGrid),
-///        turned back into one for files and OpenVDB's tools (toFloatGrid); never modified.
+/// @brief A grain's level set as held in memory: 4³-voxel bricks of 24-bit values (16-bit deep
+///        inside the grain) under one dense table of the grid's bounding box. Built from a
+///        float grid (toLevelSetGrid), turned back into one for files and OpenVDB's tools
+///        (toFloatGrid); never modified.
 ///
 /// Why: a sphere-like grain of radius 20 voxels in OpenVDB's 8³ float leaves takes ~415 KiB;
-/// here ~213 KiB. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value,
-/// and the table replaces the tree walk (one multiply-add finds a brick). 16 bits a value
-/// would not do: tests rely on float accuracy at the surface (see docs/assets.md).
+/// here ~180 KiB. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value
+/// (2 deep inside), and the table replaces the tree walk (one multiply-add finds a brick).
+/// 16 bits a value near the surface would not do: tests rely on float accuracy there (see
+/// docs/assets.md).
 ///
-/// Storage: a value is q · step, q a signed 24-bit integer, step a power of two per brick:
-/// 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of two, so
-/// |q| ≤ 2^22 and the decoded value is exact in float. The stored value differs from the float
-/// it came from by less than 2^-21 of the brick's largest |value| (half a step when rounded to
-/// nearest; a full step only where that would lose the sign: a negative value never decodes
-/// to 0 or more, a positive one never to 0 or less). Near the surface (|φ| ≤ 3√3 voxels in a
-/// brick that it crosses) that is under 2.5e-6 voxel. Encoding decoded values again gives the
-/// same values, so a saved and loaded asset samples to the same bits as the one saved.
+/// Storage near the surface: a value is q · step, q a signed 24-bit integer, step a power of
+/// two per brick: 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of
+/// two, so |q| ≤ 2^22 and the decoded value is exact in float. The stored value differs from
+/// the float it came from by less than 2^-21 of the brick's largest |value| (half a step when
+/// rounded to nearest; a full step only where that would lose the sign: a negative value never
+/// decodes to 0 or more, a positive one never to 0 or less). Near the surface (|φ| ≤ 3√3
+/// voxels in a brick that it crosses) that is under 2.5e-6 voxel.
+///
+/// Deep inside: a brick whose every value lies kDeepVoxels or more below the surface holds
+/// them as (base + q) · deepStep(), base one integer per brick, q an unsigned 16-bit integer,
+/// deepStep() one power of two for the grid between 2^-13 and 2^-12 voxel, rounded down (so a
+/// deep value stays deep). Such a value is below the float by less than deepStep(): under
+/// 2.5e-4 voxel, some 20 to 80 times less than trilinear interpolation errs by there for the
+/// grains lsdem bakes, and never read for a point within kDeepVoxels − √3 voxels of the
+/// surface (a cell's corners lie within √3 voxels of its points). Interior bricks are most of
+/// a finely resolved grain's bricks; these take 144 bytes instead of 204.
+///
+/// Encoding decoded values again gives the same values and bricks, so a saved and loaded asset
+/// samples to the same bits as the one saved.
 #pragma once
 
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -55,8 +69,18 @@ public:
     }
 
     float background() const { return decode(kBackgroundBrick, 0); }
-    /// Bound on |stored − original| of a value, relative to the largest |value| of its brick.
+    /// Bound on |stored − original| of a value, relative to the largest |value| of its brick
+    /// (bricks other than deep ones).
     static constexpr double kRelativeError = 1.0 / (1 << 21);
+    /// How far below the surface, in voxels, every value of a brick must lie for the brick to
+    /// be stored deep (16 bits a value).
+    static constexpr double kDeepVoxels = 3.0;
+    /// The step of the deep bricks' values (a power of two in (2^-13, 2^-12] voxel; 0 when
+    /// the grid's voxels are not cubes, and then no brick is deep): a deep value is at most
+    /// this much below the float it came from, never above it.
+    float deepStep() const { return mDeepStep; }
+    /// Bricks stored deep.
+    size_t deepBrickCount() const { return mBrickStep.size() - mWideBricks; }
 
     openvdb::Index64 activeVoxelCount() const;
     openvdb::CoordBBox evalActiveVoxelBoundingBox() const;
@@ -99,9 +123,17 @@ public:
         constexpr int m = kDim - 1;
         return ((c.x() & m) << (2 * kLog2Dim)) | ((c.y() & m) << kLog2Dim) | (c.z() & m);
     }
+    /// Whether brick @a brick is deep (2 bytes a value; otherwise 3).
+    bool isDeep(uint32_t brick) const { return brick >= mWideBricks; }
     /// The value of voxel @a offset of brick @a brick.
     float decode(uint32_t brick, int offset) const
     {
+        if (isDeep(brick)) {
+            uint16_t q = 0;
+            std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
+            // exact: |base + q| < 2^24 (checked when the brick was made), step a power of two
+            return static_cast<float>(mDeepBase[brick - mWideBricks] + int32_t(q)) * mDeepStep;
+        }
         return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
     }
     /// The value whose 3-byte code (little-endian, two's complement) starts at @a code, which
@@ -116,7 +148,13 @@ public:
         const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
         return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
     }
-    const uint8_t* codes(uint32_t brick) const { return mCode.data() + size_t(brick) * 3 * kVoxels; }
+    /// Brick @a brick's codes: kVoxels of them, 3 bytes each (2 for a deep brick). The bricks
+    /// other than deep ones come first, so brick b starts at 64·(2b + min(b, wide bricks)).
+    const uint8_t* codes(uint32_t brick) const
+    {
+        return mCode.data() + kVoxels * (2 * size_t(brick) + std::min(brick, mWideBricks));
+    }
+    /// The step of brick @a brick's codes (deepStep() for a deep brick).
     float step(uint32_t brick) const { return mBrickStep[brick]; }
 
     /// One brick's voxels as a float grid holds them (while building).
@@ -142,16 +180,31 @@ private:
     void forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const;
     /// The first voxel of the table's place @a slot.
     openvdb::Coord placeOrigin(size_t slot) const;
+    uint8_t* writableCodes(uint32_t brick)
+    {
+        return mCode.data() + (codes(brick) - mCode.data());
+    }
     /// Brick @a brick (already allocated) holding one value and state.
     void writeUniformBrick(uint32_t brick, float value, bool active);
     /// Brick @a brick (already allocated) holding @a raw's values, encoded, and states.
     void writeVaryingBrick(uint32_t brick, const RawBrick& raw);
+    /// The same for a deep brick (@a raw passes isDeepBrick).
+    void writeDeepBrick(uint32_t brick, const RawBrick& raw);
+    /// Whether @a raw's values can be stored deep: all kDeepVoxels or more below the surface,
+    /// within 65535 deep steps of each other, and small enough in deep steps for floats.
+    bool isDeepBrick(const RawBrick& raw) const;
 
     openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};
     std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
-    std::vector<uint8_t> mCode;          ///< 3 bytes per voxel, kVoxels per brick; 1 padding byte
+    /// 3 bytes per voxel, kVoxels per brick (2 for deep bricks, after the others); 1 padding
+    /// byte
+    std::vector<uint8_t> mCode;
     std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
+    uint32_t mWideBricks = 0;            ///< bricks [0, mWideBricks) are not deep
+    std::vector<int32_t> mDeepBase;      ///< per deep brick: the code of its smallest value
+    float mDeepStep = 0.0f;
+    float mDeepBelow = 0.0f;             ///< −kDeepVoxels voxels: a deep brick's values are ≤
     std::vector<uint64_t> mActive;       ///< kMaskWords per brick
     openvdb::math::Transform::Ptr mTransform;
     openvdb::MetaMap::Ptr mMetadata;

@@ -118,15 +118,16 @@ private:
         // Read the corners straight from the bricks (4^3 voxels) that hold them: one brick
         // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks. Every place has a
         // brick (shared ones for uniform regions), so no corner needs a special case. Voxel
-        // offsets within a brick are x*16 + y*4 + z, 3 bytes each.
+        // offsets within a brick are x*16 + y*4 + z, 3 bytes each (2 in a deep brick).
         using Bricks = LevelSetBricks;
         constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
         const openvdb::Coord local = base - mBrickOrigin;
         const int bx = local.x() >> kLog2, by = local.y() >> kLog2, bz = local.z() >> kLog2;
         const int cx = (local.x() & kLast) == kLast, cy = (local.y() & kLast) == kLast,
                   cz = (local.z() & kLast) == kLast;
-        if (!(cx | cy | cz)) {
-            const uint32_t b = mBricks->brick(bx, by, bz);
+        const uint32_t first = mBricks->brick(bx, by, bz);
+        if (!(cx | cy | cz) && !mBricks->isDeep(first)) {
+            const uint32_t b = first;
             const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(local);
             const float step = mBricks->step(b);
             constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
@@ -141,9 +142,10 @@ private:
             return;
         }
         // Look up each distinct brick once: corner k lies in brick k's own place only along
-        // the axes the cell crosses.
+        // the axes the cell crosses. (Cells in one deep brick come here too: more than
+        // kDeepVoxels − √3 voxels inside, they are rarely sampled.)
         uint32_t brick[8];
-        brick[0] = mBricks->brick(bx, by, bz);
+        brick[0] = first;
         brick[1] = cx ? mBricks->brick(bx + 1, by, bz) : brick[0];
         brick[2] = cy ? mBricks->brick(bx, by + 1, bz) : brick[0];
         brick[3] = cy ? (cx ? mBricks->brick(bx + 1, by + 1, bz) : brick[2]) : brick[1];

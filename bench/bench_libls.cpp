@@ -267,18 +267,20 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
         std::vector<std::string> warnings;
         baked.push_back(bakeMesh(smallPebble(seed), "pebble", o, warnings));
     }
-    double resident = 0, grids = 0, nodes = 0;
+    double resident = 0, grids = 0, nodes = 0, bricks = 0, deepBricks = 0;
     for (auto _ : state) {
         malloc_trim(0);
         const double before = statusBytes("VmRSS");
         std::vector<GrainAsset> assets;
         assets.reserve(1000);
-        grids = 0;
+        grids = bricks = deepBricks = 0;
         for (int i = 0; i < 1000; ++i) {
             GrainAsset copy = baked[size_t(i % 10)];
             auto levelSet = std::make_shared<LevelSetGrid>(*copy.levelSet);
             levelSet->grid = std::make_shared<const LevelSetBricks>(*levelSet->grid);
             grids += double(levelSet->grid->memUsage());
+            bricks += double(levelSet->grid->brickCount());
+            deepBricks += double(levelSet->grid->deepBrickCount());
             copy.levelSet = levelSet;
             assets.push_back(std::move(copy));
         }
@@ -290,6 +292,8 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
     state.counters["grids_MiB"] = grids / kMiB;
     state.counters["KiB_per_asset"] = resident / 1000.0 / 1024.0;
     state.counters["nodes_per_asset"] = nodes;
+    state.counters["bricks_per_asset"] = bricks / 1000.0;
+    state.counters["deep_bricks_per_asset"] = deepBricks / 1000.0;
 }
 BENCHMARK(BM_ThousandAssetsMemory)->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -306,6 +310,8 @@ void BM_AssetMemory(benchmark::State& state)
     state.counters["dense_MiB"] = dense / (1024.0 * 1024.0);
     state.counters["sparse_over_dense"] = sparse / dense;
     state.counters["active_voxels"] = double(grid.activeVoxelCount());
+    state.counters["bricks"] = double(grid.brickCount());
+    state.counters["deep_bricks"] = double(grid.deepBrickCount());
 }
 BENCHMARK(BM_AssetMemory)->Iterations(1);
 

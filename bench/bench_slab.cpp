@@ -14,6 +14,7 @@
 #include "studies/SlabOptions.h"
 #include "studies/SlabScene.h"
 
+#include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 
@@ -71,6 +72,12 @@ void BM_SlabStep(benchmark::State& state)
     for (const Grain& g : w.grains) nodes += static_cast<double>(g.asset->nodes.size());
     state.counters["sdp_mm"] = kDiscretizations[which].sdp;
     state.counters["nodes_per_block"] = nodes / static_cast<double>(w.grains.size());
+    // The block's level set as held in memory (one asset, shared by the 25 blocks), and the
+    // share of its bricks stored deep (16 bits a value, LevelSetBricks.h).
+    const LevelSetBricks& grid = *w.grains.front().asset->levelSet->grid;
+    state.counters["block_grid_MiB"] = static_cast<double>(grid.memUsage()) / (1024.0 * 1024.0);
+    state.counters["bricks"] = static_cast<double>(grid.brickCount());
+    state.counters["deep_bricks"] = static_cast<double>(grid.deepBrickCount());
     state.counters["nodes_sampled/step"] =
         static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled) / steps;
     state.counters["contact_nodes"] = static_cast<double>(sim.contactNodes());

@@ -79,6 +79,8 @@ public:
     /// the grid's voxels are not cubes, and then no brick is deep): a deep value is at most
     /// this much below the float it came from, never above it.
     float deepStep() const { return mDeepStep; }
+    /// Bricks stored: shared ones once, deep ones included.
+    size_t brickCount() const { return mBrickStep.size(); }
     /// Bricks stored deep.
     size_t deepBrickCount() const { return mBrickStep.size() - mWideBricks; }
 

@@ -83,7 +83,11 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         int e = 0;
         std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
         mDeepStep = float(std::ldexp(1.0, e - 1));
-        mDeepBelow = float(-kDeepVoxels * voxel[0]);
+        // The float at or below −kDeepVoxels voxels: a deep value is at least that deep.
+        const double below = -kDeepVoxels * voxel[0];
+        mDeepBelow = float(below);
+        if (double(mDeepBelow) > below)
+            mDeepBelow = std::nextafter(mDeepBelow, -std::numeric_limits<float>::infinity());
     }
     const openvdb::CoordBBox box = valueBox(grid);
     if (!box.empty()) {
@@ -119,7 +123,8 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         Place& p = places[slot];
         p.varies = varies;
-        p.deep = varies && isDeepBrick(b);
+        int32_t unused[kVoxels];
+        p.deep = varies && deepCodes(b, unused);
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
         if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
@@ -155,7 +160,8 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         if (places[slot].deep) mTable[slot] = bricks++;
 
     // Sized once (grown by doubling they would hold up to twice their size), plus the
-    // padding byte that decode() may read after the last code.
+    // padding byte that decode() may read after the last 24-bit code when no deep brick
+    // follows.
     const size_t deep = bricks - mWideBricks;
     mCode.assign(size_t(mWideBricks) * 3 * kVoxels + deep * 2 * kVoxels + 1, 0);
     mBrickStep.assign(bricks, 0.0f);
@@ -212,59 +218,74 @@ void LevelSetBricks::writeUniformBrick(uint32_t brick, float value, bool active)
                 active ? ~uint64_t(0) : uint64_t(0));
 }
 
-void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
+namespace {
+
+/// The step of a brick's 24-bit codes: 2^(c − 22) with 2^c ≥ its largest |value|, so every
+/// |q| ≤ 2^22.
+double wideStep(const LevelSetBricks::RawBrick& raw)
 {
     float largest = 0.0f;
     for (float v : raw.value) largest = std::max(largest, std::abs(v));
-    // step = 2^(c − 22) with 2^c ≥ largest: every |q| ≤ 2^22.
     int c = 0;
     const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
     if (mantissa == 0.5) --c;                                  // already a power of two
-    const double step = largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
+    return largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
+}
+
+/// The 24-bit code of @a v: to the nearest step, but never across zero (the sign decides
+/// contact).
+int32_t wideCode(double v, double step)
+{
+    auto q = static_cast<int32_t>(std::llround(v / step));
+    if (v < 0.0 && q >= 0) q = -1;
+    if (v > 0.0 && q <= 0) q = 1;
+    return q;
+}
+
+/// Deep codes: below this in size a deep value is a multiple of the 24-bit step its brick
+/// would have (so encoding it again gives it back), and converts to float exactly.
+constexpr double kDeepCodeLimit = double(1 << 22);
+
+} // namespace
+
+void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
+{
+    const double step = wideStep(raw);
     mBrickStep[brick] = float(step);
     std::copy(raw.active, raw.active + kMaskWords,
               mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
     uint8_t* code = writableCodes(brick);
     for (int k = 0; k < kVoxels; ++k) {
-        // To the nearest step, but never across zero (the sign decides contact).
-        const double v = raw.value[k];
-        auto q = static_cast<int32_t>(std::llround(v / step));
-        if (v < 0.0 && q >= 0) q = -1;
-        if (v > 0.0 && q <= 0) q = 1;
-        const auto bits = static_cast<uint32_t>(q);
+        const auto bits = static_cast<uint32_t>(wideCode(raw.value[k], step));
         code[3 * k] = uint8_t(bits);
         code[3 * k + 1] = uint8_t(bits >> 8);
         code[3 * k + 2] = uint8_t(bits >> 16);
     }
 }
 
-namespace {
-
-/// Deep codes: below this in size a value in deep steps converts to float exactly.
-constexpr double kDeepCodeLimit = double(1 << 24);
-
-} // namespace
-
-bool LevelSetBricks::isDeepBrick(const RawBrick& raw) const
+bool LevelSetBricks::deepCodes(const RawBrick& raw, int32_t code[kVoxels]) const
 {
     if (!(mDeepStep > 0.0f)) return false;
-    double lowest = 0.0, highest = -kDeepCodeLimit;
+    // Decided on the values as 24 bits would hold them, so the values a deep or other brick
+    // decodes to are decided the same way when encoded again (a saved and loaded asset).
+    const double step = wideStep(raw), deepBelow = mDeepBelow;
     for (int k = 0; k < kVoxels; ++k) {
-        if (!(raw.value[k] <= mDeepBelow)) return false;  // also refuses NaN
-        // Rounded down, so the stored value stays at least as deep as the float.
-        const double code = std::floor(double(raw.value[k]) / mDeepStep);
-        if (!(code > -kDeepCodeLimit)) return false;
-        lowest = k == 0 ? code : std::min(lowest, code);
-        highest = std::max(highest, code);
+        if (!std::isfinite(raw.value[k])) return false;
+        const double stored = double(wideCode(raw.value[k], step)) * step;
+        if (!(stored <= deepBelow)) return false;
+        // Rounded down, so the stored value stays at least as deep.
+        const double deep = std::floor(stored / mDeepStep);
+        if (!(deep > -kDeepCodeLimit)) return false;
+        code[k] = static_cast<int32_t>(deep);
     }
-    return highest - lowest <= double(std::numeric_limits<uint16_t>::max());
+    const auto [lowest, highest] = std::minmax_element(code, code + kVoxels);
+    return *highest - *lowest <= int32_t(std::numeric_limits<uint16_t>::max());
 }
 
 void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
 {
     int32_t code[kVoxels];
-    for (int k = 0; k < kVoxels; ++k)
-        code[k] = static_cast<int32_t>(std::floor(double(raw.value[k]) / mDeepStep));
+    deepCodes(raw, code);  // true: the brick was numbered deep for it
     const int32_t base = *std::min_element(code, code + kVoxels);
     mDeepBase[brick - mWideBricks] = base;
     mBrickStep[brick] = mDeepStep;

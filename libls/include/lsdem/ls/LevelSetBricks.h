@@ -18,14 +18,17 @@
 /// decodes to 0 or more, a positive one never to 0 or less). Near the surface (|φ| ≤ 3√3
 /// voxels in a brick that it crosses) that is under 2.5e-6 voxel.
 ///
-/// Deep inside: a brick whose every value lies kDeepVoxels or more below the surface holds
-/// them as (base + q) · deepStep(), base one integer per brick, q an unsigned 16-bit integer,
-/// deepStep() one power of two for the grid between 2^-13 and 2^-12 voxel, rounded down (so a
-/// deep value stays deep). Such a value is below the float by less than deepStep(): under
-/// 2.5e-4 voxel, some 20 to 80 times less than trilinear interpolation errs by there for the
-/// grains lsdem bakes, and never read for a point within kDeepVoxels − √3 voxels of the
-/// surface (a cell's corners lie within √3 voxels of its points). Interior bricks are most of
-/// a finely resolved grain's bricks; these take 144 bytes instead of 204.
+/// Deep inside: a brick whose every value lies kDeepVoxels or more below the surface (as 24
+/// bits would hold it) holds them as (base + q) · deepStep(), base one integer per brick, q an
+/// unsigned 16-bit integer, deepStep() one power of two for the grid in (2^-13, 2^-12] voxel,
+/// rounded down from its 24-bit value (so a deep value stays deep). Such a value is less
+/// than deepStep() below its 24-bit value (itself within 2^-21 of the brick's largest
+/// |value| of the float): under 2.5e-4 voxel in all. No point within kDeepVoxels − √3 voxels
+/// of the surface reads one (a cell's corners lie within √3 voxels of its points). Deeper,
+/// trilinear interpolation of a curved surface's distance already errs by more (1/(4r) voxel
+/// for a sphere of r voxels: 10 to 60 times more for spheres of 100 to 20 voxels); where φ is
+/// linear (a box's interior) the rounding is the only error. Interior bricks are most of a
+/// finely resolved grain's bricks; these take 144 bytes instead of 204.
 ///
 /// Encoding decoded values again gives the same values and bricks, so a saved and loaded asset
 /// samples to the same bits as the one saved.
@@ -140,7 +143,8 @@ public:
     }
     /// The value whose 3-byte code (little-endian, two's complement) starts at @a code, which
     /// must lie in codes(): it is read as 4 bytes, one load instead of three (the array keeps
-    /// a byte of padding after its last code), and the fourth byte is shifted out.
+    /// a byte of padding after its last 24-bit code, or the first deep brick follows), and
+    /// the fourth byte is shifted out.
     static float decode(const uint8_t* code, float step)
     {
         static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -190,11 +194,13 @@ private:
     void writeUniformBrick(uint32_t brick, float value, bool active);
     /// Brick @a brick (already allocated) holding @a raw's values, encoded, and states.
     void writeVaryingBrick(uint32_t brick, const RawBrick& raw);
-    /// The same for a deep brick (@a raw passes isDeepBrick).
+    /// The same for a deep brick (@a raw passes deepCodes).
     void writeDeepBrick(uint32_t brick, const RawBrick& raw);
-    /// Whether @a raw's values can be stored deep: all kDeepVoxels or more below the surface,
-    /// within 65535 deep steps of each other, and small enough in deep steps for floats.
-    bool isDeepBrick(const RawBrick& raw) const;
+    /// Whether @a raw's values can be stored deep, and then their codes in deep steps (before
+    /// the base is taken off): each value, rounded to 24 bits as a brick of the other kind
+    /// would hold it, kDeepVoxels or more below the surface and above −2^22 deep steps, and
+    /// all within 65535 deep steps of each other.
+    bool deepCodes(const RawBrick& raw, int32_t code[kVoxels]) const;
 
     openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};

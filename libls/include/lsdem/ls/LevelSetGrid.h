@@ -16,7 +16,7 @@ namespace lsdem {
 
 struct LevelSetGrid
 {
-    /// The values, 24-bit in 4³ bricks (see LevelSetBricks.h); background = +exterior band
+    /// The values, 24-bit in 4³ bricks (16-bit deep inside; see LevelSetBricks.h); background = +exterior band
     /// width (length units). Shared, never modified.
     std::shared_ptr<const LevelSetBricks> grid;
     Vec3 origin = Vec3::Zero();    ///< world position of index (0,0,0)

@@ -266,11 +266,12 @@ void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
 bool LevelSetBricks::deepCodes(const RawBrick& raw, int32_t code[kVoxels]) const
 {
     if (!(mDeepStep > 0.0f)) return false;
+    for (float v : raw.value)
+        if (!std::isfinite(v)) return false;  // refused by the constructor
     // Decided on the values as 24 bits would hold them, so the values a deep or other brick
     // decodes to are decided the same way when encoded again (a saved and loaded asset).
     const double step = wideStep(raw), deepBelow = mDeepBelow;
     for (int k = 0; k < kVoxels; ++k) {
-        if (!std::isfinite(raw.value[k])) return false;
         const double stored = double(wideCode(raw.value[k], step)) * step;
         if (!(stored <= deepBelow)) return false;
         // Rounded down, so the stored value stays at least as deep.

@@ -29,6 +29,34 @@ float bakedSphereValue(const LevelSetGrid& ls, double radius, float background,
     return d >= background ? background : float(d);
 }
 
+/// The asset: a sphere of radius kRadius at voxels of kVox (R/20), interior filled.
+constexpr double kRadius = 1.0, kVox = 0.05;
+GrainAsset bakedSphere()
+{
+    BakeOptions o;
+    o.voxelSize = kVox;
+    o.nodeSpacing = 0.2;
+    std::vector<std::string> warnings;
+    return bakeAnalytic(AnalyticShape::sphere(kRadius), o, warnings);
+}
+
+/// The trilinear interpolant at @a index (index space) of the corner values @a valueAt(Coord).
+template <typename ValueAt>
+double trilinear(const Vec3& index, ValueAt&& valueAt)
+{
+    const openvdb::Coord base(int(std::floor(index.x())), int(std::floor(index.y())),
+                              int(std::floor(index.z())));
+    const Vec3 f = index - Vec3(base.x(), base.y(), base.z());
+    double sum = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
+        const double w =
+            (ox ? f.x() : 1 - f.x()) * (oy ? f.y() : 1 - f.y()) * (oz ? f.z() : 1 - f.z());
+        sum += w * double(valueAt(base.offsetBy(ox, oy, oz)));
+    }
+    return sum;
+}
+
 } // namespace
 
 // The asset: a sphere at R/20 (a grain 40 voxels across). Every voxel of the baked grid
@@ -41,18 +69,14 @@ float bakedSphereValue(const LevelSetGrid& ls, double radius, float background,
 // (at most 2^-12 voxel), never above it.
 TEST(LevelSetBricks, BakedSphereValuesAreTheFloatGridsWithinTheBound)
 {
-    const double radius = 1.0, vox = 0.05;
-    BakeOptions o;
-    o.voxelSize = vox;
-    o.nodeSpacing = 0.2;
-    std::vector<std::string> warnings;
-    const GrainAsset asset = bakeAnalytic(AnalyticShape::sphere(radius), o, warnings);
+    const double radius = kRadius, vox = kVox;
+    const GrainAsset asset = bakedSphere();
     const LevelSetGrid& ls = *asset.levelSet;
     const LevelSetBricks& bricks = *ls.grid;
     const float background = bricks.background();
-    ASSERT_FLOAT_EQ(background, float(o.exteriorBandVoxels * vox));
+    ASSERT_FLOAT_EQ(background, float(asset.exteriorBandVoxels * vox));
 
-    const int n = int(std::ceil(radius / vox)) + o.exteriorBandVoxels + 1;  // as bakeAnalytic
+    const int n = int(std::ceil(radius / vox)) + asset.exteriorBandVoxels + 1;  // as bakeAnalytic
     const double deepStep = bricks.deepStep();
     ASSERT_GT(deepStep, std::ldexp(vox, -13));
     ASSERT_LE(deepStep, std::ldexp(vox, -12));
@@ -69,11 +93,10 @@ TEST(LevelSetBricks, BakedSphereValuesAreTheFloatGridsWithinTheBound)
                 ASSERT_EQ(v < 0.0f, s < 0.0f) << c << " " << v << " " << s;
                 ASSERT_EQ(v > 0.0f, s > 0.0f) << c << " " << v << " " << s;
                 const double error = std::abs(double(s) - double(v));
-                const openvdb::Coord l = c - bricks.origin();
                 // The 24-bit rounding, within 2^-21 of the brick's largest |value|.
                 const double wide = LevelSetBricks::kRelativeError *
                                     (std::abs(double(v)) + 3.0 * std::sqrt(3.0) * vox);
-                if (bricks.isDeep(bricks.brick(l.x() >> 2, l.y() >> 2, l.z() >> 2))) {
+                if (bricks.isDeep(bricks.brickAt(c))) {
                     ASSERT_LE(s, -LevelSetBricks::kDeepVoxels * vox) << c;
                     // Rounded down from the 24-bit value, by less than a deep step.
                     ASSERT_LE(s, v + wide) << c;
@@ -108,18 +131,9 @@ TEST(LevelSetBricks, BakedSphereValuesAreTheFloatGridsWithinTheBound)
         const double d = depth(rng);
         const Vec3 p =
             Vec3(direction(rng), direction(rng), direction(rng)).normalized() * (radius + d);
-        const Vec3 index = (p - ls.origin) / vox;
-        const openvdb::Coord base(int(std::floor(index.x())), int(std::floor(index.y())),
-                                  int(std::floor(index.z())));
-        const Vec3 f = index - Vec3(base.x(), base.y(), base.z());
-        double floatTrilinear = 0.0;
-        for (int corner = 0; corner < 8; ++corner) {
-            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
-            const double w = (ox ? f.x() : 1 - f.x()) * (oy ? f.y() : 1 - f.y()) *
-                             (oz ? f.z() : 1 - f.z());
-            floatTrilinear +=
-                w * bakedSphereValue(ls, radius, background, base.offsetBy(ox, oy, oz));
-        }
+        const double floatTrilinear = trilinear(
+            (p - ls.origin) / vox,
+            [&](const openvdb::Coord& c) { return bakedSphereValue(ls, radius, background, c); });
         const double tolerance = 4e-6 * vox + (-d < onlyWideBricks ? 0.0 : deepStep);
         EXPECT_NEAR(sampler.phi(p), floatTrilinear, tolerance) << p.transpose();
     }
@@ -168,11 +182,7 @@ TEST(LevelSetBricks, TilesAndRoundTripsAreKeptExactly)
 // cell in deep bricks as the trilinear interpolant of the values stored there.
 TEST(LevelSetBricks, DeepBricksRoundTripExactlyAndSampleAsStored)
 {
-    BakeOptions o;
-    o.voxelSize = 0.05;
-    o.nodeSpacing = 0.2;
-    std::vector<std::string> warnings;
-    const GrainAsset asset = bakeAnalytic(AnalyticShape::sphere(1.0), o, warnings);
+    const GrainAsset asset = bakedSphere();
     const LevelSetGrid& ls = *asset.levelSet;
     const LevelSetBricks& bricks = *ls.grid;
     ASSERT_GT(bricks.deepBrickCount(), 100u);
@@ -193,19 +203,11 @@ TEST(LevelSetBricks, DeepBricksRoundTripExactlyAndSampleAsStored)
     int inDeepCells = 0;
     for (int m = 0; m < 3000; ++m) {
         const Vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
-        const Vec3 index = (p - ls.origin) / o.voxelSize;
-        const openvdb::Coord base(int(std::floor(index.x())), int(std::floor(index.y())),
-                                  int(std::floor(index.z())));
-        const Vec3 f = index - Vec3(base.x(), base.y(), base.z());
-        double stored = 0.0;
         bool deep = true;
-        for (int corner = 0; corner < 8; ++corner) {
-            const int ox = corner & 1, oy = (corner >> 1) & 1, oz = corner >> 2;
-            const openvdb::Coord c = base.offsetBy(ox, oy, oz), l = c - bricks.origin();
-            deep &= bricks.isDeep(bricks.brick(l.x() >> 2, l.y() >> 2, l.z() >> 2));
-            stored += (ox ? f.x() : 1 - f.x()) * (oy ? f.y() : 1 - f.y()) *
-                      (oz ? f.z() : 1 - f.z()) * bricks.value(c);
-        }
+        const double stored = trilinear((p - ls.origin) / kVox, [&](const openvdb::Coord& c) {
+            deep &= bricks.isDeep(bricks.brickAt(c));
+            return bricks.value(c);
+        });
         inDeepCells += deep;
         ASSERT_NEAR(sampler.phi(p), stored, 1e-12) << p.transpose();
     }
@@ -275,11 +277,7 @@ TEST(LevelSetBricks, DeepBricksAtTheEdgesOfTheRule)
 TEST(LevelSetBricks, SameBricksOnAnyThreadCount)
 {
     initializeOpenVdb();
-    BakeOptions o;
-    o.voxelSize = 0.05;
-    o.nodeSpacing = 0.2;
-    std::vector<std::string> warnings;
-    const GrainAsset baked = bakeAnalytic(AnalyticShape::sphere(1.0), o, warnings);
+    const GrainAsset baked = bakedSphere();
     for (const openvdb::FloatGrid::Ptr& grid :
          {openvdb::tools::createLevelSetSphere<openvdb::FloatGrid>(
               1.3f, openvdb::Vec3f(0.11f, -0.07f, 0.03f), 0.05f, 3.0f),
@@ -428,18 +426,14 @@ TEST(LevelSetBricks, SlopeBoundCountsTheEdgeIntoTheTableFromBelow)
 // surface and out into the background. A grid with a steeper step gets a steeper bound.
 TEST(LevelSetBricks, SlopeBoundHoldsForTheInterpolant)
 {
-    BakeOptions o;
-    o.voxelSize = 0.05;
-    o.nodeSpacing = 0.2;
-    std::vector<std::string> warnings;
-    const GrainAsset asset = bakeAnalytic(AnalyticShape::sphere(1.0), o, warnings);
+    const GrainAsset asset = bakedSphere();
     const double slope = levelSetSlopeBound(*asset.levelSet);
     EXPECT_EQ(slope, asset.levelSetSlope);  // derived when baked
     EXPECT_GT(slope, 0.95 * std::sqrt(3.0));
     // Float and 24-bit rounding; and deep values, rounded down by less than a deep step,
     // may differ from a neighbour by that much more than a voxel.
     const double deepStep = asset.levelSet->grid->deepStep();
-    EXPECT_LE(slope, std::sqrt(3.0) * (1.0 + 1e-4 + deepStep / o.voxelSize));
+    EXPECT_LE(slope, std::sqrt(3.0) * (1.0 + 1e-4 + deepStep / kVox));
 
     LevelSetSampler sampler(*asset.levelSet);
     std::mt19937_64 rng(5);
@@ -459,7 +453,7 @@ TEST(LevelSetBricks, SlopeBoundHoldsForTheInterpolant)
     openvdb::FloatGrid::Ptr grid = toFloatGrid(*asset.levelSet->grid);
     const openvdb::Coord c(20, 20, 20);
     auto accessor = grid->getAccessor();
-    accessor.setValue(c, accessor.getValue(c) + float(10 * o.voxelSize));
+    accessor.setValue(c, accessor.getValue(c) + float(10 * kVox));
     LevelSetGrid stepped = *asset.levelSet;
     stepped.grid = toLevelSetGrid(*grid);
     EXPECT_GT(levelSetSlopeBound(stepped), std::sqrt(3.0) * 10.0);

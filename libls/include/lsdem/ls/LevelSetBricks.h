@@ -60,15 +60,13 @@ public:
     openvdb::FloatGrid::Ptr toFloatGrid() const;
 
     /// The value at index @a c, as decoded (background outside the bricks).
-    float value(const openvdb::Coord& c) const
+    float value(const openvdb::Coord& c) const { return decode(brickAt(c), offset(c - mOrigin)); }
+    bool isValueOn(const openvdb::Coord& c) const { return isOn(brickAt(c), offset(c - mOrigin)); }
+    /// The brick holding index @a c (the background brick outside the table).
+    uint32_t brickAt(const openvdb::Coord& c) const
     {
         const openvdb::Coord l = c - mOrigin;
-        return decode(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
-    }
-    bool isValueOn(const openvdb::Coord& c) const
-    {
-        const openvdb::Coord l = c - mOrigin;
-        return isOn(brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim), offset(l));
+        return brick(l.x() >> kLog2Dim, l.y() >> kLog2Dim, l.z() >> kLog2Dim);
     }
 
     float background() const { return decode(kBackgroundBrick, 0); }

@@ -256,8 +256,10 @@ TriangleMesh smallPebble(int seed)
 /// The resident memory of 1000 distinct assets of sphere-like grains at VDP = R/20 with about
 /// 1000 nodes each. Baking 1000 would take minutes, so 10 are baked (distinct bumps) and each
 /// is deep-copied 100 times: every copy owns its grid and nodes, as a distinct asset would.
+/// Arg: 0 whole, as baked or loaded; 1 as a simulation holds them, without the nodes' normals.
 void BM_ThousandAssetsMemory(benchmark::State& state)
 {
+    const bool asSimulationHolds = state.range(0) == 1;
     BakeOptions o;
     o.voxelSize = 0.05;  // R/20
     o.nodePlacement = NodePlacement::Count;
@@ -276,6 +278,7 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
         grids = bricks = deepBricks = 0;
         for (int i = 0; i < 1000; ++i) {
             GrainAsset copy = baked[size_t(i % 10)];
+            if (asSimulationHolds) copy.nodes.dropNormals();
             auto levelSet = std::make_shared<LevelSetGrid>(*copy.levelSet);
             levelSet->grid = std::make_shared<const LevelSetBricks>(*levelSet->grid);
             grids += double(levelSet->grid->memUsage());
@@ -295,7 +298,12 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
     state.counters["bricks_per_asset"] = bricks / 1000.0;
     state.counters["deep_bricks_per_asset"] = deepBricks / 1000.0;
 }
-BENCHMARK(BM_ThousandAssetsMemory)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ThousandAssetsMemory)
+    ->ArgName("in_simulation")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 void BM_AssetMemory(benchmark::State& state)
 {

@@ -112,7 +112,7 @@ openvdb::points::PointDataGrid::Ptr makeNodesGrid(const GrainAsset& asset)
 }
 
 SurfaceNodes readNodesGrid(const openvdb::points::PointDataGrid& grid, size_t count,
-                           const std::string& path)
+                           NodeNormals normals, const std::string& path)
 {
     using namespace openvdb;
     // The count is metadata: check it against the grid before allocating for it.
@@ -123,7 +123,8 @@ SurfaceNodes readNodesGrid(const openvdb::points::PointDataGrid& grid, size_t co
                     "the file is corrupt; bake the asset again");
     SurfaceNodes nodes;
     nodes.positions.assign(count, Vec3::Zero());
-    nodes.normals.assign(count, Vec3::Zero());
+    const bool keepNormals = normals == NodeNormals::Load;
+    if (keepNormals) nodes.normals.assign(count, Vec3::Zero());
     nodes.areas.assign(count, 0.0);
     std::vector<char> seen(count, 0);
     size_t found = 0;
@@ -165,7 +166,7 @@ SurfaceNodes readNodesGrid(const openvdb::points::PointDataGrid& grid, size_t co
             seen[i] = 1;
             ++found;
             nodes.positions[i] = fromVdb(position->get(*index));
-            nodes.normals[i] = fromVdb(normal->get(*index));
+            if (keepNormals) nodes.normals[i] = fromVdb(normal->get(*index));
             nodes.areas[i] = area->get(*index);
         }
     }
@@ -183,6 +184,9 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     initializeOpenVdb();
     if (!asset.levelSet || !asset.levelSet->grid)
         throw Error(path, "the asset has no level set to write");
+    if (!asset.nodes.hasNormals())
+        throw Error(path, "the asset's nodes have no normals (a simulation's copy holds none)",
+                    "save the asset it was loaded or baked from");
     // The stored values as a standard FloatGrid (a fresh copy: metadata is set on it).
     openvdb::FloatGrid::Ptr phi = toFloatGrid(*asset.levelSet->grid);
     phi->setName(kLevelSetGridName);
@@ -204,7 +208,7 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     });
 }
 
-std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
+std::shared_ptr<const GrainAsset> loadAsset(const std::string& path, NodeNormals normals)
 {
     initializeOpenVdb();
     std::error_code ec;
@@ -295,7 +299,7 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path)
     asset->provenance.options = readMeta<std::string>(*phi, "bake_options", path);
     const int64_t count = readMeta<int64_t>(*phi, "node_count", path);
     if (count <= 0) throw Error(path, "the asset has no surface nodes", "bake it again");
-    asset->nodes = readNodesGrid(*nodesGrid, size_t(count), path);
+    asset->nodes = readNodesGrid(*nodesGrid, size_t(count), normals, path);
     deriveContactBounds(*asset);
     return asset;
 }

@@ -91,9 +91,10 @@ void sortNodesSpatially(SurfaceNodes& nodes, double cellSize)
     std::stable_sort(order.begin(), order.end(),
                      [&](size_t a, size_t b) { return code[a] < code[b]; });
     SurfaceNodes sorted;
+    const bool withNormals = nodes.hasNormals();
     for (size_t i : order) {
         sorted.positions.push_back(nodes.positions[i]);
-        sorted.normals.push_back(nodes.normals[i]);
+        if (withNormals) sorted.normals.push_back(nodes.normals[i]);
         sorted.areas.push_back(nodes.areas[i]);
     }
     nodes = std::move(sorted);

@@ -30,7 +30,8 @@ GrainAsset smallAsset()
     return bakeAnalytic(AnalyticShape::ellipsoid(1.5, 1.0, 0.7), o, warnings);
 }
 
-void expectSameAsset(const GrainAsset& a, const GrainAsset& b)
+/// Every field of @a a and @a b bit for bit (the nodes' normals only if @a withNormals).
+void expectSameAsset(const GrainAsset& a, const GrainAsset& b, bool withNormals = true)
 {
     EXPECT_EQ(a.voxelSize, b.voxelSize);
     EXPECT_EQ(a.exteriorBandVoxels, b.exteriorBandVoxels);
@@ -53,7 +54,9 @@ void expectSameAsset(const GrainAsset& a, const GrainAsset& b)
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
     for (size_t i = 0; i < a.nodes.size(); ++i) {
         EXPECT_EQ(a.nodes.positions[i], b.nodes.positions[i]) << i;
-        EXPECT_EQ(a.nodes.normals[i], b.nodes.normals[i]) << i;
+        if (withNormals) {
+            EXPECT_EQ(a.nodes.normals[i], b.nodes.normals[i]) << i;
+        }
         EXPECT_EQ(a.nodes.areas[i], b.nodes.areas[i]) << i;
     }
     // Every voxel: same active state and bit-identical value.
@@ -78,6 +81,39 @@ TEST(AssetIO, RoundTripPreservesEveryField)
     EXPECT_EQ(dir.entryCount(), 1u);  // no temporary left behind
     const auto loaded = loadAsset(dir.file("grain.vdb"));
     expectSameAsset(asset, *loaded);
+}
+
+// A simulation loads assets without the nodes' normals (no contact law reads them): all else
+// is the same to the bit, what a load derives too, and such a copy is not saved as if whole.
+TEST(AssetIO, LoadingWithoutNormalsKeepsEverythingElse)
+{
+    test::ScratchDir dir;
+    const GrainAsset asset = smallAsset();
+    saveAsset(asset, dir.file("grain.vdb"));
+    const auto whole = loadAsset(dir.file("grain.vdb"));
+    const auto lean = loadAsset(dir.file("grain.vdb"), NodeNormals::Skip);
+    EXPECT_TRUE(whole->nodes.hasNormals());
+    EXPECT_FALSE(lean->nodes.hasNormals());
+    EXPECT_EQ(lean->nodes.normals.capacity(), 0u);
+    expectSameAsset(asset, *lean, /*withNormals=*/false);
+    EXPECT_EQ(lean->insideBoxMin, whole->insideBoxMin);
+    EXPECT_EQ(lean->insideBoxMax, whole->insideBoxMax);
+    EXPECT_EQ(lean->levelSetSlope, whole->levelSetSlope);
+    ASSERT_EQ(lean->nodeBlocks.blocks.size(), whole->nodeBlocks.blocks.size());
+    for (size_t k = 0; k < lean->nodeBlocks.blocks.size(); ++k) {
+        EXPECT_EQ(lean->nodeBlocks.blocks[k].begin, whole->nodeBlocks.blocks[k].begin);
+        EXPECT_EQ(lean->nodeBlocks.blocks[k].end, whole->nodeBlocks.blocks[k].end);
+        EXPECT_EQ(lean->nodeBlocks.blocks[k].center, whole->nodeBlocks.blocks[k].center);
+        EXPECT_EQ(lean->nodeBlocks.blocks[k].radius, whole->nodeBlocks.blocks[k].radius);
+    }
+    try {
+        saveAsset(*lean, dir.file("copy.vdb"));
+        ADD_FAILURE() << "an asset without normals was saved";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("copy.vdb"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no normals"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(dir.entryCount(), 1u);  // nothing half-written
 }
 
 TEST(AssetIO, LibraryLoadsEachFileOnceAndShares)

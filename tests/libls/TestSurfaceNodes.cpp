@@ -77,6 +77,23 @@ TEST(SurfaceNodes, SpacingOfAStructuredGridIsItsStep)
 // The narrow phase skips whole clusters and blocks by their bounding spheres, so every node
 // must lie in exactly one block and inside its sphere, every block in exactly one cluster and
 // inside its sphere; sorted nodes make the spheres small.
+// Nodes without normals (a simulation's assets drop them) sort into the same order, and the
+// normals, once dropped, take no memory.
+TEST(SurfaceNodes, NodesWithoutNormalsSortAlike)
+{
+    SurfaceNodes whole = nodesFromMesh(AnalyticShape::sphere(5).surfaceMesh(0.3), AreaRule::Mesh);
+    SurfaceNodes lean = whole;
+    ASSERT_TRUE(lean.hasNormals());
+    lean.dropNormals();
+    EXPECT_FALSE(lean.hasNormals());
+    EXPECT_EQ(lean.normals.capacity(), 0u);
+    sortNodesSpatially(whole, 0.8);
+    sortNodesSpatially(lean, 0.8);
+    EXPECT_TRUE(lean.normals.empty());
+    EXPECT_EQ(lean.positions, whole.positions);
+    EXPECT_EQ(lean.areas, whole.areas);
+}
+
 TEST(SurfaceNodes, BlocksCoverEveryNodeOnceInsideTheirSpheres)
 {
     SurfaceNodes nodes = nodesFromMesh(AnalyticShape::sphere(5.0).surfaceMesh(0.3), AreaRule::Mesh);

@@ -12,18 +12,24 @@ namespace lsdem {
 
 namespace {
 
+/// The world's own copy of an asset holds no node normals: no contact law reads them, and
+/// thousands of distinct grains would carry 24 bytes a node for nothing. (An asset handed in
+/// already loaded is shared with its owner and kept whole.)
+std::shared_ptr<const GrainAsset> withoutNormals(GrainAsset asset)
+{
+    asset.nodes.dropNormals();
+    return std::make_shared<const GrainAsset>(std::move(asset));
+}
+
 std::shared_ptr<const GrainAsset> loadOrBake(const AssetSpec& spec,
                                              std::vector<std::string>& warnings)
 {
     if (spec.loaded) return spec.loaded;
     try {
-        if (!spec.file.empty()) return loadAsset(spec.file);
+        if (!spec.file.empty()) return loadAsset(spec.file, NodeNormals::Skip);
         if (!spec.meshFile.empty())
-            return std::make_shared<const GrainAsset>(
-                bakeMeshFile(spec.meshFile, spec.bake, warnings));
-        if (spec.shape)
-            return std::make_shared<const GrainAsset>(
-                bakeAnalytic(*spec.shape, spec.bake, warnings));
+            return withoutNormals(bakeMeshFile(spec.meshFile, spec.bake, warnings));
+        if (spec.shape) return withoutNormals(bakeAnalytic(*spec.shape, spec.bake, warnings));
     } catch (const Error& e) {
         throw Error(spec.where, "asset '" + spec.name + "': " + e.what());
     }

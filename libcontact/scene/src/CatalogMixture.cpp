@@ -37,7 +37,7 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
         PackingComponent c;
         c.name = setName + "/" + e.name;
         try {
-            c.asset = loadAsset(file.string());
+            c.asset = loadAsset(file.string(), NodeNormals::Skip);
         } catch (const Error& load) {
             throw Error(catalog, "asset '" + e.name + "': " + load.what(),
                         "bake the set again (lsdem-bake --out-dir)");

@@ -14,12 +14,18 @@
 namespace lsdem {
 
 /// Write @a asset to @a path atomically (temporary file in the same folder, then rename).
-/// @throw Error if the folder is not writable.
+/// @throw Error if the folder is not writable, or if the asset's nodes have no normals (a
+/// simulation's copy: save the asset it came from).
 void saveAsset(const GrainAsset& asset, const std::string& path);
+
+/// Whether loadAsset keeps the nodes' normals. A simulation skips them (no contact law reads
+/// them); the file is checked the same either way.
+enum class NodeNormals { Load, Skip };
 
 /// Read an asset written by saveAsset.
 /// @throw Error naming the file if it is missing, not a .vdb, corrupt, or not an lsdem asset.
-std::shared_ptr<const GrainAsset> loadAsset(const std::string& path);
+std::shared_ptr<const GrainAsset> loadAsset(const std::string& path,
+                                            NodeNormals normals = NodeNormals::Load);
 
 /// Loads each asset file once and hands out shared, read-only copies: many grains, one asset.
 class AssetLibrary

@@ -17,11 +17,18 @@ enum class AreaRule {
 struct SurfaceNodes
 {
     std::vector<Vec3> positions;  ///< length, in the grain's principal frame
-    std::vector<Vec3> normals;    ///< unit, outward
+    /// Unit, outward; or none at all in the assets a simulation holds: no contact law reads
+    /// them, and at 24 bytes a node they are a tenth of a small grain's asset (dropNormals,
+    /// loadAsset with NodeNormals::Skip).
+    std::vector<Vec3> normals;
     std::vector<double> areas;    ///< length^2, tributary areas
 
     size_t size() const { return positions.size(); }
     double totalArea() const;
+    /// Whether every node has its normal (false once they were dropped or never loaded).
+    bool hasNormals() const { return normals.size() == positions.size(); }
+    /// Free the normals (not just empty them: the memory is what this is for).
+    void dropNormals() { std::vector<Vec3>().swap(normals); }
 };
 
 /// Nodes at the vertices of @a mesh, areas by @a rule, normals angle-weighted from the faces.

@@ -65,6 +65,7 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
             lsdem::PackingComponent p;
             p.name = c.names.empty() ? std::filesystem::path(c.files[k]).stem().string()
                                      : c.names[k];
+            // For packing only: without normals, these copies cannot be saved.
             p.asset = lsdem::loadAsset(c.files[k], lsdem::NodeNormals::Skip);
             mixture.push_back(p);
         }

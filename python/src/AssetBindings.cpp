@@ -114,6 +114,9 @@ void bindAssets(py::module_& m)
             "normals",
             [](py::object self) {
                 const auto& n = self.cast<const NodesHandle&>().asset->nodes;
+                if (!n.hasNormals())  // (a simulation's copy; Python's own assets keep them)
+                    throw Error("", "these nodes hold no normals",
+                                "load the asset with lsdem.load to read them");
                 return vectorView(n.normals.data(), n.size(), sizeof(Vec3), self);
             },
             "(N, 3) float64: outward unit normals (read-only view)")

@@ -74,9 +74,6 @@ TEST(SurfaceNodes, SpacingOfAStructuredGridIsItsStep)
     EXPECT_NEAR(s.mean, 0.25, 1e-12);
 }
 
-// The narrow phase skips whole clusters and blocks by their bounding spheres, so every node
-// must lie in exactly one block and inside its sphere, every block in exactly one cluster and
-// inside its sphere; sorted nodes make the spheres small.
 // Nodes without normals (a simulation's assets drop them) sort into the same order, and the
 // normals, once dropped, take no memory.
 TEST(SurfaceNodes, NodesWithoutNormalsSortAlike)
@@ -94,6 +91,9 @@ TEST(SurfaceNodes, NodesWithoutNormalsSortAlike)
     EXPECT_EQ(lean.areas, whole.areas);
 }
 
+// The narrow phase skips whole clusters and blocks by their bounding spheres, so every node
+// must lie in exactly one block and inside its sphere, every block in exactly one cluster and
+// inside its sphere; sorted nodes make the spheres small.
 TEST(SurfaceNodes, BlocksCoverEveryNodeOnceInsideTheirSpheres)
 {
     SurfaceNodes nodes = nodesFromMesh(AnalyticShape::sphere(5.0).surfaceMesh(0.3), AreaRule::Mesh);

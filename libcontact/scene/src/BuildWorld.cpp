@@ -12,9 +12,8 @@ namespace lsdem {
 
 namespace {
 
-/// The world's own copy of an asset holds no node normals: no contact law reads them, and
-/// thousands of distinct grains would carry 24 bytes a node for nothing. (An asset handed in
-/// already loaded is shared with its owner and kept whole.)
+/// The world's own copy of an asset holds no node normals (SurfaceNodes::normals says why).
+/// An asset handed in already loaded is shared with its owner and kept whole.
 std::shared_ptr<const GrainAsset> withoutNormals(GrainAsset asset)
 {
     asset.nodes.dropNormals();

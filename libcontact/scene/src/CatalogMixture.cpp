@@ -37,6 +37,7 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
         PackingComponent c;
         c.name = setName + "/" + e.name;
         try {
+            // For packing only: without normals, these copies cannot be saved.
             c.asset = loadAsset(file.string(), NodeNormals::Skip);
         } catch (const Error& load) {
             throw Error(catalog, "asset '" + e.name + "': " + load.what(),

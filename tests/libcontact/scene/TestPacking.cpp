@@ -271,6 +271,7 @@ TEST(Packing, ACatalogueMixtureReadsBackIntoAScene)
     PackingOptions o = smallPacking(4);
     o.mixture = catalogMixture(dir.file("assets/catalog.csv"), "sand");
     ASSERT_EQ(o.mixture.size(), 2u);
+    EXPECT_FALSE(o.mixture[0].asset->nodes.hasNormals());  // loaded for packing only
     EXPECT_EQ(o.mixture[0].name, "sand/ball");
     EXPECT_EQ(o.mixture[1].name, "sand/egg");
     o.count = 4;

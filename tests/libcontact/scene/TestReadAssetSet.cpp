@@ -138,6 +138,7 @@ TEST_F(AssetSetTest, GlobOfMeshesIsBakedAtLoadWithTheSetsOptions)
         EXPECT_NEAR(w.grains[i].asset->mass.volume, computeMassProperties(readMesh(mesh)).volume,
                     1e-12);
         EXPECT_EQ(w.grains[i].asset->voxelSize, 0.2);
+        EXPECT_FALSE(w.grains[i].asset->nodes.hasNormals());  // a simulation's copy
     }
 
     // The writer keeps the baking keys.

@@ -18,8 +18,8 @@ namespace lsdem {
 /// simulation's copy: save the asset it came from).
 void saveAsset(const GrainAsset& asset, const std::string& path);
 
-/// Whether loadAsset keeps the nodes' normals. A simulation skips them (no contact law reads
-/// them); the file is checked the same either way.
+/// Whether loadAsset keeps the nodes' normals; a simulation skips them (SurfaceNodes::normals
+/// says why). The file is checked the same either way.
 enum class NodeNormals { Load, Skip };
 
 /// Read an asset written by saveAsset.
@@ -28,6 +28,7 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path,
                                             NodeNormals normals = NodeNormals::Load);
 
 /// Loads each asset file once and hands out shared, read-only copies: many grains, one asset.
+/// The copies are whole (with normals).
 class AssetLibrary
 {
 public:

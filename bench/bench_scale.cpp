@@ -25,6 +25,7 @@
 // it is the steadier figure. BM_ListRebuild rebuilds the contact list alone;
 // BM_StepAfterRebuild is a step that starts by rebuilding it from scratch.
 
+#include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/RandomRotation.h"
@@ -37,10 +38,14 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 using namespace lsdem;
@@ -391,6 +396,63 @@ void BM_StepAfterRebuild(benchmark::State& state)
         sim.step();
     }
 }
+
+/// The ten sand-like assets saved as files, once per process, in a folder removed at exit.
+const std::vector<std::string>& sandAssetFiles()
+{
+    struct Folder
+    {
+        std::filesystem::path path;
+        std::vector<std::string> files;
+        ~Folder() { std::filesystem::remove_all(path); }
+    };
+    static const Folder folder = [] {
+        Folder f;
+        std::string name = (std::filesystem::temp_directory_path() / "lsdem-bench-XXXXXX").string();
+        if (!mkdtemp(name.data())) throw std::runtime_error("cannot make a folder in /tmp");
+        f.path = name;
+        for (size_t k = 0; k < sandAssets().size(); ++k) {
+            f.files.push_back((f.path / ("sand" + std::to_string(k) + ".vdb")).string());
+            saveAsset(*sandAssets()[k], f.files.back());
+        }
+        return f;
+    }();
+    return folder.files;
+}
+
+/// A scene of many distinct scanned grains starts by loading every asset: buildWorld on a
+/// scene of 1000 assets from files (the ten sand-like ones, each loaded 100 times: as many
+/// loads as 1000 distinct files). Args: threads.
+void BM_LoadDistinctAssets(benchmark::State& state)
+{
+    constexpr int kAssets = 1000;
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                              static_cast<size_t>(state.range(0)));
+    Scene scene = sandScene();
+    scene.assets.clear();
+    for (int k = 0; k < kAssets; ++k) {
+        AssetSpec spec;
+        spec.name = "scan" + std::to_string(k);
+        spec.file = sandAssetFiles()[size_t(k % kAssetCount)];
+        scene.assets.push_back(spec);
+    }
+    double seconds = 0.0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        std::vector<std::string> warnings;
+        const World w = buildWorld(scene, warnings);
+        benchmark::DoNotOptimize(w.assets.data());
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    state.counters["ms_per_asset"] = 1e3 * seconds / double(state.iterations()) / kAssets;
+}
+BENCHMARK(BM_LoadDistinctAssets)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 // One grain count after the other (each settles its own state once); fewer steps for more
 // grains: a repetition at 100,000 grains takes seconds.

@@ -1,9 +1,16 @@
 // The World's small amount of behaviour: the contact model of a pair of materials (whichever
-// order they come in), and a grain's angular velocity and freedom per kind of motion.
+// order they come in), a grain's angular velocity and freedom per kind of motion, and the
+// assets loaded in parallel as one by one.
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/World.h"
+#include "lsdem/ls/Error.h"
+
+#include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
 
 #include <Eigen/Geometry>
 
@@ -71,4 +78,56 @@ TEST(World, GrainAngularVelocityFollowsItsMotion)
     g.motion = GrainMotion::Prescribed;
     EXPECT_FALSE(g.isFree());
     EXPECT_EQ(g.angularVelocity(), Vec3(3.0, 0.0, -1.0));
+}
+
+namespace {
+
+/// A scene asset baked at load: a unit sphere at @a voxel with far more nodes than the voxels
+/// resolve, so its bake warns (naming the voxel size).
+AssetSpec warningSphere(const std::string& name, double voxel)
+{
+    AssetSpec a;
+    a.name = name;
+    a.shape = AnalyticShape::sphere(1.0);
+    a.bake.voxelSize = voxel;
+    a.bake.nodePlacement = NodePlacement::Count;
+    a.bake.nodeCount = 400;  // spacing about 0.18
+    return a;
+}
+
+} // namespace
+
+// buildWorld loads and bakes the assets in parallel, with the outcome of one by one: each
+// asset's warnings in the scene's order, and of several bad assets the first in that order is
+// the one reported.
+TEST(World, AssetsLoadInParallelAsOneByOne)
+{
+    Scene scene;
+    scene.materials.push_back({"steel", 1.0});
+    auto voxelOf = [](int k) { return 0.4 + 0.01 * k; };
+    for (int k = 0; k < 6; ++k)
+        scene.assets.push_back(warningSphere("s" + std::to_string(k), voxelOf(k)));
+    std::vector<std::string> warnings;
+    const World w = buildWorld(scene, warnings);
+    ASSERT_EQ(w.assets.size(), 6u);
+    ASSERT_EQ(warnings.size(), 6u);
+    for (int k = 0; k < 6; ++k) {
+        EXPECT_EQ(w.assets[size_t(k)]->voxelSize, voxelOf(k));
+        std::ostringstream voxel;
+        voxel << "voxel size " << voxelOf(k) << ":";
+        EXPECT_NE(warnings[size_t(k)].find(voxel.str()), std::string::npos) << warnings[size_t(k)];
+    }
+
+    test::ScratchDir dir;
+    std::ofstream(dir.file("bad.vdb")) << "not an asset";
+    for (int bad : {4, 2}) {
+        scene.assets[size_t(bad)].shape.reset();
+        scene.assets[size_t(bad)].file = dir.file("bad.vdb");
+    }
+    try {
+        buildWorld(scene, warnings);
+        ADD_FAILURE() << "bad assets were loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("asset 's2'"), std::string::npos) << e.what();
+    }
 }

@@ -2,12 +2,10 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/RunInParallel.h"
 #include "lsdem/simulation/GrainOverlaps.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
-#include <exception>
 #include <limits>
 #include <sstream>
 
@@ -45,21 +43,13 @@ std::shared_ptr<const GrainAsset> loadOrBake(const AssetSpec& spec,
 std::vector<std::shared_ptr<const GrainAsset>> loadOrBakeAll(const std::vector<AssetSpec>& specs,
                                                              std::vector<std::string>& warnings)
 {
-    const size_t count = specs.size();
-    std::vector<std::shared_ptr<const GrainAsset>> assets(count);
-    std::vector<std::vector<std::string>> assetWarnings(count);
-    std::vector<std::exception_ptr> failures(count);
-    tbb::parallel_for(size_t(0), count, [&](size_t k) {
-        try {
-            assets[k] = loadOrBake(specs[k], assetWarnings[k]);
-        } catch (...) {
-            failures[k] = std::current_exception();
-        }
-    });
-    for (size_t k = 0; k < count; ++k) {
-        if (failures[k]) std::rethrow_exception(failures[k]);
+    std::vector<std::shared_ptr<const GrainAsset>> assets(specs.size());
+    std::vector<std::vector<std::string>> assetWarnings(specs.size());
+    const FirstFailure failed = runInParallel(
+        specs.size(), [&](size_t k) { assets[k] = loadOrBake(specs[k], assetWarnings[k]); });
+    for (size_t k = 0; k < failed.index; ++k)
         warnings.insert(warnings.end(), assetWarnings[k].begin(), assetWarnings[k].end());
-    }
+    if (failed.error) std::rethrow_exception(failed.error);
     return assets;
 }
 

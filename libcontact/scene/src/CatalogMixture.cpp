@@ -3,6 +3,7 @@
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
+#include "lsdem/ls/RunInParallel.h"
 
 #include <filesystem>
 
@@ -26,15 +27,17 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
                     "bake some files into its folder with lsdem-bake --out-dir");
     // Relative asset paths are the catalogue's folder's, as the scene reader resolves them.
     const fs::path folder = fs::path(catalog).parent_path();
-    std::vector<PackingComponent> mixture;
-    for (const CatalogEntry& e : entries) {
+    // Loaded on every core, each with the outcome of one by one (the first bad row reported).
+    std::vector<PackingComponent> mixture(entries.size());
+    const FirstFailure failed = runInParallel(entries.size(), [&](size_t k) {
+        const CatalogEntry& e = entries[k];
         const fs::path file =
             fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))
             throw Error(catalog, "asset '" + e.name + "': file not found: " + file.string(),
                         "bake the set again (lsdem-bake --out-dir), or fix its asset column");
-        PackingComponent c;
+        PackingComponent& c = mixture[k];
         c.name = setName + "/" + e.name;
         try {
             // For packing only: without normals, these copies cannot be saved.
@@ -43,8 +46,8 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
             throw Error(catalog, "asset '" + e.name + "': " + load.what(),
                         "bake the set again (lsdem-bake --out-dir)");
         }
-        mixture.push_back(std::move(c));
-    }
+    });
+    if (failed.error) std::rethrow_exception(failed.error);
     return mixture;
 }
 

@@ -306,6 +306,10 @@ end_steps = 1
     // Bad catalogues: named, with a fix.
     for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
              {"name,asset\nball,baked/none.vdb\n", "file not found"},
+             // Loaded in parallel, the first bad row is still the one reported.
+             {"name,asset\nball,assets/baked/ball.vdb\nfake,bad.csv\negg,assets/baked/egg.vdb\n"
+              "gone,assets/baked/none.vdb\n",
+              "asset 'fake': "},
              {"name,asset\n", "lists no assets"},
              {"name,volume\nball,1\n", "asset"}}) {
         std::ofstream(dir.file("bad.csv")) << text;

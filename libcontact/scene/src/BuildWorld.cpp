@@ -38,8 +38,7 @@ std::shared_ptr<const GrainAsset> loadOrBake(const AssetSpec& spec,
 }
 
 /// Every asset of @a specs, loaded or baked in parallel (a scene of thousands of distinct
-/// scanned grains loads on every core), with the outcome of one by one: the warnings in the
-/// assets' order, and the first asset in that order that fails is the one reported.
+/// scanned grains loads on every core it may use), with the outcome of one by one.
 std::vector<std::shared_ptr<const GrainAsset>> loadOrBakeAll(const std::vector<AssetSpec>& specs,
                                                              std::vector<std::string>& warnings)
 {
@@ -47,7 +46,8 @@ std::vector<std::shared_ptr<const GrainAsset>> loadOrBakeAll(const std::vector<A
     std::vector<std::vector<std::string>> assetWarnings(specs.size());
     const FirstFailure failed = runInParallel(
         specs.size(), [&](size_t k) { assets[k] = loadOrBake(specs[k], assetWarnings[k]); });
-    for (size_t k = 0; k < failed.index; ++k)
+    // Through the failed asset's own: what one by one would have gathered before it threw.
+    for (size_t k = 0; k < std::min(failed.index + 1, specs.size()); ++k)
         warnings.insert(warnings.end(), assetWarnings[k].begin(), assetWarnings[k].end());
     if (failed.error) std::rethrow_exception(failed.error);
     return assets;

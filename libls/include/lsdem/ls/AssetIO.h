@@ -28,7 +28,8 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path,
                                             NodeNormals normals = NodeNormals::Load);
 
 /// Loads each asset file once and hands out shared, read-only copies: many grains, one asset.
-/// The copies are whole (with normals).
+/// The copies are whole (with normals). A load holds the library's lock while it runs its own
+/// parallel loops: do not call get() from jobs that run in parallel.
 class AssetLibrary
 {
 public:

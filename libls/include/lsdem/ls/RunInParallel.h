@@ -4,7 +4,10 @@
 #pragma once
 
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <vector>
@@ -19,20 +22,32 @@ struct FirstFailure
     std::exception_ptr error;
 };
 
-/// Calls @a job(k) for every k in [0, @a count), in parallel, and returns the first failure in
-/// index order. Every job runs, also after one has failed (they are independent), and an
-/// exception never escapes a worker thread.
+/// Calls @a job(k) for k in [0, @a count) in parallel, one job per task, and returns the first
+/// failure in index order. As one by one would, jobs after a failed one are not started (those
+/// already running finish); every job before it runs, so the first failure is exact. Each job
+/// runs isolated: a thread waiting inside one (its own parallel loops) takes no other job, so
+/// no more jobs are alive at once than there are threads (a job may be a bake of a large mesh).
 template <typename Job>
 FirstFailure runInParallel(size_t count, Job&& job)
 {
     std::vector<std::exception_ptr> errors(count);
-    tbb::parallel_for(size_t(0), count, [&](size_t k) {
-        try {
-            job(k);
-        } catch (...) {
-            errors[k] = std::current_exception();
-        }
-    });
+    std::atomic<size_t> firstFailed{count};
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, count, 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t k = range.begin(); k != range.end(); ++k) {
+                if (k > firstFailed.load()) return;
+                try {
+                    tbb::this_task_arena::isolate([&] { job(k); });
+                } catch (...) {
+                    errors[k] = std::current_exception();
+                    size_t seen = firstFailed.load();
+                    while (k < seen && !firstFailed.compare_exchange_weak(seen, k)) {
+                    }
+                }
+            }
+        },
+        tbb::simple_partitioner());
     for (size_t k = 0; k < count; ++k)
         if (errors[k]) return {k, errors[k]};
     return {count, nullptr};

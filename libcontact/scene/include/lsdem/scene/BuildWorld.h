@@ -13,9 +13,12 @@
 
 namespace lsdem {
 
-/// Load (or bake) every asset of @a scene and place its grains and boundaries. Messages that
-/// do not stop the run (from baking) are appended to @a warnings.
-/// @throw Error naming the scene entry for anything that cannot be loaded or made.
+/// Load (or bake) every asset of @a scene and place its grains and boundaries. The assets load
+/// in parallel, at most one per thread at a time (so meshes baked at load hold up to one bake's
+/// memory per thread), with the outcome of one by one. Messages that do not stop the run (from
+/// baking) are appended to @a warnings, in the assets' order.
+/// @throw Error naming the scene entry for anything that cannot be loaded or made (of several,
+/// the first in the scene's order).
 World buildWorld(const Scene& scene, std::vector<std::string>& warnings);
 
 /// The runtime boundary for @a spec (@a asset: the loaded asset of a level-set obstacle).

@@ -6,6 +6,7 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/RunInParallel.h"
 #include "lsdem/scene/CatalogMixture.h"
 #include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/scene/Packing.h"
@@ -14,6 +15,7 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -61,14 +63,15 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
     if (!c.catalog.empty()) {
         mixture = lsdem::catalogMixture(c.catalog, c.set);
     } else {
-        for (size_t k = 0; k < c.files.size(); ++k) {
-            lsdem::PackingComponent p;
+        mixture.resize(c.files.size());
+        const lsdem::FirstFailure failed = lsdem::runInParallel(c.files.size(), [&](size_t k) {
+            lsdem::PackingComponent& p = mixture[k];
             p.name = c.names.empty() ? std::filesystem::path(c.files[k]).stem().string()
                                      : c.names[k];
             // For packing only: without normals, these copies cannot be saved.
             p.asset = lsdem::loadAsset(c.files[k], lsdem::NodeNormals::Skip);
-            mixture.push_back(p);
-        }
+        });
+        if (failed.error) std::rethrow_exception(failed.error);
     }
     if (!c.fractions.empty() && c.fractions.size() != mixture.size())
         throw Error("", "--fractions has " + std::to_string(c.fractions.size()) + " values for " +

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -16,21 +16,25 @@ using namespace lsdem;
 // reported, with its own exception type.
 TEST(RunInParallel, TheFirstFailureInIndexOrderIsReported)
 {
-    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+    tbb::task_arena twoThreads(2);  // a worker's place kept, whatever other tests left running
     std::atomic<bool> jobOneFailed{false};
     bool sawJobOneFail = false;
-    const FirstFailure f = runInParallel(2, [&](size_t k) {
-        if (k == 1) {
-            jobOneFailed = true;
-            throw std::logic_error("job 1");
-        }
-        const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-        while (!jobOneFailed && std::chrono::steady_clock::now() < giveUp)
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        sawJobOneFail = jobOneFailed;
-        throw std::runtime_error("job 0");
+    FirstFailure f;
+    twoThreads.execute([&] {
+        f = runInParallel(2, [&](size_t k) {
+            if (k == 1) {
+                jobOneFailed = true;
+                throw std::logic_error("job 1");
+            }
+            const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+            while (!jobOneFailed && std::chrono::steady_clock::now() < giveUp)
+                std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            sawJobOneFail = jobOneFailed;
+            throw std::runtime_error("job 0");
+        });
     });
-    ASSERT_TRUE(sawJobOneFail) << "the two jobs did not run side by side";
+    if (!sawJobOneFail)  // a process allowed one CPU has no worker thread to run job 1
+        GTEST_SKIP() << "the two jobs did not run side by side (one CPU?)";
     EXPECT_EQ(f.index, 0u);
     ASSERT_TRUE(f.error);
     try {
@@ -42,20 +46,25 @@ TEST(RunInParallel, TheFirstFailureInIndexOrderIsReported)
     }
 }
 
-// As one by one: after a failure no later job is started; every job runs when none fails.
+// On one thread, as one by one: after a failure no later job is started; every job runs when
+// none fails.
 TEST(RunInParallel, NoJobAfterAFailureStartsAndAllRunWithout)
 {
-    tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+    tbb::task_arena oneThread(1);  // this thread alone: the jobs run in index order
     std::atomic<int> ran{0};
-    const FirstFailure failed = runInParallel(100, [&](size_t k) {
-        ++ran;
-        if (k == 3) throw std::runtime_error("job 3");
+    FirstFailure failed;
+    oneThread.execute([&] {
+        failed = runInParallel(100, [&](size_t k) {
+            ++ran;
+            if (k == 3) throw std::runtime_error("job 3");
+        });
     });
     EXPECT_EQ(failed.index, 3u);
     EXPECT_EQ(ran.load(), 4);
 
     ran = 0;
-    const FirstFailure none = runInParallel(100, [&](size_t) { ++ran; });
+    FirstFailure none;
+    oneThread.execute([&] { none = runInParallel(100, [&](size_t) { ++ran; }); });
     EXPECT_EQ(none.index, 100u);
     EXPECT_FALSE(none.error);
     EXPECT_EQ(ran.load(), 100);

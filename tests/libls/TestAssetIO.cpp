@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <openvdb/io/File.h>
+#include <openvdb/points/PointDataGrid.h>
 #include <openvdb/tools/LevelSetSphere.h>
 
 #include <cstdint>
@@ -114,6 +115,36 @@ TEST(AssetIO, LoadingWithoutNormalsKeepsEverythingElse)
         EXPECT_NE(std::string(e.what()).find("no normals"), std::string::npos) << e.what();
     }
     EXPECT_EQ(dir.entryCount(), 1u);  // nothing half-written
+}
+
+// The nodes grid is a standard OpenVDB points grid: a viewer places each node at its voxel
+// plus the offset P, through the grid's transform. That must be the node's position.
+TEST(AssetIO, ViewersSeeTheNodesWhereTheyAre)
+{
+    test::ScratchDir dir;
+    const GrainAsset asset = smallAsset();
+    saveAsset(asset, dir.file("grain.vdb"));
+    openvdb::io::File file(dir.file("grain.vdb"));
+    file.open();
+    const auto grid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(file.readGrid("nodes"));
+    file.close();
+    ASSERT_TRUE(grid);
+    const openvdb::math::Transform& xform = grid->transform();
+    size_t seen = 0;
+    for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::points::AttributeHandle<openvdb::Vec3f> offset(
+            leaf->constAttributeArray("P"));
+        const openvdb::points::AttributeHandle<int32_t> id(leaf->constAttributeArray("node_id"));
+        for (auto index = leaf->beginIndexOn(); index; ++index) {
+            const openvdb::Vec3d voxel = index.getCoord().asVec3d() + offset.get(*index);
+            const openvdb::Vec3d world = xform.indexToWorld(voxel);
+            const Vec3& node = asset.nodes.positions[size_t(id.get(*index))];
+            for (int k = 0; k < 3; ++k)  // P is a float offset within a voxel
+                EXPECT_NEAR(world[k], node[k], 1e-6 * xform.voxelSize()[0]);
+            ++seen;
+        }
+    }
+    EXPECT_EQ(seen, asset.nodes.size());
 }
 
 TEST(AssetIO, LibraryLoadsEachFileOnceAndShares)

@@ -24,6 +24,7 @@
 // data structures. The CPU column is the process's CPU time (all threads): on a shared machine
 // it is the steadier figure. BM_ListRebuild rebuilds the contact list alone;
 // BM_StepAfterRebuild is a step that starts by rebuilding it from scratch.
+// BM_LoadDistinctAssets times buildWorld loading 1000 asset files (ms_per_asset).
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"

@@ -6,6 +6,7 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
 #include <algorithm>
+#include <exception>
 #include <limits>
 #include <sstream>
 

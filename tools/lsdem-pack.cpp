@@ -15,7 +15,6 @@
 #include <tbb/global_control.h>
 
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -64,14 +63,13 @@ std::vector<lsdem::PackingComponent> readMixture(const PackCommandLine& c)
         mixture = lsdem::catalogMixture(c.catalog, c.set);
     } else {
         mixture.resize(c.files.size());
-        const lsdem::FirstFailure failed = lsdem::runInParallel(c.files.size(), [&](size_t k) {
+        lsdem::runInParallel(c.files.size(), [&](size_t k) {
             lsdem::PackingComponent& p = mixture[k];
             p.name = c.names.empty() ? std::filesystem::path(c.files[k]).stem().string()
                                      : c.names[k];
             // For packing only: without normals, these copies cannot be saved.
             p.asset = lsdem::loadAsset(c.files[k], lsdem::NodeNormals::Skip);
-        });
-        if (failed.error) std::rethrow_exception(failed.error);
+        }).rethrowIfAny();
     }
     if (!c.fractions.empty() && c.fractions.size() != mixture.size())
         throw Error("", "--fractions has " + std::to_string(c.fractions.size()) + " values for " +

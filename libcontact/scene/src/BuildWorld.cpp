@@ -6,7 +6,6 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
 #include <algorithm>
-#include <exception>
 #include <limits>
 #include <sstream>
 
@@ -50,7 +49,7 @@ std::vector<std::shared_ptr<const GrainAsset>> loadOrBakeAll(const std::vector<A
     // Through the failed asset's own: what one by one would have gathered before it threw.
     for (size_t k = 0; k < std::min(failed.index + 1, specs.size()); ++k)
         warnings.insert(warnings.end(), assetWarnings[k].begin(), assetWarnings[k].end());
-    if (failed.error) std::rethrow_exception(failed.error);
+    failed.rethrowIfAny();
     return assets;
 }
 

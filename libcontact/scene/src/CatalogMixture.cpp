@@ -29,7 +29,7 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
     const fs::path folder = fs::path(catalog).parent_path();
     // Loaded on every core, each with the outcome of one by one (the first bad row reported).
     std::vector<PackingComponent> mixture(entries.size());
-    const FirstFailure failed = runInParallel(entries.size(), [&](size_t k) {
+    runInParallel(entries.size(), [&](size_t k) {
         const CatalogEntry& e = entries[k];
         const fs::path file =
             fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
@@ -46,8 +46,7 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
             throw Error(catalog, "asset '" + e.name + "': " + load.what(),
                         "bake the set again (lsdem-bake --out-dir)");
         }
-    });
-    if (failed.error) std::rethrow_exception(failed.error);
+    }).rethrowIfAny();
     return mixture;
 }
 

@@ -20,14 +20,20 @@ struct FirstFailure
 {
     size_t index = 0;
     std::exception_ptr error;
+
+    /// Throw the failure's exception, if there was one.
+    void rethrowIfAny() const
+    {
+        if (error) std::rethrow_exception(error);
+    }
 };
 
 /// Calls @a job(k) for k in [0, @a count) in parallel, one job per task, and returns the first
 /// failure in index order. As one by one would, once a failure is recorded no job after it
 /// starts (those already running finish); every job before it runs, so the first failure is
-/// exact. Each job
-/// runs isolated: a thread waiting inside one (its own parallel loops) takes no other job, so
-/// no more jobs are alive at once than there are threads (a job may be a bake of a large mesh).
+/// exact. Each job runs isolated: a thread waiting inside one (its own parallel loops) takes
+/// no other job, so no more jobs are alive at once than there are threads (a job may be a
+/// bake of a large mesh).
 template <typename Job>
 FirstFailure runInParallel(size_t count, Job&& job)
 {

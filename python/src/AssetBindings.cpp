@@ -8,10 +8,49 @@
 
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <filesystem>
+#include <iterator>
+#include <map>
 #include <optional>
 #include <sstream>
 
 namespace lsdem::python {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// rememberAssetFile's table, by address. An entry whose asset has died may share its address
+/// with a newer one: the weak pointer tells them apart.
+struct RememberedFile
+{
+    std::weak_ptr<const GrainAsset> asset;
+    std::string path;
+};
+std::map<const GrainAsset*, RememberedFile>& rememberedFiles()
+{
+    static std::map<const GrainAsset*, RememberedFile> files;
+    return files;
+}
+
+} // namespace
+
+void rememberAssetFile(const std::shared_ptr<const GrainAsset>& asset, const std::string& path)
+{
+    auto& files = rememberedFiles();
+    for (auto it = files.begin(); it != files.end();)  // forget the dead, so it stays small
+        it = it->second.asset.expired() ? files.erase(it) : std::next(it);
+    files[asset.get()] = {asset, fs::absolute(path).lexically_normal().string()};
+}
+
+std::string rememberedAssetFile(const GrainAsset* asset)
+{
+    const auto& files = rememberedFiles();
+    const auto it = files.find(asset);
+    if (it == files.end() || it->second.asset.lock().get() != asset) return "";
+    return it->second.path;
+}
 
 namespace {
 
@@ -20,6 +59,18 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
                         std::optional<int> nodeCount, bool meshNodes, const std::string& areas,
                         int band)
 {
+    // Checked here as well as by the bake, whose messages name lsdem-bake's options.
+    if (!(voxel > 0.0) || !std::isfinite(voxel))
+        throw Error("", "voxel (the voxel size, VDP) must be a positive finite length",
+                    "pass e.g. voxel=0.05, in the shape's length unit");
+    if (nodeSpacing && (!(*nodeSpacing > 0.0) || !std::isfinite(*nodeSpacing)))
+        throw Error("", "node_spacing (SDP) must be a positive finite length",
+                    "pass e.g. node_spacing=0.1, or nodes=N");
+    if (band < kMinExteriorBandVoxels || band > 64)
+        throw Error("", "band must be " + std::to_string(kMinExteriorBandVoxels) +
+                            " to 64 voxels, got " + std::to_string(band),
+                    "leave it at its default (" +
+                        std::to_string(BakeOptions().exteriorBandVoxels) + ")");
     BakeOptions o;
     o.voxelSize = voxel;
     o.exteriorBandVoxels = band;
@@ -145,6 +196,7 @@ void bindAssets(py::module_& m)
                      saveAsset(*a.asset, path);
                  }
                  a.path = path;
+                 rememberAssetFile(a.asset, path);
              },
              py::arg("path"),
              "Write the asset to a .vdb file (atomically: a temporary file, then a rename). "
@@ -234,6 +286,7 @@ void bindAssets(py::module_& m)
                   py::gil_scoped_release release;
                   asset = loadAsset(path);
               }
+              rememberAssetFile(asset, path);
               return AssetHandle{asset, path};
           },
           py::arg("path"),

@@ -16,6 +16,10 @@
 #include <string>
 #include <vector>
 
+namespace lsdem {
+struct Scene;
+}
+
 namespace lsdem::python {
 
 namespace py = pybind11;
@@ -35,6 +39,16 @@ struct AssetHandle
     std::string path;  ///< "" while it lives only in memory
 };
 
+/// Remember that @a asset was loaded from or saved to @a path (made absolute here): a scene
+/// given the asset before it was saved still finds its file when written (to_toml,
+/// checkpoints). Call with the GIL held.
+void rememberAssetFile(const std::shared_ptr<const GrainAsset>& asset, const std::string& path);
+/// The file @a asset was last loaded from or saved to in Python ("" if none).
+std::string rememberedAssetFile(const GrainAsset* asset);
+/// @a scene with each asset it holds only in memory given the file that asset has since been
+/// saved to in Python (for writing the scene). @throw lsdem::Error if one was never saved.
+Scene withSavedAssetFiles(const Scene& scene);
+
 /// A read-only (count, 3) float64 view of @a count vectors starting at @a first, each
 /// @a strideBytes apart; @a owner is kept alive as long as the view (numpy's base).
 py::array vectorView(const Vec3* first, size_t count, size_t strideBytes, py::handle owner);
@@ -45,7 +59,11 @@ py::array_t<double> vectorCopy(const std::vector<Vec3>& vectors);
 /// A fresh (3,) float64 array; a fresh (3, 3) one.
 py::array_t<double> toArray(const Vec3& v);
 py::array_t<double> toArray(const Mat3& m);
-/// A TBB arena of @a threads threads (all cores if none). @throw lsdem::Error if < 1.
+/// The most threads a call may ask for.
+constexpr int kMaxThreads = 1024;
+/// @throw lsdem::Error unless @a threads is none or from 1 to kMaxThreads.
+void checkThreads(std::optional<int> threads);
+/// A TBB arena of @a threads threads (all cores if none). @throw lsdem::Error as checkThreads.
 std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads);
 /// A vector from any Python sequence of three numbers. @throw lsdem::Error naming @a what.
 Vec3 toVec3(const py::handle& value, const std::string& what);

@@ -65,7 +65,13 @@ Vec3 toVec3(const py::handle& value, const std::string& what)
 {
     try {
         const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-        if (a && a.ndim() == 1 && a.shape(0) == 3) return Vec3(a.at(0), a.at(1), a.at(2));
+        if (a && a.ndim() == 1 && a.shape(0) == 3) {
+            const Vec3 v(a.at(0), a.at(1), a.at(2));
+            if (!v.allFinite())
+                throw Error("", what + " must be finite, got " +
+                                    std::string(py::str(py::repr(value))));
+            return v;
+        }
     } catch (const py::error_already_set&) {
     }
     throw Error("", what + " must be three numbers [x, y, z], not " +

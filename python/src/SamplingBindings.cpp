@@ -20,11 +20,15 @@ using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 py::tuple sample(const AssetHandle& a, const Points& points, std::optional<int> threads)
 {
-    if (points.ndim() < 1 || points.shape(points.ndim() - 1) != 3)
-        throw Error("", "points must be an array of shape (..., 3), got ndim " +
-                            std::to_string(points.ndim()),
+    if (points.ndim() < 1 || points.shape(points.ndim() - 1) != 3) {
+        std::string shape;
+        for (py::ssize_t k = 0; k < points.ndim(); ++k)
+            shape += (k ? ", " : "") + std::to_string(points.shape(k));
+        throw Error("", "points must be an array of shape (..., 3), got shape (" + shape +
+                            (points.ndim() == 1 ? ",)" : ")"),
                     "pass an (N, 3) array of positions in the asset frame");
-    if (threads && *threads < 1) throw Error("", "threads wants a number >= 1");
+    }
+    checkThreads(threads);
     // φ has the points' shape without the last axis; ∇φ the points' shape.
     std::vector<py::ssize_t> shape(points.shape(), points.shape() + points.ndim());
     py::array_t<double> gradient(shape);

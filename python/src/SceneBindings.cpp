@@ -77,6 +77,24 @@ void markChanged(Scene& s)
     s.text.clear();
 }
 
+} // namespace
+
+Scene withSavedAssetFiles(const Scene& scene)
+{
+    Scene out = scene;
+    for (AssetSpec& a : out.assets) {
+        if (!a.file.empty() || !a.loaded) continue;
+        a.file = rememberedAssetFile(a.loaded.get());
+        if (a.file.empty())
+            throw Error(a.where, "asset '" + a.name + "' is held only in memory",
+                        "save it to a file first, e.g. asset.save('" + a.name + ".vdb') (before "
+                        "or after scene.add_asset)");
+    }
+    return out;
+}
+
+namespace {
+
 /// The folder a scene's relative paths are read from and written to.
 std::string sceneFolder(const Scene& s)
 {
@@ -187,15 +205,17 @@ void bindScenes(py::module_& m)
                     "relative paths are resolved from its folder).")
         .def("to_toml",
              [](const Scene& s, std::optional<std::string> directory, const std::string& header) {
-                 return sceneToToml(s, directory ? *directory : sceneFolder(s), header);
+                 return sceneToToml(withSavedAssetFiles(s),
+                                    directory ? *directory : sceneFolder(s), header);
              },
              py::arg("directory") = py::none(), py::arg("header") = "",
              "The scene as TOML text that from_text reads back to the same scene. Asset paths "
              "below `directory` (default: the scene's folder) are written relative to it. "
-             "Assets made in Python must be saved first (Asset.save).")
+             "Assets made in Python must have been saved (Asset.save), before or after "
+             "add_asset.")
         .def("save",
              [](const Scene& s, const std::string& path, const std::string& header) {
-                 writeSceneFile(s, path, header);
+                 writeSceneFile(withSavedAssetFiles(s), path, header);
              },
              py::arg("path"), py::arg("header") = "",
              "Write the scene as a TOML file (atomically) that lsdem-run and from_toml read.")
@@ -225,55 +245,65 @@ void bindScenes(py::module_& m)
         .def_property(
             "gravity", [](const Scene& s) { return toArray(s.gravity); },
             [](Scene& s, const py::object& g) {
+                const Vec3 gravity = toVec3(g, "gravity");
                 markChanged(s);
-                s.gravity = toVec3(g, "gravity");
+                s.gravity = gravity;
             },
             "Gravity (3,), length/time².")
         .def_property(
             "global_damping", [](const Scene& s) { return s.globalDamping; },
             [](Scene& s, double d) {
+                if (!(d >= 0.0 && d < 1.0))
+                    throw Error("", "global_damping must be in [0, 1)",
+                                "0 for none; about 0.1 to 0.3 for quasi-static loading");
                 markChanged(s);
-                if (!(d >= 0.0 && d < 1.0)) throw Error("", "global_damping must be in [0, 1)");
                 s.globalDamping = d;
             },
             "Non-viscous damping λ in [0, 1) (as YADE's NewtonIntegrator).")
         .def_property(
             "time_step", [](const Scene& s) { return s.timeStep.fixed; },
             [](Scene& s, double dt) {
-                markChanged(s);
                 if (!(dt >= 0.0) || !std::isfinite(dt))
                     throw Error("", "time_step must be >= 0 (0: automatic)");
+                markChanged(s);
                 s.timeStep.fixed = dt;
             },
             "The fixed time step, or 0 for automatic (safety · 2·sqrt(m/k)).")
         .def_property(
             "end_time", [](const Scene& s) { return s.end.time; },
             [](Scene& s, double t) {
+                if (!(finite(t, "end_time") >= 0.0))
+                    throw Error("", "end_time must be >= 0, got " + std::to_string(t),
+                                "0 for no time limit");
                 markChanged(s);
-                s.end.time = std::max(0.0, finite(t, "end_time"));
+                s.end.time = t;
             },
             "Stop at this simulated time (0: no time limit).")
         .def_property(
             "end_steps", [](const Scene& s) { return s.end.steps; },
             [](Scene& s, long long n) {
+                if (n < 0)
+                    throw Error("", "end_steps must be >= 0, got " + std::to_string(n),
+                                "0 for no step limit");
                 markChanged(s);
-                s.end.steps = std::max(0LL, n);
+                s.end.steps = n;
             },
             "Stop after this many steps (0: no step limit).")
         .def("set_end_displacement",
              [](Scene& s, const std::string& boundary, double value) {
-                 markChanged(s);
                  if (!(value > 0.0) || !std::isfinite(value))
                      throw Error("", "end displacement must be > 0");
-                 s.end.boundary = indexOf(s.boundaries, boundary, "boundary");
+                 const int index = indexOf(s.boundaries, boundary, "boundary");
+                 markChanged(s);
+                 s.end.boundary = index;
                  s.end.displacement = value;
              },
              py::arg("boundary"), py::arg("value"),
              "Stop when the named (moving) boundary has moved this far (length).")
         .def("add_asset",
              [](Scene& s, const std::string& name, const AssetHandle& asset) {
-                 markChanged(s);
                  checkNewName(s.assets, name, "asset");
+                 markChanged(s);
                  AssetSpec spec;
                  spec.name = name;
                  spec.loaded = asset.asset;
@@ -286,10 +316,10 @@ void bindScenes(py::module_& m)
              "file it was loaded from or saved to.")
         .def("add_material",
              [](Scene& s, const std::string& name, double density) {
-                 markChanged(s);
                  checkNewName(s.materials, name, "material");
                  if (!(density >= 0.0) || !std::isfinite(density))
                      throw Error("", "material '" + name + "': density must be >= 0");
+                 markChanged(s);
                  s.materials.push_back({name, density});
              },
              py::arg("name"), py::arg("density") = 0.0,
@@ -298,18 +328,25 @@ void bindScenes(py::module_& m)
              [](Scene& s, const std::string& a, const std::string& b,
                 const std::string& formulation, double normalStiffness, double shearStiffness,
                 double friction, double restitution, const std::string& testing) {
-                 markChanged(s);
                  ContactSpec c;
                  c.materialA = indexOf(s.materials, a, "material");
                  c.materialB = indexOf(s.materials, b, "material");
+                 for (const ContactSpec& other : s.contacts)
+                     if (std::minmax(other.materialA, other.materialB) ==
+                         std::minmax(c.materialA, c.materialB))
+                         throw Error("", "there is already a contact law between materials '" +
+                                             a + "' and '" + b + "'",
+                                     "give each pair of materials one law");
                  c.model.formulation = parseFormulation(formulation);
                  c.model.testing = parseNodeTesting(testing);
                  if (!(normalStiffness > 0.0) || !std::isfinite(normalStiffness))
                      throw Error("", "normal_stiffness must be > 0");
-                 if (!(shearStiffness >= 0.0) || !(friction >= 0.0))
-                     throw Error("", "shear_stiffness and friction must be >= 0");
+                 if (!(shearStiffness >= 0.0) || !std::isfinite(shearStiffness) ||
+                     !(friction >= 0.0) || !std::isfinite(friction))
+                     throw Error("", "shear_stiffness and friction must be finite and >= 0");
                  if (!(restitution > 0.0 && restitution <= 1.0))
-                     throw Error("", "restitution must be in (0, 1]");
+                     throw Error("", "restitution must be in (0, 1]", "1 for no damping");
+                 markChanged(s);
                  c.model.normalStiffness = normalStiffness;
                  c.model.shearStiffness = shearStiffness;
                  c.model.friction = friction;
@@ -330,7 +367,6 @@ void bindScenes(py::module_& m)
                 const py::object& position, const py::object& orientation,
                 const py::object& velocity, const py::object& angularVelocity, double mass,
                 const std::string& motion, const std::string& name) {
-                 markChanged(s);
                  GrainSpec g;
                  g.asset = indexOf(s.assets, asset, "asset");
                  g.material = indexOf(s.materials, material, "material");
@@ -338,7 +374,10 @@ void bindScenes(py::module_& m)
                  g.pose.orientation = toQuat(orientation);
                  g.velocity = toVec3(velocity, "velocity");
                  g.angularVelocity = toVec3(angularVelocity, "angular_velocity");
-                 g.mass = std::max(0.0, finite(mass, "mass"));
+                 if (!(finite(mass, "mass") >= 0.0))
+                     throw Error("", "mass must be >= 0, got " + std::to_string(mass),
+                                 "0 to take density × volume");
+                 g.mass = mass;
                  g.motion = parseMotion(motion);
                  if (g.motion == GrainMotion::Fixed &&
                      (g.velocity.norm() > 0.0 || g.angularVelocity.norm() > 0.0))
@@ -347,6 +386,7 @@ void bindScenes(py::module_& m)
                  if (!name.empty()) checkNewName(s.grains, name, "grain");
                  g.name = name;
                  g.where = "grain " + std::to_string(s.grains.size());
+                 markChanged(s);
                  s.grains.push_back(g);
                  return s.grains.size() - 1;
              },

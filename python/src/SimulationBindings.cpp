@@ -20,12 +20,22 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 namespace lsdem::python {
 
+void checkThreads(std::optional<int> threads)
+{
+    // (TBB accepts far more, but an arena of 100000 threads crashes the interpreter at exit.)
+    if (threads && (*threads < 1 || *threads > kMaxThreads))
+        throw Error("", "threads wants a number from 1 to " + std::to_string(kMaxThreads) +
+                            ", got " + std::to_string(*threads),
+                    "leave it out for all cores");
+}
+
 std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads)
 {
-    if (threads && *threads < 1) throw Error("", "threads wants a number >= 1");
+    checkThreads(threads);
     return threads ? std::make_unique<tbb::task_arena>(*threads)
                    : std::make_unique<tbb::task_arena>();
 }
@@ -46,6 +56,31 @@ void warnAll(const std::vector<std::string>& warnings)
 
 class PySimulation
 {
+    /// Marks a run in progress (and by which thread) while it lasts. The flag is read and
+    /// written with the GIL held, so Python threads see it in turn.
+    class Running
+    {
+    public:
+        explicit Running(PySimulation& sim) : mSim(sim)
+        {
+            if (sim.mRunning)
+                throw Error("",
+                            sim.mRunner == std::this_thread::get_id()
+                                ? "run() was called from its own callback"
+                                : "this simulation is already running in another thread",
+                            "wait for that run() to return; one simulation steps one run at "
+                            "a time");
+            sim.mRunning = true;
+            sim.mRunner = std::this_thread::get_id();
+        }
+        ~Running() { mSim.mRunning = false; }
+        Running(const Running&) = delete;
+        Running& operator=(const Running&) = delete;
+
+    private:
+        PySimulation& mSim;
+    };
+
 public:
     /// A fresh start from @a scene, as lsdem-run starts one.
     PySimulation(const Scene& scene, std::optional<int> threads, bool recordContacts)
@@ -74,6 +109,7 @@ public:
             py::gil_scoped_release release;
             const Checkpoint c = readCheckpoint(checkpointPath);
             mScene = parseScene(c.sceneText, c.scenePath);
+            mRecord = c.record;
             mArena->execute([&] {
                 World world = buildWorld(mScene, warnings);
                 restoreWorldState(checkpointPath, world);
@@ -98,6 +134,7 @@ public:
                   const py::object& callback)
     {
         if (steps && *steps < 0) throw Error("", "steps must be >= 0");
+        const Running running(*this);
         if (!steps && !hasEndCondition())
             throw Error("", "the scene has no end condition, so run() would never stop",
                         "pass steps=N, or set scene.end_time / scene.end_steps");
@@ -133,8 +170,18 @@ public:
         return done;
     }
 
+    /// Refuse to read the world from another thread while it steps (its arrays of point
+    /// forces are rebuilt at every step). Its own callback may read it.
+    void checkNotSteppingElsewhere() const
+    {
+        if (mRunning && mRunner != std::this_thread::get_id())
+            throw Error("", "this simulation is stepping in another thread",
+                        "read it from run()'s callback, or after run() returns");
+    }
+
     void checkpoint(const std::string& path) const
     {
+        checkNotSteppingElsewhere();
         Checkpoint c;
         if (!mScene.text.empty()) {
             c.scenePath = fs::absolute(mScene.path).string();
@@ -144,11 +191,14 @@ public:
             // from the folder its relative paths start from.
             const std::string folder =
                 mScene.directory.empty() ? fs::current_path().string() : mScene.directory;
-            c.sceneText = sceneToToml(mScene, folder, "built in Python");
+            c.sceneText = sceneToToml(withSavedAssetFiles(mScene), folder, "built in Python");
             c.scenePath = (fs::path(folder) / "python-scene.toml").string();
         }
         c.timeStep = mSim->timeStep();
-        // No history rows, but one (empty) list per boundary, as a run's record has.
+        // The histories this simulation was restarted with (lsdem-run writes them out again
+        // on --restart; steps taken in Python add no rows), or none, with one (empty) list
+        // per boundary as a run's record has.
+        c.record = mRecord;
         c.record.boundaryRows.resize(mSim->world().boundaries.size());
         py::gil_scoped_release release;
         saveCheckpoint(path, mSim->world(), c);
@@ -163,6 +213,9 @@ private:
     Scene mScene;
     std::unique_ptr<tbb::task_arena> mArena;
     std::unique_ptr<Simulation> mSim;
+    RunRecord mRecord;  ///< the histories of the checkpoint it continues (empty otherwise)
+    bool mRunning = false;
+    std::thread::id mRunner;
 };
 
 /// sim.grains: the grains' state; kept-alive views of the running world where the data is
@@ -299,7 +352,7 @@ void bindViews(py::module_& m)
         .def_property_readonly("name", [](const BoundaryView& b) { return b.boundary().name; })
         .def_property_readonly("shape",
                                [](const BoundaryView& b) { return shapeName(b.boundary().shape); },
-                               "'plane', 'sphere' or 'level-set'.")
+                               "'plane', 'sphere', 'cylinder' or 'level-set'.")
         .def_property_readonly("reaction",
                                [](const BoundaryView& b) { return toArray(b.boundary().force); },
                                "(3,) the grains' force on it at the last evaluation.")
@@ -385,8 +438,14 @@ void bindSimulation(py::module_& m)
         .def("checkpoint", &PySimulation::checkpoint, py::arg("path"),
              "Write a checkpoint (atomically): Simulation.from_checkpoint and lsdem-run "
              "--restart continue from it bit-identically. A scene built in Python is stored as "
-             "its TOML, so its assets must have been saved to files.")
-        .def_property_readonly("done", &PySimulation::done,
+             "its TOML, so its assets must have been saved to files (Asset.save, before or "
+             "after scene.add_asset). The histories of the checkpoint it was restarted from "
+             "are kept in it; steps run in Python add no rows to them.")
+        .def_property_readonly("done",
+                               [](const PySimulation& s) {
+                                   s.checkNotSteppingElsewhere();
+                                   return s.done();
+                               },
                                "Whether the scene's end condition has been met.")
         .def_property_readonly("time", [](const PySimulation& s) { return s.world().time; },
                                "Simulated time.")
@@ -397,11 +456,15 @@ void bindSimulation(py::module_& m)
         .def_property_readonly("threads", &PySimulation::threads,
                                "The TBB threads it steps on.")
         .def_property_readonly("kinetic_energy",
-                               [](const PySimulation& s) { return s.sim().energies().kinetic; },
+                               [](const PySimulation& s) {
+                                   s.checkNotSteppingElsewhere();
+                                   return s.sim().energies().kinetic;
+                               },
                                "Translational plus rotational kinetic energy (force·length).")
         .def_property_readonly(
             "energies",
             [](const PySimulation& s) {
+                s.checkNotSteppingElsewhere();
                 const Energies e = s.sim().energies();
                 py::dict d;
                 d["kinetic"] = e.kinetic;
@@ -424,6 +487,7 @@ void bindSimulation(py::module_& m)
         .def_property_readonly(
             "contacts",
             [](const PySimulation& s) {
+                s.checkNotSteppingElsewhere();
                 const std::vector<ContactForceRecord>& forces = s.sim().contactForces();
                 const auto n = static_cast<py::ssize_t>(forces.size());
                 py::array_t<double> points({n, py::ssize_t{3}}), values({n, py::ssize_t{3}});

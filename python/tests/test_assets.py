@@ -137,3 +137,19 @@ def test_bad_input_raises_lsdem_error(sphere, tmp_path):
     with pytest.raises(lsdem.Error, match="shape"):
         sphere.sample(np.zeros((4, 2)))
     assert issubclass(lsdem.Error, RuntimeError)
+
+
+def test_bad_options_are_named_as_python_passes_them(sphere):
+    for call, keyword in ((lambda: lsdem.bake_sphere(1.0, voxel=0.0, nodes=100), "voxel="),
+                          (lambda: lsdem.bake_sphere(1.0, voxel=0.1, node_spacing=-1.0),
+                           "node_spacing="),
+                          (lambda: lsdem.bake_sphere(1.0, voxel=0.1, nodes=100, band=1),
+                           "band")):
+        with pytest.raises(lsdem.Error) as error:
+            call()
+        message = str(error.value) + " " + error.value.fix
+        assert keyword in message and "--" not in message, message
+    with pytest.raises(lsdem.Error, match=r"shape \(4, 2\)"):
+        sphere.sample(np.zeros((4, 2)))
+    with pytest.raises(lsdem.Error, match="threads wants a number from 1 to 1024"):
+        sphere.sample(np.zeros((4, 3)), threads=100000)

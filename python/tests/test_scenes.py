@@ -166,3 +166,46 @@ def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):
     assert len(scene) == 0  # nothing half-added
     with pytest.raises(lsdem.Error, match="cannot read"):
         scene.add_grain_file(str(tmp_path / "none.csv"), "wall")
+
+
+def test_builder_refuses_what_it_cannot_mean(sphere):
+    """NaN and infinite vectors, negative ends and masses, and a second law for one pair of
+    materials are refused; a refused change leaves the scene (and its file's text) as it was."""
+    scene = lsdem.Scene.from_toml(str(SCENES / "bounce.toml"))
+    text = scene.text
+    assert text
+    nan, inf = float("nan"), float("inf")
+    with pytest.raises(lsdem.Error, match="gravity must be finite"):
+        scene.gravity = [nan, 0, 0]
+    with pytest.raises(lsdem.Error, match="point must be finite"):
+        scene.add_plane("wall", "steel", point=[nan, 0, 0], normal=[1, 0, 0])
+    with pytest.raises(lsdem.Error, match="end_steps must be >= 0"):
+        scene.end_steps = -5
+    with pytest.raises(lsdem.Error, match="end_time must be >= 0"):
+        scene.end_time = -1.0
+    with pytest.raises(lsdem.Error, match="global_damping"):
+        scene.global_damping = 2.0
+    assert scene.text == text and scene.end_steps == 0 and scene.global_damping == 0.0
+    assert list(scene.gravity) != [nan, 0, 0] and scene.boundary_names == ["floor"]
+
+    built = lsdem.Scene()
+    built.add_asset("ball", sphere)
+    built.add_material("steel", density=1e-9)
+    with pytest.raises(lsdem.Error, match="velocity must be finite"):
+        built.add_grain("ball", "steel", [0, 0, 0], velocity=[0, inf, 0])
+    with pytest.raises(lsdem.Error, match="mass must be >= 0"):
+        built.add_grain("ball", "steel", [0, 0, 0], mass=-1.0)
+    assert len(built) == 0
+    built.add_contact("steel", "steel", normal_stiffness=1.0)
+    with pytest.raises(lsdem.Error, match="already a contact law between materials"):
+        built.add_contact("steel", "steel", normal_stiffness=2.0)
+
+
+def test_an_asset_saved_after_it_was_added_is_written_by_its_file(tmp_path):
+    ball = lsdem.bake_sphere(1.0, voxel=0.1, nodes=50)
+    scene = lsdem.Scene()
+    scene.add_asset("ball", ball)
+    with pytest.raises(lsdem.Error, match=r"asset.save\('ball.vdb'\)"):
+        scene.to_toml()
+    ball.save(str(tmp_path / "later.vdb"))
+    assert "later.vdb" in scene.to_toml(str(tmp_path))

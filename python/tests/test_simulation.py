@@ -163,3 +163,71 @@ def test_help_is_useful():
         assert getattr(lsdem.Simulation, name).__doc__
     for function in (lsdem.bake_mesh, lsdem.bake_sphere, lsdem.load, lsdem.every):
         assert function.__doc__
+
+
+def test_one_run_at_a_time():
+    """A simulation steps one run at a time: a run() or a read of its changing state from
+    another thread while it steps, or a run() from its own callback, raises instead of
+    corrupting it; its own callback may read it and checkpoint it."""
+    import threading
+    sim = lsdem.Simulation(short_bounce(100), threads=1)
+    from_other_thread = {}
+
+    def other_thread():
+        for name, call in (("run", lambda: sim.run(steps=1)),
+                           ("energies", lambda: sim.energies),
+                           ("contacts", lambda: sim.contacts),
+                           ("done", lambda: sim.done),
+                           ("checkpoint", lambda: sim.checkpoint("unused.lsdem"))):
+            try:
+                call()
+                from_other_thread[name] = None
+            except lsdem.Error as error:
+                from_other_thread[name] = str(error)
+
+    from_callback = {}
+
+    def callback(s):
+        if s.step != 2:
+            return
+        worker = threading.Thread(target=other_thread)
+        worker.start()
+        worker.join()  # releases the GIL: the other thread runs while this run is in progress
+        with pytest.raises(lsdem.Error, match="own callback"):
+            s.run(steps=1)
+        from_callback["energies"] = s.energies["kinetic"]
+
+    assert sim.run(steps=5, callback=callback) == 5
+    assert from_other_thread["run"] and "another thread" in from_other_thread["run"]
+    for name in ("energies", "contacts", "done", "checkpoint"):
+        assert from_other_thread[name] and "another thread" in from_other_thread[name], name
+    assert from_callback["energies"] > 0.0
+    # Over, also after a callback that raised: it runs again.
+    with pytest.raises(ZeroDivisionError):
+        sim.run(steps=3, callback=lambda s: 1 / 0)
+    assert sim.run(steps=2) == 2 and sim.step == 8
+
+
+def test_threads_are_bounded():
+    with pytest.raises(lsdem.Error, match="threads wants a number from 1 to 1024"):
+        lsdem.Simulation(short_bounce(1), threads=100000)
+    with pytest.raises(lsdem.Error, match="threads"):
+        lsdem.run_scene(SCENES / "bounce.toml", "unused", threads=5000)
+
+
+def test_a_checkpoint_keeps_the_histories_it_was_restarted_with(lsdem_run, tmp_path):
+    """Loaded from lsdem-run's checkpoint and written again, a checkpoint still holds the
+    run's histories: lsdem-run --restart writes them out again instead of losing them."""
+    result = lsdem.run_scene(SCENES / "bounce.toml", tmp_path, threads=1, stop_at_step=1000)
+    before = (tmp_path / "energy.csv").read_text().splitlines()
+    sim = lsdem.Simulation.from_checkpoint(result["checkpoint"], threads=1)
+    sim.run(steps=100)
+    sim.checkpoint(result["checkpoint"])
+    subprocess.run([lsdem_run, "--restart", result["checkpoint"], "-q"], check=True,
+                   stdout=subprocess.DEVNULL)
+    after = (tmp_path / "energy.csv").read_text().splitlines()
+    # The rows up to step 1000 are the first run's; the restart's follow from step 1100 on
+    # (the 100 steps taken in Python add none).
+    assert after[:len(before)] == before
+    assert len(after) > len(before)
+    assert int(after[len(before)].split(",")[0]) > 1000

@@ -15,6 +15,8 @@
 
 namespace {
 
+constexpr long long kLargestFirst = 1000000000000000LL;
+
 struct GrainsCommandLine
 {
     lsdem::GrainShapeOptions shape;
@@ -118,7 +120,9 @@ int main(int argc, char** argv)
         if (c.outDir.empty()) throw Error("", "no output folder", "add --out-dir DIR");
         if (c.count < 1 || c.count > 10000000)
             throw Error("", "--count wants 1 to 1e7 grains, got " + std::to_string(c.count));
-        if (c.first < 0) throw Error("", "--first must be >= 0");
+        // (Bounded so that first + count cannot overflow.)
+        if (c.first < 0 || c.first > kLargestFirst)
+            throw Error("", "--first must be from 0 to 1e15, got " + std::to_string(c.first));
         if (c.seed < 0) throw Error("", "--seed must be >= 0");
         if (c.format != "stl" && c.format != "obj")
             throw Error("", "--format wants 'stl' or 'obj', got '" + c.format + "'");
@@ -127,8 +131,10 @@ int main(int argc, char** argv)
         checkGrainShapeOptions(c.shape);
         prepareOutputFolder(c.outDir, "choose another --out-dir");
 
+        // Grain i is always named with at least four digits, whatever --first and --count, so
+        // that sets made in chunks name their grains (and so their assets) alike.
+        constexpr int digits = 4;
         const long long last = c.first + c.count - 1;
-        const int digits = std::max(4, int(std::to_string(last).size()));
         for (long long i = c.first; i <= last; ++i) {
             const TriangleMesh mesh = generateGrain(c.shape, uint64_t(c.seed), uint64_t(i));
             char number[32];

@@ -111,7 +111,10 @@ void checkGrainShapeOptions(const GrainShapeOptions& o)
             "e.g. --decay 1.6 (larger: smoother, rounder grains)");
     require(o.maxDegree >= 2 && o.maxDegree <= 60, "--max-degree", "must be from 2 to 60",
             "e.g. --max-degree 16");
-    require(o.size > 0.0 && std::isfinite(o.size), "--size", "must be a positive length",
+    // The files hold 32-bit floats: far larger sizes overflow them, far smaller ones fall into
+    // their subnormals and lose the shape.
+    require(o.size >= 1e-30 && o.size <= 1e30, "--size",
+            "must be a positive length from 1e-30 to 1e30 (the files hold 32-bit floats)",
             "e.g. --size 1 (equivalent diameter, in your length unit)");
     require(o.sizeSpread >= 0.0 && o.sizeSpread <= 2.0, "--size-spread",
             "must be in [0, 2] (standard deviation of ln d)", "e.g. --size-spread 0.2");

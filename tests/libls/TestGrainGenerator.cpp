@@ -177,6 +177,10 @@ TEST(GrainGenerator, OptionsOutOfRangeNameTheOption)
     EXPECT_NE(message(bad).find("--roughness"), std::string::npos);
     bad = o, bad.size = -1;
     EXPECT_NE(message(bad).find("--size"), std::string::npos);
+    bad = o, bad.size = 1e40;  // float32 files: infinities
+    EXPECT_NE(message(bad).find("--size"), std::string::npos);
+    bad = o, bad.size = 1e-50;  // float32 files: zeros
+    EXPECT_NE(message(bad).find("--size"), std::string::npos);
     bad = o, bad.maxDegree = 40, bad.triangles = 500;
     EXPECT_NE(message(bad).find("--triangles"), std::string::npos);
 }

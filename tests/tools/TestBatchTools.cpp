@@ -60,6 +60,13 @@ TEST(BatchTools, GrainsAreReproducibleValidMeshes)
         EXPECT_FALSE(report.flippedToOutward);
     }
     EXPECT_EQ(fileBytes(dir.file("a/grain_0002.stl")), fileBytes(dir.file("c/grain_0002.stl")));
+    // A chunk reaching past 9999 names its grains as a chunk below it does.
+    ASSERT_EQ(runCommand(kGrains + " --first 9999 --count 2 --seed 4 --triangles 500 "
+                                   "--max-degree 8 -q --out-dir " + dir.file("e"))
+                  .exitCode,
+              0);
+    EXPECT_TRUE(std::filesystem::exists(dir.file("e/grain_9999.stl")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("e/grain_10000.stl")));
     const auto other = runCommand(kGrains + " --count 1 --seed 5 --triangles 500 --max-degree 8"
                                             " -q --out-dir " + dir.file("d"));
     ASSERT_EQ(other.exitCode, 0);
@@ -145,6 +152,8 @@ TEST(BatchTools, BadOptionsExit1AndWriteNothing)
         {"--elongation 1.2", "--elongation"}, {"--roughness nan", "--roughness"},
         {"--count 0", "--count"},             {"--format ply", "--format"},
         {"--max-degree 40 --triangles 500", "--triangles"},
+        {"--size 1e40", "--size"},            {"--size 1e-50", "--size"},
+        {"--first 9223372036854775807 --count 2", "--first"},
     };
     for (const Case& c : grains) {
         const auto r = runCommand(kGrains + " " + c.args + out);

@@ -262,10 +262,14 @@ void restoreWorldState(const std::string& path, World& world)
         b.normalStiffness = hasStiffness ? r.pod<double>() : 0.0;
         b.normalDashpot = hasStiffness ? r.pod<double>() : 0.0;
     }
+    // Grain and boundary indices are checked here: a damaged one would index past the world.
+    const auto grains = static_cast<int64_t>(w.grains.size());
+    const auto boundaries = static_cast<int64_t>(w.boundaries.size());
     w.pairHistory.clear();
     const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
     for (uint64_t k = 0; k < pairs; ++k) {
         const int i = r.pod<int32_t>(), j = r.pod<int32_t>();
+        if (i < 0 || j <= i || j >= grains) r.fail();  // pairs are kept as (lower, higher)
         PairHistory& h = w.pairHistory[{i, j}];
         h.shearOnFirstNodes = r.shear();
         h.shearOnSecondNodes = r.shear();
@@ -274,6 +278,7 @@ void restoreWorldState(const std::string& path, World& world)
     const uint64_t boundaryContacts = r.count(2 * sizeof(int32_t) + sizeof(uint64_t));
     for (uint64_t k = 0; k < boundaryContacts; ++k) {
         const int i = r.pod<int32_t>(), b = r.pod<int32_t>();
+        if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
         w.boundaryHistory[{i, b}] = r.shear();
     }
     char trailer[8] = {};

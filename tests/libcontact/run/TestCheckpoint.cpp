@@ -410,3 +410,46 @@ TEST(Checkpoint, CorruptCountIsRefusedWithoutAllocatingForIt)
         EXPECT_THROW(readCheckpoint(path), Error);
     }
 }
+
+// A checkpoint whose shear histories name grains or boundaries the scene does not have (a
+// damaged file) is refused, and the world is left as it was: such an index would be read
+// past the world's arrays.
+TEST(Checkpoint, HistoriesOfGrainsOrBoundariesNotInTheSceneAreRefused)
+{
+    lsdem::test::ScratchDir dir;
+    const World stepped = steppedWorld(10);
+    ASSERT_GT(stepped.grains.size(), 1u);
+    const int grains = static_cast<int>(stepped.grains.size());
+    const int boundaries = static_cast<int>(stepped.boundaries.size());
+    ShearHistory shear;
+    shear.append(0, Vec3(1.0, 0.0, 0.0));
+    PairHistory sheared;
+    sheared.shearOnFirstNodes = shear;
+    int index = 0;
+    auto withPair = [&](int i, int j) {
+        World w = stepped;
+        w.pairHistory[{i, j}] = sheared;
+        return w;
+    };
+    auto withBoundaryContact = [&](int i, int b) {
+        World w = stepped;
+        w.boundaryHistory[{i, b}] = shear;
+        return w;
+    };
+    for (const World& bad : {withPair(0, grains), withPair(-1, 1), withPair(1, 1),
+                             withPair(1, 0), withBoundaryContact(grains, 0),
+                             withBoundaryContact(0, boundaries), withBoundaryContact(0, -1)}) {
+        const std::string path = dir.file("bad" + std::to_string(index++) + ".lsdem");
+        saveCheckpoint(path, bad, sampleHeader());
+        World w = steppedWorld(0);
+        const World before = w;
+        EXPECT_THROW(restoreWorldState(path, w), Error) << path;
+        expectSameState(w, before);
+    }
+    // The same with indices inside the scene reads back.
+    const std::string good = dir.file("good.lsdem");
+    saveCheckpoint(good, withPair(0, grains - 1), sampleHeader());
+    World w = steppedWorld(0);
+    restoreWorldState(good, w);
+    EXPECT_TRUE(sameBits(w.pairHistory.at({0, grains - 1}).shearOnFirstNodes, shear));
+}

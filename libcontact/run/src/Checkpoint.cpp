@@ -1,5 +1,7 @@
 #include "lsdem/run/Checkpoint.h"
 
+#include "WorldFingerprint.h"
+
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 
@@ -14,7 +16,8 @@ namespace {
 
 const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 2: each boundary also keeps its contact stiffness and dashpot (a servo wall's gain).
-const uint32_t kVersion = 2;
+/// 3: the fingerprint of the world's assets and grains (WorldFingerprint.h) follows the record.
+const uint32_t kVersion = 3;
 const uint32_t kOldestVersion = 1;
 
 /// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
@@ -34,6 +37,11 @@ public:
     {
         pod<uint64_t>(v.size());
         for (double d : v) pod(d);
+    }
+    void words(const std::vector<uint64_t>& v)
+    {
+        pod<uint64_t>(v.size());
+        for (uint64_t x : v) pod(x);
     }
     void shear(const ShearHistory& h)
     {
@@ -108,6 +116,12 @@ public:
         }
         return h;
     }
+    std::vector<uint64_t> words()
+    {
+        std::vector<uint64_t> v(count(sizeof(uint64_t)));
+        for (uint64_t& x : v) x = pod<uint64_t>();
+        return v;
+    }
     [[noreturn]] void fail() const
     {
         throw Error(mPath, "the checkpoint is truncated or corrupt",
@@ -147,9 +161,10 @@ RunRecord readRecord(Reader& r)
     return rec;
 }
 
-/// Open @a path and read past the header into @a checkpoint; @a version receives the file's.
+/// Open @a path and read past the header into @a checkpoint; @a version receives the file's,
+/// @a fingerprint the world's (empty before version 3).
 std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
-                                uint32_t& version)
+                                uint32_t& version, WorldFingerprint& fingerprint)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -168,6 +183,10 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
     checkpoint.sceneText = r.text();
     checkpoint.timeStep = r.pod<double>();
     checkpoint.record = readRecord(r);
+    if (version >= 3) {
+        fingerprint.assets = r.words();
+        fingerprint.grains = r.words();
+    }
     return in;
 }
 
@@ -183,6 +202,9 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         w.text(checkpoint.sceneText);
         w.pod(checkpoint.timeStep);
         writeRecord(w, checkpoint.record);
+        const WorldFingerprint fingerprint = fingerprintOf(world);
+        w.words(fingerprint.assets);
+        w.words(fingerprint.grains);
 
         w.pod(world.time);
         w.pod<int64_t>(world.step);
@@ -226,7 +248,8 @@ Checkpoint readCheckpoint(const std::string& path)
 {
     Checkpoint c;
     uint32_t version = 0;
-    openAndReadHeader(path, c, version);
+    WorldFingerprint ignored;
+    openAndReadHeader(path, c, version, ignored);
     return c;
 }
 
@@ -234,7 +257,11 @@ void restoreWorldState(const std::string& path, World& world)
 {
     Checkpoint header;
     uint32_t version = 0;
-    std::ifstream in = openAndReadHeader(path, header, version);
+    WorldFingerprint fingerprint;
+    std::ifstream in = openAndReadHeader(path, header, version, fingerprint);
+    // The scene's text comes from the checkpoint, but its assets and grain files are read as
+    // they are now: they must still make the world the run was checkpointed with.
+    if (version >= 3) checkSameInputs(fingerprint, world, path);
     Reader r(in, path);
     World w = world;  // fill a copy: a failed read leaves @a world untouched
     w.time = r.pod<double>();

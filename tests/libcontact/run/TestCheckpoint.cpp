@@ -453,3 +453,53 @@ TEST(Checkpoint, HistoriesOfGrainsOrBoundariesNotInTheSceneAreRefused)
     restoreWorldState(good, w);
     EXPECT_TRUE(sameBits(w.pairHistory.at({0, grains - 1}).shearOnFirstNodes, shear));
 }
+
+// A restart reads the scene from the checkpoint but its asset and grain files as they are
+// then. A world rebuilt from a changed asset file, or with a grain renamed or of another
+// mass (as an edited grain file would give), is refused, naming the asset or grain; the world
+// rebuilt from the same files restores (RestartContinuesBitIdentically covers the rest).
+TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string path = dir.file("c.lsdem");
+    saveCheckpoint(path, steppedWorld(10), sampleHeader());
+    auto refusal = [&](World w) {
+        const World before = w;
+        try {
+            restoreWorldState(path, w);
+        } catch (const Error& e) {
+            expectSameState(w, before);
+            EXPECT_EQ(e.where(), path);
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(refusal(build(stackScene(2))), "");
+
+    // The asset file replaced by a slightly larger sphere.
+    BakeOptions o;
+    o.voxelSize = 0.25;
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = 2000;
+    std::vector<std::string> warnings;
+    const std::string larger = dir.file("larger.vdb");
+    saveAsset(bakeAnalytic(AnalyticShape::sphere(1.01 * kRadius), o, warnings), larger);
+    Scene changed = stackScene(2);
+    changed.assets[0].file = larger;
+    const std::string asset = refusal(build(changed));
+    EXPECT_NE(asset.find("asset 0"), std::string::npos) << asset;
+    EXPECT_NE(asset.find("not the one the run was checkpointed with"), std::string::npos);
+
+    World renamed = build(stackScene(2));
+    renamed.grains[3].name = "other";
+    const std::string name = refusal(renamed);
+    EXPECT_NE(name.find("grain 3 ('other')"), std::string::npos) << name;
+
+    World heavier = build(stackScene(2));
+    heavier.grains[5].body.mass *= 1.5;
+    EXPECT_NE(refusal(heavier).find("grain 5"), std::string::npos);
+
+    World fewer = build(stackScene(2));
+    fewer.grains.pop_back();
+    EXPECT_NE(refusal(fewer).find("7 grains"), std::string::npos);
+}

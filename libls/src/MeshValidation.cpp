@@ -1,5 +1,7 @@
 #include "lsdem/ls/MeshValidation.h"
 
+#include "MeshPartCrossing.h"
+
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 
@@ -257,6 +259,32 @@ bool isInside(const TriangleMesh& mesh, const Component& inner, const Component&
     return std::abs(windingNumber(mesh, outer, probe)) > 0.5;
 }
 
+/// Refuse parts whose surfaces cross or touch (checked before nesting, which assumes none do).
+void checkPartsApart(const TriangleMesh& mesh, const std::vector<Component>& components,
+                     const std::string& source)
+{
+    if (components.size() < 2) return;
+    std::vector<MeshPart> parts;
+    for (const Component& comp : components) parts.push_back({&comp.triangles, comp.lo, comp.hi});
+    const std::optional<PartCrossing> crossing = findPartCrossing(mesh, parts);
+    if (!crossing) return;
+    const auto& tri = mesh.triangles[static_cast<size_t>(crossing->triangleA)];
+    const Vec3 near = (mesh.vertices[tri[0]] + mesh.vertices[tri[1]] + mesh.vertices[tri[2]]) / 3.0;
+    throw Error(source,
+                "two parts of the surface (" +
+                    countOf(static_cast<int>(components[crossing->partA].triangles.size()),
+                            "triangle") +
+                    " and " +
+                    countOf(static_cast<int>(components[crossing->partB].triangles.size()),
+                            "triangle") +
+                    ") cross or touch each other near (" + formatNumber(near.x()) + ", " +
+                    formatNumber(near.y()) + ", " + formatNumber(near.z()) +
+                    "): their overlap would count twice in the mass and leave a false surface "
+                    "inside the grain",
+                "merge overlapping parts into one closed surface (a boolean union, e.g. in "
+                "Blender, MeshLab or OpenSCAD) and bake again");
+}
+
 /// Turn inside-out components around. A component nested in another (a cavity, or a part
 /// inside a cavity) keeps its orientation relative to its outermost container, so a hollow
 /// solid stays hollow; the others must enclose positive volume on their own.
@@ -302,6 +330,7 @@ MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& so
 
     const auto bounds = meshBounds(mesh);
     measureComponents(mesh, 0.5 * (bounds[0] + bounds[1]), components);
+    checkPartsApart(mesh, components, source);
     report.flippedToOutward = orientOutward(mesh, components);
 
     // A flat or doubled part bounds nothing, whatever the rest of the mesh does.

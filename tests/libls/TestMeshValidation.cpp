@@ -341,4 +341,37 @@ TEST(MeshValidation, TurnsAnInsideOutHollowBlockOutwardWithItsCavity)
     EXPECT_EQ(canonical(mesh), canonical(good));
 }
 
+TEST(MeshValidation, RefusesOverlappingParts)
+{
+    // A clump of two unit cubes exported without a union: the overlap (0.5 × 0.75 × 0.75)
+    // would count twice in the volume (2 instead of 1.72), and the inner faces would leave a
+    // false surface inside the grain's level set.
+    TriangleMesh mesh = mergeWelded(kCube, makeBox(Vec3(0.5, 0.25, 0.25), Vec3(1.5, 1.25, 1.25)));
+    const std::string message = validationError(mesh);
+    EXPECT_CONTAINS(message, "two parts of the surface (12 triangles and 12 triangles) cross or touch");
+    EXPECT_CONTAINS(message, "boolean union");
+}
+
+TEST(MeshValidation, RefusesPartsThatCrossWithNoCornerInsideTheOther)
+{
+    // Two bars crossing like a plus sign: no corner of either lies inside the other, only
+    // their faces cross.
+    const TriangleMesh along = makeBox(Vec3(0, 1, 1), Vec3(3, 2, 2));
+    const TriangleMesh across = makeBox(Vec3(1, 0, 0.5), Vec3(2, 3, 2.5));
+    EXPECT_CONTAINS(validationError(mergeWelded(along, across)), "cross or touch");
+}
+
+TEST(MeshValidation, AcceptsPartsApartAndPartsNestedWithoutTouching)
+{
+    TriangleMesh apart = mergeWelded(kCube, makeBox(Vec3(1.001, 0, 0), Vec3(2, 1, 1)));
+    EXPECT_NO_THROW(lsdem::validateSolidMesh(apart, "apart"));
+    // A block with a cavity and a smaller block inside the cavity (a rattler).
+    TriangleMesh nested = mergeWelded(
+        mergeWelded(makeBox(Vec3(0, 0, 0), Vec3(5, 5, 5)),
+                    reversed(makeBox(Vec3(1, 1, 1), Vec3(4, 4, 4)))),
+        makeBox(Vec3(2, 2, 2), Vec3(3, 3, 3)));
+    lsdem::validateSolidMesh(nested, "nested");
+    EXPECT_DOUBLE_EQ(signedVolume(nested), 125.0 - 27.0 + 1.0);
+}
+
 } // namespace

@@ -24,6 +24,7 @@ struct MeshValidationReport
 /// - non-manifold edges (three or more triangles): refuse, saying how many;
 /// - inconsistent orientation inside a connected part: flip the smaller set of triangles;
 /// - a part that encloses no volume: refuse;
+/// - two parts whose surfaces cross or touch (overlapping pieces not merged): refuse;
 /// - an inside-out part: reverse it. Parts nested inside others (cavities) keep their
 ///   orientation relative to their outermost container, so hollow solids stay hollow.
 /// @param source names the mesh in messages (usually its file path).

@@ -19,6 +19,7 @@
 namespace lsdem {
 
 const char* const kAssetChecksumKey = "lsdem_sha256";
+const char* const kAssetFormatName = "lsdem-grain-asset";
 
 namespace {
 
@@ -239,6 +240,17 @@ void sealAssetFile(const std::string& tmpPath, const std::string& path)
     out.write(checksum.data(), static_cast<std::streamsize>(checksum.size()));
     out.close();
     if (!out) throw Error(path, "cannot write the asset's checksum (disk full?)");
+}
+
+bool claimsToBeAsset(const std::string& path)
+{
+    const size_t prefixBytes = 1 << 20;  // far beyond the header and the level set's metadata
+    std::ifstream in(path, std::ios::binary);
+    std::string prefix(prefixBytes, '\0');
+    in.read(prefix.data(), static_cast<std::streamsize>(prefix.size()));
+    prefix.resize(static_cast<size_t>(in.gcount()));
+    return prefix.find(kAssetChecksumKey) != std::string::npos ||
+           prefix.find(kAssetFormatName) != std::string::npos;
 }
 
 void verifyAssetFile(const std::string& path)

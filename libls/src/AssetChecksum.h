@@ -14,6 +14,9 @@ namespace lsdem {
 /// The file-level metadata key holding the seal.
 extern const char* const kAssetChecksumKey;
 
+/// The level set grid's `lsdem_format`, naming a grain asset.
+extern const char* const kAssetFormatName;
+
 /// A placeholder of the seal's length, written by OpenVDB before sealAssetFile fills it in.
 std::string unsealedAssetChecksum();
 
@@ -28,5 +31,11 @@ void sealAssetFile(const std::string& tmpPath, const std::string& path);
 /// way (a sealed file can be made by hand). The grids' trees are left to OpenVDB.
 /// @throw Error naming the file if it is unreadable, malformed, unsealed or damaged.
 void verifyAssetFile(const std::string& path);
+
+/// Whether the file at @a path says it is an lsdem asset: its first bytes (the header and the
+/// first grid's metadata) hold the seal's key or the asset format's name. Found by a plain
+/// search, so a damaged header cannot pass an asset off as some other .vdb; such a file must
+/// pass verifyAssetFile before OpenVDB reads it.
+bool claimsToBeAsset(const std::string& path);
 
 } // namespace lsdem

@@ -19,7 +19,6 @@ namespace lsdem {
 
 namespace {
 
-const char* const kFormatName = "lsdem-grain-asset";
 const int kFormatVersion = 2;  // 2: sealed with a SHA-256 (AssetChecksum.h)
 const char* const kLevelSetGridName = "phi";
 const char* const kNodesGridName = "nodes";
@@ -31,7 +30,7 @@ std::string areaRuleName(AreaRule rule) { return rule == AreaRule::Mesh ? "mesh"
 
 void writeMetadata(openvdb::GridBase& grid, const GrainAsset& asset)
 {
-    grid.insertMeta("lsdem_format", openvdb::StringMetadata(kFormatName));
+    grid.insertMeta("lsdem_format", openvdb::StringMetadata(kAssetFormatName));
     grid.insertMeta("lsdem_format_version", openvdb::Int32Metadata(kFormatVersion));
     grid.insertMeta("lsdem_version", openvdb::StringMetadata(asset.provenance.lsdemVersion));
     grid.insertMeta("source", openvdb::StringMetadata(asset.provenance.source));
@@ -252,7 +251,7 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path, NodeNormals
                     "still summarise any level-set .vdb)");
     const std::string format = readMeta<std::string>(*phi, "lsdem_format", path);
     const int version = readMeta<int32_t>(*phi, "lsdem_format_version", path);
-    if (format != kFormatName || version != kFormatVersion)
+    if (format != kAssetFormatName || version != kFormatVersion)
         throw Error(path, "is an asset of format '" + format + "' version " +
                               std::to_string(version) + "; this lsdem reads version " +
                               std::to_string(kFormatVersion),

@@ -1,5 +1,6 @@
 #include "lsdem/ls/Inspection.h"
 
+#include "AssetChecksum.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
@@ -19,6 +20,16 @@ InspectionTarget openForInspection(const std::string& path)
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw Error(path, "no such file", "check the path");
+    InspectionTarget target;
+    target.path = path;
+    // OpenVDB trusts the sizes a file states, so a damaged asset could crash it: an asset goes
+    // through loadAsset, which checks its seal before OpenVDB reads it.
+    if (claimsToBeAsset(path)) {
+        target.asset = loadAsset(path);
+        target.levelSet = target.asset->levelSet;
+        target.gridName = "phi";
+        return target;
+    }
     openvdb::GridPtrVecPtr grids;
     try {
         openvdb::io::File file(path);
@@ -29,18 +40,7 @@ InspectionTarget openForInspection(const std::string& path)
         throw Error(path, std::string("not a readable OpenVDB file (") + e.what() + ")",
                     "the file is corrupt or not a .vdb");
     }
-    InspectionTarget target;
-    target.path = path;
     openvdb::FloatGrid::Ptr chosen;
-    for (const auto& grid : *grids) {
-        const auto format = grid->getMetadata<openvdb::StringMetadata>("lsdem_format");
-        if (grid->getName() == "phi" && format && format->value() == "lsdem-grain-asset") {
-            target.asset = loadAsset(path);
-            target.levelSet = target.asset->levelSet;
-            target.gridName = "phi";
-            return target;
-        }
-    }
     for (const auto& grid : *grids) {
         auto floatGrid = openvdb::gridPtrCast<openvdb::FloatGrid>(grid);
         if (!floatGrid) continue;

@@ -105,3 +105,41 @@ TEST(Inspection, ForeignLevelSetIsSummarisedWithoutNodes)
     EXPECT_NEAR(r.levelSetArea, area, 0.5 * vox / radius * area);
     EXPECT_NEAR(0.5 * (r.worldMin.x() + r.worldMax.x()), 0.5, 2 * vox);  // centre found
 }
+
+// Found by review: inspection opened a file with OpenVDB before checking lsdem's seal, so a
+// damaged asset crashed it (double free, bad_alloc) or printed OpenVDB's own text. An asset is
+// now refused as loadAsset refuses it, even with the seal's key itself damaged.
+TEST(Inspection, DamagedAssetIsRefusedAsLoadAssetRefusesIt)
+{
+    test::ScratchDir dir;
+    bakedSphere(dir, 1.0, 0.2);
+    const std::string bytes = test::readFile(dir.file("s.vdb"));
+    const auto write = [&](const std::string& name, const std::string& content) {
+        std::ofstream(dir.file(name), std::ios::binary) << content;
+        return dir.file(name);
+    };
+    std::string renamedSeal = bytes.substr(0, 2000);
+    const size_t key = renamedSeal.find("lsdem_sha256");
+    ASSERT_NE(key, std::string::npos);
+    renamedSeal[key] = 'L';
+    std::string otherUuid = bytes;
+    otherUuid[30] = static_cast<char>(otherUuid[30] ^ 0x01);  // in the header's file UUID
+    for (const std::string& path : {write("truncated.vdb", bytes.substr(0, 2000)),
+                                    write("uuid.vdb", otherUuid),
+                                    write("renamed-seal.vdb", renamedSeal)}) {
+        std::string loadMessage;
+        try {
+            loadAsset(path);
+        } catch (const Error& e) {
+            loadMessage = e.what();
+        }
+        ASSERT_FALSE(loadMessage.empty()) << path;
+        try {
+            openForInspection(path);
+            ADD_FAILURE() << path << " was opened";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.what(), loadMessage);
+            EXPECT_EQ(e.problem().find("OpenVDB"), std::string::npos) << e.what();
+        }
+    }
+}

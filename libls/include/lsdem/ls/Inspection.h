@@ -20,8 +20,10 @@ struct InspectionTarget
 };
 
 /// Open @a path: an lsdem asset if it is one, otherwise its first float grid of class level
-/// set (or, failing that, its first float grid).
-/// @throw Error if the file is missing, not a .vdb, or holds no float grid.
+/// set (or, failing that, its first float grid). An asset is read by loadAsset, its seal
+/// checked before OpenVDB reads it.
+/// @throw Error if the file is missing, not a .vdb, or holds no float grid, or as loadAsset
+/// throws for an asset (damaged, unsealed).
 InspectionTarget openForInspection(const std::string& path);
 
 struct InspectionReport

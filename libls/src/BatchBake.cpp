@@ -44,9 +44,10 @@ struct FileResult
     std::vector<std::string> warnings;
 };
 
-/// The earlier catalogue's rows by name, or none if there is no (readable) catalogue.
-std::map<std::string, CatalogEntry> earlierRows(const std::string& catalogPath,
-                                                std::vector<std::string>& warnings)
+/// The earlier catalogue's rows by name, or none if there is no catalogue.
+/// @throw Error if it cannot be read: the new catalogue would replace it with only this run's
+/// rows, losing the others.
+std::map<std::string, CatalogEntry> earlierRows(const std::string& catalogPath)
 {
     std::map<std::string, CatalogEntry> rows;
     std::error_code ec;
@@ -54,9 +55,10 @@ std::map<std::string, CatalogEntry> earlierRows(const std::string& catalogPath,
     try {
         for (CatalogEntry& e : readCatalog(catalogPath)) rows.emplace(e.name, std::move(e));
     } catch (const Error& e) {
-        warnings.push_back(std::string(e.what()) +
-                           " (ignoring the old catalogue: every file is baked again)");
-        rows.clear();
+        throw Error(e.where(),
+                    e.problem() + "; the batch keeps the earlier catalogue's rows, so nothing "
+                                  "was baked",
+                    "correct that line, or move the catalogue away to start a new one");
     }
     return rows;
 }
@@ -155,7 +157,7 @@ BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
 
     BatchBakeReport report;
     report.catalogPath = (fs::path(o.outDir) / "catalog.csv").string();
-    std::map<std::string, CatalogEntry> earlier = earlierRows(report.catalogPath, report.warnings);
+    std::map<std::string, CatalogEntry> earlier = earlierRows(report.catalogPath);
     const std::string optionsText = batchOptionsText(o);
 
     std::vector<FileResult> results(meshPaths.size());

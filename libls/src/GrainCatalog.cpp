@@ -158,7 +158,11 @@ std::vector<CatalogEntry> readCatalog(const std::string& path)
                     "check the path; lsdem-bake --out-dir DIR writes DIR/catalog.csv");
     std::ostringstream text;
     text << in.rdbuf();
-    const auto records = readCsvRecords(text.str(), path);
+    std::string content = text.str();
+    const std::string byteOrderMark = "\xEF\xBB\xBF";  // Excel starts UTF-8 CSV with it
+    if (content.compare(0, byteOrderMark.size(), byteOrderMark) == 0)
+        content.erase(0, byteOrderMark.size());
+    const auto records = readCsvRecords(content, path);
     if (records.empty())
         throw Error(path, "the catalogue is empty (no header)",
                     "bake the set with lsdem-bake --out-dir, or write a header 'name,asset'");

@@ -161,3 +161,29 @@ TEST(BatchBake, TwoFilesWithOneNameAreRefusedBeforeAnyWork)
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
+
+// Found by review: a catalogue that could not be read (a nan cell) was replaced by one holding
+// only the new rows. The batch now stops before any work and leaves it as it was.
+TEST(BatchBake, UnreadableCatalogueIsKeptAndNothingIsBaked)
+{
+    test::ScratchDir dir;
+    std::vector<std::string> files = makeInputs(dir);
+    files.erase(files.begin() + 1);  // no broken file here
+    const std::string out = dir.file("assets");
+    bakeBatch({files[0], files[1]}, smallBake(out, 1));
+    std::string catalogue = test::readFile(out + "/catalog.csv");
+    // A row of the user's under the header, its volume not a number.
+    const std::string handMade = "hand_made,hand_made.vdb,,,,nan" + std::string(12, ',');
+    catalogue.insert(catalogue.find('\n') + 1, handMade + "\n");
+    writeTextFileAtomically(out + "/catalog.csv", catalogue);
+    try {
+        bakeBatch(files, smallBake(out, 1));
+        ADD_FAILURE() << "baked over an unreadable catalogue";
+    } catch (const Error& e) {
+        EXPECT_EQ(e.where(), out + "/catalog.csv:2");
+        EXPECT_NE(e.problem().find("'nan'"), std::string::npos) << e.what();
+        EXPECT_NE(e.fix().find("move the catalogue away"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(test::readFile(out + "/catalog.csv"), catalogue);
+    EXPECT_FALSE(std::filesystem::exists(out + "/grain_2.vdb"));
+}

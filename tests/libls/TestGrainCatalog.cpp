@@ -112,4 +112,10 @@ TEST(GrainCatalog, BadCataloguesNameTheLineAndColumn)
     ASSERT_EQ(entries.size(), 1u);
     EXPECT_EQ(entries[0].name, "a");
     EXPECT_EQ(entries[0].asset, "a.vdb");
+
+    // Excel's "CSV UTF-8" starts with a byte-order mark, which is not part of the first column.
+    writeTextFileAtomically(dir.file("catalog.csv"), "\xEF\xBB\xBFname,asset\na,a.vdb\n");
+    const auto fromExcel = readCatalog(dir.file("catalog.csv"));
+    ASSERT_EQ(fromExcel.size(), 1u);
+    EXPECT_EQ(fromExcel[0].name, "a");
 }

@@ -184,11 +184,13 @@ BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
     for (size_t i = 0; i < results.size(); ++i) {
         FileResult& r = results[i];
         for (std::string& w : r.warnings) report.warnings.push_back(std::move(w));
-        earlier.erase(names[i]);  // this run's result replaces it, or a failure drops it
         if (!r.entry) {
+            // The earlier asset is untouched (saveAsset replaces a file only once it is
+            // written): its row stays, below, as long as the asset is there.
             report.failures.push_back({meshPaths[i], r.failure});
             continue;
         }
+        earlier.erase(names[i]);  // this run's row replaces it
         (r.unchanged ? report.unchanged : report.baked) += 1;
         report.entries.push_back(std::move(*r.entry));
     }

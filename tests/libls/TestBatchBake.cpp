@@ -187,3 +187,26 @@ TEST(BatchBake, UnreadableCatalogueIsKeptAndNothingIsBaked)
     EXPECT_EQ(test::readFile(out + "/catalog.csv"), catalogue);
     EXPECT_FALSE(std::filesystem::exists(out + "/grain_2.vdb"));
 }
+
+// Found by review: a file that failed to bake again lost its catalogue row, although its
+// earlier asset was still there and valid.
+TEST(BatchBake, FailedRebakeKeepsTheEarlierAssetAndRow)
+{
+    test::ScratchDir dir;
+    std::vector<std::string> files = makeInputs(dir);
+    files.erase(files.begin() + 1);  // no broken file here
+    const std::string out = dir.file("assets");
+    bakeBatch(files, smallBake(out, 1));
+    const std::vector<CatalogEntry> before = readCatalog(out + "/catalog.csv");
+    const std::string asset = test::readFile(out + "/grain_0.vdb");
+
+    writeTextFileAtomically(files[0], "solid broken\n  facet normal 0 0 1\n");
+    const BatchBakeReport r = bakeBatch(files, smallBake(out, 1));
+    ASSERT_EQ(r.failures.size(), 1u);
+    EXPECT_EQ(r.failures[0].source, files[0]);
+    const std::vector<CatalogEntry> after = readCatalog(out + "/catalog.csv");
+    ASSERT_EQ(after.size(), before.size());
+    EXPECT_EQ(after[0].name, "grain_0");
+    EXPECT_EQ(after[0].sourceSha256, before[0].sourceSha256);
+    EXPECT_EQ(test::readFile(out + "/grain_0.vdb"), asset);
+}

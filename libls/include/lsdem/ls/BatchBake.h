@@ -52,7 +52,7 @@ using BatchProgress = std::function<void(size_t done, size_t total, const std::s
 /// grain_0003.vdb); two inputs with one stem are refused before any work. The catalogue
 /// (outDir/catalog.csv, written atomically at the end) holds a row per asset baked or found
 /// unchanged, plus the rows of an earlier catalogue for other files, sorted by name; a failed
-/// file has no row. Results do not depend on the thread count (except bake_seconds).
+/// file keeps its earlier row if its earlier asset is still there, and has no row otherwise. Results do not depend on the thread count (except bake_seconds).
 /// @throw Error for options that are wrong for every file (nothing is baked then).
 BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
                           const BatchBakeOptions& options, const BatchProgress& progress = {});

@@ -220,6 +220,7 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
                     "add --node-spacing SDP, --nodes N or --mesh-nodes");
     if (o.voxelSize == 0.0) throw Error("", "the voxel size is missing", "add --voxel VDP");
     if (c.outputPath.empty()) throw Error("", "no output file", "add -o OUT.vdb");
+    lsdem::cli::refuseOutputOverInput(c.outputPath, "-o", c.meshPaths);
 }
 
 /// "1 h 02 min", "3 min 20 s", "12 s".

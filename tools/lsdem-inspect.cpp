@@ -180,6 +180,8 @@ int main(int argc, char** argv)
         if (sliceSpec.has_value() != !pngPath.empty())
             throw Error("", "--slice and --png go together",
                         "e.g. --slice z=0 --png slice.png");
+        cli::refuseOutputOverInput(pngPath, "--png", paths);
+        cli::refuseOutputOverInput(meshPath, "--mesh", paths);
 
         const InspectionTarget target = openForInspection(paths[0]);
         if (!samples.empty()) {

@@ -159,6 +159,9 @@ int main(int argc, char** argv)
     return lsdem::cli::runTool("lsdem-pack", [&] {
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
         if (c.out.empty()) throw Error("", "no output file given", "pass -o packing.csv");
+        std::vector<std::string> inputs = c.files;
+        if (!c.catalog.empty()) inputs.push_back(c.catalog);
+        lsdem::cli::refuseOutputOverInput(c.out, "-o", inputs);
         lsdem::PackingOptions& options = c.options;
         readContainer(c, options);
         if (c.seed < 0) throw Error("", "--seed wants a number >= 0");

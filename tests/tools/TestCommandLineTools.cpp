@@ -208,3 +208,35 @@ TEST(CommandLineTools, InspectRefusesBadFilesCleanly)
     EXPECT_NE(slice.exitCode, 0);
     EXPECT_TRUE(contains(slice.output, "--slice")) << slice.output;
 }
+
+// Found by review: an output naming an input destroyed it (`lsdem-bake x.obj ... -o x.obj`,
+// `lsdem-inspect a.vdb --slice z=0 --png a.vdb`). Both are refused before any work, however
+// the output is spelt.
+TEST(CommandLineTools, AnOutputThatIsAnInputIsRefused)
+{
+    test::ScratchDir dir;
+    const std::string d = dir.path().string();
+    writeMesh(AnalyticShape::box(1, 1, 1).surfaceMesh(0.5), d + "/cube.obj");
+    ASSERT_EQ(runCommand(kBake + " --sphere 1 --voxel 0.2 --nodes 100 -q -o " + d + "/a.vdb")
+                  .exitCode,
+              0);
+    const std::string mesh = test::readFile(d + "/cube.obj");
+    const std::string asset = test::readFile(d + "/a.vdb");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {kBake + " " + d + "/cube.obj --voxel 0.1 --nodes 100 -o " + d + "/cube.obj", "-o"},
+        {kBake + " " + d + "/cube.obj --voxel 0.1 --nodes 100 -o " + d + "/../" +
+             dir.path().filename().string() + "/./cube.obj",
+         "-o"},
+        {kInspect + " " + d + "/a.vdb --slice z=0 --png " + d + "/a.vdb", "--png"},
+        {kInspect + " " + d + "/a.vdb --mesh " + d + "/a.vdb", "--mesh"},
+    };
+    for (const auto& [command, option] : cases) {
+        const auto result = runCommand(command);
+        EXPECT_EQ(result.exitCode, 1) << command << "\n" << result.output;
+        EXPECT_TRUE(contains(result.output, "is also an input")) << result.output;
+        EXPECT_TRUE(contains(result.output, "fix: give " + option + " another file"))
+            << result.output;
+    }
+    EXPECT_TRUE(test::readFile(d + "/cube.obj") == mesh) << "the mesh was changed";
+    EXPECT_TRUE(test::readFile(d + "/a.vdb") == asset) << "the asset was changed";
+}

@@ -156,6 +156,25 @@ TEST(LsdemPack, BadOptionsExitOne)
     EXPECT_FALSE(std::ifstream(a.dir.file("x.csv")).good());
 }
 
+// Found by review: `lsdem-pack cat/g.vdb ... -o cat/g.vdb` overwrote the asset with the CSV.
+TEST(LsdemPack, AnOutputThatIsAnInputIsRefused)
+{
+    const Assets a;
+    const std::string ball = a.dir.file("ball.vdb");
+    const std::string asset = readFile(ball);
+    std::ofstream(a.dir.file("cat.csv")) << "name,asset\nball,ball.vdb\n";
+    for (const std::string& args : {ball + " --box 0 0 0 5 5 5 --count 4 -o " + ball,
+                                    std::string("--catalog cat.csv --set s --box 0 0 0 5 5 5 "
+                                                "--count 4 -o ./cat.csv")}) {
+        const CommandResult r =
+            runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("is also an input"), std::string::npos) << r.output;
+    }
+    EXPECT_TRUE(readFile(ball) == asset) << "the asset was changed";
+    EXPECT_EQ(readFile(a.dir.file("cat.csv")), "name,asset\nball,ball.vdb\n");
+}
+
 TEST(LsdemPack, FillsACylinder)
 {
     const Assets a;

@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -197,6 +198,34 @@ std::optional<int> parse(CLI::App& app, int argc, char** argv)
         }
         throw Error("", e.what(), fix);
     }
+}
+
+namespace {
+
+/// Whether @a a and @a b name one file: the same file by two names (links included), or, when
+/// one does not exist yet, the same path once resolved.
+bool sameFile(const std::string& a, const std::string& b)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::equivalent(a, b, ec)) return true;
+    const fs::path first = fs::weakly_canonical(a, ec);
+    if (ec) return false;
+    const fs::path second = fs::weakly_canonical(b, ec);
+    return !ec && first == second;
+}
+
+} // namespace
+
+void refuseOutputOverInput(const std::string& output, const std::string& option,
+                           const std::vector<std::string>& inputs)
+{
+    if (output.empty()) return;
+    for (const std::string& input : inputs)
+        if (sameFile(output, input))
+            throw Error(output, "is also an input (" + input + "): writing " + option +
+                                    " there would destroy it",
+                        "give " + option + " another file");
 }
 
 } // namespace lsdem::cli

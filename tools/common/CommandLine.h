@@ -63,6 +63,12 @@ std::string showList(const std::vector<std::string>& values);
 /// problem as CLI11 words it and the fix "see <command> --help".
 std::optional<int> parse(CLI::App& app, int argc, char** argv);
 
+/// Refuse, before any work, an output file @a output (given with @a option) that is the same
+/// file as one of @a inputs, however spelt: writing it would destroy that input. The output
+/// need not exist yet; an empty @a output (none asked for) passes.
+void refuseOutputOverInput(const std::string& output, const std::string& option,
+                           const std::vector<std::string>& inputs);
+
 /// Run a tool's @a body, turning exceptions into one clear message and the exit codes the
 /// tools document: 1 for bad input (lsdem::Error), 3 for an internal error.
 template <typename Body>

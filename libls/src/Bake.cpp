@@ -164,16 +164,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
                     std::vector<std::string>& warnings)
 {
     checkOptions(options, sourceName);
-    const MeshValidationReport report = validateSolidMesh(mesh, sourceName);
-    if (report.removedDegenerateTriangles > 0)
-        warnings.push_back(sourceName + ": dropped " +
-                           std::to_string(report.removedDegenerateTriangles) +
-                           " degenerate (zero-area) triangles");
-    if (report.reorientedTriangles > 0)
-        warnings.push_back(sourceName + ": flipped " + std::to_string(report.reorientedTriangles) +
-                           " triangles to agree with their neighbours");
-    if (report.flippedToOutward)
-        warnings.push_back(sourceName + ": the mesh was inside-out; reversed it to face outward");
+    appendRepairWarnings(validateSolidMesh(mesh, sourceName), sourceName, warnings);
 
     // Move the mesh to its principal frame: centroid at the origin, principal axes along x,y,z.
     const MassProperties inputProps = computeMassProperties(mesh);

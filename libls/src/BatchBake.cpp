@@ -85,8 +85,9 @@ FileResult bakeOne(const std::string& path, const std::string& name,
         TriangleMesh mesh = readMesh(path);
         BakeOptions bake = o.bake;
         if (o.voxelPerSize > 0.0 || o.nodeSpacingPerSize > 0.0) {
-            // The size needs a solid: validate (and repair) here, bakeMesh finds nothing left.
-            validateSolidMesh(mesh, path);
+            // The size needs a solid: validate (and repair) here, and report the repairs here,
+            // as bakeMesh finds nothing left to repair.
+            appendRepairWarnings(validateSolidMesh(mesh, path), path, result.warnings);
             const double d = std::cbrt(6.0 * computeMassProperties(mesh).volume / kPi);
             if (o.voxelPerSize > 0.0) bake.voxelSize = o.voxelPerSize * d;
             if (o.nodeSpacingPerSize > 0.0) bake.nodeSpacing = o.nodeSpacingPerSize * d;

@@ -355,4 +355,18 @@ MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& so
     return report;
 }
 
+void appendRepairWarnings(const MeshValidationReport& report, const std::string& source,
+                          std::vector<std::string>& warnings)
+{
+    if (report.removedDegenerateTriangles > 0)
+        warnings.push_back(source + ": dropped " +
+                           std::to_string(report.removedDegenerateTriangles) +
+                           " degenerate (zero-area) triangles");
+    if (report.reorientedTriangles > 0)
+        warnings.push_back(source + ": flipped " + std::to_string(report.reorientedTriangles) +
+                           " triangles to agree with their neighbours");
+    if (report.flippedToOutward)
+        warnings.push_back(source + ": the mesh was inside-out; reversed it to face outward");
+}
+
 } // namespace lsdem

@@ -4,11 +4,13 @@
 // count changes nothing but the timings.
 #include "lsdem/ls/BatchBake.h"
 
+#include "lsdem/ls/AnalyticShape.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/GrainGenerator.h"
+#include "lsdem/ls/MeshIO.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
@@ -209,4 +211,24 @@ TEST(BatchBake, FailedRebakeKeepsTheEarlierAssetAndRow)
     EXPECT_EQ(after[0].name, "grain_0");
     EXPECT_EQ(after[0].sourceSha256, before[0].sourceSha256);
     EXPECT_EQ(test::readFile(out + "/grain_0.vdb"), asset);
+}
+
+// Found by review: with --voxel-per-size the batch validated (and repaired) each mesh itself to
+// measure it, dropped the report, and bakeMesh then found nothing to report.
+TEST(BatchBake, RepairsAreReportedAlikeWithVoxelPerSize)
+{
+    test::ScratchDir dir;
+    TriangleMesh cube = AnalyticShape::box(1, 1, 1).surfaceMesh(0.25);
+    for (auto& t : cube.triangles) std::swap(t[1], t[2]);
+    writeMesh(cube, dir.file("inside_out.obj"));
+    BatchBakeOptions absolute = smallBake(dir.file("absolute"), 1);
+    absolute.voxelPerSize = absolute.nodeSpacingPerSize = 0.0;
+    absolute.bake.voxelSize = 0.1;
+    absolute.bake.nodeSpacing = 0.2;
+    const BatchBakeReport a = bakeBatch({dir.file("inside_out.obj")}, absolute);
+    const BatchBakeReport p =
+        bakeBatch({dir.file("inside_out.obj")}, smallBake(dir.file("per-size"), 1));
+    ASSERT_EQ(a.warnings.size(), 1u);
+    EXPECT_NE(a.warnings[0].find("inside-out"), std::string::npos) << a.warnings[0];
+    EXPECT_EQ(p.warnings, a.warnings);
 }

@@ -6,6 +6,7 @@
 #include "lsdem/ls/TriangleMesh.h"
 
 #include <string>
+#include <vector>
 
 namespace lsdem {
 
@@ -30,5 +31,10 @@ struct MeshValidationReport
 /// @param source names the mesh in messages (usually its file path).
 /// @throw Error with the file, the problem and the fix.
 MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& source);
+
+/// The repairs in @a report as warnings naming @a source, appended to @a warnings (the bake
+/// prints them: the asset is not quite the file).
+void appendRepairWarnings(const MeshValidationReport& report, const std::string& source,
+                          std::vector<std::string>& warnings);
 
 } // namespace lsdem

@@ -1,5 +1,6 @@
 #include "lsdem/ls/BatchBake.h"
 
+#include "AssetChecksum.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Constants.h"
@@ -77,10 +78,18 @@ FileResult bakeOne(const std::string& path, const std::string& name,
         if (earlier && !o.rebake && earlier->sourceSha256 == sha &&
             earlier->bakeOptions == optionsText && earlier->asset == assetFile &&
             fs::is_regular_file(assetPath, ec)) {
-            result.entry = *earlier;
-            result.entry->source = path;
-            result.unchanged = true;
-            return result;
+            // Only an intact asset is up to date: its seal is checked (a read and a SHA-256,
+            // far cheaper than a bake); a truncated or changed one is baked again.
+            try {
+                verifyAssetFile(assetPath);
+                result.entry = *earlier;
+                result.entry->source = path;
+                result.unchanged = true;
+                return result;
+            } catch (const Error& damaged) {
+                result.warnings.push_back(damaged.where() + ": " + damaged.problem() +
+                                          "; baking it again");
+            }
         }
         TriangleMesh mesh = readMesh(path);
         BakeOptions bake = o.bake;

@@ -232,3 +232,25 @@ TEST(BatchBake, RepairsAreReportedAlikeWithVoxelPerSize)
     EXPECT_NE(a.warnings[0].find("inside-out"), std::string::npos) << a.warnings[0];
     EXPECT_EQ(p.warnings, a.warnings);
 }
+
+// Found by review: a re-run counted a truncated asset as unchanged (its file was there), so the
+// catalogue kept pointing at a file no simulation could load.
+TEST(BatchBake, DamagedAssetIsBakedAgain)
+{
+    test::ScratchDir dir;
+    std::vector<std::string> files = makeInputs(dir);
+    files.erase(files.begin() + 1);  // no broken file here
+    const std::string out = dir.file("assets");
+    bakeBatch(files, smallBake(out, 1));
+    const std::string asset = out + "/grain_1.vdb";
+    writeTextFileAtomically(asset, test::readFile(asset).substr(0, 2000));
+
+    const BatchBakeReport r = bakeBatch(files, smallBake(out, 1));
+    EXPECT_EQ(r.baked, 1);
+    EXPECT_EQ(r.unchanged, 2);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find(asset + ": the file is damaged"), std::string::npos)
+        << r.warnings[0];
+    EXPECT_NE(r.warnings[0].find("baking it again"), std::string::npos) << r.warnings[0];
+    EXPECT_NO_THROW(loadAsset(asset));
+}

@@ -27,6 +27,8 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
                     "bake some files into its folder with lsdem-bake --out-dir");
     // Relative asset paths are the catalogue's folder's, as the scene reader resolves them.
     const fs::path folder = fs::path(catalog).parent_path();
+    const std::string rebake = "run the lsdem-bake --out-dir batch that wrote the catalogue "
+                               "again: it bakes missing and damaged assets anew";
     // Loaded on every core, each with the outcome of one by one (the first bad row reported).
     std::vector<PackingComponent> mixture(entries.size());
     runInParallel(entries.size(), [&](size_t k) {
@@ -36,15 +38,16 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))
             throw Error(catalog, "asset '" + e.name + "': file not found: " + file.string(),
-                        "bake the set again (lsdem-bake --out-dir), or fix its asset column");
+                        rebake + ", or fix its asset column");
         PackingComponent& c = mixture[k];
         c.name = setName + "/" + e.name;
         try {
             // For packing only: without normals, these copies cannot be saved.
             c.asset = loadAsset(file.string(), NodeNormals::Skip);
         } catch (const Error& load) {
-            throw Error(catalog, "asset '" + e.name + "': " + load.what(),
-                        "bake the set again (lsdem-bake --out-dir)");
+            // One fix line: the load's own fix would repeat this one.
+            throw Error(catalog, "asset '" + e.name + "': " + load.where() + ": " + load.problem(),
+                        rebake);
         }
     }).rethrowIfAny();
     return mixture;

@@ -320,6 +320,9 @@ end_steps = 1
             EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
             EXPECT_NE(std::string(e.what()).find("bad.csv"), std::string::npos) << e.what();
             EXPECT_FALSE(e.fix().empty()) << e.what();
+            // One fix, not the asset's own under the catalogue's (found by review).
+            EXPECT_EQ(std::string(e.what()).find("fix:"), std::string(e.what()).rfind("fix:"))
+                << e.what();
         }
     }
     EXPECT_THROW(catalogMixture(dir.file("nowhere.csv"), "sand"), Error);

@@ -178,7 +178,7 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
     if (c.meshNodesOption->count()) o.nodePlacement = lsdem::NodePlacement::MeshVertices;
     if (c.countOption->count()) {
         o.nodePlacement = lsdem::NodePlacement::Count;
-        if (c.nodeCount < 4 || c.nodeCount > 100000000)
+        if (c.nodeCount < 4 || c.nodeCount > lsdem::kMaxNodeCount)
             throw Error("", "--nodes wants a count from 4 to 1e8, got " +
                                 std::to_string(c.nodeCount));
         o.nodeCount = int(c.nodeCount);

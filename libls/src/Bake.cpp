@@ -77,6 +77,24 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
     }
 }
 
+/// Refuse a node spacing that would place more than kMaxNodeCount nodes on a surface of area
+/// @a area: remeshing to it would run away in memory, and a box's face grid would overflow.
+void checkNodeSpacing(double area, const BakeOptions& o, const std::string& source)
+{
+    if (o.nodePlacement != NodePlacement::Spacing) return;
+    const double finest = edgeLengthForNodeCount(area, kMaxNodeCount);
+    if (o.nodeSpacing < finest) {
+        std::ostringstream msg, fix;
+        msg << "a node spacing (--node-spacing) of " << o.nodeSpacing << " would place about "
+            << 2.0 * area / (std::sqrt(3.0) * o.nodeSpacing * o.nodeSpacing)
+            << " nodes on a surface of area " << area << ", over the limit of "
+            << double(kMaxNodeCount);
+        fix << "use --node-spacing " << finest << " or larger (check the mesh's length unit), "
+            << "or --nodes N";
+        throw Error(source, msg.str(), fix.str());
+    }
+}
+
 } // namespace
 
 TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool keepFineInput)
@@ -165,6 +183,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
 {
     checkOptions(options, sourceName);
     appendRepairWarnings(validateSolidMesh(mesh, sourceName), sourceName, warnings);
+    checkNodeSpacing(surfaceArea(mesh), options, sourceName);
 
     // Move the mesh to its principal frame: centroid at the origin, principal axes along x,y,z.
     const MassProperties inputProps = computeMassProperties(mesh);
@@ -214,6 +233,7 @@ GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
                     "use --node-spacing SDP or --nodes N");
     const Vec3 half = shape.halfExtents();
     checkGridSize(2.0 * half, options, source);
+    checkNodeSpacing(shape.surfaceArea(), options, source);
 
     GrainAsset asset;
     asset.mass = shape.massProperties();

@@ -288,6 +288,33 @@ TEST(Bake, RefusesBadOptionsAndWarnsAboutOverfineNodes)
     EXPECT_NE(warnings[0].find("node spacing"), std::string::npos);
 }
 
+// Found by review: --node-spacing 1e-12 on a box overflowed the int count of its face grid
+// (undefined behaviour), and tiny spacings on meshes and ellipsoids ran away in memory. A
+// spacing estimated to place more nodes than --nodes allows (1e8) is refused before any work.
+TEST(Bake, RefusesANodeSpacingThatWouldPlaceTooManyNodes)
+{
+    std::vector<std::string> warnings;
+    const auto expectRefused = [&](const auto& bake, const std::string& what) {
+        try {
+            bake();
+            ADD_FAILURE() << what << ": baked";
+        } catch (const Error& e) {
+            EXPECT_NE(e.problem().find("--node-spacing"), std::string::npos) << e.what();
+            EXPECT_NE(e.problem().find("over the limit of 1e+08"), std::string::npos) << e.what();
+            EXPECT_NE(e.fix().find("--node-spacing"), std::string::npos) << e.what();
+        }
+    };
+    expectRefused([&] { bakeAnalytic(AnalyticShape::box(1, 1, 1), spacingOptions(0.1, 1e-12),
+                                     warnings); },
+                  "box");
+    expectRefused([&] { bakeAnalytic(AnalyticShape::ellipsoid(1, 0.8, 0.6),
+                                     spacingOptions(0.1, 1e-5), warnings); },
+                  "ellipsoid");
+    expectRefused([&] { bakeMesh(AnalyticShape::box(1, 1, 1).surfaceMesh(0.5), "cube.obj",
+                                 spacingOptions(0.1, 1e-5), warnings); },
+                  "mesh");
+}
+
 // Contact samples φ and ∇φ only where φ can be negative: in a cell with a corner inside. The
 // surface then crosses the cell or the cell is inside, so every corner is inside (filled) or
 // within √3 voxels outside, and an exterior band of 2 voxels holds it. Sampled anywhere

@@ -11,6 +11,10 @@
 
 namespace lsdem {
 
+/// The most surface nodes a bake places (--nodes N, or a spacing estimated to give more, is
+/// refused): remeshing to more runs away in memory.
+constexpr int kMaxNodeCount = 100000000;
+
 enum class NodePlacement {
     Spacing,       ///< isotropic remeshing to nodeSpacing
     Count,         ///< isotropic remeshing to about nodeCount nodes

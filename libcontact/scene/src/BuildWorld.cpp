@@ -1,5 +1,7 @@
 #include "lsdem/scene/BuildWorld.h"
 
+#include "SceneChecks.h"
+
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/RunInParallel.h"
@@ -148,6 +150,9 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
 
 World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
 {
+    // A scene built in code has not been through the file reader's checks: a pair of materials
+    // without a law would get the zero model, and its grains would pass through each other.
+    scenefile::checkContactPairs(scene);
     World w;
     w.assets = loadOrBakeAll(scene.assets, warnings);
 

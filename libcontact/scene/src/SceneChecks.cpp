@@ -1,9 +1,12 @@
 // Checks across the sections of a scene: contact laws for every pair of materials that can
 // meet, and distinct names.
-#include "SceneSections.h"
+#include "SceneChecks.h"
+
+#include "lsdem/ls/Error.h"
 
 #include <algorithm>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -36,7 +39,8 @@ void checkContactPairs(const Scene& scene)
         const std::string nb = scene.materials[static_cast<size_t>(b)].name;
         throw Error(where, "no contact law between materials '" + na + "' and '" + nb + "'",
                     "add [[contacts]] with materials = [\"" + na + "\", \"" + nb +
-                        "\"] and its normal_stiffness");
+                        "\"] and its normal_stiffness (from Python: scene.add_contact(\"" + na +
+                        "\", \"" + nb + "\", normal_stiffness=...))");
     };
     std::vector<char> checked(m, 0);
     for (const GrainSpec& g : scene.grains) {

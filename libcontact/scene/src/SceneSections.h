@@ -4,6 +4,7 @@
 ///        and the checks across sections.
 #pragma once
 
+#include "SceneChecks.h"
 #include "TableReader.h"
 
 #include "lsdem/scene/Scene.h"
@@ -53,11 +54,6 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene);
 void readSimulation(const toml::table* table, Scene& scene);
 /// [output]: history, ParaView and checkpoint periods (optional).
 void readOutput(const toml::table* table, Scene& scene);
-
-/// Every pair of materials that can meet has one [[contacts]] entry.
-void checkContactPairs(const Scene& scene);
-/// Grains and boundaries have distinct names.
-void checkUniqueNames(const Scene& scene);
 
 template <typename Spec>
 int indexByName(const std::vector<Spec>& specs, const std::string& name)

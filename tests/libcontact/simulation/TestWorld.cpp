@@ -131,3 +131,43 @@ TEST(World, AssetsLoadInParallelAsOneByOne)
         EXPECT_NE(std::string(e.what()).find("asset 's2'"), std::string::npos) << e.what();
     }
 }
+
+// A scene built in code (Python, the studies) gets the file reader's check: two materials that
+// can meet without a contact law would get the zero model and pass through each other, so
+// buildWorld refuses them, saying how to add the law from a file and from Python.
+TEST(World, RefusesMaterialsThatMeetWithoutAContactLaw)
+{
+    Scene scene;
+    scene.materials = {{"sand", 1.0}, {"steel", 1.0}};
+    scene.assets.push_back(warningSphere("ball", 0.4));
+    for (int k = 0; k < 2; ++k) {
+        GrainSpec g;
+        g.material = k;
+        g.pose.position = Vec3(3.0 * k, 0.0, 0.0);
+        g.where = "grain " + std::to_string(k);
+        scene.grains.push_back(g);
+    }
+    ContactSpec sandSand;
+    sandSand.model.normalStiffness = 1e3;
+    scene.contacts.push_back(sandSand);  // sand with sand, but nothing for sand with steel
+    std::vector<std::string> warnings;
+    try {
+        buildWorld(scene, warnings);
+        ADD_FAILURE() << "a world was built without a sand-steel law";
+    } catch (const Error& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("grain 0"), std::string::npos) << what;
+        EXPECT_NE(what.find("no contact law between materials 'sand' and 'steel'"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("materials = [\"sand\", \"steel\"]"), std::string::npos) << what;
+        EXPECT_NE(what.find("scene.add_contact(\"sand\", \"steel\", normal_stiffness="),
+                  std::string::npos)
+            << what;
+    }
+
+    ContactSpec sandSteel = sandSand;
+    sandSteel.materialB = 1;
+    scene.contacts.push_back(sandSteel);
+    EXPECT_EQ(buildWorld(scene, warnings).model(0, 1).normalStiffness, 1e3);
+}

@@ -18,7 +18,8 @@ namespace lsdem {
 /// memory per thread), with the outcome of one by one. Messages that do not stop the run (from
 /// baking) are appended to @a warnings, in the assets' order.
 /// @throw Error naming the scene entry for anything that cannot be loaded or made (of several,
-/// the first in the scene's order).
+/// the first in the scene's order), or for a pair of materials that can meet without a contact
+/// law (the check the scene file reader makes, for scenes built in code).
 World buildWorld(const Scene& scene, std::vector<std::string>& warnings);
 
 /// The runtime boundary for @a spec (@a asset: the loaded asset of a level-set obstacle).

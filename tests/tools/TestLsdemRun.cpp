@@ -12,6 +12,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 using namespace lsdem::test;
 
@@ -220,6 +221,44 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
     EXPECT_EQ(badCheckpoint.exitCode, 1);
     EXPECT_NE(badCheckpoint.output.find("not an lsdem checkpoint"), std::string::npos)
         << badCheckpoint.output;
+}
+
+// A scene reading grains.csv from its own folder, run with --out that folder (however it is
+// spelt), or with a grain file that links into the output folder: the output grains.csv would
+// replace the input. Refused before anything is written; the input is kept as it was.
+TEST(LsdemRun, RefusesAnOutputThatWouldOverwriteAnInput)
+{
+    ScratchDir dir;
+    std::string text = smallScene(20);
+    const size_t grains = text.find("[[grains]]");
+    text.replace(grains, text.find("[[boundaries]]") - grains,
+                 "[[grain_files]]\nfile = \"grains.csv\"\nmaterial = \"steel\"\n\n");
+    const std::string csv =
+        "name,asset,x,y,z,qw,qx,qy,qz\na,ball,0,0,1.99,1,0,0,0\nb,ball,5,0,1.99,1,0,0,0\n";
+    std::filesystem::create_directories(dir.file("same"));
+    std::ofstream(dir.file("same/scene.toml")) << text;
+    std::ofstream(dir.file("same/grains.csv")) << csv;
+    std::filesystem::create_directories(dir.file("linked"));
+    std::ofstream(dir.file("linked/scene.toml")) << text;
+    std::filesystem::create_symlink(dir.file("same/grains.csv"), dir.file("linked/grains.csv"));
+
+    const std::pair<std::string, std::string> runs[] = {
+        {dir.file("same/scene.toml"), dir.file("same")},
+        {dir.file("same/scene.toml"), dir.file("same/../same/")},
+        {dir.file("linked/scene.toml"), dir.file("same")}};
+    for (const auto& [scene, out] : runs) {
+        const CommandResult r = runCommand(kRun + " " + scene + " -q --out " + out);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("scene.toml:"), std::string::npos) << r.output;  // the entry
+        EXPECT_NE(r.output.find("would overwrite its input"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("choose another --out folder"), std::string::npos) << r.output;
+        EXPECT_EQ(readFile(dir.file("same/grains.csv")), csv);
+        EXPECT_FALSE(std::filesystem::exists(dir.file("same/energy.csv")));
+    }
+    const CommandResult elsewhere =
+        runCommand(kRun + " " + dir.file("same/scene.toml") + " -q --out " + dir.file("out"));
+    EXPECT_EQ(elsewhere.exitCode, 0) << elsewhere.output;
+    EXPECT_EQ(readFile(dir.file("same/grains.csv")), csv);
 }
 
 // An end condition far beyond what anyone means (1e30 time units at a 1e-5 step) is run, as

@@ -5,7 +5,7 @@
 
 namespace lsdem {
 
-FrameWriter::FrameWriter(const std::string& dir, const World& world) : mSeries(dir, "frames")
+FrameWriter::FrameWriter(const std::string& dir, const World& world) : mSeries(dir, kFramesBaseName)
 {
     // Surfaces at about the node spacing: as fine as the contact sees them, and light enough
     // for many grains and frames (at the level set's own voxels a frame of 27 spheres of 100

@@ -10,6 +10,9 @@
 
 namespace lsdem {
 
+/// The base name of a run's ParaView series: frames.pvd, frames_grains_<k>.vtu, ...
+inline const std::string kFramesBaseName = "frames";
+
 class FrameWriter
 {
 public:

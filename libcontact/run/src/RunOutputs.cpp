@@ -70,7 +70,7 @@ void writeHistoryFiles(const std::string& directory, const World& world,
 {
     const std::filesystem::path dir(directory);
     writeTextFileAtomically(
-        (dir / "energy.csv").string(),
+        (dir / kEnergyFileName).string(),
         rowsToCsv("step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes",
                   record.energyRows));
     for (size_t b = 0; b < world.boundaries.size() && b < record.boundaryRows.size(); ++b)

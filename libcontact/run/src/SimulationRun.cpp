@@ -30,6 +30,55 @@ using namespace runplan;
 std::atomic<bool> gStopRequested{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "requestStop must be signal-safe");
 
+const std::string kCheckpointFileName = "checkpoint.lsdem";
+
+bool endsWith(const std::string& s, const std::string& end)
+{
+    return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+/// Whether a run of @a scene writes a file called @a name into its output folder.
+bool runWrites(const Scene& scene, const std::string& name)
+{
+    if (name == kEnergyFileName || name == kGrainsFileName || name == kCheckpointFileName ||
+        name == kFramesBaseName + ".pvd")
+        return true;
+    for (const BoundarySpec& b : scene.boundaries)
+        if (name == boundaryHistoryFileName(b.name)) return true;
+    // The frames and, split over ranks, their pieces: frames_grains_3.vtu, ..._3.pvtu, ..._3_1.vtu
+    return name.rfind(kFramesBaseName + "_", 0) == 0 &&
+           (endsWith(name, ".vtu") || endsWith(name, ".pvtu"));
+}
+
+/// Refuses a run whose outputs in @a outDir would replace one of the files @a scene reads (the
+/// scene file, grain files, assets, meshes, catalogues): e.g. a scene reading grains.csv from
+/// its own folder, run with --out that folder. An input is replaced if it is listed in
+/// @a outDir under an output's name, or is a link to such a file.
+void refuseOutputsOverInputs(const Scene& scene, const std::string& outDir)
+{
+    auto check = [&](const std::string& input, const std::string& where) {
+        if (input.empty()) return;
+        std::error_code ec;
+        const fs::path resolved = fs::canonical(input, ec);
+        for (const fs::path& p : {fs::absolute(input), resolved}) {
+            if (p.empty() || !runWrites(scene, p.filename().string())) continue;
+            if (!fs::equivalent(p.parent_path(), outDir, ec)) continue;
+            throw Error(where,
+                        "the run would overwrite its input " + input + " with its output " +
+                            p.filename().string() + " in the output folder " + outDir,
+                        "choose another --out folder (one that holds none of the scene's "
+                        "inputs)");
+        }
+    };
+    check(scene.path, scene.path);
+    for (const GrainFileSpec& f : scene.grainFiles) check(f.file, f.where);
+    for (const AssetSetSpec& set : scene.assetSets) check(set.catalog, set.where);
+    for (const AssetSpec& a : scene.assets) {
+        check(a.file, a.where);
+        check(a.meshFile, a.where);
+    }
+}
+
 /// A run in progress: the scene, the simulation and everything it writes.
 class Run
 {
@@ -93,6 +142,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
+    refuseOutputsOverInputs(mScene, mOutDir);  // before any work, and before writing anything
 
     if (options.ranks) {
         // One rank evaluates every contact: nothing to split, nothing to exchange.
@@ -138,7 +188,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
                                               : 100;
     mVtkEvery = out.vtkPeriod > 0.0 ? stepsPer(out.vtkPeriod, dt) : 0;
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
-    mCheckpointPath = (fs::path(mOutDir) / "checkpoint.lsdem").string();
+    mCheckpointPath = (fs::path(mOutDir) / kCheckpointFileName).string();
     // Split over ranks, every rank writes its piece of each frame.
     if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
         mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
@@ -165,7 +215,7 @@ const World& Run::wholeWorld(World& gathered)
 void Run::writeFiles(const World& whole)
 {
     writeHistoryFiles(mOutDir, whole, mCheckpoint.record);
-    writeGrainsFile((fs::path(mOutDir) / "grains.csv").string(), whole, mInitialPositions);
+    writeGrainsFile((fs::path(mOutDir) / kGrainsFileName).string(), whole, mInitialPositions);
 }
 
 void Run::writeTextOutputs(bool withGrains)

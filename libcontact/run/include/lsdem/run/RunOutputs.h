@@ -14,6 +14,10 @@
 
 namespace lsdem {
 
+/// The names of the text outputs in a run's folder.
+inline const std::string kEnergyFileName = "energy.csv";
+inline const std::string kGrainsFileName = "grains.csv";
+
 /// Append the rows of the current state to @a record (one energy row, one row per boundary).
 void recordHistoryRow(const Simulation& sim, RunRecord& record);
 

@@ -151,8 +151,10 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
 World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
 {
     // A scene built in code has not been through the file reader's checks: a pair of materials
-    // without a law would get the zero model, and its grains would pass through each other.
+    // without a law would get the zero model, and its grains would pass through each other;
+    // two grains of one name would be two rows of one name in grains.csv.
     scenefile::checkContactPairs(scene);
+    scenefile::checkUniqueNames(scene);
     World w;
     w.assets = loadOrBakeAll(scene.assets, warnings);
 
@@ -169,7 +171,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
     for (const GrainSpec& spec : scene.grains)
         w.grains.push_back(makeGrain(spec, scene, w.assets.at(spec.asset)));
     for (size_t i = 0; i < w.grains.size(); ++i)
-        if (w.grains[i].name.empty()) w.grains[i].name = "grain" + std::to_string(i);
+        if (w.grains[i].name.empty()) w.grains[i].name = defaultGrainName(i);
     checkGrainFileOverlaps(scene, w);
     for (const BoundarySpec& spec : scene.boundaries)
         w.boundaries.push_back(

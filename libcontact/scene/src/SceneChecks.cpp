@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -56,15 +57,30 @@ void checkContactPairs(const Scene& scene)
 
 void checkUniqueNames(const Scene& scene)
 {
-    std::map<std::string, const std::string*> seen;
-    for (const GrainSpec& g : scene.grains) {
-        if (g.name.empty()) continue;
-        const auto [it, fresh] = seen.emplace(g.name, &g.where);
-        if (!fresh)
-            throw Error(g.where, "a second grain named '" + g.name + "'",
-                        "the first is at " + *it->second + "; give grains distinct names");
+    // Unnamed grains are named by their index (defaultGrainName) when the world is built, so
+    // those names count too: "grain1" and the unnamed grain 1 would be two rows of grains.csv.
+    std::unordered_map<std::string, size_t> grainIndex;
+    grainIndex.reserve(scene.grains.size());
+    for (size_t i = 0; i < scene.grains.size(); ++i) {
+        const GrainSpec& g = scene.grains[i];
+        const std::string name = g.name.empty() ? defaultGrainName(i) : g.name;
+        const auto [it, fresh] = grainIndex.emplace(name, i);
+        if (fresh) continue;
+        const GrainSpec& first = scene.grains[it->second];
+        if (g.name.empty())
+            throw Error(g.where,
+                        "this grain has no name, so it is called '" + name +
+                            "' by default, the name of the grain at " + first.where,
+                        "rename the grain at " + first.where + ", or give this one a name");
+        if (first.name.empty())
+            throw Error(g.where,
+                        "a grain named '" + name + "', the name the unnamed grain at " +
+                            first.where + " gets by default",
+                        "rename this grain, or give the one at " + first.where + " a name");
+        throw Error(g.where, "a second grain named '" + name + "'",
+                    "the first is at " + first.where + "; give grains distinct names");
     }
-    seen.clear();
+    std::map<std::string, const std::string*> seen;
     for (const BoundarySpec& b : scene.boundaries) {
         const auto [it, fresh] = seen.emplace(b.name, &b.where);
         if (!fresh)

@@ -237,6 +237,10 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         const char* message;  ///< must appear in the message
     };
     const std::string noEnd = edited("end_time = 0.01\n", "");
+    // Grain 0 unnamed (so called grain0), grain 1 named grain0.
+    std::string unnamedThenGrain0 = edited("name = \"a\"\n", "");
+    unnamedThenGrain0.replace(unnamedThenGrain0.find("position = [5, 0, 2]"), 20,
+                              "position = [5, 0, 2]\nname = \"grain0\"");
     // The floor with servo keys added.
     auto servo = [](const std::string& keys) {
         return edited("normal = [0, 0, 2]", "normal = [0, 0, 2]\n" + keys);
@@ -268,6 +272,8 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"end displacement of a fixed wall", edited("end_time = 0.01", "end_displacement = { boundary = \"floor\", value = 1.0 }"), "end_displacement", "does not move"},
         {"bad boundary name", edited("name = \"floor\"", "name = \"floor/1\""), "name = \"floor/1\"", "cannot name a file"},
         {"duplicate grain name", edited("position = [5, 0, 2]", "position = [5, 0, 2]\nname = \"a\""), "[[grains]]\nasset", "a second grain named 'a'"},
+        {"a name an unnamed grain gets by default", edited("name = \"a\"", "name = \"grain1\""), "[[grains]]\nasset", "called 'grain1' by default, the name of the grain at /data/scene.toml:"},
+        {"the default name of an unnamed grain", unnamedThenGrain0, "[[grains]]\nasset = \"ball\"\nmaterial = \"steel\"\nposition = [5", "a grain named 'grain0', the name the unnamed grain at /data/scene.toml:"},
         {"not TOML", edited("radius = 2.0", "radius = = 2.0"), "radius = = 2.0", "not valid TOML"},
         {"servo stress of the wrong sign", servo("stress = -1.5\narea = 4.0\nmax_speed = 1.0"), "stress = -1.5", "must be > 0"},
         {"servo without area", servo("stress = 1.5\nmax_speed = 1.0"), "stress = 1.5", "needs the area"},

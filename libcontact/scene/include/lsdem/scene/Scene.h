@@ -72,9 +72,15 @@ struct ContactSpec
     std::string where;
 };
 
+/// The name of an unnamed grain, from its index in Scene::grains: grain0, grain1, ...
+inline std::string defaultGrainName(size_t index)
+{
+    return "grain" + std::to_string(index);
+}
+
 struct GrainSpec
 {
-    std::string name;                    ///< optional; "" means "grain <index>"
+    std::string name;                    ///< optional; "" means defaultGrainName(index)
     int asset = 0;                       ///< index into Scene::assets
     int material = 0;                    ///< index into Scene::materials
     RigidPose pose;                      ///< centroid position and asset-to-world rotation

@@ -30,10 +30,19 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
     model.normalStiffness = t.positive("normal_stiffness");
     model.shearStiffness = t.nonNegative("shear_stiffness", 0.0);
     model.friction = t.nonNegative("friction", 0.0);
-    if (model.shearStiffness > 0.0 && !model.normal().perNodeForces())
+    const bool shearSprings = model.normal().perNodeForces();
+    if (model.shearStiffness > 0.0 && !shearSprings)
         t.fail("shear_stiffness", "has no effect with formulation " +
                                       formulationName(model.formulation),
                "use original or adapted for tangential forces, or remove it");
+    // Friction bounds the shear springs' force: without them the contact is frictionless.
+    if (model.friction > 0.0 && !shearSprings)
+        t.fail("friction", "has no effect with formulation " + formulationName(model.formulation),
+               "use original or adapted with a shear_stiffness for tangential forces, or "
+               "remove it");
+    if (model.friction > 0.0 && !(model.shearStiffness > 0.0))
+        t.fail("friction", "has no effect without shear springs (shear_stiffness is 0)",
+               "give shear_stiffness > 0 (ks* or ks, see docs/contact.md), or remove friction");
     c.restitution = t.number("restitution", 1.0);
     if (!(c.restitution > 0.0 && c.restitution <= 1.0))
         t.fail("restitution", "must be in (0, 1] (got " + TableReader::show(c.restitution) + ")",

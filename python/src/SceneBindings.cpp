@@ -346,6 +346,18 @@ void bindScenes(py::module_& m)
                      throw Error("", "shear_stiffness and friction must be finite and >= 0");
                  if (!(restitution > 0.0 && restitution <= 1.0))
                      throw Error("", "restitution must be in (0, 1]", "1 for no damping");
+                 // As the scene reader: tangential forces need per-node shear springs, and
+                 // friction only caps them.
+                 const bool shearSprings = c.model.normal().perNodeForces();
+                 const std::string name = formulationName(c.model.formulation);
+                 if (shearStiffness > 0.0 && !shearSprings)
+                     throw Error("", "shear_stiffness has no effect with formulation '" + name + "'",
+                                 "use 'original' or 'adapted' for tangential forces, or leave "
+                                 "it out");
+                 if (friction > 0.0 && !(shearStiffness > 0.0 && shearSprings))
+                     throw Error("", "friction has no effect without shear springs",
+                                 "give shear_stiffness > 0 with formulation 'original' or "
+                                 "'adapted' (see docs/contact.md), or leave friction out");
                  markChanged(s);
                  c.model.normalStiffness = normalStiffness;
                  c.model.shearStiffness = shearStiffness;

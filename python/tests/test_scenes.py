@@ -196,7 +196,17 @@ def test_builder_refuses_what_it_cannot_mean(sphere):
     with pytest.raises(lsdem.Error, match="mass must be >= 0"):
         built.add_grain("ball", "steel", [0, 0, 0], mass=-1.0)
     assert len(built) == 0
-    built.add_contact("steel", "steel", normal_stiffness=1.0)
+    # Friction without shear springs would be silently frictionless (the reader refuses it).
+    with pytest.raises(lsdem.Error, match="friction has no effect without shear springs"):
+        built.add_contact("steel", "steel", normal_stiffness=1.0, friction=0.5)
+    with pytest.raises(lsdem.Error, match="friction has no effect"):
+        built.add_contact("steel", "steel", formulation="volume", normal_stiffness=1.0,
+                          friction=0.5)
+    with pytest.raises(lsdem.Error, match="shear_stiffness has no effect with formulation"):
+        built.add_contact("steel", "steel", formulation="volume", normal_stiffness=1.0,
+                          shear_stiffness=1.0)
+    built.add_contact("steel", "steel", normal_stiffness=1.0, shear_stiffness=0.5,
+                      friction=0.5)
     with pytest.raises(lsdem.Error, match="already a contact law between materials"):
         built.add_contact("steel", "steel", normal_stiffness=2.0)
 

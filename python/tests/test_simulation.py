@@ -215,6 +215,21 @@ def test_threads_are_bounded():
         lsdem.run_scene(SCENES / "bounce.toml", "unused", threads=5000)
 
 
+def test_a_pair_of_materials_without_a_law_is_refused(sphere):
+    """The reader refuses a scene whose grains could meet without a contact law; a scene built
+    in Python is refused too, rather than letting its grains pass through each other."""
+    scene = lsdem.Scene()
+    scene.add_asset("ball", sphere)
+    scene.add_material("steel", density=7.85e-9)
+    scene.add_material("wall")
+    scene.add_contact("steel", "wall", normal_stiffness=1e3)
+    scene.add_grain("ball", "steel", [0, 0, 6])
+    scene.add_grain("ball", "steel", [0, 0, 16])
+    scene.add_plane("floor", "wall", point=[0, 0, 0], normal=[0, 0, 1])
+    with pytest.raises(lsdem.Error, match="no contact law between materials 'steel' and 'steel'"):
+        lsdem.Simulation(scene, threads=1)
+
+
 def test_a_checkpoint_keeps_the_histories_it_was_restarted_with(lsdem_run, tmp_path):
     """Loaded from lsdem-run's checkpoint and written again, a checkpoint still holds the
     run's histories: lsdem-run --restart writes them out again instead of losing them."""

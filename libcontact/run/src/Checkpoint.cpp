@@ -16,7 +16,8 @@ namespace {
 
 const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 2: each boundary also keeps its contact stiffness and dashpot (a servo wall's gain).
-/// 3: the fingerprint of the world's assets and grains (WorldFingerprint.h) follows the record.
+/// 3: the fingerprint of the world's grains and their assets (WorldFingerprint.h) follows the
+///    record.
 const uint32_t kVersion = 3;
 const uint32_t kOldestVersion = 1;
 
@@ -184,8 +185,10 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
     checkpoint.timeStep = r.pod<double>();
     checkpoint.record = readRecord(r);
     if (version >= 3) {
-        fingerprint.assets = r.words();
         fingerprint.grains = r.words();
+        fingerprint.grainAssets = r.words();
+        fingerprint.boundaryAssets = r.words();
+        if (fingerprint.grainAssets.size() != fingerprint.grains.size()) r.fail();
     }
     return in;
 }
@@ -203,8 +206,9 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         w.pod(checkpoint.timeStep);
         writeRecord(w, checkpoint.record);
         const WorldFingerprint fingerprint = fingerprintOf(world);
-        w.words(fingerprint.assets);
         w.words(fingerprint.grains);
+        w.words(fingerprint.grainAssets);
+        w.words(fingerprint.boundaryAssets);
 
         w.pod(world.time);
         w.pod<int64_t>(world.step);

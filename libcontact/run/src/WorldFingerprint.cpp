@@ -61,22 +61,24 @@ uint64_t assetFingerprint(const GrainAsset& a)
 WorldFingerprint fingerprintOf(const World& world)
 {
     WorldFingerprint f;
-    std::map<const GrainAsset*, uint64_t> indexOf;
-    for (size_t k = 0; k < world.assets.size(); ++k) {
-        f.assets.push_back(world.assets[k] ? assetFingerprint(*world.assets[k]) : 0);
-        indexOf.emplace(world.assets[k].get(), k);
-    }
+    std::map<const GrainAsset*, uint64_t> assetNumbers;  // grains share assets: each once
+    auto numberOf = [&](const std::shared_ptr<const GrainAsset>& asset) -> uint64_t {
+        if (!asset) return 0;
+        const auto [it, fresh] = assetNumbers.emplace(asset.get(), 0);
+        if (fresh) it->second = assetFingerprint(*asset);
+        return it->second;
+    };
     for (const Grain& g : world.grains) {
         Hash h;
         h.text(g.name);
-        const auto it = indexOf.find(g.asset.get());
-        h.word(it != indexOf.end() ? it->second : ~uint64_t(0));
         h.word(static_cast<uint64_t>(g.material));
         h.word(static_cast<uint64_t>(g.motion));
         h.number(g.body.mass);
         h.vector(g.body.principalInertia);
         f.grains.push_back(h.value());
+        f.grainAssets.push_back(numberOf(g.asset));
     }
+    for (const Boundary& b : world.boundaries) f.boundaryAssets.push_back(numberOf(b.asset));
     return f;
 }
 
@@ -85,36 +87,34 @@ void checkSameInputs(const WorldFingerprint& stored, const World& world, const s
     const WorldFingerprint now = fingerprintOf(world);
     const std::string fix =
         "restore the files the run was started with, or start the run again from its scene";
-    if (now.assets.size() != stored.assets.size())
-        throw Error(path,
-                    "the scene now makes " + std::to_string(now.assets.size()) +
-                        " assets, the checkpointed run had " +
-                        std::to_string(stored.assets.size()) + " (an asset set changed?)",
-                    fix);
-    for (size_t k = 0; k < now.assets.size(); ++k)
-        if (now.assets[k] != stored.assets[k]) {
-            const std::string source =
-                world.assets[k] ? " (from '" + world.assets[k]->provenance.source + "')" : "";
-            throw Error(path,
-                        "asset " + std::to_string(k) + source +
-                            " is not the one the run was checkpointed with: its file, mesh or "
-                            "bake options changed since, so a restart would not continue the "
-                            "same run",
-                        fix);
-        }
     if (now.grains.size() != stored.grains.size())
         throw Error(path,
                     "the scene now has " + std::to_string(now.grains.size()) +
                         " grains, the checkpointed run had " +
                         std::to_string(stored.grains.size()) + " (a grain file changed?)",
                     fix);
-    for (size_t k = 0; k < now.grains.size(); ++k)
+    for (size_t k = 0; k < now.grains.size(); ++k) {
+        const std::string grain = "grain " + std::to_string(k) + " ('" + world.grains[k].name + "')";
+        if (now.grainAssets[k] != stored.grainAssets[k])
+            throw Error(path,
+                        grain + ": its asset is not the one the run was checkpointed with (its "
+                                "file or mesh changed since), so a restart would not continue "
+                                "the same run",
+                        fix);
         if (now.grains[k] != stored.grains[k])
             throw Error(path,
-                        "grain " + std::to_string(k) + " ('" + world.grains[k].name +
-                            "') is not the one the run was checkpointed with: its name, asset, "
-                            "material, motion or mass changed since (a grain file or catalogue "
-                            "edited?)",
+                        grain + " is not the one the run was checkpointed with: its name, "
+                                "asset, material, motion or mass changed since (a grain file "
+                                "or catalogue edited?)",
+                        fix);
+    }
+    // (The scene's text, and so its boundaries, come from the checkpoint.)
+    for (size_t b = 0; b < now.boundaryAssets.size() && b < stored.boundaryAssets.size(); ++b)
+        if (now.boundaryAssets[b] != stored.boundaryAssets[b])
+            throw Error(path,
+                        "boundary '" + world.boundaries[b].name +
+                            "': its level set is not the one the run was checkpointed with "
+                            "(its file or mesh changed since)",
                         fix);
 }
 

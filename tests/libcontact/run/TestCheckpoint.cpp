@@ -456,8 +456,9 @@ TEST(Checkpoint, HistoriesOfGrainsOrBoundariesNotInTheSceneAreRefused)
 
 // A restart reads the scene from the checkpoint but its asset and grain files as they are
 // then. A world rebuilt from a changed asset file, or with a grain renamed or of another
-// mass (as an edited grain file would give), is refused, naming the asset or grain; the world
-// rebuilt from the same files restores (RestartContinuesBitIdentically covers the rest).
+// mass (as an edited grain file would give), is refused, naming the grain or boundary; the
+// world rebuilt from the same files, or with an asset more that nothing uses, restores
+// (RestartContinuesBitIdentically covers the rest).
 TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
 {
     lsdem::test::ScratchDir dir;
@@ -487,8 +488,19 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     Scene changed = stackScene(2);
     changed.assets[0].file = larger;
     const std::string asset = refusal(build(changed));
-    EXPECT_NE(asset.find("asset 0"), std::string::npos) << asset;
-    EXPECT_NE(asset.find("not the one the run was checkpointed with"), std::string::npos);
+    EXPECT_NE(asset.find("grain 0 ('grain0'): its asset is not the one the run was checkpointed "
+                         "with"),
+              std::string::npos)
+        << asset;
+    // An asset no grain uses (a folder of assets grown since) does not matter.
+    Scene grown = stackScene(2);
+    grown.assets.push_back(changed.assets[0]);
+    grown.assets.back().name = "unused";
+    EXPECT_EQ(refusal(build(grown)), "");
+    // A boundary that now has a level set it did not have.
+    World obstacle = build(stackScene(2));
+    obstacle.boundaries[0].asset = obstacle.grains[0].asset;
+    EXPECT_NE(refusal(obstacle).find("boundary 'floor': its level set"), std::string::npos);
 
     World renamed = build(stackScene(2));
     renamed.grains[3].name = "other";

@@ -429,15 +429,16 @@ void bindScenes(py::module_& m)
                  b.velocity = toVec3(velocity, "velocity");
                  b.where = "boundary '" + name + "'";
                  setServo(b, stress, area, areaWalls, maxSpeed, servoGain);
-                 markChanged(s);
                  s.boundaries.push_back(b);
-                 if (b.areaWallNames.empty()) return;
-                 try {  // the walls it names must be in the scene already
-                     resolveServoAreaWalls(s);
-                 } catch (const Error&) {
-                     s.boundaries.pop_back();
-                     throw;
+                 if (!b.areaWallNames.empty()) {
+                     try {  // the walls it names must be in the scene already
+                         resolveServoAreaWalls(s);
+                     } catch (const Error&) {
+                         s.boundaries.pop_back();
+                         throw;
+                     }
                  }
+                 markChanged(s);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("point"),
              py::arg("normal"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
@@ -574,7 +575,6 @@ void bindScenes(py::module_& m)
         .def("add_sphere_boundary",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& velocity) {
-                 markChanged(s);
                  checkNewName(s.boundaries, name, "boundary");
                  if (!(radius > 0.0) || !std::isfinite(radius))
                      throw Error("", "boundary '" + name + "': radius must be > 0");
@@ -586,6 +586,7 @@ void bindScenes(py::module_& m)
                  b.radius = radius;
                  b.velocity = toVec3(velocity, "velocity");
                  b.where = "boundary '" + name + "'";
+                 markChanged(s);
                  s.boundaries.push_back(b);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),

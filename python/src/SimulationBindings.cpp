@@ -67,9 +67,9 @@ class PySimulation
                 throw Error("",
                             sim.mRunner == std::this_thread::get_id()
                                 ? "run() was called from its own callback"
-                                : "this simulation is already running in another thread",
-                            "wait for that run() to return; one simulation steps one run at "
-                            "a time");
+                                : "this simulation is busy in another thread (a run() or a "
+                                  "checkpoint())",
+                            "wait for it to return; one simulation does one thing at a time");
             sim.mRunning = true;
             sim.mRunner = std::this_thread::get_id();
         }
@@ -179,9 +179,18 @@ public:
                         "read it from run()'s callback, or after run() returns");
     }
 
-    void checkpoint(const std::string& path) const
+    void checkpoint(const std::string& path)
     {
         checkNotSteppingElsewhere();
+        // Busy while the file is written (the GIL is released then), unless this is a run's
+        // own callback, which already holds the simulation.
+        std::optional<Running> writing;
+        if (!mRunning) writing.emplace(*this);
+        if (mScene.text.empty() && !hasEndCondition())
+            throw Error("", "a checkpoint of a scene built in Python needs the scene's end "
+                            "condition: lsdem-run and from_checkpoint read its scene as a file, "
+                            "which must say when to stop",
+                        "set scene.end_steps or scene.end_time before making the Simulation");
         Checkpoint c;
         if (!mScene.text.empty()) {
             c.scenePath = fs::absolute(mScene.path).string();

@@ -165,7 +165,7 @@ def test_help_is_useful():
         assert function.__doc__
 
 
-def test_one_run_at_a_time():
+def test_one_run_at_a_time(tmp_path):
     """A simulation steps one run at a time: a run() or a read of its changing state from
     another thread while it steps, or a run() from its own callback, raises instead of
     corrupting it; its own callback may read it and checkpoint it."""
@@ -178,7 +178,7 @@ def test_one_run_at_a_time():
                            ("energies", lambda: sim.energies),
                            ("contacts", lambda: sim.contacts),
                            ("done", lambda: sim.done),
-                           ("checkpoint", lambda: sim.checkpoint("unused.lsdem"))):
+                           ("checkpoint", lambda: sim.checkpoint(str(tmp_path / "c.lsdem")))):
             try:
                 call()
                 from_other_thread[name] = None
@@ -196,23 +196,26 @@ def test_one_run_at_a_time():
         with pytest.raises(lsdem.Error, match="own callback"):
             s.run(steps=1)
         from_callback["energies"] = s.energies["kinetic"]
+        s.checkpoint(str(tmp_path / "from-callback.lsdem"))
 
     assert sim.run(steps=5, callback=callback) == 5
     assert from_other_thread["run"] and "another thread" in from_other_thread["run"]
     for name in ("energies", "contacts", "done", "checkpoint"):
         assert from_other_thread[name] and "another thread" in from_other_thread[name], name
     assert from_callback["energies"] > 0.0
+    assert (tmp_path / "from-callback.lsdem").exists() and not (tmp_path / "c.lsdem").exists()
     # Over, also after a callback that raised: it runs again.
     with pytest.raises(ZeroDivisionError):
         sim.run(steps=3, callback=lambda s: 1 / 0)
     assert sim.run(steps=2) == 2 and sim.step == 8
 
 
-def test_threads_are_bounded():
+def test_threads_are_bounded(tmp_path):
     with pytest.raises(lsdem.Error, match="threads wants a number from 1 to 1024"):
         lsdem.Simulation(short_bounce(1), threads=100000)
     with pytest.raises(lsdem.Error, match="threads"):
-        lsdem.run_scene(SCENES / "bounce.toml", "unused", threads=5000)
+        lsdem.run_scene(SCENES / "bounce.toml", tmp_path / "out", threads=5000)
+    assert not (tmp_path / "out").exists()
 
 
 def test_a_pair_of_materials_without_a_law_is_refused(sphere):
@@ -228,6 +231,20 @@ def test_a_pair_of_materials_without_a_law_is_refused(sphere):
     scene.add_plane("floor", "wall", point=[0, 0, 0], normal=[0, 0, 1])
     with pytest.raises(lsdem.Error, match="no contact law between materials 'steel' and 'steel'"):
         lsdem.Simulation(scene, threads=1)
+
+
+def test_a_checkpoint_of_an_endless_built_scene_is_refused(sphere, tmp_path):
+    """Its scene would be written as a file without an end, which no restart can read."""
+    scene = lsdem.Scene()
+    scene.add_asset("ball", sphere)
+    scene.add_material("steel", density=7.85e-9)
+    scene.add_grain("ball", "steel", [0, 0, 6])
+    scene.time_step = 1e-5
+    sim = lsdem.Simulation(scene, threads=1)
+    sim.run(steps=2)
+    with pytest.raises(lsdem.Error, match="end_steps"):
+        sim.checkpoint(str(tmp_path / "c.lsdem"))
+    assert not (tmp_path / "c.lsdem").exists()
 
 
 def test_a_checkpoint_keeps_the_histories_it_was_restarted_with(lsdem_run, tmp_path):

@@ -4,6 +4,9 @@
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
+#include <tuple>
+#include <utility>
+
 namespace lsdem {
 
 namespace {
@@ -21,19 +24,6 @@ Kernel::Triangle_3 triangle(const TriangleMesh& mesh, int t)
                               point(mesh.vertices[static_cast<size_t>(tri[2])]));
 }
 
-std::vector<Box> boxesOf(const TriangleMesh& mesh, const MeshPart& part)
-{
-    std::vector<Box> boxes;
-    boxes.reserve(part.triangles->size());
-    for (int t : *part.triangles) {
-        const auto& tri = mesh.triangles[static_cast<size_t>(t)];
-        CGAL::Bbox_3 box;
-        for (int v : tri) box += point(mesh.vertices[static_cast<size_t>(v)]).bbox();
-        boxes.emplace_back(box, t);
-    }
-    return boxes;
-}
-
 bool boxesOverlap(const MeshPart& a, const MeshPart& b)
 {
     return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
@@ -44,27 +34,42 @@ bool boxesOverlap(const MeshPart& a, const MeshPart& b)
 std::optional<PartCrossing> findPartCrossing(const TriangleMesh& mesh,
                                              const std::vector<MeshPart>& parts)
 {
-    for (size_t i = 0; i < parts.size(); ++i)
-        for (size_t j = i + 1; j < parts.size(); ++j) {
-            if (!boxesOverlap(parts[i], parts[j])) continue;
-            std::vector<Box> a = boxesOf(mesh, parts[i]), b = boxesOf(mesh, parts[j]);
-            std::optional<PartCrossing> found;
-            // Triangles whose boxes meet are tested exactly; the first pair that meets is kept.
-            CGAL::box_intersection_d(a.begin(), a.end(), b.begin(), b.end(),
-                                     [&](const Box& x, const Box& y) {
-                                         if (found) return;
-                                         // (Exactly flat triangles were dropped before; the
-                                         // exact test needs none.)
-                                         const auto tx = triangle(mesh, x.info()),
-                                                    ty = triangle(mesh, y.info());
-                                         if (tx.is_degenerate() || ty.is_degenerate()) return;
-                                         if (CGAL::do_intersect(tx, ty))
-                                             found = PartCrossing{int(i), int(j), x.info(),
-                                                                  y.info()};
-                                     });
-            if (found) return found;
+    // Only parts whose box meets another part's box can cross; their triangles are boxed once
+    // and swept together, pairs within one part skipped (each part's neighbours overlap).
+    std::vector<int> partOf(mesh.triangles.size(), -1);
+    std::vector<Box> boxes;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        bool meetsAnother = false;
+        for (size_t j = 0; j < parts.size() && !meetsAnother; ++j)
+            meetsAnother = j != i && boxesOverlap(parts[i], parts[j]);
+        if (!meetsAnother) continue;
+        for (int t : *parts[i].triangles) {
+            partOf[static_cast<size_t>(t)] = static_cast<int>(i);
+            CGAL::Bbox_3 box;
+            for (int v : mesh.triangles[static_cast<size_t>(t)])
+                box += point(mesh.vertices[static_cast<size_t>(v)]).bbox();
+            boxes.emplace_back(box, t);
         }
-    return std::nullopt;
+    }
+    // The least crossing (by parts, then triangles), so the answer does not depend on the
+    // order in which the sweep meets them.
+    std::optional<PartCrossing> least;
+    auto key = [](const PartCrossing& c) {
+        return std::make_tuple(c.partA, c.partB, c.triangleA, c.triangleB);
+    };
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        int a = x.info(), b = y.info();
+        int partA = partOf[static_cast<size_t>(a)], partB = partOf[static_cast<size_t>(b)];
+        if (partA == partB) return;
+        if (partA > partB) std::swap(a, b), std::swap(partA, partB);
+        const PartCrossing candidate{partA, partB, a, b};
+        if (least && key(*least) <= key(candidate)) return;
+        // (Exactly flat triangles were dropped before; the exact test needs none.)
+        const auto ta = triangle(mesh, a), tb = triangle(mesh, b);
+        if (ta.is_degenerate() || tb.is_degenerate()) return;
+        if (CGAL::do_intersect(ta, tb)) least = candidate;
+    });
+    return least;
 }
 
 } // namespace lsdem

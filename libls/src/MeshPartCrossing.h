@@ -27,8 +27,8 @@ struct PartCrossing
 };
 
 /// A pair of triangles of two different parts of @a mesh that intersect (share a point,
-/// with exact predicates), for the first such pair of parts in order; none if no two parts
-/// meet.
+/// with exact predicates): the least such pair, by parts and then triangles; none if no two
+/// parts meet.
 std::optional<PartCrossing> findPartCrossing(const TriangleMesh& mesh,
                                              const std::vector<MeshPart>& parts);
 

@@ -41,6 +41,7 @@ struct FileResult
 {
     std::optional<CatalogEntry> entry;
     bool unchanged = false;
+    bool earlierDamaged = false;  ///< the asset of its earlier row failed its seal check
     std::string failure;
     std::vector<std::string> warnings;
 };
@@ -57,8 +58,8 @@ std::map<std::string, CatalogEntry> earlierRows(const std::string& catalogPath)
         for (CatalogEntry& e : readCatalog(catalogPath)) rows.emplace(e.name, std::move(e));
     } catch (const Error& e) {
         throw Error(e.where(),
-                    e.problem() + "; the batch keeps the earlier catalogue's rows, so nothing "
-                                  "was baked",
+                    "cannot read the existing catalogue (" + e.problem() +
+                        "); nothing was baked, since a new catalogue would drop its other rows",
                     "correct that line, or move the catalogue away to start a new one");
     }
     return rows;
@@ -87,6 +88,7 @@ FileResult bakeOne(const std::string& path, const std::string& name,
                 result.unchanged = true;
                 return result;
             } catch (const Error& damaged) {
+                result.earlierDamaged = true;
                 result.warnings.push_back(damaged.where() + ": " + damaged.problem() +
                                           "; baking it again");
             }
@@ -196,8 +198,9 @@ BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
         for (std::string& w : r.warnings) report.warnings.push_back(std::move(w));
         if (!r.entry) {
             // The earlier asset is untouched (saveAsset replaces a file only once it is
-            // written): its row stays, below, as long as the asset is there.
+            // written): its row stays, below, as long as the asset is there and intact.
             report.failures.push_back({meshPaths[i], r.failure});
+            if (r.earlierDamaged) earlier.erase(names[i]);
             continue;
         }
         earlier.erase(names[i]);  // this run's row replaces it

@@ -28,12 +28,13 @@ std::string pathText(const py::handle& path)
 }
 
 py::dict runScene(const py::object& scene, const py::object& out, std::optional<int> threads,
-                  bool progress, long long stopAtStep)
+                  bool progress, long long stopAtStep, bool overwrite)
 {
     RunOptions options;
     options.scenePath = pathText(scene);
     options.outDir = pathText(out);
     options.progress = progress;
+    options.overwrite = overwrite;
     if (stopAtStep < 0) throw Error("", "stop_at_step wants a number >= 0 (0: run to the end)");
     options.stopAtStep = stopAtStep;
     const std::unique_ptr<tbb::task_arena> arena = makeArena(threads);
@@ -121,14 +122,17 @@ py::list twoSpheres(const std::vector<std::string>& formulations, const std::vec
 void bindRuns(py::module_& m)
 {
     m.def("run_scene", &runScene, py::arg("scene"), py::arg("out"), py::arg("threads") = py::none(),
-          py::arg("progress") = false, py::arg("stop_at_step") = 0,
+          py::arg("progress") = false, py::arg("stop_at_step") = 0, py::arg("overwrite") = false,
           "Run the scene file `scene` exactly as `lsdem-run scene --out out` does: the same\n"
           "output files in folder `out` (energy.csv, boundary_<name>.csv, grains.csv, ParaView\n"
           "frames, checkpoints as the scene asks), the same numbers bit for bit, on `threads`\n"
           "threads (default: all cores). stop_at_step > 0 stops there with a checkpoint.\n"
+          "A folder holding an earlier run's outputs is refused, unless overwrite=True\n"
+          "(lsdem-run --overwrite): then those files (and no others) are removed first.\n"
           "Returns a dict: step, time, time_step, grains, interrupted, checkpoint (path),\n"
           "wall_seconds and log (the summary lsdem-run prints). Raises lsdem.Error on a bad\n"
-          "scene, an unwritable folder or an unstable time step (files already written stay).");
+          "scene, an earlier run in `out`, an unwritable folder or an unstable time step (files\n"
+          "already written stay).");
 
     py::module_ study = m.def_submodule(
         "study", "The paper's studies as functions returning their rows (lists of dicts).");

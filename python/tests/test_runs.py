@@ -43,6 +43,22 @@ def test_run_scene_errors(tmp_path):
         lsdem.run_scene(SCENES / "bounce.toml", tmp_path / "out", threads=0)
 
 
+def test_run_scene_refuses_an_earlier_run_unless_overwrite(tmp_path):
+    out = tmp_path / "out"
+    lsdem.run_scene(SCENES / "bounce.toml", out, threads=1, stop_at_step=5)
+    (out / "notes.txt").write_text("mine")
+    checkpoint = (out / "checkpoint.lsdem").read_bytes()
+    with pytest.raises(lsdem.Error, match="(?s)outputs of an earlier run.*overwrite=True"):
+        lsdem.run_scene(SCENES / "bounce.toml", out, threads=1, stop_at_step=7)
+    assert (out / "checkpoint.lsdem").read_bytes() == checkpoint
+
+    result = lsdem.run_scene(SCENES / "bounce.toml", out, threads=1, stop_at_step=7,
+                             overwrite=True)
+    assert result["step"] == 7
+    assert lsdem.Simulation.from_checkpoint(result["checkpoint"], threads=1).step == 7
+    assert (out / "notes.txt").read_text() == "mine"
+
+
 def test_two_spheres_rows_follow_the_continuum_limit(tmp_path):
     rows = lsdem.study.two_spheres(formulations=["adapted", "original"], nodes=[500, 2000],
                                    stiffness_factors=[1.0], radius=5.0, voxel=0.1,

@@ -8,11 +8,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
 #include <thread>
 #include <utility>
+#include <vector>
 
 using namespace lsdem::test;
 
@@ -255,10 +257,62 @@ TEST(LsdemRun, RefusesAnOutputThatWouldOverwriteAnInput)
         EXPECT_EQ(readFile(dir.file("same/grains.csv")), csv);
         EXPECT_FALSE(std::filesystem::exists(dir.file("same/energy.csv")));
     }
+    // --overwrite removes an earlier run's outputs, never an input that has their names.
+    const CommandResult overwriting = runCommand(kRun + " " + dir.file("same/scene.toml") +
+                                                 " -q --overwrite --out " + dir.file("same"));
+    EXPECT_EQ(overwriting.exitCode, 1) << overwriting.output;
+    EXPECT_NE(overwriting.output.find("would overwrite its input"), std::string::npos)
+        << overwriting.output;
+    EXPECT_EQ(readFile(dir.file("same/grains.csv")), csv);
     const CommandResult elsewhere =
         runCommand(kRun + " " + dir.file("same/scene.toml") + " -q --out " + dir.file("out"));
     EXPECT_EQ(elsewhere.exitCode, 0) << elsewhere.output;
     EXPECT_EQ(readFile(dir.file("same/grains.csv")), csv);
+}
+
+// A fresh run into a folder holding an earlier run's outputs would replace some of them (its
+// checkpoint among them) and leave others (its frames, the history of a boundary the new scene
+// lacks): refused before anything is written, unless --overwrite removes exactly those files.
+TEST(LsdemRun, RefusesAFolderHoldingAnEarlierRunUnlessOverwriting)
+{
+    ScratchDir dir;
+    const std::string out = dir.file("out");
+    ASSERT_EQ(runCommand(kRun + " " + writeScene(dir, smallScene(20)) + " -q --out " + out).exitCode, 0);
+    std::ofstream(out + "/boundary_gone.csv") << "step\n";  // a boundary the next scene lacks
+    std::ofstream(out + "/notes.txt") << "mine";
+    const std::string checkpoint = readFile(out + "/checkpoint.lsdem");
+
+    std::string text = smallScene(30);  // a different run, writing no frames
+    text.replace(text.find("vtk_period = 1e-3"), 17, "");
+    const std::string scene = writeScene(dir, text);
+    const CommandResult refused = runCommand(kRun + " " + scene + " -q --out " + out);
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(refused.output.find(out + ": the output folder holds the outputs of an earlier run ("
+                                  "boundary_floor.csv, boundary_gone.csv, checkpoint.lsdem, "
+                                  "energy.csv, frames.pvd and "),
+              std::string::npos)
+        << refused.output;
+    EXPECT_NE(refused.output.find("choose another --out, or pass --overwrite to replace them"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_TRUE(readFile(out + "/checkpoint.lsdem") == checkpoint);  // (binary: not printed)
+    EXPECT_TRUE(std::filesystem::exists(out + "/frames.pvd"));
+
+    const CommandResult replaced = runCommand(kRun + " " + scene + " -q --overwrite --out " + out);
+    ASSERT_EQ(replaced.exitCode, 0) << replaced.output;
+    std::vector<std::string> left;
+    for (const auto& entry : std::filesystem::directory_iterator(out))
+        left.push_back(entry.path().filename().string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"boundary_floor.csv", "checkpoint.lsdem",
+                                              "energy.csv", "grains.csv", "notes.txt"}));
+    EXPECT_EQ(readFile(out + "/notes.txt"), "mine");
+    EXPECT_EQ(countLines(out + "/energy.csv"), 1 + 4);  // steps 0, 10, 20, 30
+
+    const CommandResult restart =
+        runCommand(kRun + " -q --overwrite --restart " + out + "/checkpoint.lsdem");
+    EXPECT_EQ(restart.exitCode, 1) << restart.output;
+    EXPECT_NE(restart.output.find("drop --overwrite"), std::string::npos) << restart.output;
 }
 
 // An end condition far beyond what anyone means (1e30 time units at a 1e-5 step) is run, as

@@ -11,6 +11,8 @@ namespace lsdem {
 
 namespace {
 
+const std::string kBoundaryHistoryPrefix = "boundary_", kBoundaryHistorySuffix = ".csv";
+
 void appendNumber(std::string& line, double v)
 {
     char buffer[40];
@@ -62,7 +64,15 @@ std::string boundaryHistoryFileName(const std::string& name)
     std::string safe = name;
     for (char& c : safe)
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-    return "boundary_" + safe + ".csv";
+    return kBoundaryHistoryPrefix + safe + kBoundaryHistorySuffix;
+}
+
+bool isBoundaryHistoryFileName(const std::string& fileName)
+{
+    const size_t affixes = kBoundaryHistoryPrefix.size() + kBoundaryHistorySuffix.size();
+    return fileName.size() > affixes && fileName.rfind(kBoundaryHistoryPrefix, 0) == 0 &&
+           fileName.compare(fileName.size() - kBoundaryHistorySuffix.size(),
+                            kBoundaryHistorySuffix.size(), kBoundaryHistorySuffix) == 0;
 }
 
 void writeHistoryFiles(const std::string& directory, const World& world,

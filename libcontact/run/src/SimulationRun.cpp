@@ -14,11 +14,13 @@
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <ostream>
+#include <vector>
 
 namespace lsdem {
 
@@ -37,31 +39,84 @@ bool endsWith(const std::string& s, const std::string& end)
     return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
 }
 
-/// Whether a run of @a scene writes a file called @a name into its output folder.
-bool runWrites(const Scene& scene, const std::string& name)
+/// Whether any run writes a file called @a name into its output folder (whatever its scene).
+bool isRunOutputName(const std::string& name)
 {
     if (name == kEnergyFileName || name == kGrainsFileName || name == kCheckpointFileName ||
-        name == kFramesBaseName + ".pvd")
+        name == kFramesBaseName + ".pvd" || isBoundaryHistoryFileName(name))
         return true;
-    for (const BoundarySpec& b : scene.boundaries)
-        if (name == boundaryHistoryFileName(b.name)) return true;
     // The frames and, split over ranks, their pieces: frames_grains_3.vtu, ..._3.pvtu, ..._3_1.vtu
     return name.rfind(kFramesBaseName + "_", 0) == 0 &&
            (endsWith(name, ".vtu") || endsWith(name, ".pvtu"));
 }
 
+/// Whether a run of @a scene writes a file called @a name into its output folder.
+bool runWrites(const Scene& scene, const std::string& name)
+{
+    if (!isBoundaryHistoryFileName(name)) return isRunOutputName(name);
+    for (const BoundarySpec& b : scene.boundaries)
+        if (name == boundaryHistoryFileName(b.name)) return true;
+    return false;
+}
+
+/// The files of an earlier run in @a outDir (sorted): a fresh run there would leave some and
+/// replace others, so the folder would look like one run but hold two.
+std::vector<std::string> earlierRunOutputs(const std::string& outDir)
+{
+    std::vector<std::string> found;
+    std::error_code ec;
+    for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (isRunOutputName(name) && !entry.is_directory(ec)) found.push_back(name);
+    }
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+/// Refuses (without @a overwrite) a fresh run into a folder holding an earlier run's outputs.
+void refuseEarlierRun(const std::string& outDir, const std::vector<std::string>& earlier,
+                      bool overwrite)
+{
+    if (earlier.empty() || overwrite) return;
+    const size_t shown = std::min<size_t>(earlier.size(), 5);
+    std::string names;
+    for (size_t i = 0; i < shown; ++i) names += (i ? ", " : "") + earlier[i];
+    if (earlier.size() > shown) names += " and " + std::to_string(earlier.size() - shown) + " more";
+    throw Error(outDir,
+                "the output folder holds the outputs of an earlier run (" + names +
+                    "), which this run would mix with its own",
+                "choose another --out, or pass --overwrite to replace them (run_scene: "
+                "overwrite=True)");
+}
+
+/// Removes @a names from @a outDir (an earlier run's outputs, under --overwrite).
+void removeEarlierRun(const std::string& outDir, const std::vector<std::string>& names)
+{
+    for (const std::string& name : names) {
+        const fs::path path = fs::path(outDir) / name;
+        std::error_code ec;
+        fs::remove(path, ec);
+        if (ec)
+            throw Error(path.string(), "cannot remove this earlier output (" + ec.message() + ")",
+                        "remove it yourself, or choose another --out");
+    }
+}
+
 /// Refuses a run whose outputs in @a outDir would replace one of the files @a scene reads (the
 /// scene file, grain files, assets, meshes, catalogues): e.g. a scene reading grains.csv from
 /// its own folder, run with --out that folder. An input is replaced if it is listed in
-/// @a outDir under an output's name, or is a link to such a file.
-void refuseOutputsOverInputs(const Scene& scene, const std::string& outDir)
+/// @a outDir under an output's name (with @a overwrite: under any run's output name, as the
+/// earlier run's outputs are removed), or is a link to such a file.
+void refuseOutputsOverInputs(const Scene& scene, const std::string& outDir, bool overwrite)
 {
     auto check = [&](const std::string& input, const std::string& where) {
         if (input.empty()) return;
         std::error_code ec;
         const fs::path resolved = fs::canonical(input, ec);
         for (const fs::path& p : {fs::absolute(input), resolved}) {
-            if (p.empty() || !runWrites(scene, p.filename().string())) continue;
+            const std::string name = p.filename().string();
+            if (p.empty() || !(overwrite ? isRunOutputName(name) : runWrites(scene, name)))
+                continue;
             if (!fs::equivalent(p.parent_path(), outDir, ec)) continue;
             throw Error(where,
                         "the run would overwrite its input " + input + " with its output " +
@@ -142,7 +197,11 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
-    refuseOutputsOverInputs(mScene, mOutDir);  // before any work, and before writing anything
+    // Before any work, and before writing anything (a restart continues its own outputs).
+    refuseOutputsOverInputs(mScene, mOutDir, options.overwrite && !mRestart);
+    const std::vector<std::string> earlier =
+        mRestart ? std::vector<std::string>() : earlierRunOutputs(mOutDir);
+    refuseEarlierRun(mOutDir, earlier, options.overwrite);
 
     if (options.ranks) {
         // One rank evaluates every contact: nothing to split, nothing to exchange.
@@ -153,8 +212,10 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
-    if (mWrites)  // once the scene is good
+    if (mWrites) {  // once the scene is good
         prepareOutputFolder(mOutDir, "choose a writable --out folder");
+        removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
+    }
     if (mWrites)  // for grains.csv's displacements
         for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
 

@@ -33,4 +33,7 @@ void writeGrainsFile(const std::string& path, const World& world,
 /// The file name used for boundary @a name ("boundary_<name>.csv", unsafe characters as '_').
 std::string boundaryHistoryFileName(const std::string& name);
 
+/// Whether @a fileName is the history of some boundary (as boundaryHistoryFileName names it).
+bool isBoundaryHistoryFileName(const std::string& fileName);
+
 } // namespace lsdem

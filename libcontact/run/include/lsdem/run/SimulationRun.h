@@ -18,6 +18,9 @@ struct RunOptions
     std::string scenePath;    ///< start from this scene file, or ...
     std::string restartPath;  ///< ... continue from this checkpoint
     std::string outDir;       ///< output folder ("" on restart: the checkpoint's folder)
+    /// A fresh run refuses an outDir holding an earlier run's outputs (the two would mix);
+    /// with overwrite, it removes them (those files only) once the scene is good.
+    bool overwrite = false;
     bool progress = false;    ///< a progress line with ETA on stderr
     /// Stop (as if interrupted, with a checkpoint) once the step count reaches this (0: never).
     long long stopAtStep = 0;
@@ -45,8 +48,9 @@ struct RunResult
 };
 
 /// Perform the run described by @a options; messages and the summary go to @a log.
-/// @throw Error for bad scenes, bad checkpoints, unwritable outputs or an unstable time step
-///        (outputs written before the failure stay intact).
+/// @throw Error for bad scenes, bad checkpoints, an output folder holding an earlier run
+///        (without overwrite), unwritable outputs or an unstable time step (outputs written
+///        before the failure stay intact).
 RunResult runSimulation(const RunOptions& options, std::ostream& log);
 
 /// Ask a running runSimulation to stop after its current step, write a checkpoint and return.

@@ -156,6 +156,29 @@ TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
     EXPECT_EQ(readFile(dir.file("a/frames_grains_4.vtu")), readFile(dir.file("b/frames_grains_4.vtu")));
 }
 
+// A restart continues frames.pvd, which lists the frames written before the checkpoint: with
+// --out another folder it would list frames that folder lacks, so it is refused there (before
+// anything is created); the checkpoint's own folder, however spelt, is fine.
+TEST(LsdemRun, RestartWithFramesRefusesAnotherFolder)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400));
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b")).exitCode,
+              130);
+    const std::string restart = kRun + " -q --restart " + dir.file("b/checkpoint.lsdem");
+    const CommandResult elsewhere = runCommand(restart + " --out " + dir.file("c"));
+    EXPECT_EQ(elsewhere.exitCode, 1) << elsewhere.output;
+    EXPECT_NE(elsewhere.output.find("frames.pvd here would list 3 earlier frames"),
+              std::string::npos)
+        << elsewhere.output;
+    EXPECT_NE(elsewhere.output.find("drop --out to continue in " + dir.file("b")),
+              std::string::npos)
+        << elsewhere.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+    const CommandResult same = runCommand(restart + " --out " + dir.file("b/../b/"));
+    EXPECT_EQ(same.exitCode, 0) << same.output;
+}
+
 TEST(LsdemRun, InterruptWritesACheckpointToContinueFrom)
 {
     ScratchDir dir;

@@ -134,6 +134,25 @@ void refuseOutputsOverInputs(const Scene& scene, const std::string& outDir, bool
     }
 }
 
+/// Refuses a restart writing into @a outDir when its frames.pvd, which lists the frames
+/// written before the checkpoint, would name files only the checkpoint's folder holds.
+void refuseFramesAwayFromTheirSeries(const Scene& scene, const Checkpoint& checkpoint,
+                                     const std::string& restartPath, const std::string& outDir)
+{
+    if (!(scene.output.vtkPeriod > 0.0) || checkpoint.record.vtkFrameTimes.empty()) return;
+    const std::string checkpointDir = fs::absolute(restartPath).parent_path().string();
+    std::error_code ec;
+    if (fs::equivalent(checkpointDir, outDir, ec)) return;
+    throw Error(outDir,
+                "a restart continues the ParaView series of " + checkpointDir +
+                    ": frames.pvd here would list " +
+                    std::to_string(checkpoint.record.vtkFrameTimes.size()) +
+                    " earlier frames that only that folder holds",
+                "drop --out to continue in " + checkpointDir +
+                    ", or copy that folder to " + outDir + " and restart from the copy's " +
+                    kCheckpointFileName);
+}
+
 /// A run in progress: the scene, the simulation and everything it writes.
 class Run
 {
@@ -197,6 +216,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
+    if (mRestart) refuseFramesAwayFromTheirSeries(mScene, mCheckpoint, options.restartPath, mOutDir);
     // Before any work, and before writing anything (a restart continues its own outputs).
     refuseOutputsOverInputs(mScene, mOutDir, options.overwrite && !mRestart);
     const std::vector<std::string> earlier =

@@ -179,6 +179,25 @@ TEST(LsdemRun, RestartWithFramesRefusesAnotherFolder)
     EXPECT_EQ(same.exitCode, 0) << same.output;
 }
 
+// A checkpoint whose header reads well but whose body is damaged is refused before --out is
+// created: no empty folder is left behind.
+TEST(LsdemRun, DamagedCheckpointLeavesNoOutputFolder)
+{
+    ScratchDir dir;
+    std::string text = smallScene(400);
+    text.replace(text.find("vtk_period = 1e-3"), 17, "");  // no frames: --out elsewhere is fine
+    const std::string scene = writeScene(dir, text);
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b")).exitCode,
+              130);
+    const std::string checkpoint = dir.file("b/checkpoint.lsdem");
+    std::filesystem::resize_file(checkpoint, std::filesystem::file_size(checkpoint) - 64);
+    const CommandResult r =
+        runCommand(kRun + " -q --restart " + checkpoint + " --out " + dir.file("c"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(checkpoint + ": "), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+}
+
 TEST(LsdemRun, InterruptWritesACheckpointToContinueFrom)
 {
     ScratchDir dir;

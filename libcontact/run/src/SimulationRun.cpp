@@ -232,10 +232,6 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
-    if (mWrites) {  // once the scene is good
-        prepareOutputFolder(mOutDir, "choose a writable --out folder");
-        removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
-    }
     if (mWrites)  // for grains.csv's displacements
         for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
 
@@ -255,6 +251,14 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
                           : std::make_unique<Simulation>(std::move(world), dt, !mRestart,
                                                          recordForces);
     mCheckpoint.timeStep = dt;
+    // Only now, with the scene, the checkpoint's body and the first forces found good, is the
+    // folder made (bad input leaves none behind); split over ranks, the others wait for it
+    // before writing their pieces of the first frame.
+    if (mWrites) {
+        prepareOutputFolder(mOutDir, "choose a writable --out folder");
+        removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
+    }
+    if (options.ranks) options.ranks->anyRank(false);
 
     mPlannedSteps = plannedSteps(mScene, mSim->world(), dt);
     if (mPlannedSteps > 0.0) {

@@ -170,6 +170,19 @@ TEST(SceneFile, BundledExamplesParse)
     EXPECT_TRUE(std::filesystem::is_regular_file(settle.assets[0].meshFile));
 }
 
+// A servo wall moves at the speed its stress asks, so it can end a run by its displacement.
+TEST(SceneFile, ServoWallCanEndARunByDisplacement)
+{
+    std::string text = readFile(kScenes + "servo.toml");
+    const std::string endTime = "end_time = 0.04";
+    text.replace(text.find(endTime), endTime.size(),
+                 "end_displacement = { boundary = \"top\", value = 0.3 }");
+    const Scene scene = parseScene(text, kScenes + "servo.toml");
+    ASSERT_GE(scene.end.boundary, 0);
+    EXPECT_EQ(scene.boundaries[static_cast<size_t>(scene.end.boundary)].name, "top");
+    EXPECT_TRUE(scene.boundaries[static_cast<size_t>(scene.end.boundary)].servo.active());
+}
+
 TEST(SceneFile, LatticesAreReproducibleAndJitterStaysWithinBounds)
 {
     const std::string lattice = R"(

@@ -152,8 +152,8 @@ def settled_tile(args, lsdem_run):
     if not os.path.exists(final):
         print("settling the 250-grain tile (%d steps under 100 g) ..." % args.settle_steps,
               flush=True)
-        run([lsdem_run, scene, "--out", os.path.join(folder, "run"), "--stop-at-step",
-             str(args.settle_steps)], os.path.join(folder, "settle.log"))
+        run([lsdem_run, scene, "--out", os.path.join(folder, "run"), "--overwrite",
+             "--stop-at-step", str(args.settle_steps)], os.path.join(folder, "settle.log"))
     assets = {r["name"]: r["asset"] for r in rows}
     settled = []
     with open(final) as f:
@@ -223,8 +223,9 @@ def main():
             for config in args.configs:
                 ranks, threads = (int(x) for x in config.split("x"))
                 out = os.path.join(args.out, "heap%d" % grains, "run_%s_%d" % (config, round_))
-                command = [lsdem_run, scene, "--out", out, "--stop-at-step", str(args.steps),
-                           "--threads", str(threads)]
+                # (--overwrite: a round run again replaces its own earlier outputs.)
+                command = [lsdem_run, scene, "--out", out, "--overwrite", "--stop-at-step",
+                           str(args.steps), "--threads", str(threads)]
                 if os.path.exists(TIME):  # each rank's peak resident memory
                     command = [TIME, "-f", "peak resident memory: %M KiB"] + command
                 if ranks > 1:

@@ -1,6 +1,7 @@
 #include "lsdem/ls/Bake.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/ls/MeshIO.h"
 #include "lsdem/ls/MeshLevelSet.h"
@@ -59,7 +60,7 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
         msg << "the voxel size " << o.voxelSize << " is too coarse for a shape whose thinnest "
             << "extent is " << thinnest << " (fewer than 4 voxels across)";
         throw Error(source, msg.str(),
-                    "use --voxel " + std::to_string(thinnest / 20.0) +
+                    "use --voxel " + numberText(thinnest / 20.0) +
                         " or smaller (check the mesh's length unit)");
     }
     // Peak memory is about one float and one index per voxel of the padded bounding box.

@@ -5,6 +5,7 @@
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/MassProperties.h"
 #include "lsdem/ls/MeshIO.h"
 #include "lsdem/ls/MeshValidation.h"
@@ -17,7 +18,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -29,12 +29,6 @@ namespace lsdem {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string shortest(double v)
-{
-    char buffer[64];
-    return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, v).ptr);
-}
 
 /// What happened to one file.
 struct FileResult
@@ -103,9 +97,9 @@ FileResult bakeOne(const std::string& path, const std::string& name,
             if (o.voxelPerSize > 0.0) bake.voxelSize = o.voxelPerSize * d;
             if (o.nodeSpacingPerSize > 0.0) bake.nodeSpacing = o.nodeSpacingPerSize * d;
         }
-        bake.optionsText = optionsText + " (voxel " + shortest(bake.voxelSize) +
+        bake.optionsText = optionsText + " (voxel " + numberText(bake.voxelSize) +
                            (bake.nodePlacement == NodePlacement::Spacing
-                                ? ", node spacing " + shortest(bake.nodeSpacing)
+                                ? ", node spacing " + numberText(bake.nodeSpacing)
                                 : std::string()) +
                            ")";
         GrainAsset asset = bakeMesh(std::move(mesh), path, bake, result.warnings);
@@ -126,13 +120,13 @@ FileResult bakeOne(const std::string& path, const std::string& name,
 std::string batchOptionsText(const BatchBakeOptions& o)
 {
     const BakeOptions& b = o.bake;
-    std::string text = o.voxelPerSize > 0.0 ? "voxel-per-size " + shortest(o.voxelPerSize)
-                                            : "voxel " + shortest(b.voxelSize);
+    std::string text = o.voxelPerSize > 0.0 ? "voxel-per-size " + numberText(o.voxelPerSize)
+                                            : "voxel " + numberText(b.voxelSize);
     switch (b.nodePlacement) {
     case NodePlacement::Spacing:
         text += o.nodeSpacingPerSize > 0.0
-                    ? " node-spacing-per-size " + shortest(o.nodeSpacingPerSize)
-                    : " node-spacing " + shortest(b.nodeSpacing);
+                    ? " node-spacing-per-size " + numberText(o.nodeSpacingPerSize)
+                    : " node-spacing " + numberText(b.nodeSpacing);
         break;
     case NodePlacement::Count: text += " nodes " + std::to_string(b.nodeCount); break;
     case NodePlacement::MeshVertices: text += " mesh-nodes"; break;

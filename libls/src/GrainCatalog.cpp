@@ -4,6 +4,7 @@
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/CsvText.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 
 #include <algorithm>
 #include <charconv>
@@ -17,13 +18,6 @@
 namespace lsdem {
 
 namespace {
-
-std::string numberText(double v)
-{
-    char buffer[64];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
-    return std::string(buffer, end);
-}
 
 /// How each column is written and read: text columns and numeric ones.
 struct Column

@@ -4,6 +4,7 @@
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 
 #include <Eigen/Geometry>
 
@@ -48,14 +49,6 @@ std::string countOf(int n, const std::string& noun)
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
-std::string formatNumber(double value)
-{
-    std::ostringstream out;
-    out.precision(17);
-    out << value;
-    return out.str();
-}
-
 void checkIndicesAndCoordinates(const TriangleMesh& mesh, const std::string& source)
 {
     if (mesh.empty())
@@ -75,7 +68,7 @@ void checkIndicesAndCoordinates(const TriangleMesh& mesh, const std::string& sou
             if (!std::isfinite(mesh.vertices[v][axis]))
                 throw Error(source,
                             "vertex " + std::to_string(v) + " has a non-finite coordinate (" +
-                                formatNumber(mesh.vertices[v][axis]) + ")",
+                                numberText(mesh.vertices[v][axis]) + ")",
                             "fix or remove that vertex in the mesh and export it again");
 }
 
@@ -277,8 +270,8 @@ void checkPartsApart(const TriangleMesh& mesh, const std::vector<Component>& com
                     " and " +
                     countOf(static_cast<int>(components[crossing->partB].triangles.size()),
                             "triangle") +
-                    ") cross or touch each other near (" + formatNumber(near.x()) + ", " +
-                    formatNumber(near.y()) + ", " + formatNumber(near.z()) +
+                    ") cross or touch each other near (" + numberText(near.x()) + ", " +
+                    numberText(near.y()) + ", " + numberText(near.z()) +
                     "): their overlap would count twice in the mass and leave a false surface "
                     "inside the grain",
                 "merge overlapping parts into one closed surface (a boolean union, e.g. in "
@@ -348,7 +341,7 @@ MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& so
     for (const Component& comp : components) volume += comp.volume;
     if (!(volume > 0.0))
         throw Error(source,
-                    "the surface encloses no volume (signed volume " + formatNumber(volume) +
+                    "the surface encloses no volume (signed volume " + numberText(volume) +
                         ")",
                     "check that the mesh is the closed surface of a solid, not a sheet or a "
                     "doubled surface");

@@ -2,6 +2,7 @@
 
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <png.h>
@@ -81,9 +82,8 @@ void writeSlicePng(const InspectionTarget& target, const SliceSpec& slice,
     }
     if (slice.value < lo[slice.axis] || slice.value > hi[slice.axis])
         throw Error(pngPath, "the plane " + std::string(1, char('x' + slice.axis)) + "=" +
-                                 std::to_string(slice.value) + " misses the grid, which spans " +
-                                 std::to_string(lo[slice.axis]) + " to " +
-                                 std::to_string(hi[slice.axis]),
+                                 numberText(slice.value) + " misses the grid, which spans " +
+                                 numberText(lo[slice.axis]) + " to " + numberText(hi[slice.axis]),
                     "choose a coordinate inside that range");
     // Image axes: u to the right, v up, with (axis, u, v) cyclic.
     const int u = (slice.axis + 1) % 3, v = (slice.axis + 2) % 3;

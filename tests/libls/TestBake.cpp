@@ -288,6 +288,21 @@ TEST(Bake, RefusesBadOptionsAndWarnsAboutOverfineNodes)
     EXPECT_NE(warnings[0].find("node spacing"), std::string::npos);
 }
 
+// A mesh in metres with a voxel meant for millimetres: the fix must name a voxel size the user
+// can type. std::to_string printed 0.001 / 20 as "--voxel 0.000000".
+TEST(Bake, ATooCoarseVoxelOnAMeshInMetresSuggestsANonzeroVoxel)
+{
+    std::vector<std::string> warnings;
+    try {
+        bakeMesh(AnalyticShape::box(0.001, 0.001, 0.001).surfaceMesh(0.0005), "cube.obj",
+                 spacingOptions(0.01, 0.0002), warnings);
+        FAIL() << "a voxel ten times the cube was not refused";
+    } catch (const Error& e) {
+        EXPECT_NE(e.fix().find("use --voxel 5e-05 or smaller"), std::string::npos) << e.what();
+        EXPECT_NE(e.problem().find("thinnest extent is 0.001"), std::string::npos) << e.what();
+    }
+}
+
 // Found by review: --node-spacing 1e-12 on a box overflowed the int count of its face grid
 // (undefined behaviour), and tiny spacings on meshes and ellipsoids ran away in memory. A
 // spacing estimated to place more nodes than --nodes allows (1e8) is refused before any work.

@@ -201,6 +201,13 @@ TEST(SlicePlot, PlanesOffTheGridAndBadSpecsAreRefused)
     const InspectionTarget t = sphereTarget();
     EXPECT_THROW(writeSlicePng(t, parseSliceSpec("z=0.6"), dir.file("off.png")), Error);
     EXPECT_THROW(writeSlicePng(t, parseSliceSpec("x=-1.6"), dir.file("off.png")), Error);
+    try {  // the message names the plane as typed and the grid's span, not "0.600000"
+        writeSlicePng(t, parseSliceSpec("z=0.6"), dir.file("off.png"));
+    } catch (const Error& e) {
+        EXPECT_NE(e.problem().find("z=0.6 misses the grid, which spans -0.5 to 0.5"),
+                  std::string::npos)
+            << e.what();
+    }
     EXPECT_EQ(dir.entryCount(), 0u);
     const SliceSpec s = parseSliceSpec("y=-1.25");
     EXPECT_EQ(s.axis, 1);

@@ -1,18 +1,12 @@
 /// @file NumberText.h
-/// @brief A number as the programs print it in messages: the stream's default (6 significant
-///        digits), so a value reads the way the user typed it.
+/// @brief Numbers in the programs' messages: lsdem::numberText (the shortest text that reads
+///        back to the same double), under the name the tools use.
 #pragma once
 
-#include <sstream>
-#include <string>
+#include "lsdem/ls/NumberText.h"
 
 namespace lsdem::cli {
 
-inline std::string numberText(double v)
-{
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
+using lsdem::numberText;
 
 } // namespace lsdem::cli

@@ -8,6 +8,7 @@
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
@@ -45,7 +46,7 @@ Cube27Command::Cube27Command(CLI::App& study)
             [&o](const std::string& text) {
                 o.speed = cli::parseNumber(text, "--speed");
                 if (!(o.speed > 0))
-                    throw Error("", "--speed must be positive, got " + std::to_string(o.speed));
+                    throw Error("", "--speed must be positive, got " + numberText(o.speed));
             },
             "top wall speed, mm/s, for every run (default: each run's loading\n"
             "lasts --periods periods of a column's slowest mode, so v grows\n"

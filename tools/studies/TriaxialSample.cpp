@@ -3,6 +3,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/scene/RandomRotation.h"
 
@@ -29,8 +30,8 @@ TriaxialAssets bakeTriaxialAssets(const std::vector<std::string>& meshFiles, dou
     bake.voxelSize = vdp;
     bake.nodePlacement = NodePlacement::Spacing;
     bake.nodeSpacing = sdp;
-    bake.optionsText = "lsdem-study triaxial: voxel " + std::to_string(vdp) + ", node spacing " +
-                       std::to_string(sdp);
+    bake.optionsText = "lsdem-study triaxial: voxel " + numberText(vdp) + ", node spacing " +
+                       numberText(sdp);
     // One file per task; each bake is itself threaded, TBB shares the cores among them.
     tbb::parallel_for(size_t(0), meshFiles.size(), [&](size_t i) {
         std::vector<std::string> warnings;  // repairs and spacing notes: not the study's concern

@@ -6,6 +6,7 @@
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
@@ -159,10 +160,10 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     p.records = o.records;
 
     if (!(spacing > 2.0 * assets->largestBoundingRadius))
-        throw Error("", "the lattice spacing " + std::to_string(spacing) + " mm is not more than "
+        throw Error("", "the lattice spacing " + numberText(spacing) + " mm is not more than "
                             "the largest bounding diameter " +
-                            std::to_string(2.0 * assets->largestBoundingRadius) +
-                            " mm of the grains at SDP " + std::to_string(sdp) + ": they would overlap",
+                            numberText(2.0 * assets->largestBoundingRadius) +
+                            " mm of the grains at SDP " + numberText(sdp) + ": they would overlap",
                     "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,

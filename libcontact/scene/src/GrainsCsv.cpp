@@ -5,6 +5,7 @@
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/CsvText.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 
 #include <charconv>
 #include <cmath>
@@ -84,13 +85,6 @@ private:
     const std::map<std::string, size_t>& mColumns;
     std::string mWhere;
 };
-
-std::string numberText(double v)
-{
-    char buffer[40];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
-    return std::string(buffer, end);
-}
 
 } // namespace
 

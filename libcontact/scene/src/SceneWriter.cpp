@@ -6,6 +6,7 @@
 
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 
 #include <toml++/toml.h>
 
@@ -101,7 +102,7 @@ private:
     static std::string numberText(double v, const std::string& key)
     {
         if (!std::isfinite(v))
-            throw Error("", "cannot write " + key + " = " + std::to_string(v) + " to a scene file",
+            throw Error("", "cannot write " + key + " = " + lsdem::numberText(v) + " to a scene file",
                         "every number in a scene must be finite");
         char buffer[64];
         const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;

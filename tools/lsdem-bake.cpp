@@ -4,6 +4,7 @@
 #include "common/CommandLine.h"
 
 #include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/BatchBake.h"
 #include "lsdem/ls/Error.h"
@@ -45,6 +46,7 @@ struct BakeCommandLine
     double voxelPerSize = 0.0, nodeSpacingPerSize = 0.0;
     int threads = 0;
     bool rebake = false;
+    CLI::Option *threadsOption = nullptr, *rebakeOption = nullptr;
     // The options whose presence matters (which shape, which node placement).
     CLI::Option *sphereOption = nullptr, *boxOption = nullptr, *ellipsoidOption = nullptr;
     CLI::Option *spacingOption = nullptr, *countOption = nullptr, *meshNodesOption = nullptr;
@@ -127,11 +129,14 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
             ->type_name("F")
             ->default_str("")
             ->group(batch);
-    lsdem::cli::addInteger(app, "--threads", c.threads, "files baked at once; 0: all cores")
-        ->type_name("N")
-        ->group(batch);
-    app.add_flag("--rebake", c.rebake, "bake every file, even those unchanged since the catalogue")
-        ->group(batch);
+    c.threadsOption =
+        addInteger(app, "--threads", c.threads, "files baked at once; 0: all cores")
+            ->type_name("N")
+            ->group(batch);
+    c.rebakeOption =
+        app.add_flag("--rebake", c.rebake,
+                     "bake every file, even those unchanged since the catalogue")
+            ->group(batch);
 
     const std::string output = "Output";
     app.add_option("-o,--output", c.outputPath, "the asset to write (written atomically)")
@@ -168,6 +173,11 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
     if (!batch && (c.voxelPerSizeOption->count() || c.spacingPerSizeOption->count()))
         throw Error("", "--voxel-per-size and --node-spacing-per-size need --out-dir",
                     "give --out-dir DIR, or --voxel and --node-spacing for one file");
+    // Said rather than ignored: a user who gives them expects a batch.
+    for (const CLI::Option* batchOnly : {c.threadsOption, c.rebakeOption})
+        if (!batch && batchOnly->count())
+            throw Error("", batchOnly->get_name() + " applies to --out-dir batches only",
+                        "drop " + batchOnly->get_name() + " to bake one file, or give --out-dir DIR");
     const size_t placements = c.spacingOption->count() + c.countOption->count() +
                               c.meshNodesOption->count() + c.spacingPerSizeOption->count();
     if (placements > 1)
@@ -221,6 +231,7 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
     if (o.voxelSize == 0.0) throw Error("", "the voxel size is missing", "add --voxel VDP");
     if (c.outputPath.empty()) throw Error("", "no output file", "add -o OUT.vdb");
     lsdem::cli::refuseOutputOverInput(c.outputPath, "-o", c.meshPaths);
+    lsdem::checkOutputFile(c.outputPath);  // now, not after a bake of minutes
 }
 
 /// "1 h 02 min", "3 min 20 s", "12 s".

@@ -12,20 +12,40 @@ namespace fs = std::filesystem;
 
 namespace lsdem {
 
-void writeFileAtomically(const std::string& path,
-                         const std::function<void(const std::string& tmpPath)>& writeTo)
+namespace {
+
+fs::path folderOf(const fs::path& file)
+{
+    return file.has_parent_path() ? file.parent_path() : fs::path(".");
+}
+
+} // namespace
+
+void checkOutputFile(const std::string& path)
 {
     const fs::path target(path);
-    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const fs::path folder = folderOf(target);
     std::error_code ec;
-    if (!fs::is_directory(folder, ec))
+    if (!fs::exists(folder, ec))
         throw Error(path, "the output folder '" + folder.string() + "' does not exist",
                     "create it first or choose another output path");
+    if (!fs::is_directory(folder, ec))
+        throw Error(path, "'" + folder.string() + "' is a file, not a folder",
+                    "choose another output path");
     if (::access(folder.c_str(), W_OK) != 0)
         throw Error(path, "the output folder '" + folder.string() + "' is not writable",
                     "choose a folder you can write to");
     if (fs::is_directory(target, ec))
         throw Error(path, "the output path is a folder", "give a file name");
+}
+
+void writeFileAtomically(const std::string& path,
+                         const std::function<void(const std::string& tmpPath)>& writeTo)
+{
+    checkOutputFile(path);
+    const fs::path target(path);
+    const fs::path folder = folderOf(target);
+    std::error_code ec;
 
     // A unique temporary beside the target, so the final rename never crosses file systems.
     static std::atomic<unsigned> counter{0};

@@ -195,6 +195,43 @@ TEST(CommandLineTools, BakeRefusesBadInputCleanly)
         EXPECT_FALSE(contains(e.path().filename().string(), ".tmp")) << e.path();
 }
 
+// Found by review: an -o into a missing folder was refused only after the bake (15 s for a
+// pebble). The voxel below is too coarse, an error the bake itself would give: the output's
+// error instead shows that the output is checked first.
+TEST(CommandLineTools, BakeChecksTheOutputFolderBeforeBaking)
+{
+    test::ScratchDir dir;
+    const std::string d = dir.path().string();
+    std::ofstream(d + "/file") << "not a folder\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {d + "/nodir/p.vdb", "the output folder '" + d + "/nodir' does not exist"},
+        {d + "/file/p.vdb", "'" + d + "/file' is a file, not a folder"},
+        {d, "the output path is a folder"},
+    };
+    for (const auto& [out, mustSay] : cases) {
+        const auto result = runCommand(kBake + " --sphere 1 --voxel 3 --nodes 100 -o " + out);
+        EXPECT_EQ(result.exitCode, 1) << result.output;
+        EXPECT_TRUE(contains(result.output, mustSay)) << result.output;
+        EXPECT_FALSE(contains(result.output, "too coarse")) << result.output;
+    }
+}
+
+// --threads and --rebake shape a batch; without --out-dir they were silently ignored.
+TEST(CommandLineTools, BakeRefusesBatchOptionsWithoutABatch)
+{
+    test::ScratchDir dir;
+    for (const std::string option : {"--threads 2", "--rebake"}) {
+        const std::string name = option.substr(0, option.find(' '));
+        const auto result = runCommand(kBake + " --sphere 1 --voxel 0.2 --nodes 100 " + option +
+                                       " -o " + dir.file("s.vdb"));
+        EXPECT_EQ(result.exitCode, 1) << option << ": " << result.output;
+        EXPECT_TRUE(contains(result.output, name + " applies to --out-dir batches only"))
+            << result.output;
+        EXPECT_TRUE(contains(result.output, "fix: drop " + name)) << result.output;
+        EXPECT_EQ(dir.entryCount(), 0u) << option;
+    }
+}
+
 TEST(CommandLineTools, InspectRefusesBadFilesCleanly)
 {
     test::ScratchDir dir;

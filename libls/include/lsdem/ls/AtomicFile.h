@@ -10,10 +10,15 @@
 
 namespace lsdem {
 
+/// Check that @a path can be written: its folder exists, is a folder and is writable, and
+/// @a path is not a folder. Programs call it before long work whose result goes to @a path.
+/// @throw Error naming @a path otherwise.
+void checkOutputFile(const std::string& path);
+
 /// Call @a writeTo with a temporary path in the folder of @a path; if it returns normally,
 /// rename the temporary to @a path. If it throws, the temporary is removed and the exception
 /// passes on, so @a path is untouched.
-/// @throw Error if the folder does not exist or is not writable.
+/// @throw Error as checkOutputFile does.
 void writeFileAtomically(const std::string& path,
                          const std::function<void(const std::string& tmpPath)>& writeTo);
 

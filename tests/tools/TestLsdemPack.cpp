@@ -145,6 +145,8 @@ TEST(LsdemPack, BadOptionsExitOne)
         {"--catalog cat.csv --set a/b --box 0 0 0 5 5 5 --count 4 -o x.csv", "'a/b' must be non-empty and hold no '/'"},
         {"--catalog bad.csv --set s --box 0 0 0 5 5 5 --count 4 -o x.csv", "bad.csv: asset 'ball': file not found: none.vdb"},
         {"--catalog cat.csv --set s --cylinder 0 0 1.2 0 3 --count 4 -o x.csv", "only 1 of 4 grains fit in the cylinder"},
+        {ball + " --box 0 0 0 5 5 5 --count 4 --friction -1 -o x.csv", "--friction must be a finite number >= 0, got -1"},
+        {ball + " --box 0 0 0 5 5 5 --count 4 --settle -1 -o x.csv", "--settle must be a finite number > 0, got -1"},
     };
     for (const auto& [args, message] : cases) {
         const CommandResult r = runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);

@@ -5,6 +5,7 @@
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/RandomRotation.h"
@@ -74,6 +75,15 @@ void checkOptions(const PackingOptions& o)
         throw Error("", "the box is empty (its max corner must exceed its min corner)",
                     "give --box X0 Y0 Z0 X1 Y1 Z1 with X1 > X0, Y1 > Y0, Z1 > Z0");
     }
+    // A negative friction used to pack as frictionless, and a tolerance <= 0 is never met, so
+    // every layer ran to maxStepsPerLayer.
+    if (!(o.friction >= 0.0) || !std::isfinite(o.friction))
+        throw Error("", "--friction must be a finite number >= 0, got " + numberText(o.friction),
+                    "give --friction 0 (the densest packing) or a Coulomb coefficient such as 0.5");
+    if (!(o.settleTolerance > 0.0) || !std::isfinite(o.settleTolerance))
+        throw Error("", "--settle must be a finite number > 0, got " +
+                            numberText(o.settleTolerance),
+                    "give a small fraction such as --settle 1e-5 (the default)");
     if (o.count < 1) throw Error("", "the grain count must be >= 1", "give --count N");
     if (o.count > 1000000)  // a scene's limit (SceneSections.h): checked before any memory is taken
         throw Error("", "the grain count " + std::to_string(o.count) +

@@ -151,13 +151,34 @@ TEST(Packing, BadOptionsAreRefused)
     o.count = 1000000000000;
     EXPECT_THROW(generatePacking(o), Error);
     o = smallPacking(1);
-    o = smallPacking(1);
     o.cylinder = PackingCylinder{0, 0, 0.0, 0, 5};
     EXPECT_THROW(generatePacking(o), Error);
     o.cylinder = PackingCylinder{0, 0, 3.0, 5, 5};
     EXPECT_THROW(generatePacking(o), Error);
     o.cylinder = PackingCylinder{0, 0, 0.9, 0, 5};  // narrower than a ball
     EXPECT_THROW(generatePacking(o), Error);
+    // Found by review: friction -1 packed as frictionless, settle -1 ran every layer to the
+    // step limit. Refused, naming the option.
+    const auto expectRefused = [](const PackingOptions& bad, const std::string& option) {
+        try {
+            generatePacking(bad);
+            ADD_FAILURE() << option << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(e.problem().rfind(option + " must be a finite number", 0), 0u) << e.what();
+            EXPECT_NE(e.fix().find(option), std::string::npos) << e.what();
+        }
+    };
+    for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+        o = smallPacking(1);
+        o.friction = bad;
+        expectRefused(o, "--friction");
+        o = smallPacking(1);
+        o.settleTolerance = bad;
+        expectRefused(o, "--settle");
+    }
+    o = smallPacking(1);
+    o.settleTolerance = 0.0;  // never met
+    expectRefused(o, "--settle");
     o = smallPacking(1);
     o.boxMax = Vec3(1.5, 6, 7);  // narrower than a ball
     try {

@@ -75,7 +75,8 @@ Cube27Command::Cube27Command(CLI::App& study)
         ->type_name("P")
         ->group(loading);
     cli::addNumber(*mCommand, "--friction", o.friction,
-                   "Coulomb coefficient (shear stiffness ks = 0.5 kn)")
+                   "Coulomb coefficient (shear stiffness ks = 0.5 kn); original\n"
+                   "and adapted only: single-node and volume have no shear springs")
         ->type_name("MU")
         ->group(loading);
     cli::addNumber(*mCommand, "--restitution", o.restitution,

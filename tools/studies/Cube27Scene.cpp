@@ -31,8 +31,13 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
     model.formulation = run.formulation;
     model.testing = o.testing;
     model.normalStiffness = run.stiffness;
-    model.shearStiffness = o.shearRatio * run.stiffness;
-    model.friction = o.friction;
+    // Friction acts through shear springs, which single-node and volume do not have: their
+    // contacts are frictionless, and the scene says so (a scene file with friction there is
+    // refused by the reader).
+    if (normalModel(run.formulation).perNodeForces() && o.shearRatio > 0) {
+        model.shearStiffness = o.shearRatio * run.stiffness;
+        model.friction = o.friction;
+    }
     for (int other : {0, 1}) {
         ContactSpec c;
         c.materialA = 0;

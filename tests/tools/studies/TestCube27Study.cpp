@@ -6,6 +6,8 @@
 #include "support/TestSupport.h"
 
 #include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/SceneWriter.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/simulation/World.h"
@@ -109,6 +111,34 @@ TEST(Cube27Study, SceneIsAStackJustTouchingTheBox)
     lsdem::Simulation sim(lsdem::buildWorld(scene, warnings), run.timeStep);
     for (const lsdem::Grain& g : sim.world().grains) EXPECT_LT(g.force.norm(), 1e-6) << g.name;
     EXPECT_LT(sim.world().boundaries[1].force.norm(), 1e-6);
+}
+
+// Found by review: single-node and volume runs got friction 0.3 and ks = kn/2, which they have
+// no shear springs for: silently frictionless, and a scene file the reader refuses. Every
+// formulation's scene now reads back, with friction only where shear springs carry it.
+TEST(Cube27Study, EveryFormulationsSceneReadsBackWithFrictionOnlyOnShearSprings)
+{
+    lsdem::Cube27Options o;
+    o.voxel = 0.2;
+    for (lsdem::Formulation f : {lsdem::Formulation::Original, lsdem::Formulation::Adapted,
+                                 lsdem::Formulation::SingleNode, lsdem::Formulation::Volume}) {
+        const std::string name = lsdem::formulationName(f);
+        const lsdem::Cube27Run run = lsdem::planCube27Run(o, f, 300, 1e3, 0);
+        const lsdem::Scene written = lsdem::makeCube27Scene(o, run);
+        lsdem::Scene read;
+        try {
+            read = lsdem::parseScene(lsdem::sceneToToml(written, "."), "cube27.toml");
+        } catch (const lsdem::Error& e) {
+            ADD_FAILURE() << name << ": " << e.what();
+            continue;
+        }
+        const bool shearSprings = f == lsdem::Formulation::Original || f == lsdem::Formulation::Adapted;
+        ASSERT_EQ(read.contacts.size(), 2u) << name;
+        for (const lsdem::ContactSpec& c : read.contacts) {
+            EXPECT_EQ(c.model.friction, shearSprings ? o.friction : 0.0) << name;
+            EXPECT_EQ(c.model.shearStiffness, shearSprings ? o.shearRatio * 1e3 : 0.0) << name;
+        }
+    }
 }
 
 // Original and adapted runs are planned dynamically similar: the same number of steps, the

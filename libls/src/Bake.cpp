@@ -34,21 +34,24 @@ void checkOptions(const BakeOptions& o, const std::string& source)
 {
     if (!(o.voxelSize > 0.0) || !std::isfinite(o.voxelSize))
         throw Error(source, "the voxel size (VDP) must be a positive finite length",
-                    "pass e.g. --voxel 0.05 in the mesh's length unit");
+                    "give e.g. voxel 0.05 (lsdem-bake --voxel 0.05), in the mesh's length unit");
     if (o.nodePlacement == NodePlacement::Spacing &&
         (!(o.nodeSpacing > 0.0) || !std::isfinite(o.nodeSpacing)))
         throw Error(source, "the node spacing (SDP) must be a positive finite length",
-                    "pass e.g. --node-spacing 0.1, or --nodes N, or --mesh-nodes");
+                    "give e.g. node_spacing 0.1 (lsdem-bake --node-spacing 0.1), or nodes N, or "
+                    "mesh_nodes");
     if (o.nodePlacement == NodePlacement::Count && o.nodeCount < 4)
         throw Error(source, "the node count must be at least 4",
-                    "pass e.g. --nodes 2000");
+                    "give e.g. nodes 2000 (lsdem-bake --nodes 2000)");
     // Analytic shapes are checked here too (meshLevelSet checks its own callers).
-    if (o.exteriorBandVoxels < kMinExteriorBandVoxels || o.exteriorBandVoxels > 64)
+    if (o.exteriorBandVoxels < kMinExteriorBandVoxels ||
+        o.exteriorBandVoxels > kMaxExteriorBandVoxels)
         throw Error(source,
                     "the exterior band must be " + std::to_string(kMinExteriorBandVoxels) +
-                        " to 64 voxels wide, got " + std::to_string(o.exteriorBandVoxels),
-                    "pass --band 2 (the default) or more: interpolation near the surface reads "
-                    "values up to 1.73 voxels outside it");
+                        " to " + std::to_string(kMaxExteriorBandVoxels) + " voxels wide, got " +
+                        std::to_string(o.exteriorBandVoxels),
+                    "give band 2 (lsdem-bake --band 2, the default) or more: interpolation near "
+                    "the surface reads values up to 1.73 voxels outside it");
 }
 
 /// Refuse voxels too coarse for the shape, or grids that would not fit the memory budget.
@@ -60,8 +63,8 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
         msg << "the voxel size " << o.voxelSize << " is too coarse for a shape whose thinnest "
             << "extent is " << thinnest << " (fewer than 4 voxels across)";
         throw Error(source, msg.str(),
-                    "use --voxel " + numberText(thinnest / 20.0) +
-                        " or smaller (check the mesh's length unit)");
+                    "use voxel " + numberText(thinnest / 20.0) +
+                        " or smaller (lsdem-bake --voxel; check the mesh's length unit)");
     }
     // Peak memory is about one float and one index per voxel of the padded bounding box.
     double voxels = 1.0;
@@ -74,7 +77,8 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
             << formatBytes(bytes) << " (" << voxels << " voxels), over the memory budget of "
             << formatBytes(o.memoryBudgetBytes);
         throw Error(source, msg.str(),
-                    "use a larger --voxel, or raise --memory-budget-gb if the machine has room");
+                    "use a larger voxel, or raise the memory budget (lsdem-bake "
+                    "--memory-budget-gb) if the machine has room");
     }
 }
 
@@ -86,12 +90,12 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
     const double finest = edgeLengthForNodeCount(area, kMaxNodeCount);
     if (o.nodeSpacing < finest) {
         std::ostringstream msg, fix;
-        msg << "a node spacing (--node-spacing) of " << o.nodeSpacing << " would place about "
+        msg << "a node spacing of " << o.nodeSpacing << " would place about "
             << 2.0 * area / (std::sqrt(3.0) * o.nodeSpacing * o.nodeSpacing)
             << " nodes on a surface of area " << area << ", over the limit of "
             << double(kMaxNodeCount);
-        fix << "use --node-spacing " << finest << " or larger (check the mesh's length unit), "
-            << "or --nodes N";
+        fix << "use node_spacing " << finest << " or larger (lsdem-bake --node-spacing; check "
+            << "the mesh's length unit), or nodes N";
         throw Error(source, msg.str(), fix.str());
     }
 }

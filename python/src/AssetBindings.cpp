@@ -66,9 +66,10 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
     if (nodeSpacing && (!(*nodeSpacing > 0.0) || !std::isfinite(*nodeSpacing)))
         throw Error("", "node_spacing (SDP) must be a positive finite length",
                     "pass e.g. node_spacing=0.1, or nodes=N");
-    if (band < kMinExteriorBandVoxels || band > 64)
-        throw Error("", "band must be " + std::to_string(kMinExteriorBandVoxels) +
-                            " to 64 voxels, got " + std::to_string(band),
+    if (band < kMinExteriorBandVoxels || band > kMaxExteriorBandVoxels)
+        throw Error("", "band must be " + std::to_string(kMinExteriorBandVoxels) + " to " +
+                            std::to_string(kMaxExteriorBandVoxels) + " voxels, got " +
+                            std::to_string(band),
                     "leave it at its default (" +
                         std::to_string(BakeOptions().exteriorBandVoxels) + ")");
     BakeOptions o;
@@ -83,7 +84,7 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
         o.nodePlacement = NodePlacement::Spacing;
         o.nodeSpacing = *nodeSpacing;
     } else if (nodeCount) {
-        if (*nodeCount < 4 || *nodeCount > 100000000)
+        if (*nodeCount < 4 || *nodeCount > kMaxNodeCount)
             throw Error("", "nodes wants a count from 4 to 1e8, got " +
                                 std::to_string(*nodeCount));
         o.nodePlacement = NodePlacement::Count;

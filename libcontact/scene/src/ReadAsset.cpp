@@ -33,7 +33,7 @@ void readBakeKeys(TableReader& t, BakeOptions& b, bool analytic, const std::stri
     } else if (t.has("nodes")) {
         b.nodePlacement = NodePlacement::Count;
         const long long n = t.positiveInteger("nodes");
-        if (n > 100000000) t.fail("nodes", "is absurdly large", "give at most 1e8 nodes");
+        if (n > kMaxNodeCount) t.fail("nodes", "is absurdly large", "give at most 1e8 nodes");
         b.nodeCount = static_cast<int>(n);
         opts << " nodes " << b.nodeCount;
     } else {

@@ -15,6 +15,8 @@ namespace lsdem {
 /// The narrowest exterior band, voxels: interpolation in a cell the surface crosses reads
 /// corners up to √3 voxels outside it, which a narrower band would leave at the background.
 constexpr int kMinExteriorBandVoxels = 2;
+/// The widest exterior band a bake makes, in voxels (wider only costs memory).
+constexpr int kMaxExteriorBandVoxels = 64;
 
 /// The OpenVDB signed-distance grid of an asset. Opaque here so that this header stays light;
 /// include "lsdem/ls/LevelSetGrid.h" (which pulls in OpenVDB) to use it.

@@ -1,7 +1,6 @@
 #include "lsdem/ls/Bake.h"
 
 #include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/ls/MeshIO.h"
 #include "lsdem/ls/MeshLevelSet.h"
@@ -62,9 +61,11 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
         std::ostringstream msg;
         msg << "the voxel size " << o.voxelSize << " is too coarse for a shape whose thinnest "
             << "extent is " << thinnest << " (fewer than 4 voxels across)";
-        throw Error(source, msg.str(),
-                    "use voxel " + numberText(thinnest / 20.0) +
-                        " or smaller (lsdem-bake --voxel; check the mesh's length unit)");
+        // (A suggestion, so six significant digits: 0.035, not 0.034999999999999996.)
+        std::ostringstream fix;
+        fix << "use voxel " << thinnest / 20.0
+            << " or smaller (lsdem-bake --voxel; check the mesh's length unit)";
+        throw Error(source, msg.str(), fix.str());
     }
     // Peak memory is about one float and one index per voxel of the padded bounding box.
     double voxels = 1.0;

@@ -35,10 +35,20 @@ struct FileResult
 {
     std::optional<CatalogEntry> entry;
     bool unchanged = false;
-    bool earlierDamaged = false;  ///< the asset of its earlier row failed its seal check
     std::string failure;
     std::vector<std::string> warnings;
 };
+
+/// Whether @a path is an asset file whose seal holds (one read and a SHA-256).
+bool isIntactAsset(const std::string& path)
+{
+    try {
+        verifyAssetFile(path);
+        return true;
+    } catch (const Error&) {
+        return false;
+    }
+}
 
 /// The earlier catalogue's rows by name, or none if there is no catalogue.
 /// @throw Error if it cannot be read: the new catalogue would replace it with only this run's
@@ -82,7 +92,6 @@ FileResult bakeOne(const std::string& path, const std::string& name,
                 result.unchanged = true;
                 return result;
             } catch (const Error& damaged) {
-                result.earlierDamaged = true;
                 result.warnings.push_back(damaged.where() + ": " + damaged.problem() +
                                           "; baking it again");
             }
@@ -192,9 +201,13 @@ BatchBakeReport bakeBatch(const std::vector<std::string>& meshPaths,
         for (std::string& w : r.warnings) report.warnings.push_back(std::move(w));
         if (!r.entry) {
             // The earlier asset is untouched (saveAsset replaces a file only once it is
-            // written): its row stays, below, as long as the asset is there and intact.
+            // written): its row stays as long as the asset is intact (a damaged one would be
+            // listed for simulations that cannot load it).
             report.failures.push_back({meshPaths[i], r.failure});
-            if (r.earlierDamaged) earlier.erase(names[i]);
+            const auto row = earlier.find(names[i]);
+            if (row != earlier.end() &&
+                !isIntactAsset((fs::path(o.outDir) / row->second.asset).string()))
+                earlier.erase(row);
             continue;
         }
         earlier.erase(names[i]);  // this run's row replaces it

@@ -1,12 +1,18 @@
 /// @file NumberText.h
-/// @brief Numbers in the programs' messages: lsdem::numberText (the shortest text that reads
-///        back to the same double), under the name the tools use.
+/// @brief A number as the programs print it in messages: the stream's default (6 significant
+///        digits), so a value reads the way the user typed it.
 #pragma once
 
-#include "lsdem/ls/NumberText.h"
+#include <sstream>
+#include <string>
 
 namespace lsdem::cli {
 
-using lsdem::numberText;
+inline std::string numberText(double v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
 
 } // namespace lsdem::cli

@@ -1,12 +1,12 @@
 #include "studies/TriaxialStudy.h"
 
+#include "common/NumberText.h"
 #include "studies/RunDistributor.h"
 #include "studies/RunRecord.h"
 #include "studies/TriaxialSample.h"
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
@@ -160,10 +160,10 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     p.records = o.records;
 
     if (!(spacing > 2.0 * assets->largestBoundingRadius))
-        throw Error("", "the lattice spacing " + numberText(spacing) + " mm is not more than "
+        throw Error("", "the lattice spacing " + cli::numberText(spacing) + " mm is not more than "
                             "the largest bounding diameter " +
-                            numberText(2.0 * assets->largestBoundingRadius) +
-                            " mm of the grains at SDP " + numberText(sdp) + ": they would overlap",
+                            cli::numberText(2.0 * assets->largestBoundingRadius) +
+                            " mm of the grains at SDP " + cli::numberText(sdp) + ": they would overlap",
                     "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,

@@ -70,8 +70,8 @@ int main(int argc, char** argv)
                    "output folder (created if missing; on restart: the checkpoint's\nfolder)")
         ->type_name("DIR");
     app.add_flag("--overwrite", options.overwrite,
-                 "remove an earlier run's outputs from DIR first (refused without it;\n"
-                 "other files there are kept)");
+                 "remove an earlier run's outputs (files lsdem wrote) from DIR first\n"
+                 "(refused without it; other files there are kept)");
     app.add_option("--restart", options.restartPath,
                    "continue a run from its checkpoint, bit-identically")
         ->type_name("FILE");
@@ -105,10 +105,6 @@ int main(int argc, char** argv)
                         "see lsdem-run --help");
         if (!options.scenePath.empty() && options.outDir.empty())
             throw Error("", "no output folder given", "pass --out DIR");
-        if (options.overwrite && !options.restartPath.empty())
-            throw Error("", "--overwrite with --restart: a restart continues the outputs in its "
-                            "folder, it replaces none",
-                        "drop --overwrite");
         options.progress =
             !quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
         if (ranks) {

@@ -320,8 +320,11 @@ TEST(LsdemRun, RefusesAFolderHoldingAnEarlierRunUnlessOverwriting)
     ScratchDir dir;
     const std::string out = dir.file("out");
     ASSERT_EQ(runCommand(kRun + " " + writeScene(dir, smallScene(20)) + " -q --out " + out).exitCode, 0);
-    std::ofstream(out + "/boundary_gone.csv") << "step\n";  // a boundary the next scene lacks
+    // A boundary the next scene lacks, as lsdem writes its history.
+    std::ofstream(out + "/boundary_gone.csv") << "step,time,ux,uy,uz,fx,fy,fz\n0,0,0,0,0,0,0,0\n";
     std::ofstream(out + "/notes.txt") << "mine";
+    // Named like a boundary's history, but the user's: neither reported nor removed.
+    std::ofstream(out + "/boundary_conditions.csv") << "wall,load\ntop,5\n";
     const std::string checkpoint = readFile(out + "/checkpoint.lsdem");
 
     std::string text = smallScene(30);  // a different run, writing no frames
@@ -346,15 +349,50 @@ TEST(LsdemRun, RefusesAFolderHoldingAnEarlierRunUnlessOverwriting)
     for (const auto& entry : std::filesystem::directory_iterator(out))
         left.push_back(entry.path().filename().string());
     std::sort(left.begin(), left.end());
-    EXPECT_EQ(left, (std::vector<std::string>{"boundary_floor.csv", "checkpoint.lsdem",
-                                              "energy.csv", "grains.csv", "notes.txt"}));
+    EXPECT_EQ(left, (std::vector<std::string>{"boundary_conditions.csv", "boundary_floor.csv",
+                                              "checkpoint.lsdem", "energy.csv", "grains.csv",
+                                              "notes.txt"}));
     EXPECT_EQ(readFile(out + "/notes.txt"), "mine");
+    EXPECT_EQ(readFile(out + "/boundary_conditions.csv"), "wall,load\ntop,5\n");
     EXPECT_EQ(countLines(out + "/energy.csv"), 1 + 4);  // steps 0, 10, 20, 30
 
     const CommandResult restart =
         runCommand(kRun + " -q --overwrite --restart " + out + "/checkpoint.lsdem");
     EXPECT_EQ(restart.exitCode, 1) << restart.output;
     EXPECT_NE(restart.output.find("drop --overwrite"), std::string::npos) << restart.output;
+
+    // A restart elsewhere starts a folder of its own: into another run's, as a fresh run.
+    const std::string other = dir.file("other");
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --out " + other).exitCode, 0);
+    const CommandResult elsewhere =
+        runCommand(kRun + " -q --restart " + out + "/checkpoint.lsdem --out " + other);
+    EXPECT_EQ(elsewhere.exitCode, 1) << elsewhere.output;
+    EXPECT_NE(elsewhere.output.find("holds the outputs of an earlier run"), std::string::npos)
+        << elsewhere.output;
+    EXPECT_EQ(runCommand(kRun + " -q --overwrite --restart " + out + "/checkpoint.lsdem --out " +
+                         other)
+                  .exitCode,
+              0);
+}
+
+// A file the run would write that lsdem did not write (a grains.csv from elsewhere) is the
+// user's: the run is refused, with or without --overwrite, and the file is kept.
+TEST(LsdemRun, RefusesToReplaceAFileLsdemDidNotWrite)
+{
+    ScratchDir dir;
+    const std::string out = dir.file("out");
+    std::filesystem::create_directories(out);
+    const std::string mine = "name,asset,x,y,z\na,pebble,0,0,1\n";
+    std::ofstream(out + "/grains.csv") << mine;
+    const std::string scene = writeScene(dir, smallScene(20));
+    for (const std::string overwrite : {"", " --overwrite"}) {
+        const CommandResult r = runCommand(kRun + " " + scene + " -q --out " + out + overwrite);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(out + "/grains.csv: this file is not an output of lsdem"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_EQ(readFile(out + "/grains.csv"), mine);
+    }
 }
 
 // An end condition far beyond what anyone means (1e30 time units at a 1e-5 step) is run, as

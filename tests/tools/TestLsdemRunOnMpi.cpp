@@ -424,8 +424,8 @@ TEST(LsdemRunOnMpi, ACheckpointRestartsOnAnotherRankCount)
 }
 
 // A bad scene fails on every rank alike: one message (rank 0's), exit code 1, nothing written.
-// A failure on one rank only (rank 0 cannot make its output folder) ends the whole job with
-// that rank's message rather than leaving the others waiting.
+// A failure on rank 0 only (it cannot make the output folder) is voted to the others, so the
+// whole job ends the same way, with rank 0's message, rather than leaving them waiting.
 TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
 {
     SKIP_WITHOUT_MPI();
@@ -442,7 +442,8 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     std::ofstream(dir.file("a-file")) << "not a folder";
     const CommandResult one =
         runCommand(onRanks(2, "-q " + scene + " --out " + dir.file("a-file/out")));
-    EXPECT_NE(one.exitCode, 0) << one.output;
-    EXPECT_NE(one.output.find("lsdem-run (rank 0 of 2): error:"), std::string::npos)
+    EXPECT_EQ(one.exitCode, 1) << one.output;
+    EXPECT_EQ(count(one.output, "lsdem-run: error:"), 1u) << one.output;
+    EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
 }

@@ -248,6 +248,14 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
     });
 }
 
+bool isCheckpointFile(const std::string& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    char magic[sizeof kMagic] = {};
+    in.read(magic, sizeof magic);
+    return in && std::memcmp(magic, kMagic, sizeof magic) == 0;
+}
+
 Checkpoint readCheckpoint(const std::string& path)
 {
     Checkpoint c;

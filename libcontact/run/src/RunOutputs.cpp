@@ -6,12 +6,21 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 namespace lsdem {
 
 namespace {
 
 const std::string kBoundaryHistoryPrefix = "boundary_", kBoundaryHistorySuffix = ".csv";
+
+/// The first lines of the text outputs (isRunTextOutput knows a run's files by them).
+const std::string kEnergyHeader =
+    "step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes";
+const std::string kBoundaryHeader = "step,time,ux,uy,uz,fx,fy,fz";
+const std::string kServoBoundaryHeader =
+    "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed";
+const std::string kGrainsHeader = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved";
 
 void appendNumber(std::string& line, double v)
 {
@@ -67,6 +76,15 @@ std::string boundaryHistoryFileName(const std::string& name)
     return kBoundaryHistoryPrefix + safe + kBoundaryHistorySuffix;
 }
 
+bool isRunTextOutput(const std::string& path)
+{
+    std::ifstream in(path);
+    std::string first;
+    if (!std::getline(in, first)) return false;
+    return first == kEnergyHeader || first == kGrainsHeader || first == kBoundaryHeader ||
+           first == kServoBoundaryHeader;
+}
+
 bool isBoundaryHistoryFileName(const std::string& fileName)
 {
     const size_t affixes = kBoundaryHistoryPrefix.size() + kBoundaryHistorySuffix.size();
@@ -81,21 +99,18 @@ void writeHistoryFiles(const std::string& directory, const World& world,
     const std::filesystem::path dir(directory);
     writeTextFileAtomically(
         (dir / kEnergyFileName).string(),
-        rowsToCsv("step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes",
-                  record.energyRows));
+        rowsToCsv(kEnergyHeader, record.energyRows));
     for (size_t b = 0; b < world.boundaries.size() && b < record.boundaryRows.size(); ++b)
         writeTextFileAtomically(
             (dir / boundaryHistoryFileName(world.boundaries[b].name)).string(),
-            rowsToCsv(world.boundaries[b].servo.active()
-                          ? "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed"
-                          : "step,time,ux,uy,uz,fx,fy,fz",
+            rowsToCsv(world.boundaries[b].servo.active() ? kServoBoundaryHeader : kBoundaryHeader,
                       record.boundaryRows[b]));
 }
 
 void writeGrainsFile(const std::string& path, const World& world,
                      const std::vector<Vec3>& initialPositions)
 {
-    std::string text = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved\n";
+    std::string text = kGrainsHeader + "\n";
     for (size_t i = 0; i < world.grains.size(); ++i) {
         const Grain& g = world.grains[i];
         const RigidPose& p = g.body.pose;

@@ -17,7 +17,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <ostream>
 #include <vector>
@@ -59,24 +61,59 @@ bool runWrites(const Scene& scene, const std::string& name)
     return false;
 }
 
-/// The files of an earlier run in @a outDir (sorted): a fresh run there would leave some and
-/// replace others, so the folder would look like one run but hold two.
-std::vector<std::string> earlierRunOutputs(const std::string& outDir)
+/// Whether the file at @a path begins as a VTK XML file does (frames.pvd and the frames).
+bool isVtkFile(const fs::path& path)
 {
-    std::vector<std::string> found;
+    std::ifstream in(path, std::ios::binary);
+    std::string start(512, '\0');
+    in.read(start.data(), static_cast<std::streamsize>(start.size()));
+    start.resize(static_cast<size_t>(in.gcount()));
+    return start.find("<VTKFile") != std::string::npos;
+}
+
+/// Whether the file at @a path, named as a run's output @a name, holds what lsdem writes there.
+bool holdsRunOutput(const fs::path& path, const std::string& name)
+{
+    if (name == kCheckpointFileName) return isCheckpointFile(path.string());
+    if (endsWith(name, ".csv")) return isRunTextOutput(path.string());
+    return isVtkFile(path);
+}
+
+/// What a run finds in its output folder under the names of a run's outputs (each sorted).
+struct OutputFolderFiles
+{
+    /// An earlier run's outputs (lsdem wrote them): a run there would leave some and replace
+    /// others, so the folder would look like one run but hold two.
+    std::vector<std::string> earlierRun;
+    /// Files with other contents that this run would replace: somebody else's.
+    std::vector<std::string> notOurs;
+};
+
+OutputFolderFiles scanOutputFolder(const std::string& outDir, const Scene& scene)
+{
+    OutputFolderFiles found;
     std::error_code ec;
     for (const fs::directory_entry& entry : fs::directory_iterator(outDir, ec)) {
         const std::string name = entry.path().filename().string();
-        if (isRunOutputName(name) && !entry.is_directory(ec)) found.push_back(name);
+        if (!isRunOutputName(name) || entry.is_directory(ec)) continue;
+        if (holdsRunOutput(entry.path(), name)) found.earlierRun.push_back(name);
+        else if (runWrites(scene, name)) found.notOurs.push_back(name);
     }
-    std::sort(found.begin(), found.end());
+    std::sort(found.earlierRun.begin(), found.earlierRun.end());
+    std::sort(found.notOurs.begin(), found.notOurs.end());
     return found;
 }
 
-/// Refuses (without @a overwrite) a fresh run into a folder holding an earlier run's outputs.
-void refuseEarlierRun(const std::string& outDir, const std::vector<std::string>& earlier,
-                      bool overwrite)
+/// Refuses a run that would replace a file lsdem did not write, and (without @a overwrite) a
+/// run into a folder holding an earlier run's outputs.
+void refuseEarlierRun(const std::string& outDir, const OutputFolderFiles& found, bool overwrite)
 {
+    if (!found.notOurs.empty())
+        throw Error((fs::path(outDir) / found.notOurs.front()).string(),
+                    "this file is not an output of lsdem, and the run would replace it with "
+                    "its own",
+                    "move it away, or choose another --out");
+    const std::vector<std::string>& earlier = found.earlierRun;
     if (earlier.empty() || overwrite) return;
     const size_t shown = std::min<size_t>(earlier.size(), 5);
     std::string names;
@@ -216,12 +253,25 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
     if (mOutDir.empty()) throw Error("", "no output folder given", "pass --out DIR");
+    // A restart in its own folder continues the outputs there; elsewhere it starts a folder of
+    // its own, as a fresh run does.
+    std::error_code ec;
+    const bool restartInPlace =
+        mRestart &&
+        fs::equivalent(fs::absolute(options.restartPath).parent_path(), mOutDir, ec);
+    if (restartInPlace && options.overwrite)
+        throw Error("", "--overwrite with --restart in the checkpoint's own folder: a restart "
+                        "continues the outputs there, it replaces none",
+                    "drop --overwrite");
     if (mRestart) refuseFramesAwayFromTheirSeries(mScene, mCheckpoint, options.restartPath, mOutDir);
-    // Before any work, and before writing anything (a restart continues its own outputs).
-    refuseOutputsOverInputs(mScene, mOutDir, options.overwrite && !mRestart);
-    const std::vector<std::string> earlier =
-        mRestart ? std::vector<std::string>() : earlierRunOutputs(mOutDir);
-    refuseEarlierRun(mOutDir, earlier, options.overwrite);
+    // Before any work, and before writing anything.
+    refuseOutputsOverInputs(mScene, mOutDir, options.overwrite);
+    const std::vector<std::string> earlier = [&] {
+        if (restartInPlace) return std::vector<std::string>();
+        const OutputFolderFiles found = scanOutputFolder(mOutDir, mScene);
+        refuseEarlierRun(mOutDir, found, options.overwrite);
+        return found.earlierRun;
+    }();
 
     if (options.ranks) {
         // One rank evaluates every contact: nothing to split, nothing to exchange.
@@ -254,11 +304,21 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     // Only now, with the scene, the checkpoint's body and the first forces found good, is the
     // folder made (bad input leaves none behind); split over ranks, the others wait for it
     // before writing their pieces of the first frame.
+    // (Only rank 0 can fail here; the vote tells the others, which would otherwise wait.)
+    std::exception_ptr notPrepared;
     if (mWrites) {
-        prepareOutputFolder(mOutDir, "choose a writable --out folder");
-        removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
+        try {
+            prepareOutputFolder(mOutDir, "choose a writable --out folder");
+            removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
+        } catch (...) {
+            notPrepared = std::current_exception();
+        }
     }
-    if (options.ranks) options.ranks->anyRank(false);
+    const bool anyFailed = options.ranks ? options.ranks->anyRank(bool(notPrepared)) : false;
+    if (notPrepared) std::rethrow_exception(notPrepared);
+    if (anyFailed)
+        throw Error(mOutDir, "rank 0 could not prepare the output folder",
+                    "see rank 0's message");
 
     mPlannedSteps = plannedSteps(mScene, mSim->world(), dt);
     if (mPlannedSteps > 0.0) {

@@ -25,6 +25,9 @@ struct Checkpoint
 /// Write @a world and @a checkpoint to @a path atomically.
 void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint);
 
+/// Whether the file at @a path begins as a checkpoint does (whole or not).
+bool isCheckpointFile(const std::string& path);
+
 /// Read the checkpoint header (scene, time step, run record) of @a path.
 /// @throw Error naming the file if it is missing, truncated or not an lsdem checkpoint.
 Checkpoint readCheckpoint(const std::string& path);

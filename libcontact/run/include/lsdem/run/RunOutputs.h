@@ -36,4 +36,9 @@ std::string boundaryHistoryFileName(const std::string& name);
 /// Whether @a fileName is the history of some boundary (as boundaryHistoryFileName names it).
 bool isBoundaryHistoryFileName(const std::string& fileName);
 
+/// Whether the file at @a path is a text output of a run (energy.csv, grains.csv, a boundary's
+/// history): its first line is a header lsdem writes. A file of such a name holding anything
+/// else is somebody else's.
+bool isRunTextOutput(const std::string& path);
+
 } // namespace lsdem

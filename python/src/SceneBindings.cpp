@@ -294,6 +294,11 @@ void bindScenes(py::module_& m)
                  if (!(value > 0.0) || !std::isfinite(value))
                      throw Error("", "end displacement must be > 0");
                  const int index = indexOf(s.boundaries, boundary, "boundary");
+                 const BoundarySpec& moved = s.boundaries[static_cast<size_t>(index)];
+                 if (!(moved.velocity.norm() > 0.0) && !moved.servo.active())
+                     throw Error("", "boundary '" + boundary +
+                                         "' does not move, so it never reaches the displacement",
+                                 "give it a velocity or a stress, or set end_time / end_steps");
                  markChanged(s);
                  s.end.boundary = index;
                  s.end.displacement = value;

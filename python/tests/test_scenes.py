@@ -219,3 +219,9 @@ def test_an_asset_saved_after_it_was_added_is_written_by_its_file(tmp_path):
         scene.to_toml()
     ball.save(str(tmp_path / "later.vdb"))
     assert "later.vdb" in scene.to_toml(str(tmp_path))
+
+
+def test_a_fixed_wall_cannot_end_a_run_by_displacement():
+    scene = lsdem.Scene.from_toml(str(SCENES / "bounce.toml"))
+    with pytest.raises(lsdem.Error, match="does not move"):
+        scene.set_end_displacement("floor", 1.0)

@@ -52,6 +52,14 @@ void readSimulation(const toml::table* table, Scene& scene)
     }
     if (end.time <= 0.0 && end.steps <= 0 && end.boundary < 0)
         t.fail("", "has no end condition", "add end_time, end_steps or end_displacement");
+    // A servo wall stops where its stress is met, maybe short of the displacement: the run
+    // would never end.
+    if (end.boundary >= 0 && scene.boundaries[static_cast<size_t>(end.boundary)].servo.active() &&
+        end.time <= 0.0 && end.steps <= 0)
+        t.fail("end_displacement",
+               "names a servo wall, which stops where its stress is met and may never move "
+               "that far",
+               "add end_time or end_steps as well, as a limit");
     t.rejectUnknownKeys();
 }
 

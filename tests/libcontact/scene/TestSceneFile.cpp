@@ -175,8 +175,20 @@ TEST(SceneFile, ServoWallCanEndARunByDisplacement)
 {
     std::string text = readFile(kScenes + "servo.toml");
     const std::string endTime = "end_time = 0.04";
+    // Alone it is refused: the wall stops where its stress is met, maybe short of 0.3.
+    std::string alone = text;
+    alone.replace(alone.find(endTime), endTime.size(),
+                  "end_displacement = { boundary = \"top\", value = 0.3 }");
+    try {
+        parseScene(alone, kScenes + "servo.toml");
+        ADD_FAILURE() << "a servo wall's displacement alone was accepted as the end";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("add end_time or end_steps as well"),
+                  std::string::npos)
+            << e.what();
+    }
     text.replace(text.find(endTime), endTime.size(),
-                 "end_displacement = { boundary = \"top\", value = 0.3 }");
+                 "end_displacement = { boundary = \"top\", value = 0.3 }\nend_time = 1");
     const Scene scene = parseScene(text, kScenes + "servo.toml");
     ASSERT_GE(scene.end.boundary, 0);
     EXPECT_EQ(scene.boundaries[static_cast<size_t>(scene.end.boundary)].name, "top");

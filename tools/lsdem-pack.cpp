@@ -5,6 +5,7 @@
 #include "common/CommandLine.h"
 
 #include "lsdem/ls/AssetIO.h"
+#include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/RunInParallel.h"
 #include "lsdem/scene/CatalogMixture.h"
@@ -162,6 +163,7 @@ int main(int argc, char** argv)
         std::vector<std::string> inputs = c.files;
         if (!c.catalog.empty()) inputs.push_back(c.catalog);
         lsdem::cli::refuseOutputOverInput(c.out, "-o", inputs);
+        lsdem::checkOutputFile(c.out);  // before minutes of packing, not after
         lsdem::PackingOptions& options = c.options;
         readContainer(c, options);
         if (c.seed < 0) throw Error("", "--seed wants a number >= 0");

@@ -39,7 +39,7 @@ void checkCube27Options(const Cube27Options& o)
     positive(o.density, "density", "7.85e-9");
     if (o.friction < 0.0 || !std::isfinite(o.friction)) throw Error("", "--friction must be >= 0");
     if (o.shearRatio < 0.0 || !std::isfinite(o.shearRatio))
-        throw Error("", "--shear-ratio must be >= 0");
+        throw Error("", "the shear ratio ks/kn must be >= 0 (set in code: cube27 has no option for it)");
     if (!(o.restitution > 0.0 && o.restitution <= 1.0))
         throw Error("", "--restitution must be in (0, 1]", "e.g. --restitution 0.5");
     if (!(o.globalDamping >= 0.0 && o.globalDamping < 1.0))

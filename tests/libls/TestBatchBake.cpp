@@ -23,12 +23,19 @@ using namespace lsdem;
 namespace {
 
 /// Three small generated grains of different sizes and a corrupt STL among them.
-std::vector<std::string> makeInputs(const test::ScratchDir& dir)
+/// Small generated grains (a few hundred triangles), quick to bake.
+GrainShapeOptions smallGrains()
 {
     GrainShapeOptions g;
     g.triangles = 320;
     g.maxDegree = 6;
     g.sizeSpread = 0.4;
+    return g;
+}
+
+std::vector<std::string> makeInputs(const test::ScratchDir& dir)
+{
+    const GrainShapeOptions g = smallGrains();
     std::vector<std::string> files;
     for (uint64_t i = 0; i < 3; ++i) {
         files.push_back(dir.file("grain_" + std::to_string(i) + ".stl"));
@@ -47,6 +54,36 @@ BatchBakeOptions smallBake(const std::string& outDir, int threads)
     o.bake.nodePlacement = NodePlacement::Spacing;
     o.outDir = outDir;
     o.threads = threads;
+    return o;
+}
+
+/// Three good grain files baked into @a out, then grain_1's asset truncated (a damaged file
+/// the next run finds); returns the files.
+std::vector<std::string> bakeThreeAndDamageTheSecond(const test::ScratchDir& dir,
+                                                     const std::string& out)
+{
+    std::vector<std::string> files = makeInputs(dir);
+    files.erase(files.begin() + 1);  // no broken file here
+    bakeBatch(files, smallBake(out, 1));
+    const std::string asset = out + "/grain_1.vdb";
+    writeTextFileAtomically(asset, test::readFile(asset).substr(0, 2000));
+    return files;
+}
+
+/// The names of the rows of the catalogue at @a path, in its order.
+std::vector<std::string> catalogNames(const std::string& path)
+{
+    std::vector<std::string> names;
+    for (const CatalogEntry& e : readCatalog(path)) names.push_back(e.name);
+    return names;
+}
+
+/// smallBake with a memory budget no bake meets (the budget is not among the options a
+/// catalogue row records, so it does not make a file out of date).
+BatchBakeOptions starvedBake(const std::string& outDir)
+{
+    BatchBakeOptions o = smallBake(outDir, 1);
+    o.bake.memoryBudgetBytes = 1024.0;
     return o;
 }
 
@@ -238,12 +275,9 @@ TEST(BatchBake, RepairsAreReportedAlikeWithVoxelPerSize)
 TEST(BatchBake, DamagedAssetIsBakedAgain)
 {
     test::ScratchDir dir;
-    std::vector<std::string> files = makeInputs(dir);
-    files.erase(files.begin() + 1);  // no broken file here
     const std::string out = dir.file("assets");
-    bakeBatch(files, smallBake(out, 1));
+    const std::vector<std::string> files = bakeThreeAndDamageTheSecond(dir, out);
     const std::string asset = out + "/grain_1.vdb";
-    writeTextFileAtomically(asset, test::readFile(asset).substr(0, 2000));
 
     const BatchBakeReport r = bakeBatch(files, smallBake(out, 1));
     EXPECT_EQ(r.baked, 1);
@@ -260,22 +294,14 @@ TEST(BatchBake, DamagedAssetIsBakedAgain)
 TEST(BatchBake, DamagedAssetThatFailsToBakeAgainLosesItsRow)
 {
     test::ScratchDir dir;
-    std::vector<std::string> files = makeInputs(dir);
-    files.erase(files.begin() + 1);  // no broken file here
     const std::string out = dir.file("assets");
-    bakeBatch(files, smallBake(out, 1));
-    const std::string asset = out + "/grain_1.vdb";
-    writeTextFileAtomically(asset, test::readFile(asset).substr(0, 2000));
+    const std::vector<std::string> files = bakeThreeAndDamageTheSecond(dir, out);
 
-    BatchBakeOptions starved = smallBake(out, 1);
-    starved.bake.memoryBudgetBytes = 1024.0;
-    const BatchBakeReport r = bakeBatch(files, starved);
+    const BatchBakeReport r = bakeBatch(files, starvedBake(out));
     ASSERT_EQ(r.failures.size(), 1u);
     EXPECT_EQ(r.failures[0].source, files[1]);
     EXPECT_EQ(r.unchanged, 2);
-    std::vector<std::string> names;
-    for (const CatalogEntry& e : readCatalog(r.catalogPath)) names.push_back(e.name);
-    EXPECT_EQ(names, (std::vector<std::string>{"grain_0", "grain_2"}));
+    EXPECT_EQ(catalogNames(r.catalogPath), (std::vector<std::string>{"grain_0", "grain_2"}));
 }
 
 // The same when the mesh was edited too (so the earlier row is not up to date and its asset
@@ -283,22 +309,11 @@ TEST(BatchBake, DamagedAssetThatFailsToBakeAgainLosesItsRow)
 TEST(BatchBake, DamagedAssetOfAnEditedMeshThatFailsToBakeLosesItsRow)
 {
     test::ScratchDir dir;
-    std::vector<std::string> files = makeInputs(dir);
-    files.erase(files.begin() + 1);
     const std::string out = dir.file("assets");
-    bakeBatch(files, smallBake(out, 1));
-    const std::string asset = out + "/grain_1.vdb";
-    writeTextFileAtomically(asset, test::readFile(asset).substr(0, 2000));
-    GrainShapeOptions g;
-    g.triangles = 320;
-    g.maxDegree = 6;
-    writeGrainMesh(generateGrain(g, 7, 1), files[1]);  // edited: another grain
+    const std::vector<std::string> files = bakeThreeAndDamageTheSecond(dir, out);
+    writeGrainMesh(generateGrain(smallGrains(), 7, 1), files[1]);  // edited: another grain
 
-    BatchBakeOptions starved = smallBake(out, 1);
-    starved.bake.memoryBudgetBytes = 1024.0;
-    const BatchBakeReport r = bakeBatch(files, starved);
+    const BatchBakeReport r = bakeBatch(files, starvedBake(out));
     ASSERT_EQ(r.failures.size(), 1u);
-    std::vector<std::string> names;
-    for (const CatalogEntry& e : readCatalog(r.catalogPath)) names.push_back(e.name);
-    EXPECT_EQ(names, (std::vector<std::string>{"grain_0", "grain_2"}));
+    EXPECT_EQ(catalogNames(r.catalogPath), (std::vector<std::string>{"grain_0", "grain_2"}));
 }

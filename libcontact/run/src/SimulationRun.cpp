@@ -52,7 +52,8 @@ bool isRunOutputName(const std::string& name)
            (endsWith(name, ".vtu") || endsWith(name, ".pvtu"));
 }
 
-/// Whether a run of @a scene writes a file called @a name into its output folder.
+/// Whether a run of @a scene may write a file called @a name into its output folder: its own
+/// boundaries' histories, and every other output name (frames counted whatever vtk_period).
 bool runWrites(const Scene& scene, const std::string& name)
 {
     if (!isBoundaryHistoryFileName(name)) return isRunOutputName(name);

@@ -85,37 +85,30 @@ WorldFingerprint fingerprintOf(const World& world)
 void checkSameInputs(const WorldFingerprint& stored, const World& world, const std::string& path)
 {
     const WorldFingerprint now = fingerprintOf(world);
-    const std::string fix =
-        "restore the files the run was started with, or start the run again from its scene";
+    auto refuse = [&](const std::string& problem) {
+        throw Error(path, problem,
+                    "restore the files the run was started with, or start the run again from "
+                    "its scene");
+    };
     if (now.grains.size() != stored.grains.size())
-        throw Error(path,
-                    "the scene now has " + std::to_string(now.grains.size()) +
-                        " grains, the checkpointed run had " +
-                        std::to_string(stored.grains.size()) + " (a grain file changed?)",
-                    fix);
+        refuse("the scene now has " + std::to_string(now.grains.size()) +
+               " grains, the checkpointed run had " + std::to_string(stored.grains.size()) +
+               " (a grain file changed?)");
     for (size_t k = 0; k < now.grains.size(); ++k) {
         const std::string grain = "grain " + std::to_string(k) + " ('" + world.grains[k].name + "')";
         if (now.grainAssets[k] != stored.grainAssets[k])
-            throw Error(path,
-                        grain + ": its asset is not the one the run was checkpointed with (its "
-                                "file or mesh changed since), so a restart would not continue "
-                                "the same run",
-                        fix);
+            refuse(grain + ": its asset is not the one the run was checkpointed with (its file or "
+                           "mesh changed since), so a restart would not continue the same run");
         if (now.grains[k] != stored.grains[k])
-            throw Error(path,
-                        grain + " is not the one the run was checkpointed with: its name, "
-                                "asset, material, motion or mass changed since (a grain file "
-                                "or catalogue edited?)",
-                        fix);
+            refuse(grain + " is not the one the run was checkpointed with: its name, material, "
+                           "motion or mass changed since (a grain file or catalogue edited?)");
     }
     // (The scene's text, and so its boundaries, come from the checkpoint.)
     for (size_t b = 0; b < now.boundaryAssets.size() && b < stored.boundaryAssets.size(); ++b)
         if (now.boundaryAssets[b] != stored.boundaryAssets[b])
-            throw Error(path,
-                        "boundary '" + world.boundaries[b].name +
-                            "': its level set is not the one the run was checkpointed with "
-                            "(its file or mesh changed since)",
-                        fix);
+            refuse("boundary '" + world.boundaries[b].name +
+                   "': its level set is not the one the run was checkpointed with (its file or "
+                   "mesh changed since)");
 }
 
 } // namespace lsdem

@@ -25,18 +25,24 @@ namespace {
 constexpr double kRadius = 5.0;  // mm; units mm, N, s, tonne
 constexpr double kDt = 2e-6;     // s: ~1/200 of the stiffest impact's contact period here
 
-/// A sphere asset (R = 5 mm, ~2000 nodes, voxel 0.25 mm), baked once for this file.
+/// A sphere asset of @a radius (~2000 nodes, voxel 0.25 mm) saved to @a path.
+void saveSphere(double radius, const std::string& path)
+{
+    BakeOptions o;
+    o.voxelSize = 0.25;
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = 2000;
+    std::vector<std::string> warnings;
+    saveAsset(bakeAnalytic(AnalyticShape::sphere(radius), o, warnings), path);
+}
+
+/// A sphere asset (R = 5 mm), baked once for this file.
 const std::string& sphereFile()
 {
     static lsdem::test::ScratchDir dir;
     static const std::string path = [] {
-        BakeOptions o;
-        o.voxelSize = 0.25;
-        o.nodePlacement = NodePlacement::Count;
-        o.nodeCount = 2000;
-        std::vector<std::string> warnings;
         const std::string p = dir.file("sphere.vdb");
-        saveAsset(bakeAnalytic(AnalyticShape::sphere(kRadius), o, warnings), p);
+        saveSphere(kRadius, p);
         return p;
     }();
     return path;
@@ -478,13 +484,8 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     EXPECT_EQ(refusal(build(stackScene(2))), "");
 
     // The asset file replaced by a slightly larger sphere.
-    BakeOptions o;
-    o.voxelSize = 0.25;
-    o.nodePlacement = NodePlacement::Count;
-    o.nodeCount = 2000;
-    std::vector<std::string> warnings;
     const std::string larger = dir.file("larger.vdb");
-    saveAsset(bakeAnalytic(AnalyticShape::sphere(1.01 * kRadius), o, warnings), larger);
+    saveSphere(1.01 * kRadius, larger);
     Scene changed = stackScene(2);
     changed.assets[0].file = larger;
     const std::string asset = refusal(build(changed));

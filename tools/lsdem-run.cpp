@@ -1,5 +1,5 @@
 /// lsdem-run: run a scene file (TOML) and write histories, ParaView frames and checkpoints;
-/// under mpirun, one simulation with its contacts split over the ranks (run/RunRanks.h).
+/// under mpirun, one simulation split by space over the ranks (run/RunRanks.h).
 
 #include "common/CommandLine.h"
 #include "run/RunRanks.h"
@@ -54,8 +54,8 @@ int main(int argc, char** argv)
         "mpirun a\n.pvtu per frame and a .vtu piece per rank) and checkpoint.lsdem.\n\n"
         "  lsdem-run SCENE.toml --out DIR [options]\n"
         "  lsdem-run --restart DIR/checkpoint.lsdem [options]\n"
-        "  mpirun -n N lsdem-run SCENE.toml --out DIR   (contacts split over N ranks, the same "
-        "bytes)",
+        "  mpirun -n N lsdem-run SCENE.toml --out DIR   (split by space: each rank "
+        "owns a sub-domain's grains; the same bytes)",
         "lsdem-run");
     lsdem::cli::applyConventions(app);
     app.footer("Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; "

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -154,6 +155,28 @@ TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
                   readFile(dir.file(std::string("b/") + name)))
             << name;
     EXPECT_EQ(readFile(dir.file("a/frames_grains_4.vtu")), readFile(dir.file("b/frames_grains_4.vtu")));
+}
+
+// A restart from the checkpoint of a run that had already finished has nothing to add: it
+// says so and leaves every file as it was (it used to write the last frame and the checkpoint
+// again, so frames.pvd listed two frames at the same time and grew with each restart).
+TEST(LsdemRun, RestartOfAFinishedRunWritesNothing)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400));
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --out " + dir.file("a")).exitCode, 0);
+    auto snapshot = [&] {
+        std::map<std::string, std::string> files;
+        for (const auto& e : std::filesystem::directory_iterator(dir.file("a")))
+            files[e.path().filename().string()] = readFile(e.path().string());
+        return files;
+    };
+    const std::map<std::string, std::string> before = snapshot();
+    const CommandResult again = runCommand(kRun + " -q --restart " + dir.file("a/checkpoint.lsdem"));
+    EXPECT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("had already finished at step 400"), std::string::npos)
+        << again.output;
+    EXPECT_TRUE(snapshot() == before) << "a restart at the end changed the run's files";
 }
 
 // A restart continues frames.pvd, which lists the frames written before the checkpoint: with

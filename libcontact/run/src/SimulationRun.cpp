@@ -201,6 +201,8 @@ public:
     bool stepToEnd();
     /// Write the last history row, frame and the checkpoint (after a normal end).
     void finish();
+    /// Whether a restart began where its run had already ended (nothing stepped or written).
+    bool alreadyEnded() const { return mAlreadyEnded; }
     void fillResult(RunResult& result) const;
 
 private:
@@ -222,6 +224,7 @@ private:
     std::ostream& mLog;
     Stopwatch mWall;
     bool mRestart = false;
+    bool mAlreadyEnded = false;
     Scene mScene;
     Checkpoint mCheckpoint;
     std::string mOutDir, mCheckpointPath;
@@ -302,6 +305,15 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
                           : std::make_unique<Simulation>(std::move(world), dt, !mRestart,
                                                          recordForces);
     mCheckpoint.timeStep = dt;
+    mCheckpointPath = (fs::path(mOutDir) / kCheckpointFileName).string();
+    // A restart from a run that had already reached its end adds nothing: its last frame and
+    // checkpoint would only be written again (a second frame at the same time in frames.pvd).
+    mAlreadyEnded = mRestart && endReached(mScene, mSim->world(), dt);
+    if (mAlreadyEnded) {
+        mCheckpointPath = options.restartPath;
+        mFirstStep = mSim->world().step;
+        return;
+    }
     // Only now, with the scene, the checkpoint's body and the first forces found good, is the
     // folder made (bad input leaves none behind); split over ranks, the others wait for it
     // before writing their pieces of the first frame.
@@ -334,7 +346,6 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
                                               : 100;
     mVtkEvery = out.vtkPeriod > 0.0 ? stepsPer(out.vtkPeriod, dt) : 0;
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
-    mCheckpointPath = (fs::path(mOutDir) / kCheckpointFileName).string();
     // Split over ranks, every rank writes its piece of each frame.
     if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
         mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
@@ -498,6 +509,14 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     }
     Run run(options, log);
     RunResult result;
+    if (run.alreadyEnded()) {
+        run.fillResult(result);
+        result.alreadyEnded = true;
+        log << "the run had already finished at step " << result.step << " (t = " << result.time
+            << "): nothing to continue, nothing written (to go further, run the scene again "
+               "with a later end)\n";
+        return result;
+    }
     result.interrupted = run.stepToEnd();
     if (options.progress) std::fputs("\n", stderr);
     if (!result.interrupted) run.finish();

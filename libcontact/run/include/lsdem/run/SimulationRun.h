@@ -36,6 +36,7 @@ struct RunOptions
 struct RunResult
 {
     bool interrupted = false;   ///< stopped by a request or stopAtStep, not the end condition
+    bool alreadyEnded = false;  ///< a restart whose checkpoint was at the end: nothing done
     long long step = 0;
     double time = 0.0;
     double timeStep = 0.0;

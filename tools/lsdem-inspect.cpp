@@ -152,7 +152,9 @@ int main(int argc, char** argv)
     std::vector<double> samples;
     bool json = false;
     app.add_option("file", paths, "the asset or level set to inspect")->type_name("FILE.vdb");
-    app.add_flag("--json", json, "print the summary (or the samples) as JSON instead of text");
+    app.add_flag("--json", json,
+                 "print the summary as one JSON object instead of text, or the samples\n"
+                 "as JSON Lines (one object per --sample, a line each)");
     cli::addNumbers(app, "--sample", samples,
                     "print φ and ∇φ (trilinear interpolant) at a point of the asset\n"
                     "frame; may be repeated",

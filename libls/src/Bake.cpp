@@ -63,8 +63,9 @@ void checkGridSize(const Vec3& extent, const BakeOptions& o, const std::string& 
             << "extent is " << thinnest << " (fewer than 4 voxels across)";
         // (A suggestion, so six significant digits: 0.035, not 0.034999999999999996.)
         std::ostringstream fix;
-        fix << "use voxel " << thinnest / 20.0
-            << " or smaller (lsdem-bake --voxel; check the mesh's length unit)";
+        fix << "use voxel " << thinnest / 20.0 << " or smaller to resolve the shape (20 voxels "
+            << "across; " << thinnest / 4.0 << " is the coarsest accepted) (lsdem-bake --voxel; "
+            << "check the mesh's length unit)";
         throw Error(source, msg.str(), fix.str());
     }
     // Peak memory is about one float and one index per voxel of the padded bounding box.

@@ -299,6 +299,7 @@ TEST(Bake, ATooCoarseVoxelOnAMeshInMetresSuggestsANonzeroVoxel)
         FAIL() << "a voxel ten times the cube was not refused";
     } catch (const Error& e) {
         EXPECT_NE(e.fix().find("use voxel 5e-05 or smaller"), std::string::npos) << e.what();
+        EXPECT_NE(e.fix().find("0.00025 is the coarsest accepted"), std::string::npos) << e.what();
         EXPECT_NE(e.problem().find("thinnest extent is 0.001"), std::string::npos) << e.what();
     }
 }

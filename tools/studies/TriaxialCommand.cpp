@@ -90,7 +90,9 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->type_name("T")
         ->group(test);
     const std::string output = "Output";
-    addInteger(*mCommand, "--records", o.records, "rows per run over the shearing")
+    addInteger(*mCommand, "--records", o.records,
+               "rows per run over the shearing: one every floor(steps/N) steps and one at\n"
+               "the end (N to 2N-1 rows)")
         ->type_name("N")
         ->group(output);
     addInteger(*mCommand, "--threads", o.threads, "worker threads (0: all cores)")

@@ -48,9 +48,13 @@ std::vector<fs::path> globFiles(const std::string& pattern, TableReader& t)
     }
     if (ec) t.fail("glob", "cannot list " + folder + " (" + ec.message() + ")", "");
     std::sort(files.begin(), files.end());
+    // (A pattern of baked assets ends in .vdb; any other names meshes, baked as the scene
+    // is read.)
+    const bool namesAssets = p.extension() == ".vdb";
     if (files.empty())
         t.fail("glob", "matches no file (" + pattern + ")",
-               "bake the assets first (lsdem-bake --out-dir), or fix the pattern");
+               namesAssets ? "bake the assets first (lsdem-bake --out-dir), or fix the pattern"
+                           : "fix the pattern or the folder: it should match the mesh files");
     return files;
 }
 

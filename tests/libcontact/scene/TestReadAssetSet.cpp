@@ -214,7 +214,9 @@ TEST_F(AssetSetTest, BadSetsAreRefusedWithThePlaceAndAFix)
         {scene("catalog = \"/dev/zero\"", {"sand/ball"}), "catalog: file not found"},
         {scene(good + "\nglob = \"sand/*.vdb\"", {"sand/ball"}), "has both catalog and glob"},
         {scene("", {"sand/ball"}), "has neither catalog nor glob"},
+        {scene("glob = \"sand/*.stl\"", {"sand/ball"}), "should match the mesh files"},
         {scene("glob = \"sand/*.stl\"", {"sand/ball"}), "matches no file"},
+        {scene("glob = \"sand/x*.vdb\"", {"sand/ball"}), "bake the assets first"},
         {scene("glob = \"*/ball.vdb\"", {"sand/ball"}), "wildcard in a folder name"},
         {scene(good + "\ncolour = \"red\"", {"sand/ball"}), "unknown key 'colour'"},
     };

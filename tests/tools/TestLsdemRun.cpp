@@ -277,9 +277,12 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
     // The unknown key (case 1) is caught before anything is written.
     EXPECT_FALSE(std::filesystem::exists(dir.file("out-1")));
 
-    const CommandResult missing = runCommand(kRun + " " + dir.file("nope.toml") + " --out " + dir.file("x"));
+    const CommandResult missing =
+        runCommand(kRun + " " + dir.file("nope.toml") + " --threads 1 --out " + dir.file("x"));
     EXPECT_EQ(missing.exitCode, 1);
     EXPECT_NE(missing.output.find("nope.toml"), std::string::npos) << missing.output;
+    // A refused run says why and nothing else (no "running on 1 process x 1 thread" first).
+    EXPECT_EQ(missing.output.find("running on"), std::string::npos) << missing.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
     const CommandResult noOut = runCommand(kRun + " " + dir.file("scene.toml"));
     EXPECT_EQ(noOut.exitCode, 1);

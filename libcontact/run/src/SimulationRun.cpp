@@ -494,9 +494,11 @@ void requestStop()
     gStopRequested.store(true);
 }
 
-RunResult runSimulation(const RunOptions& options, std::ostream& log)
+namespace {
+
+/// The header line saying what the run runs on (with threads or ranks given).
+void printWhereItRuns(const RunOptions& options, std::ostream& log)
 {
-    gStopRequested.store(false);
     if (options.ranks || options.threads > 0) {
         const int ranks = options.ranks ? options.ranks->ranks() : 1;
         log << "running on " << ranks
@@ -507,7 +509,15 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
                             "ghosts of its neighbours')\n"
                           : "\n");
     }
-    Run run(options, log);
+}
+
+} // namespace
+
+RunResult runSimulation(const RunOptions& options, std::ostream& log)
+{
+    gStopRequested.store(false);
+    Run run(options, log);  // reads and checks everything first: a refused run says only why
+    printWhereItRuns(options, log);
     RunResult result;
     if (run.alreadyEnded()) {
         run.fillResult(result);

@@ -22,7 +22,7 @@ void applyConventions(CLI::App& app)
     help->column_width(30);  // the option column; descriptions fit in the 70 after it
     app.formatter(help);
     // A repeated option's last value wins (rather than CLI11's refusal), so a script can
-    // override an option by appending it, as it always could.
+    // override an option by appending it, as it always could (lists too: lastListWins).
     app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
 }
 
@@ -92,13 +92,30 @@ CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value,
         ->default_str(showNumber(value));
 }
 
+CLI::Option* lastListWins(CLI::Option* option)
+{
+    option->inject_separator();
+    return option;
+}
+
+std::vector<std::string> lastOccurrence(const std::vector<std::string>& texts)
+{
+    const auto separator = std::find(texts.rbegin(), texts.rend(), std::string());
+    std::vector<std::string> last(separator.base(), texts.end());
+    // An empty value the user gave (not a separator) is kept, to be refused as such.
+    if (last.empty() && !texts.empty()) last.push_back(std::string());
+    return last;
+}
+
 CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<double>& values,
                         const std::string& help, int group)
 {
     CLI::Option* option =
         app.add_option_function<std::vector<std::string>>(
                name,
-               [&values, name, group](const std::vector<std::string>& texts) {
+               [&values, name, group](const std::vector<std::string>& given) {
+                   // A group's repeats are kept or dropped by its policy; a list's last wins.
+                   const std::vector<std::string> texts = group > 0 ? given : lastOccurrence(given);
                    if (group > 0 && texts.size() % size_t(group) != 0)
                        throw Error("", "option " + name + " wants " + std::to_string(group) +
                                            " numbers, got " + std::to_string(texts.size()));
@@ -110,6 +127,7 @@ CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<doub
             ->default_str(values.empty() ? "" : showList(shown(values)));
     // A group stops at its last number, so a positional argument may follow it.
     if (group > 0) option->type_size(1)->expected(group)->allow_extra_args(false);
+    else lastListWins(option);
     return option;
 }
 
@@ -143,12 +161,12 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
                        const std::string& help)
 {
-    return app
-        .add_option_function<std::vector<std::string>>(
+    return lastListWins(
+        app.add_option_function<std::vector<std::string>>(
             name,
-            [&values, name](const std::vector<std::string>& texts) {
+            [&values, name](const std::vector<std::string>& given) {
                 values.clear();
-                for (const std::string& text : texts) {
+                for (const std::string& text : lastOccurrence(given)) {
                     const double n = parseNumber(text, name);
                     if (n != std::floor(n))
                         throw Error("", name + " wants whole numbers, got " + text);
@@ -156,7 +174,7 @@ CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>&
                     values.push_back(int(std::min(n, 1e9)));
                 }
             },
-            help)
+            help))
         ->type_name("N")
         ->default_str(values.empty() ? "" : showList(shown(values)));
 }

@@ -52,6 +52,15 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
                        const std::string& help);
 
+/// Make the list option @a option keep only its last occurrence's values, as a single value's
+/// last occurrence wins (applyConventions): CLI11 would join "--nodes 1 2 --nodes 3" into
+/// 1 2 3. Its callback must read its values through lastOccurrence.
+CLI::Option* lastListWins(CLI::Option* option);
+
+/// The values of the last occurrence of a list option made by lastListWins (CLI11 hands over
+/// every occurrence's values with an empty string between them).
+std::vector<std::string> lastOccurrence(const std::vector<std::string>& texts);
+
 /// @a value as the help shows defaults ("0.05", "1e+09").
 std::string showNumber(double value);
 

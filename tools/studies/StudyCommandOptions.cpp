@@ -10,15 +10,15 @@ CLI::Option* addFormulationOption(CLI::App& command, std::vector<Formulation>& f
 {
     std::vector<std::string> names;
     for (Formulation f : formulations) names.push_back(formulationName(f));
-    return command
-        .add_option_function<std::vector<std::string>>(
-            "--formulation",
-            [&formulations](const std::vector<std::string>& given) {
-                formulations.clear();
-                for (const std::string& name : given)
-                    formulations.push_back(parseFormulation(name));
-            },
-            "original, adapted, single-node, volume")
+    return cli::lastListWins(
+               command.add_option_function<std::vector<std::string>>(
+                   "--formulation",
+                   [&formulations](const std::vector<std::string>& given) {
+                       formulations.clear();
+                       for (const std::string& name : cli::lastOccurrence(given))
+                           formulations.push_back(parseFormulation(name));
+                   },
+                   "original, adapted, single-node, volume"))
         ->type_name("F")
         ->default_str(cli::showList(names));
 }

@@ -118,3 +118,24 @@ TEST(SlabPlan, ProgramPrintsTheSeedEstimateWithoutRunning)
     EXPECT_EQ(both.exitCode, 1) << both.output;
     EXPECT_NE(both.output.find("--seed"), std::string::npos) << both.output;
 }
+
+// A list option given twice keeps its last list, as a single value's last occurrence wins (a
+// script may override an option by appending it); CLI11 joined the two lists. One run here:
+// SDP 0.5 alone and adapted alone.
+TEST(SlabPlan, ARepeatedListOptionKeepsItsLastList)
+{
+    const std::string base = std::string(LSDEM_STUDY_EXE) +
+                             " slab --blocks 3 --vdp-fixed 0.5 --no-two-way --estimate";
+    const auto once = runCommand(base + " --sdp 0.5 --formulation adapted");
+    ASSERT_EQ(once.exitCode, 0) << once.output;
+    EXPECT_NE(once.output.find("cost: 1 runs"), std::string::npos) << once.output;
+    const auto twice = runCommand(base + " --sdp 1 0.7 --sdp 0.5 --formulation adapted original "
+                                         "--formulation adapted");
+    ASSERT_EQ(twice.exitCode, 0) << twice.output;
+    EXPECT_EQ(twice.output.substr(twice.output.find("cost:")),
+              once.output.substr(once.output.find("cost:")));
+    // An empty value is still refused, not taken for the boundary between two lists.
+    const auto empty = runCommand(base + " --sdp ''");
+    EXPECT_EQ(empty.exitCode, 1) << empty.output;
+    EXPECT_NE(empty.output.find("--sdp wants a number, got ''"), std::string::npos) << empty.output;
+}

@@ -177,6 +177,16 @@ TEST(LsdemRun, RestartOfAFinishedRunWritesNothing)
     EXPECT_NE(again.output.find("had already finished at step 400"), std::string::npos)
         << again.output;
     EXPECT_TRUE(snapshot() == before) << "a restart at the end changed the run's files";
+
+    // A stop asked for at the last step is the end itself: the run finishes there (last row,
+    // last frame), as the straight run did, rather than leave a checkpoint with nothing to do.
+    const CommandResult stopAtEnd =
+        runCommand(kRun + " " + scene + " -q --stop-at-step 400 --out " + dir.file("b"));
+    EXPECT_EQ(stopAtEnd.exitCode, 0) << stopAtEnd.output;
+    for (const char* name : kOutputs)
+        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
+                  readFile(dir.file(std::string("b/") + name)))
+            << name;
 }
 
 // A restart continues frames.pvd, which lists the frames written before the checkpoint: with

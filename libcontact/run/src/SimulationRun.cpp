@@ -417,7 +417,10 @@ bool Run::stepToEnd()
         const Stopwatch output;
         if (step % mHistoryEvery == 0) recordHistoryRow(*mSim, mCheckpoint.record);
         if (mFrames && step % mVtkEvery == 0) mFrames->write(*mSim);
-        const bool stop = requested || (mOptions.stopAtStep > 0 && step >= mOptions.stopAtStep);
+        // A stop on the last step is an end: finish() writes the last row and frame, which a
+        // restart from this checkpoint would not (it has nothing left to step).
+        const bool stop = (requested || (mOptions.stopAtStep > 0 && step >= mOptions.stopAtStep)) &&
+                          !endReached(mScene, mSim->world(), mSim->timeStep());
         if (stop || (mCheckpointEvery > 0 && step % mCheckpointEvery == 0)) {
             writeCheckpoint();
             mSinceFlush.restart();

@@ -107,3 +107,57 @@ TEST(LsdemStudy, FindsThePlotScriptsBesideItself)
     EXPECT_NE(missing.output.find(dir.file("nowhere")), std::string::npos) << missing.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("b/two_spheres.csv")));
 }
+
+namespace {
+
+/// @a text as one word for the shell that runCommand starts.
+std::string shellQuoted(const std::string& text)
+{
+    std::string quoted = "'";
+    for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return quoted + "'";
+}
+
+bool hasMatplotlib()
+{
+    return runCommand("/usr/bin/python3 -c 'import matplotlib'").exitCode == 0;
+}
+
+} // namespace
+
+// The plot script gets the --out folder as one argument, whatever it is called: no shell sits
+// between them to run what the name holds (it once did: a quote ended the argument).
+TEST(LsdemStudy, PlotsIntoAFolderOfAnyName)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string out = "it's a run; touch INJECTED; $(touch INJECTED2) `touch INJECTED3`";
+    const auto r = runCommand("cd " + dir.path().string() + " && " + kStudy +
+                              " two-spheres --nodes 100 --voxel 0.5 --orientations 1 --steps 2"
+                              " --formulation adapted -q --out " + shellQuoted(out));
+    for (const char* marker : {"INJECTED", "INJECTED2", "INJECTED3"})
+        EXPECT_FALSE(std::filesystem::exists(dir.file(marker))) << marker << ": " << r.output;
+    ASSERT_TRUE(std::filesystem::exists(dir.file(out + "/two_spheres.csv"))) << r.output;
+    if (!hasMatplotlib())
+        GTEST_SKIP() << "/usr/bin/python3 cannot import matplotlib: the plots are not drawn";
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file(out + "/two_spheres_convergence.png")))
+        << r.output;
+}
+
+// A plot script that fails for its own reasons is named with its exit status, not blamed on a
+// missing matplotlib; the data files are complete and the exit code is 4.
+TEST(LsdemStudy, SaysHowAPlotScriptFailed)
+{
+    if (!hasMatplotlib())
+        GTEST_SKIP() << "/usr/bin/python3 cannot import matplotlib: that is the message then";
+    lsdem::test::ScratchDir dir;
+    std::filesystem::create_directory(dir.file("plots"));
+    std::ofstream(dir.file("plots/two_spheres.py")) << "import sys\nsys.exit(7)\n";
+    const auto r = runCommand("LSDEM_PLOT_DIR=" + dir.file("plots") + " " + kStudy +
+                              " two-spheres --nodes 100 --voxel 0.5 --orientations 1 --steps 2"
+                              " --formulation adapted -q --out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("exit status 7"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(dir.file("plots/two_spheres.py")), std::string::npos) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/two_spheres.csv")));
+}

@@ -75,15 +75,9 @@ int main(int argc, char** argv)
     app.add_option("--restart", options.restartPath,
                    "continue a run from its checkpoint, bit-identically")
         ->type_name("FILE");
-    app.add_option_function<std::string>(
-           "--threads",
-           [&threads](const std::string& text) {
-               threads = lsdem::cli::parseInteger(text, "--threads");
-               if (threads < 1) throw Error("", "--threads wants a number >= 1");
-           },
-           "worker threads (default: all cores; under mpirun, the cores shared among\nthe ranks "
-           "on each machine); results do not depend on N")
-        ->type_name("N");
+    lsdem::cli::addThreads(app, threads,
+                           "worker threads (default: all cores; under mpirun, the cores shared "
+                           "among\nthe ranks on each machine); results do not depend on N");
     app.add_option_function<std::string>(
            "--stop-at-step",
            [&options](const std::string& text) {

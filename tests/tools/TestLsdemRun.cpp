@@ -294,6 +294,14 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
     // A refused run says why and nothing else (no "running on 1 process x 1 thread" first).
     EXPECT_EQ(missing.output.find("running on"), std::string::npos) << missing.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
+    // More threads than kMaxThreads: refused, not passed on to TBB.
+    const CommandResult threads =
+        runCommand(kRun + " " + dir.file("scene.toml") + " --threads 99999999999 --out " +
+                   dir.file("x"));
+    EXPECT_EQ(threads.exitCode, 1) << threads.output;
+    EXPECT_NE(threads.output.find("--threads wants a number from 1 to 1024"), std::string::npos)
+        << threads.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
     const CommandResult noOut = runCommand(kRun + " " + dir.file("scene.toml"));
     EXPECT_EQ(noOut.exitCode, 1);
     EXPECT_NE(noOut.output.find("--out"), std::string::npos) << noOut.output;

@@ -142,6 +142,23 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value
         ->default_str(std::to_string(value));
 }
 
+CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& help)
+{
+    return app
+        .add_option_function<std::string>(
+            "--threads",
+            [&threads](const std::string& text) {
+                const long long n = parseInteger(text, "--threads");
+                if (n < 1 || n > kMaxThreads)
+                    throw Error("", "--threads wants a number from 1 to " +
+                                        std::to_string(kMaxThreads) + ", got " + text,
+                                "leave it out to use every core");
+                threads = n;
+            },
+            help)
+        ->type_name("N");
+}
+
 CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
                         const std::string& help)
 {

@@ -47,6 +47,14 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
 CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value,
                         const std::string& help);
 
+/// The most worker threads a tool takes (as the Python module's kMaxThreads): more is a typo,
+/// and TBB would try to allocate for all of them (std::bad_alloc for 99999999999).
+constexpr long long kMaxThreads = 1024;
+
+/// Option `--threads N` into @a threads: a whole number from 1 to kMaxThreads, an Error naming
+/// --threads otherwise. Not given, @a threads keeps its value (0 for all cores).
+CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& help);
+
 /// Option @a name taking one or more whole positive numbers (node counts: "1e4" is allowed),
 /// which replace @a values.
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,

@@ -7,7 +7,6 @@
 #include "common/CommandLine.h"
 #include "common/StudyOutput.h"
 
-#include "lsdem/ls/Error.h"
 
 #include <CLI/CLI.hpp>
 
@@ -155,16 +154,7 @@ SlabCommand::SlabCommand(CLI::App& study)
     addInteger(*mCommand, "--samples", o.samples, "P-delta rows per run")
         ->type_name("N")
         ->group(output);
-    mCommand
-        ->add_option_function<std::string>(
-            "--threads",
-            [this](const std::string& text) {
-                mThreads = cli::parseInteger(text, "--threads");
-                if (mThreads < 1) throw Error("", "--threads wants a number >= 1");
-            },
-            "worker threads (default: all cores)")
-        ->type_name("N")
-        ->group(output);
+    cli::addThreads(*mCommand, mThreads, "worker threads (default: all cores)")->group(output);
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the summary");
     mCommand->add_flag_callback("--no-scene", [&o] { o.writeScene = false; },
                                 "do not write slab_scene.toml / slab_block.obj")

@@ -283,6 +283,23 @@ TEST(SlabStudy, ProgramRefusesBadInputAndEstimatesWithoutRunning)
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
 }
 
+// A thread count beyond kMaxThreads (1024) is refused as bad input naming --threads; TBB was
+// asked for 99999999999 threads and the study aborted with std::bad_alloc (exit 134).
+TEST(SlabStudy, ProgramRefusesAThreadCountOutOfRange)
+{
+    lsdem::test::ScratchDir dir;
+    for (const char* threads : {"99999999999", "1025", "0", "-2"}) {
+        const auto r = runCommand(kStudy + " slab --blocks 3 --sdp 1 --vdp-fixed 0.5 --no-two-way "
+                                           "--formulation adapted --samples 10 -q --no-plots "
+                                           "--threads " + std::string(threads) + " --out '" +
+                                  dir.file("x") + "'");
+        EXPECT_EQ(r.exitCode, 1) << threads << ": " << r.output;
+        EXPECT_NE(r.output.find("--threads wants a number from 1 to 1024"), std::string::npos)
+            << threads << ": " << r.output;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
+}
+
 // Refining the surface (SDP 0.5 → 0.35 mm, about twice the nodes) on a 3×3 panel pushed
 // 0.3 mm: every contact stiffness of the original law grows with the nodes in contact, and
 // the panel's response is linear in its contact stiffnesses (displacement control), so P grows

@@ -161,3 +161,30 @@ TEST(LsdemStudy, SaysHowAPlotScriptFailed)
     EXPECT_NE(r.output.find(dir.file("plots/two_spheres.py")), std::string::npos) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("out/two_spheres.csv")));
 }
+
+// Input that only a bake, a plan or the mesh search refuses (after the options' own checks)
+// leaves no empty --out folder behind: the folder is made when the first result is written.
+// A folder the user had already is kept as it was.
+TEST(LsdemStudy, InputRefusedLateLeavesNoOutputFolder)
+{
+    lsdem::test::ScratchDir dir;
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"two-spheres --voxel 100", "voxel size 100"},
+        {"two-spheres --voxel 1e-5", "voxel size 1e-05"},
+        {"cube27 --kn 1e305", "--kn 1e+305"},
+        {"triaxial --meshes /nonexistent.obj", "/nonexistent.obj"},
+    };
+    int index = 0;
+    for (const auto& [args, mustSay] : cases) {
+        const std::string out = dir.file("new" + std::to_string(index++) + "/out");
+        const auto r = runCommand(kStudy + " " + args + " -q --out " + out);
+        EXPECT_EQ(r.exitCode, 1) << args << ": " << r.output;
+        EXPECT_NE(r.output.find(mustSay), std::string::npos) << args << ": " << r.output;
+        EXPECT_FALSE(std::filesystem::exists(out)) << args;
+        EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(out).parent_path())) << args;
+    }
+    std::filesystem::create_directory(dir.file("mine"));
+    const auto r = runCommand(kStudy + " two-spheres --voxel 100 -q --out " + dir.file("mine"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("mine")));
+}

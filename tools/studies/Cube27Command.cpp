@@ -5,6 +5,7 @@
 #include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
+#include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Error.h"
@@ -14,9 +15,27 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace lsdem {
+
+namespace {
+
+/// A stiffness so large that the plan has no time step (--kn 1e305: ω² overflows) is refused
+/// here, naming --kn, rather than by the first run's simulation as a time step to fix.
+void refuseUnplannableRuns(const std::vector<Cube27Run>& runs)
+{
+    for (const Cube27Run& r : runs)
+        if (!(r.timeStep > 0.0) || !std::isfinite(r.timeStep) || !std::isfinite(r.speed))
+            throw Error("", "--kn " + numberText(r.stiffness) + " is too stiff: the " +
+                                formulationName(r.formulation) + " run at N = " +
+                                std::to_string(r.nodes) + " gets no time step (" +
+                                numberText(r.timeStep) + " s)",
+                        "give a smaller --kn (the paper's are 1e9 N/mm and 1e3 N/mm^3)");
+}
+
+} // namespace
 
 Cube27Command::Cube27Command(CLI::App& study)
     : mCommand(study.add_subcommand(
@@ -101,17 +120,19 @@ int Cube27Command::run(RunDistributor& ranks) const
 {
     const Cube27Options& o = mOptions;
     checkCube27Options(o);
-    planCube27(o);  // refuses a --steps too few for any run, before anything is written
+    // Refuses a --steps too few for any run, and a --kn too stiff to plan, before any run.
+    refuseUnplannableRuns(planCube27(o));
     const ThreadLimit threads(0, ranks);
     if (!ranks.isRoot()) {
         runCube27(o, ranks);  // the runs rank 0 hands out; rank 0 writes everything
         return 0;
     }
-    cli::prepareOutputFolder(o.outDir);
+    cli::checkOutputFolder(o.outDir);  // made once the runs are done, which may refuse input
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const Stopwatch wall;
     const Cube27Result result = runCube27(o, ranks);
+    cli::prepareOutputFolder(o.outDir);
     const std::string csv = o.outDir + "/cube27.csv";
     writeCube27Csv(result, o, csv);
     const double seconds = wall.seconds();

@@ -5,6 +5,7 @@
 #include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
+#include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
 

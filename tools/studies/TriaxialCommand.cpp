@@ -8,6 +8,7 @@
 #include "studies/TriaxialStudy.h"
 
 #include "common/CommandLine.h"
+#include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Stopwatch.h"
@@ -118,7 +119,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         runTriaxialStudy(o, ranks);
         return 0;
     }
-    cli::prepareOutputFolder(o.outDir);
+    cli::checkOutputFolder(o.outDir);  // made once the runs are done: --meshes is read by them
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
     std::printf("triaxial: %lld grains, sigma_3 = %g MPa, I = %g, to %g %% axial strain, "
                 "VDP %g mm\n",
@@ -145,6 +146,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         std::fflush(stdout);
     };
     const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
+    cli::prepareOutputFolder(o.outDir);
     const std::string csv = o.outDir + "/triaxial.csv";
     const std::string runsCsv = o.outDir + "/triaxial_runs.csv";
     writeTriaxialCsv(result, csv);

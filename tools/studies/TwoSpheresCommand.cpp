@@ -5,6 +5,7 @@
 #include "studies/ThreadLimit.h"
 
 #include "common/CommandLine.h"
+#include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Stopwatch.h"
@@ -54,11 +55,12 @@ int TwoSpheresCommand::run(RunDistributor& ranks) const
         runTwoSpheres(o, ranks);  // the runs rank 0 hands out; rank 0 writes everything
         return 0;
     }
-    cli::prepareOutputFolder(o.outDir);
+    cli::checkOutputFolder(o.outDir);  // made once the runs are done: a bake may refuse --voxel
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const Stopwatch wall;
     const TwoSpheresResult result = runTwoSpheres(o, ranks);
+    cli::prepareOutputFolder(o.outDir);
     const std::string csv = o.outDir + "/two_spheres.csv";
     writeTwoSpheresCsv(result, o, csv);
     const double seconds = wall.seconds();

@@ -188,3 +188,34 @@ TEST(LsdemStudy, InputRefusedLateLeavesNoOutputFolder)
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_TRUE(std::filesystem::is_directory(dir.file("mine")));
 }
+
+// A second run into the same --out removes what the first run wrote and this one does not
+// (here: the plots of a formulation no longer run), so the folder never shows plots beside a
+// CSV without their rows; files the study does not write are kept.
+TEST(LsdemStudy, RerunRemovesTheEarlierRunsFilesOnly)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string out = dir.file("out");
+    const std::string tiny = " two-spheres --nodes 100 --voxel 0.5 --orientations 1 --steps 2 -q";
+    const auto first = runCommand(kStudy + tiny + " --formulation original --out " + out);
+    const std::string stale = out + "/two_spheres_fig1_original_by_nodes.png";
+    if (!hasMatplotlib()) std::ofstream(stale) << "as the first run's plots would be";
+    ASSERT_TRUE(std::filesystem::exists(stale)) << first.output;
+    std::ofstream(out + "/notes.txt") << "the user's";
+    std::ofstream(out + "/two_spheres_notes.txt") << "the user's too";
+
+    const auto second =
+        runCommand(kStudy + tiny + " --formulation volume --no-plots --out " + out);
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    EXPECT_FALSE(std::filesystem::exists(stale)) << second.output;
+    EXPECT_FALSE(std::filesystem::exists(out + "/two_spheres_convergence.png"));
+    EXPECT_EQ(lsdem::test::readFile(out + "/notes.txt"), "the user's");
+    EXPECT_EQ(lsdem::test::readFile(out + "/two_spheres_notes.txt"), "the user's too");
+    EXPECT_NE(lsdem::test::readFile(out + "/two_spheres.csv").find("volume"), std::string::npos);
+    EXPECT_EQ(lsdem::test::readFile(out + "/two_spheres.csv").find("original"), std::string::npos);
+
+    // Refused input removes nothing: the earlier results stay until a run replaces them.
+    const auto refused = runCommand(kStudy + tiny + " --voxel 100 --out " + out);
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(lsdem::test::readFile(out + "/two_spheres.csv").find("volume"), std::string::npos);
+}

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 
 namespace lsdem::cli {
@@ -12,6 +13,48 @@ namespace lsdem::cli {
 namespace {
 
 const char* const kFix = "choose another --out";
+
+/// Whether @a name matches @a pattern, where '*' stands for any run of characters.
+bool matches(const std::string& name, const std::string& pattern)
+{
+    size_t n = 0, p = 0, star = std::string::npos, resume = 0;
+    while (n < name.size()) {
+        if (p < pattern.size() && pattern[p] == '*') {
+            star = p++;
+            resume = n;
+        } else if (p < pattern.size() && pattern[p] == name[n]) {
+            ++p;
+            ++n;
+        } else if (star != std::string::npos) {
+            p = star + 1;
+            n = ++resume;
+        } else {
+            return false;
+        }
+    }
+    while (p < pattern.size() && pattern[p] == '*') ++p;
+    return p == pattern.size();
+}
+
+/// Remove the files (and links) of @a folder whose names match @a pattern; the count.
+int removeMatching(const std::filesystem::path& folder, const std::string& pattern)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) return 0;
+    int removed = 0;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+        const fs::file_type type = e.symlink_status(ec).type();
+        if (type != fs::file_type::regular && type != fs::file_type::symlink) continue;
+        if (!matches(e.path().filename().string(), pattern)) continue;
+        fs::remove(e.path(), ec);
+        if (ec)
+            throw Error(e.path().string(),
+                        "cannot remove this file of an earlier run (" + ec.message() + ")", kFix);
+        ++removed;
+    }
+    return removed;
+}
 
 } // namespace
 
@@ -34,9 +77,18 @@ void checkOutputFolder(const std::string& dir)
                     kFix);
 }
 
-void prepareOutputFolder(const std::string& dir)
+void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles)
 {
     lsdem::prepareOutputFolder(dir, kFix);
+    int removed = 0;
+    for (const std::string& own : ownFiles) {
+        const std::filesystem::path relative(own);
+        removed += removeMatching(std::filesystem::path(dir) / relative.parent_path(),
+                                  relative.filename().string());
+    }
+    if (removed > 0)
+        std::printf("removed %d file%s of an earlier run from %s\n", removed,
+                    removed == 1 ? "" : "s", dir.c_str());
 }
 
 } // namespace lsdem::cli

@@ -1,10 +1,12 @@
 /// @file StudyOutput.h
 /// @brief The output folder of a study driver: checked before any work starts, but created
-///        only when the first result is written, so input refused along the way (found by a
-///        bake or a plan) leaves no empty folder behind.
+///        (and cleared of the study's files from an earlier run) only when the first result is
+///        written, so input refused along the way (found by a bake or a plan) leaves no empty
+///        folder behind and the earlier results untouched.
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace lsdem::cli {
 
@@ -13,8 +15,15 @@ namespace lsdem::cli {
 /// @throw Error naming @a dir otherwise (fix: choose another --out).
 void checkOutputFolder(const std::string& dir);
 
-/// Create @a dir (and its parents) and check that it is writable: just before a study writes
-/// its first file. @throw Error naming @a dir otherwise.
-void prepareOutputFolder(const std::string& dir);
+/// The files a study writes into its output folder: names relative to it ("scene/grains.csv"),
+/// in which '*' stands for any characters but '/' ("cube27_*_by_nodes.png").
+using StudyFiles = std::vector<std::string>;
+
+/// Create @a dir (and its parents), check that it is writable, and remove the files matching
+/// @a ownFiles that an earlier run of the study left there, so the folder holds this run's
+/// outputs only (no plot of a formulation not run this time, no scene not asked for). Call it
+/// once every input is checked, just before the first file is written. Files matching no
+/// pattern (the user's) and folders are kept. @throw Error naming @a dir or a file.
+void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles);
 
 } // namespace lsdem::cli

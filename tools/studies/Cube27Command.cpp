@@ -22,6 +22,11 @@ namespace lsdem {
 
 namespace {
 
+/// What the study writes into --out: its CSV and cube27.py's plots (one family per
+/// formulation, so a rerun with other formulations leaves no stale ones).
+const cli::StudyFiles kOwnFiles = {"cube27.csv", "cube27_*_by_nodes.png",
+                                   "cube27_*_by_stiffness.png", "cube27_convergence.png"};
+
 /// A stiffness so large that the plan has no time step (--kn 1e305: ω² overflows) is refused
 /// here, naming --kn, rather than by the first run's simulation as a time step to fix.
 void refuseUnplannableRuns(const std::vector<Cube27Run>& runs)
@@ -132,7 +137,7 @@ int Cube27Command::run(RunDistributor& ranks) const
 
     const Stopwatch wall;
     const Cube27Result result = runCube27(o, ranks);
-    cli::prepareOutputFolder(o.outDir);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles);
     const std::string csv = o.outDir + "/cube27.csv";
     writeCube27Csv(result, o, csv);
     const double seconds = wall.seconds();

@@ -19,6 +19,19 @@
 
 namespace lsdem {
 
+namespace {
+
+/// What the study writes into --out: its CSVs and summary, the scene with its block mesh,
+/// the baked blocks (one per discretization) and slab.py's plots. Removed before the runs, as
+/// the files are written from the first run on; this run writes again what it needs.
+const cli::StudyFiles kOwnFiles = {
+    "slab.csv",         "slab_runs.csv",        "slab_snapshots.csv",
+    "slab_failure.txt", "slab_scene.toml",      "slab_block.obj",
+    "slab_sdp.png",     "slab_vdp.png",         "slab_convergence.png",
+    "slab_blocks.png",  "slab_snapshots_*.png", "assets/block_sdp*_vdp*.vdb"};
+
+} // namespace
+
 SlabCommand::SlabCommand(CLI::App& study)
     : mCommand(study.add_subcommand(
           "slab",
@@ -199,7 +212,7 @@ int SlabCommand::run(RunDistributor& ranks) const
     std::fflush(stdout);
     if (mEstimateOnly) return 0;
 
-    cli::prepareOutputFolder(o.outDir);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles);
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const SlabStudyResult result =

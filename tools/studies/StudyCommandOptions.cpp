@@ -37,7 +37,9 @@ void addOutputOptions(CLI::App& command, std::string& outDir, bool& plots, bool&
                       const std::string& quietHelp)
 {
     const std::string group = "Output";
-    command.add_option("--out", outDir, "output folder (created if missing)")
+    command.add_option("--out", outDir,
+                       "output folder (created if missing; the files this study wrote\n"
+                       "there in an earlier run are replaced, other files kept)")
         ->type_name("DIR")
         ->capture_default_str()
         ->group(group);

@@ -20,6 +20,16 @@
 
 namespace lsdem {
 
+namespace {
+
+/// What the study writes into --out: its CSVs, triaxial.py's plots and the shearing scene with
+/// its assets (named after the meshes, so a rerun with other meshes leaves no stale ones).
+const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv", "triaxial_curves.png",
+                                   "triaxial_friction_angles.png", "scene/triaxial_shear.toml",
+                                   "scene/grains.csv", "scene/assets/*.vdb"};
+
+} // namespace
+
 TriaxialCommand::TriaxialCommand(CLI::App& study)
     : mCommand(study.add_subcommand(
           "triaxial",
@@ -146,7 +156,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         std::fflush(stdout);
     };
     const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
-    cli::prepareOutputFolder(o.outDir);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles);
     const std::string csv = o.outDir + "/triaxial.csv";
     const std::string runsCsv = o.outDir + "/triaxial_runs.csv";
     writeTriaxialCsv(result, csv);

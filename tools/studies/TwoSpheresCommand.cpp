@@ -18,6 +18,16 @@
 
 namespace lsdem {
 
+namespace {
+
+/// What the study writes into --out: its CSV and two_spheres.py's plots (one family per
+/// formulation, so a rerun with other formulations leaves no stale ones).
+const cli::StudyFiles kOwnFiles = {"two_spheres.csv", "two_spheres_*_by_nodes.png",
+                                   "two_spheres_*_by_stiffness.png",
+                                   "two_spheres_convergence.png"};
+
+} // namespace
+
 TwoSpheresCommand::TwoSpheresCommand(CLI::App& study)
     : mCommand(study.add_subcommand(
           "two-spheres",
@@ -60,7 +70,7 @@ int TwoSpheresCommand::run(RunDistributor& ranks) const
 
     const Stopwatch wall;
     const TwoSpheresResult result = runTwoSpheres(o, ranks);
-    cli::prepareOutputFolder(o.outDir);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles);
     const std::string csv = o.outDir + "/two_spheres.csv";
     writeTwoSpheresCsv(result, o, csv);
     const double seconds = wall.seconds();

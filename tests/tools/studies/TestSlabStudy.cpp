@@ -283,6 +283,35 @@ TEST(SlabStudy, ProgramRefusesBadInputAndEstimatesWithoutRunning)
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
 }
 
+// Run again into the same folder without plots or scene and at another voxel, the study
+// leaves none of the first run's plots, scene, block mesh or baked block (whose
+// discretization is not run now); the user's files, named like the study's or not, are kept.
+TEST(SlabStudy, ProgramRerunLeavesNoFilesOfTheEarlierRun)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string out = dir.file("slab");
+    const std::string tiny = kStudy + " slab --blocks 3 --sdp 1 --no-two-way --formulation "
+                                      "adapted --samples 10 --delta-max 0.1 -q --out '" + out + "'";
+    const auto first = runCommand(tiny + " --vdp-fixed 0.5");
+    const std::string stalePlot = out + "/slab_sdp.png";
+    if (first.exitCode == 4) std::ofstream(stalePlot) << "as the first run's plot would be";
+    ASSERT_TRUE(std::filesystem::exists(stalePlot)) << first.output;
+    for (const char* f : {"slab_scene.toml", "slab_block.obj", "assets/block_sdp1_vdp0.5.vdb"})
+        ASSERT_TRUE(std::filesystem::exists(out + "/" + f)) << f << ": " << first.output;
+    std::ofstream(out + "/notes.txt") << "the user's";
+    std::ofstream(out + "/slab_notes.txt") << "the user's too";
+    std::ofstream(out + "/assets/mine.obj") << "the user's mesh";
+
+    const auto second = runCommand(tiny + " --vdp-fixed 0.6 --no-plots --no-scene");
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    for (const char* f : {"slab_sdp.png", "slab_scene.toml", "slab_block.obj",
+                          "assets/block_sdp1_vdp0.5.vdb"})
+        EXPECT_FALSE(std::filesystem::exists(out + "/" + f)) << f << ": " << second.output;
+    for (const char* f : {"slab.csv", "slab_runs.csv", "assets/block_sdp1_vdp0.6.vdb",
+                          "notes.txt", "slab_notes.txt", "assets/mine.obj"})
+        EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+}
+
 // A thread count beyond kMaxThreads (1024) is refused as bad input naming --threads; TBB was
 // asked for 99999999999 threads and the study aborted with std::bad_alloc (exit 134).
 TEST(SlabStudy, ProgramRefusesAThreadCountOutOfRange)

@@ -107,6 +107,19 @@ std::vector<std::string> lastOccurrence(const std::vector<std::string>& texts)
     return last;
 }
 
+CLI::Option* addTexts(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                      const std::string& help)
+{
+    return lastListWins(
+               app.add_option_function<std::vector<std::string>>(
+                   name,
+                   [&values](const std::vector<std::string>& given) {
+                       values = lastOccurrence(given);
+                   },
+                   help))
+        ->default_str(values.empty() ? "" : showList(values));
+}
+
 CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<double>& values,
                         const std::string& help, int group)
 {

@@ -60,6 +60,11 @@ CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& he
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
                        const std::string& help);
 
+/// Option @a name taking one or more texts (paths, names), which replace @a values; the
+/// current ones are the default shown in the help.
+CLI::Option* addTexts(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                      const std::string& help);
+
 /// Make the list option @a option keep only its last occurrence's values, as a single value's
 /// last occurrence wins (applyConventions): CLI11 would join "--nodes 1 2 --nodes 3" into
 /// 1 2 3. Its callback must read its values through lastOccurrence.

@@ -3,6 +3,7 @@
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 
+#include <fnmatch.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -14,28 +15,6 @@ namespace {
 
 const char* const kFix = "choose another --out";
 
-/// Whether @a name matches @a pattern, where '*' stands for any run of characters.
-bool matches(const std::string& name, const std::string& pattern)
-{
-    size_t n = 0, p = 0, star = std::string::npos, resume = 0;
-    while (n < name.size()) {
-        if (p < pattern.size() && pattern[p] == '*') {
-            star = p++;
-            resume = n;
-        } else if (p < pattern.size() && pattern[p] == name[n]) {
-            ++p;
-            ++n;
-        } else if (star != std::string::npos) {
-            p = star + 1;
-            n = ++resume;
-        } else {
-            return false;
-        }
-    }
-    while (p < pattern.size() && pattern[p] == '*') ++p;
-    return p == pattern.size();
-}
-
 /// Remove the files (and links) of @a folder whose names match @a pattern; the count.
 int removeMatching(const std::filesystem::path& folder, const std::string& pattern)
 {
@@ -46,7 +25,7 @@ int removeMatching(const std::filesystem::path& folder, const std::string& patte
     for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
         const fs::file_type type = e.symlink_status(ec).type();
         if (type != fs::file_type::regular && type != fs::file_type::symlink) continue;
-        if (!matches(e.path().filename().string(), pattern)) continue;
+        if (::fnmatch(pattern.c_str(), e.path().filename().c_str(), 0) != 0) continue;
         fs::remove(e.path(), ec);
         if (ec)
             throw Error(e.path().string(),

@@ -47,9 +47,8 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
     using cli::addNumbers;
     TriaxialOptions& o = mOptions;
     const std::string sample = "Sample";
-    mCommand->add_option("--meshes", o.meshes, "grain mesh files, or folders of them")
+    cli::addTexts(*mCommand, "--meshes", o.meshes, "grain mesh files, or folders of them")
         ->type_name("PATH")
-        ->capture_default_str()
         ->group(sample);
     addInteger(*mCommand, "--grains", o.grains, "grains in the sample")->type_name("N")->group(sample);
     addInteger(*mCommand, "--seed", o.seed, "random seed (which mesh, orientation)")

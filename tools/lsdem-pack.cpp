@@ -161,7 +161,12 @@ int main(int argc, char** argv)
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
         if (c.out.empty()) throw Error("", "no output file given", "pass -o packing.csv");
         std::vector<std::string> inputs = c.files;
-        if (!c.catalog.empty()) inputs.push_back(c.catalog);
+        if (!c.catalog.empty()) {
+            inputs.push_back(c.catalog);
+            // The catalogue's assets are inputs too: -o cat/grain_0000.vdb replaced one.
+            for (const std::string& asset : lsdem::catalogAssetFiles(c.catalog))
+                inputs.push_back(asset);
+        }
         lsdem::cli::refuseOutputOverInput(c.out, "-o", inputs);
         lsdem::checkOutputFile(c.out);  // before minutes of packing, not after
         lsdem::PackingOptions& options = c.options;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -167,9 +168,12 @@ TEST(LsdemPack, AnOutputThatIsAnInputIsRefused)
     const std::string ball = a.dir.file("ball.vdb");
     const std::string asset = readFile(ball);
     std::ofstream(a.dir.file("cat.csv")) << "name,asset\nball,ball.vdb\n";
+    // An asset the catalogue lists, however spelt (-o over one of them replaced it).
+    std::filesystem::create_symlink(ball, a.dir.file("link.vdb"));
+    const std::string catalogue = "--catalog cat.csv --set s --box 0 0 0 5 5 5 --count 4 -o ";
     for (const std::string& args : {ball + " --box 0 0 0 5 5 5 --count 4 -o " + ball,
-                                    std::string("--catalog cat.csv --set s --box 0 0 0 5 5 5 "
-                                                "--count 4 -o ./cat.csv")}) {
+                                    catalogue + "./cat.csv", catalogue + "ball.vdb",
+                                    catalogue + "link.vdb", catalogue + ball}) {
         const CommandResult r =
             runCommand("cd " + a.dir.path().string() + " && " + kPack + " " + args);
         EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;

@@ -9,6 +9,29 @@
 
 namespace lsdem {
 
+namespace {
+
+/// Where the row @a e of @a catalog points: relative asset paths are the catalogue's folder's,
+/// as the scene reader resolves them.
+std::filesystem::path assetFileOf(const std::string& catalog, const CatalogEntry& e)
+{
+    namespace fs = std::filesystem;
+    return fs::path(e.asset).is_absolute() ? fs::path(e.asset)
+                                           : fs::path(catalog).parent_path() / e.asset;
+}
+
+} // namespace
+
+std::vector<std::string> catalogAssetFiles(const std::string& catalog)
+{
+    std::error_code notFound;
+    if (!std::filesystem::is_regular_file(catalog, notFound)) return {};
+    std::vector<std::string> files;
+    for (const CatalogEntry& e : readCatalog(catalog))
+        files.push_back(assetFileOf(catalog, e).string());
+    return files;
+}
+
 std::vector<PackingComponent> catalogMixture(const std::string& catalog,
                                              const std::string& setName)
 {
@@ -25,16 +48,13 @@ std::vector<PackingComponent> catalogMixture(const std::string& catalog,
     if (entries.empty())
         throw Error(catalog, "the catalogue lists no assets",
                     "bake some files into its folder with lsdem-bake --out-dir");
-    // Relative asset paths are the catalogue's folder's, as the scene reader resolves them.
-    const fs::path folder = fs::path(catalog).parent_path();
     const std::string rebake = "run the lsdem-bake --out-dir batch that wrote the catalogue "
                                "again: it bakes missing and damaged assets anew";
     // Loaded on every core, each with the outcome of one by one (the first bad row reported).
     std::vector<PackingComponent> mixture(entries.size());
     runInParallel(entries.size(), [&](size_t k) {
         const CatalogEntry& e = entries[k];
-        const fs::path file =
-            fs::path(e.asset).is_absolute() ? fs::path(e.asset) : folder / e.asset;
+        const fs::path file = assetFileOf(catalog, e);
         std::error_code ec;
         if (!fs::is_regular_file(file, ec))
             throw Error(catalog, "asset '" + e.name + "': file not found: " + file.string(),

@@ -19,4 +19,9 @@ namespace lsdem {
 std::vector<PackingComponent> catalogMixture(const std::string& catalog,
                                              const std::string& setName);
 
+/// The asset files that the catalogue @a catalog lists, found as catalogMixture finds them,
+/// whether they exist or not; none if @a catalog is not a file (catalogMixture says so).
+/// @throw Error naming the catalogue and its line for a bad row.
+std::vector<std::string> catalogAssetFiles(const std::string& catalog);
+
 } // namespace lsdem

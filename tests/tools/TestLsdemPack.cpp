@@ -183,6 +183,23 @@ TEST(LsdemPack, AnOutputThatIsAnInputIsRefused)
     EXPECT_EQ(readFile(a.dir.file("cat.csv")), "name,asset\nball,ball.vdb\n");
 }
 
+// Found by review: fractions of 1e308 each added up to inf, and the shares became NaN (exit 3,
+// an internal error). Only their ratio counts.
+TEST(LsdemPack, HugeFractionsShareTheCountByTheirRatio)
+{
+    const Assets a;
+    std::filesystem::copy_file(a.dir.file("ball.vdb"), a.dir.file("other.vdb"));
+    const std::string csv = a.dir.file("packing.csv");
+    const CommandResult r = runCommand(kPack + " " + a.dir.file("ball.vdb") + " " +
+                                       a.dir.file("other.vdb") +
+                                       " --fractions 1e308 1e308 --count 2 --box 0 0 0 4.5 4.5 5 "
+                                       "-o " + csv);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string table = readFile(csv);
+    EXPECT_NE(table.find("\nball,"), std::string::npos) << table;
+    EXPECT_NE(table.find("\nother,"), std::string::npos) << table;
+}
+
 TEST(LsdemPack, FillsACylinder)
 {
     const Assets a;

@@ -104,13 +104,18 @@ void checkOptions(const PackingOptions& o)
 /// (the earlier component on a tie), so they add up to count.
 std::vector<long long> componentCounts(const PackingOptions& o)
 {
+    // Shares of the largest fraction: they add up to at most the number of components, where
+    // finite fractions such as 1e308 1e308 added up to inf (and floor(NaN) became a count).
+    double largest = 0.0;
+    for (const PackingComponent& c : o.mixture) largest = std::max(largest, c.fraction);
     double total = 0.0;
-    for (const PackingComponent& c : o.mixture) total += c.fraction;
+    for (const PackingComponent& c : o.mixture) total += c.fraction / largest;
     std::vector<long long> counts;
     std::vector<std::pair<double, size_t>> remainders;
     long long sum = 0;
     for (size_t k = 0; k < o.mixture.size(); ++k) {
-        const double exact = static_cast<double>(o.count) * o.mixture[k].fraction / total;
+        const double exact =
+            static_cast<double>(o.count) * (o.mixture[k].fraction / largest) / total;
         counts.push_back(static_cast<long long>(std::floor(exact)));
         sum += counts.back();
         remainders.emplace_back(-(exact - std::floor(exact)), k);

@@ -172,7 +172,12 @@ int main(int argc, char** argv)
         lsdem::PackingOptions& options = c.options;
         readContainer(c, options);
         if (c.seed < 0) throw Error("", "--seed wants a number >= 0");
-        if (c.threads < 0) throw Error("", "--threads wants a number >= 1");
+        // As the Python module's kMaxThreads: TBB would try to start them all.
+        constexpr long long kMaxThreads = 1024;
+        if (c.threads < 0 || c.threads > kMaxThreads)
+            throw Error("", "--threads wants a number from 1 to " + std::to_string(kMaxThreads) +
+                                ", got " + std::to_string(c.threads),
+                        "leave it out for all cores");
         std::unique_ptr<tbb::global_control> limit;
         if (c.threads > 0)
             limit = std::make_unique<tbb::global_control>(

@@ -148,6 +148,8 @@ TEST(LsdemPack, BadOptionsExitOne)
         {"--catalog cat.csv --set s --cylinder 0 0 1.2 0 3 --count 4 -o x.csv", "only 1 of 4 grains fit in the cylinder"},
         {ball + " --box 0 0 0 5 5 5 --count 4 --friction -1 -o x.csv", "--friction must be a finite number >= 0, got -1"},
         {ball + " --box 0 0 0 5 5 5 --count 4 --settle -1 -o x.csv", "--settle must be a finite number > 0, got -1"},
+        // Found by review: TBB ran out of memory starting them (exit 3).
+        {ball + " --box 0 0 0 5 5 5 --count 4 --threads 99999999999 -o x.csv", "--threads wants a number from 1 to 1024, got 99999999999"},
         // The output folder is checked before anything is read (the missing asset is not).
         {"missing.vdb --box 0 0 0 5 5 5 --count 4 -o nowhere/x.csv", "nowhere/x.csv"},
     };

@@ -1,6 +1,7 @@
 #include "studies/TriaxialOptions.h"
 
 #include "studies/FormulationList.h"
+#include "studies/StudyLimits.h"
 
 #include "common/NumberText.h"
 
@@ -42,6 +43,13 @@ void checkTriaxialOptions(const TriaxialOptions& o)
     if (o.grains < 8)
         throw Error("", "--grains must be at least 8, got " + std::to_string(o.grains),
                     "a triaxial sample needs grains in every direction; 1000 is the default");
+    // A scene's limit, as lsdem-pack's (SceneSections.h): checked before any memory is taken.
+    constexpr long long kMaxGrains = 1000000;
+    if (o.grains > kMaxGrains)
+        throw Error("", "--grains " + std::to_string(o.grains) + " is over the limit of a scene (" +
+                            std::to_string(kMaxGrains) + ")",
+                    "give at most --grains " + std::to_string(kMaxGrains) +
+                        " (1000 is the default)");
     if (o.seed < 0) throw Error("", "--seed wants a number >= 0");
     requirePositive(o.vdp, "--vdp", "e.g. --vdp 0.03 (mm)");
     if (o.sdps.empty()) throw Error("", "--sdps needs at least one node spacing");
@@ -84,7 +92,10 @@ void checkTriaxialOptions(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             cli::numberText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
-    if (o.threads < 0) throw Error("", "--threads must be zero (all cores) or positive");
+    if (o.threads < 0 || o.threads > kMaxStudyThreads)
+        throw Error("", "--threads must be 0 (all cores) to " + std::to_string(kMaxStudyThreads) +
+                            ", got " + std::to_string(o.threads),
+                    "leave it out for all cores");
 }
 
 std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o)

@@ -216,6 +216,17 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions missing = o;
     missing.meshes = {"/nonexistent/sand"};
     EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);
+    // Found by review: these ran out of memory (exit 3).
+    TriaxialOptions threads = o;
+    threads.threads = 99999999999;
+    EXPECT_NE(message(threads).find("--threads must be 0 (all cores) to 1024, got 99999999999"),
+              std::string::npos)
+        << message(threads);
+    TriaxialOptions many = o;
+    many.grains = 100000000000;
+    EXPECT_NE(message(many).find("--grains 100000000000 is over the limit of a scene (1000000)"),
+              std::string::npos)
+        << message(many);
 }
 
 // Peak, critical state and E₅₀ of a made-up curve with known answers: q rises linearly with

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 namespace lsdem {
 
@@ -96,12 +97,29 @@ void checkTriaxialOptions(const TriaxialOptions& o)
         throw Error("", "--threads must be 0 (all cores) to " + std::to_string(kMaxStudyThreads) +
                             ", got " + std::to_string(o.threads),
                     "leave it out for all cores");
+    triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made
 }
 
 std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o)
 {
     namespace fs = std::filesystem;
     std::vector<std::string> files;
+    // A mesh given twice (a folder and one of its files too) would be two meshes of the sample
+    // and two assets of one name in the shear scene: each file's canonical path and the
+    // --meshes argument that gave it.
+    std::map<fs::path, std::string> given;
+    auto add = [&](const std::string& file, const std::string& argument) {
+        std::error_code unreadable;  // the bake says what is wrong with it
+        const fs::path same = fs::canonical(file, unreadable);
+        if (!unreadable) {
+            const auto [first, isNew] = given.emplace(same, argument);
+            if (!isNew)
+                throw Error(file, "--meshes gives this mesh twice: as " + first->second +
+                                      " and as " + argument,
+                            "give each mesh once (a folder gives all its mesh files)");
+        }
+        files.push_back(file);
+    };
     for (const std::string& path : o.meshes) {
         std::error_code ec;
         if (fs::is_directory(path, ec)) {
@@ -112,9 +130,9 @@ std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o)
                 throw Error(path, "no mesh files (.obj, .stl, .ply, .off) in this folder",
                             "give --meshes a folder of grain meshes, or the files themselves");
             std::sort(inFolder.begin(), inFolder.end());
-            files.insert(files.end(), inFolder.begin(), inFolder.end());
+            for (const std::string& file : inFolder) add(file, "part of the folder " + path);
         } else if (fs::is_regular_file(path, ec)) {
-            files.push_back(path);
+            add(path, path);
         } else {
             throw Error(path, "no such mesh file or folder",
                         "run from lsdem's folder (the default is assets/meshes/sand), or give "

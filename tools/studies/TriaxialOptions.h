@@ -45,11 +45,12 @@ struct TriaxialOptions
     bool plots = true, quiet = false;
 };
 
-/// @throw Error naming the option and the fix for anything out of range.
+/// @throw Error naming the option and the fix for anything out of range, or for meshes that
+///        triaxialMeshFiles refuses.
 void checkTriaxialOptions(const TriaxialOptions& o);
 
 /// The mesh files of o.meshes (folders expanded, sorted by name). @throw Error if a path does
-/// not exist or nothing is found.
+/// not exist, nothing is found, or a file is given twice (however spelt).
 std::vector<std::string> triaxialMeshFiles(const TriaxialOptions& o);
 
 } // namespace lsdem

@@ -15,8 +15,29 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <set>
 
 namespace lsdem {
+
+std::vector<std::string> triaxialAssetNames(const std::vector<std::string>& meshFiles)
+{
+    auto stemOf = [](const std::string& file) {
+        return std::filesystem::path(file).stem().string();
+    };
+    std::set<std::string> stems, taken;
+    for (const std::string& file : meshFiles) stems.insert(stemOf(file));
+    std::vector<std::string> names;
+    for (const std::string& file : meshFiles) {
+        const std::string stem = stemOf(file);
+        std::string name = stem;
+        // A suffix no file has as its own name, so every file keeps its stem if it can.
+        for (int k = 2; taken.count(name) > 0 || (name != stem && stems.count(name) > 0); ++k)
+            name = stem + "_" + std::to_string(k);
+        taken.insert(name);
+        names.push_back(name);
+    }
+    return names;
+}
 
 TriaxialAssets bakeTriaxialAssets(const std::vector<std::string>& meshFiles, double vdp,
                                   double sdp)
@@ -37,10 +58,10 @@ TriaxialAssets bakeTriaxialAssets(const std::vector<std::string>& meshFiles, dou
         std::vector<std::string> warnings;  // repairs and spacing notes: not the study's concern
         a.assets[i] = std::make_shared<const GrainAsset>(bakeMeshFile(meshFiles[i], bake, warnings));
     });
+    a.names = triaxialAssetNames(meshFiles);
     double nodes = 0.0, area = 0.0, diameter = 0.0;
     for (size_t i = 0; i < meshFiles.size(); ++i) {
         const GrainAsset& g = *a.assets[i];
-        a.names.push_back(std::filesystem::path(meshFiles[i]).stem().string());
         nodes += double(g.nodes.size());
         area += g.nodes.totalArea();
         diameter += std::cbrt(6.0 * g.mass.volume / kPi);

@@ -24,7 +24,7 @@ namespace lsdem {
 struct TriaxialAssets
 {
     std::vector<std::shared_ptr<const GrainAsset>> assets;  ///< one per mesh file, in order
-    std::vector<std::string> names;                          ///< the files' stems
+    std::vector<std::string> names;                          ///< triaxialAssetNames
     double vdp = 0.0, sdp = 0.0;
     double meanNodes = 0.0;          ///< nodes per asset
     double meanNodeArea = 0.0;       ///< mm², over every node of every asset
@@ -32,6 +32,11 @@ struct TriaxialAssets
     double largestBoundingRadius = 0.0;
     double bakeSeconds = 0.0;        ///< wall time of the bake (the files in parallel)
 };
+
+/// The assets' names (the shear scene's [assets.NAME] and assets/NAME.vdb): each file's stem,
+/// a second file of the same stem (from another folder) NAME_2, a third NAME_3, skipping the
+/// stems of the other files.
+std::vector<std::string> triaxialAssetNames(const std::vector<std::string>& meshFiles);
 
 /// Bake @a meshFiles at voxel @a vdp and node spacing @a sdp (mm), the files in parallel.
 /// @throw Error naming the file that failed.

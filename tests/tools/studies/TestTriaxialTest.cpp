@@ -10,6 +10,8 @@
 #include "studies/TriaxialStudy.h"
 #include "studies/TriaxialTest.h"
 
+#include "support/TestSupport.h"
+
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/scene/BuildWorld.h"
@@ -227,6 +229,82 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     EXPECT_NE(message(many).find("--grains 100000000000 is over the limit of a scene (1000000)"),
               std::string::npos)
         << message(many);
+    // A mesh given twice, by a folder and by name: one asset written over the other.
+    TriaxialOptions twice = o;
+    const std::string folder = o.meshes.front();
+    twice.meshes = {folder, folder + "/grain_0003.obj"};
+    EXPECT_NE(message(twice).find("gives this mesh twice: as part of the folder " + folder +
+                                  " and as " + folder + "/grain_0003.obj"),
+              std::string::npos)
+        << message(twice);
+}
+
+// Found by review: two meshes of one file name (from two folders) were two [assets.g] of the
+// shear scene and one assets/g.vdb. Each keeps its stem if no other file has it.
+TEST(TriaxialSample, MeshesOfOneStemGetDistinctNames)
+{
+    EXPECT_EQ(triaxialAssetNames({"a/g.obj", "b/g.stl", "c/g_2.obj", "h.obj", "d/g.off"}),
+              (std::vector<std::string>{"g", "g_3", "g_2", "h", "g_4"}));
+}
+
+namespace {
+
+const std::string kStudy = LSDEM_STUDY_EXE;
+
+/// lsdem-study triaxial on a few grains of @a meshes, to 1 % axial strain, adapted only (a
+/// run that does not end in two minutes fails).
+test::CommandResult smallTriaxial(const std::string& meshes, const std::string& out,
+                                  const std::string& more = "")
+{
+    return test::runCommand("timeout 120 " + kStudy + " triaxial --meshes " + meshes +
+                            " --grains 8 --sdps 0.2 --formulation adapted --axial-strain 0.01 "
+                            "--records 2 --no-plots --quiet --out " + out + " " + more);
+}
+
+} // namespace
+
+// Refused before the output folder is made. Found by review: out of memory (exit 3) for the
+// first two, and a shear scene with one asset written over the other for the last two.
+TEST(TriaxialStudy, ProgramRefusesBadInputBeforeAnyWork)
+{
+    test::ScratchDir dir;
+    const std::string sand = std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand";
+    const std::string grain = sand + "/grain_0000.obj";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--threads 99999999999", "--threads must be 0 (all cores) to 1024"},
+        {"--grains 100000000000", "over the limit of a scene"},
+        {sand + " " + grain, "gives this mesh twice"},
+        {grain + " " + sand + "/../sand/grain_0000.obj", "gives this mesh twice"},
+    };
+    for (const auto& [args, mustSay] : cases) {
+        const std::string meshes = args[0] == '-' ? grain + " " + args : args;
+        const test::CommandResult r = test::runCommand(kStudy + " triaxial --meshes " + meshes +
+                                                       " --no-plots --out " + dir.file("out"));
+        EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(mustSay), std::string::npos) << args << "\n" << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << args;
+    }
+}
+
+TEST(TriaxialStudy, MeshesOfOneFileNameAreTwoAssetsOfTheShearScene)
+{
+    test::ScratchDir dir;
+    const std::string sand = std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand";
+    std::filesystem::create_directories(dir.file("m1"));
+    std::filesystem::create_directories(dir.file("m2"));
+    std::filesystem::copy_file(sand + "/grain_0000.obj", dir.file("m1/g.obj"));
+    std::filesystem::copy_file(sand + "/grain_0001.obj", dir.file("m2/g.obj"));
+    const test::CommandResult r =
+        smallTriaxial(dir.file("m1/g.obj") + " " + dir.file("m2/g.obj"), dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Scene scene = readSceneFile(dir.file("out/scene/triaxial_shear.toml"));
+    ASSERT_EQ(scene.assets.size(), 2u);
+    EXPECT_EQ(scene.assets[0].name, "g");
+    EXPECT_EQ(scene.assets[1].name, "g_2");
+    // Each its own file, baked from its own mesh.
+    EXPECT_EQ(scene.assets[0].file, dir.file("out/scene/assets/g.vdb"));
+    EXPECT_EQ(scene.assets[1].file, dir.file("out/scene/assets/g_2.vdb"));
+    EXPECT_NE(test::readFile(scene.assets[0].file), test::readFile(scene.assets[1].file));
 }
 
 // Peak, critical state and E₅₀ of a made-up curve with known answers: q rises linearly with

@@ -1,6 +1,7 @@
 #include "studies/Cube27Plan.h"
 
 #include "studies/Cube27ClosedForm.h"
+#include "studies/StudyLimits.h"
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
@@ -45,6 +46,22 @@ bool hasShear(const Cube27Options& o, Formulation f)
            o.shearRatio > 0;
 }
 
+/// What sets a run's step count, for a plan refused as too long.
+const char* const kCube27StepOptions =
+    "check --speed (or --periods), --delta-max, --safety and --kn / --k-factors";
+
+/// Refuse a run that @a takes (would take, needs at least) @a steps time steps (or not a
+/// number) over the studies' limit.
+void refuseCube27Steps(double steps, const char* takes, Formulation f, int nodes, double stiffness)
+{
+    if (steps <= double(kMaxStudySteps)) return;
+    std::ostringstream s;
+    s << "the run of " << formulationName(f) << " at N = " << nodes << ", k = " << stiffness
+      << " " << takes << " " << steps << " time steps (the limit is " << double(kMaxStudySteps)
+      << ")";
+    throw Error("", s.str(), kCube27StepOptions);
+}
+
 } // namespace
 
 Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double stiffness,
@@ -72,6 +89,10 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
     const double loadingTime =
         o.speed > 0.0 ? o.deltaMax / o.speed : o.periods * 2.0 * kPi / omega1;
 
+    // Step counts in double until they are known to fit: absurd but finite options (a
+    // crawling wall, a tiny --safety) ask for more steps than any integer holds.
+    const double fewestSteps = std::ceil(loadingTime / run.stabilityLimit);
+    refuseCube27Steps(fewestSteps, "needs at least", f, nodes, stiffness);
     if (o.steps > 0) {
         run.steps = o.steps;
         run.timeStep = loadingTime / double(o.steps);
@@ -81,13 +102,13 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
               << nodes << ", k = " << stiffness << ": the time step " << run.timeStep
               << " s would exceed the stack's stability limit " << run.stabilityLimit << " s";
             throw Error("", s.str(),
-                        "give at least --steps " +
-                            std::to_string((long long)std::ceil(loadingTime / run.stabilityLimit)) +
+                        "give at least --steps " + std::to_string((long long)fewestSteps) +
                             " (5x that is safe), or leave --steps out");
         }
     } else {
-        const double dt = o.safety * run.stabilityLimit;
-        run.steps = std::max<long long>(1, (long long)std::ceil(loadingTime / dt));
+        const double steps = std::ceil(loadingTime / (o.safety * run.stabilityLimit));
+        refuseCube27Steps(steps, "would take", f, nodes, stiffness);  // NaN too, before max()
+        run.steps = std::max(1LL, (long long)steps);
         run.timeStep = loadingTime / double(run.steps);
     }
     run.speed = o.deltaMax / (run.timeStep * double(run.steps));
@@ -110,6 +131,14 @@ std::vector<Cube27Run> planCube27(const Cube27Options& o)
                 for (int m = 0; m < o.orientations; ++m)
                     runs.push_back(planCube27Run(o, f, nodes, k, m));
         }
+    double steps = 0.0;
+    for (const Cube27Run& run : runs) steps += double(run.steps);
+    if (steps > double(kMaxStudySteps)) {
+        std::ostringstream s;
+        s << "the study would take " << steps << " time steps in its " << runs.size()
+          << " runs (the limit is " << double(kMaxStudySteps) << ")";
+        throw Error("", s.str(), std::string(kCube27StepOptions) + ", or run fewer --nodes");
+    }
     return runs;
 }
 

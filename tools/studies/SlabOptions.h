@@ -5,6 +5,7 @@
 #pragma once
 
 #include "studies/SlabPanel.h"
+#include "studies/StudyLimits.h"
 
 #include "lsdem/contact/ContactModel.h"
 
@@ -69,7 +70,7 @@ void checkSlabStudyOptions(const SlabStudyOptions& o);
 
 /// Limits of checkSlabStudyOptions: a study over them is refused (the quick default is 1.6e5
 /// steps and about 0.1 GiB; the seed's resolution, one run, 9.3e3 steps and 0.8 GiB).
-constexpr long long kMaxSlabSteps = 1000000000LL;
+constexpr long long kMaxSlabSteps = kMaxStudySteps;
 constexpr double kMaxSlabMemoryBytes = 20.0 * 1073741824.0;
 
 /// The quick default and the `--full` lists of the two-way study.

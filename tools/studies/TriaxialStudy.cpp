@@ -172,6 +172,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     std::vector<std::string> warnings;
     World world = buildWorld(scene, warnings);
     double dt = triaxialTimeStep(world, o, f, *assets, kn);
+    triaxialShearSteps(p, dt);  // a plan too long is refused now, not retried with half the step
     const Stopwatch runClock;
     for (int attempt = 0;; ++attempt) {
         try {

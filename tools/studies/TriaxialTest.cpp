@@ -1,9 +1,13 @@
 #include "studies/TriaxialTest.h"
 
+#include "studies/StudyLimits.h"
+
+#include "lsdem/ls/Error.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace lsdem {
 
@@ -61,10 +65,28 @@ bool withinTolerance(const TriaxialState& s, const TriaxialProtocol& p)
 
 } // namespace
 
+long long triaxialShearSteps(const TriaxialProtocol& p, double dt)
+{
+    // In double until it is known to fit: a tiny rate or step needs more than any integer holds.
+    const double steps = std::ceil(p.maxAxialStrain / (p.strainRate * dt));
+    if (!(steps >= 1.0 && steps <= double(kMaxStudySteps))) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "the shearing would take %.3g time steps of %.3g s at the strain rate "
+                      "%.3g /s (the limit is %.3g)",
+                      steps, dt, p.strainRate, double(kMaxStudySteps));
+        throw Error("", text,
+                    "check --inertial-number and --axial-strain (the rate and the strain), and "
+                    "--kn-star, --kn-original and --density (the time step)");
+    }
+    return static_cast<long long>(steps);
+}
+
 TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
                                    const TriaxialProtocol& p,
                                    const std::function<void(const TriaxialRow&)>& progress)
 {
+    const long long shearSteps = triaxialShearSteps(p, sim.timeStep());  // before consolidating
     TriaxialTestResult result;
     auto record = [&](TriaxialRow row) {
         if (progress) progress(row);
@@ -122,9 +144,6 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
     }
     for (int axis = 0; axis < 2; ++axis)
         holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
-    const double dt = sim.timeStep();
-    const long long shearSteps =
-        static_cast<long long>(std::ceil(p.maxAxialStrain / (p.strainRate * dt)));
     const long long recordEvery = std::max(1LL, shearSteps / p.records);
     const long long shearStart = w.step;
     while (w.step - shearStart < shearSteps) {

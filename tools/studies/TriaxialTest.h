@@ -68,10 +68,16 @@ struct TriaxialTestResult
 
 /// Run the test on @a sim, whose world holds grains of material 0 inside @a walls (fixed
 /// planes, perpendicular pairs). @a progress, if set, is told each recorded row.
-/// @throw Error from the simulation (e.g. a time step too large for the contacts).
+/// @throw Error from the simulation (e.g. a time step too large for the contacts), or as
+///        triaxialShearSteps before the consolidation.
 TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
                                    const TriaxialProtocol& protocol,
                                    const std::function<void(const TriaxialRow&)>& progress = {});
+
+/// The shearing's steps at time step @a dt: to the axial strain at the strain rate.
+/// @throw Error naming the study's options that set them if they are not from 1 to
+///        kMaxStudySteps (StudyLimits.h).
+long long triaxialShearSteps(const TriaxialProtocol& protocol, double dt);
 
 /// Peak and critical-state figures of @a result's shearing rows (runTriaxialTest calls it).
 void summariseTriaxialShearing(TriaxialTestResult& result, double maxAxialStrain);

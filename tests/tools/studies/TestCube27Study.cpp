@@ -281,6 +281,13 @@ TEST(Cube27Study, ProgramRefusesBadInput)
         {"--formulation magic", "magic"},
         {"--testing sideways", "sideways"},
         {"--colour red", "--colour"},
+        // Found by review: step counts beyond any integer ("give at least --steps
+        // -9223372036854775808", a 1-step plan), and plans that would run for years.
+        {"--speed 1e-300 --steps 5", "needs at least 6.024e+306 time steps (the limit is 1e+09)"},
+        {"--safety 1e-300", "would take 6.18809e+302 time steps (the limit is 1e+09)"},
+        {"--periods 1e300", "needs at least 6.18809e+300 time steps"},
+        {"--speed 1e-9", "time steps (the limit is 1e+09)"},
+        {"--speed 0.3", "the study would take 1.71804e+09 time steps in its 16 runs"},
     };
     for (const auto& [args, mustSay] : cases) {
         const auto r = runCommand(kStudy + " cube27 " + args + " --no-plots --out " + out);

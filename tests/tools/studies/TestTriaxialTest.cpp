@@ -247,6 +247,31 @@ TEST(TriaxialSample, MeshesOfOneStemGetDistinctNames)
               (std::vector<std::string>{"g", "g_3", "g_2", "h", "g_4"}));
 }
 
+// Found by review: a tiny strain rate or time step gave a step count beyond any integer (0
+// shearing steps, exit 0), and --inertial-number 1e-9 a run of years.
+TEST(TriaxialTest, ShearingStepsAreCountedOrRefused)
+{
+    TriaxialProtocol p;
+    p.maxAxialStrain = 0.2;
+    p.strainRate = 1.0;
+    EXPECT_EQ(triaxialShearSteps(p, 1e-3), 200);
+    auto refusal = [&](double rate, double dt) {
+        p.strainRate = rate;
+        try {
+            triaxialShearSteps(p, dt);
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(refusal(1e-300, 1e-3).find("the shearing would take 2e+302 time steps"),
+              std::string::npos);
+    EXPECT_NE(refusal(1.0, 1e-300).find("--inertial-number"), std::string::npos);
+    EXPECT_NE(refusal(1.0, 1e-10).find("(the limit is 1e+09)"), std::string::npos);
+    EXPECT_NE(refusal(1.0, 0.0).find("inf time steps"), std::string::npos);
+    EXPECT_NE(refusal(INFINITY, 1e-3).find("0 time steps"), std::string::npos);
+}
+
 namespace {
 
 const std::string kStudy = LSDEM_STUDY_EXE;
@@ -305,6 +330,19 @@ TEST(TriaxialStudy, MeshesOfOneFileNameAreTwoAssetsOfTheShearScene)
     EXPECT_EQ(scene.assets[0].file, dir.file("out/scene/assets/g.vdb"));
     EXPECT_EQ(scene.assets[1].file, dir.file("out/scene/assets/g_2.vdb"));
     EXPECT_NE(test::readFile(scene.assets[0].file), test::readFile(scene.assets[1].file));
+}
+
+// Refused once the time step is known (after the bake), before the consolidation. Found by
+// review: --inertial-number 1e-9 ran on for years.
+TEST(TriaxialStudy, ProgramRefusesARunTooLong)
+{
+    test::ScratchDir dir;
+    const std::string grain = std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand/grain_0000.obj";
+    const test::CommandResult slow =
+        smallTriaxial(grain, dir.file("slow"), "--axial-strain 0.2 --inertial-number 1e-9");
+    EXPECT_EQ(slow.exitCode, 1) << slow.output;
+    EXPECT_NE(slow.output.find("the shearing would take 1.61e+10 time steps"), std::string::npos)
+        << slow.output;
 }
 
 // Peak, critical state and E₅₀ of a made-up curve with known answers: q rises linearly with

@@ -117,6 +117,27 @@ double exactColumnForce(const Cube27Options& o, double delta, double k,
     return k * it->second;
 }
 
+/// Refuse to report @a row if a figure went NaN or inf (absurd scales: a δ_max that rounds to 0,
+/// a stiffness that overflows), and at δ_max (@a last) if P/P_exact, what the study is about,
+/// is not a number.
+void refuseNonFiniteRow(const Cube27Row& r, bool last)
+{
+    const double figures[] = {r.delta, r.forceMean, r.forceStd, r.forceMin, r.forceMax,
+                              r.floorForce, r.sideForce, r.forceClosed, r.forceExact};
+    const bool finite = std::all_of(std::begin(figures), std::end(figures),
+                                    [](double v) { return std::isfinite(v); });
+    const double relative = r.forceMean / r.forceExact - 1.0;
+    if (finite && (!last || std::isfinite(relative))) return;
+    std::ostringstream s;
+    s << "the cube27 runs of " << formulationName(r.formulation) << " at N = " << r.nodesRequested
+      << ", k = " << r.stiffness << " went non-finite (NaN or inf): at delta = " << r.delta
+      << " mm, P = " << r.forceMean << " N, P_exact = " << r.forceExact << " N";
+    if (finite) s << ", P/P_exact - 1 = " << relative;
+    throw Error("", s.str(),
+                "check the scales and units of the options (mm, N, s, tonne): --delta-max, "
+                "--radius, --kn / --k-factors, --speed");
+}
+
 /// Rows of results for one (formulation, N, k): per δ sample, the statistics over the
 /// orientations of @a runs and the closed-form and exact references.
 void appendRows(const Cube27Options& o, const Key& key, const std::vector<Samples>& runs,
@@ -162,6 +183,7 @@ void appendRows(const Cube27Options& o, const Key& key, const std::vector<Sample
             row.forceClosed = cube27ClosedForm(o.radius, row.delta, kStar);
             row.forceExact = exactColumnForce(o, row.delta, kStar, unitForce);
         }
+        refuseNonFiniteRow(row, i + 1 == count);
         rows.push_back(row);
     }
 }

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 namespace lsdem {
 
@@ -131,6 +132,41 @@ double triaxialTimeStep(const World& world, const TriaxialOptions& o, Formulatio
     return std::min(estimate, automaticTimeStep(world, 0.45));
 }
 
+/// Refuse to report @a run if its figures went NaN or inf, or its cell is impossible (walls
+/// crossed, a negative void ratio): absurd scales of the options, not a result.
+void refuseNonPhysicalRun(const TriaxialRun& run)
+{
+    auto finite = [](std::initializer_list<double> figures) {
+        return std::all_of(figures.begin(), figures.end(),
+                           [](double v) { return std::isfinite(v); });
+    };
+    const TriaxialTestResult& t = run.test;
+    std::string wrong;
+    auto check = [&](const TriaxialState& s, const char* when, bool rowFinite) {
+        if (!wrong.empty()) return;
+        if (!rowFinite || !s.size.allFinite() || !s.stress.allFinite() ||
+            !finite({s.volume, s.p, s.q, s.voidRatio, s.coordination}))
+            wrong = std::string("went non-finite (NaN or inf) ") + when;
+        else if (!(s.size.minCoeff() > 0.0 && s.voidRatio >= 0.0))
+            wrong = std::string("became impossible ") + when + ": cell " +
+                    cli::numberText(s.size.x()) + " x " + cli::numberText(s.size.y()) + " x " +
+                    cli::numberText(s.size.z()) + " mm, void ratio " + cli::numberText(s.voidRatio);
+    };
+    check(t.consolidated, "when consolidated", true);
+    for (const TriaxialRow& r : t.rows)
+        check(r.state, r.stage == 0 ? "while consolidating" : "while shearing",
+              finite({r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber,
+                      r.kinetic}));
+    if (wrong.empty() && !finite({t.peakFrictionAngle, t.peakAxialStrain, t.criticalFrictionAngle,
+                                  t.criticalVoidRatio, t.maxInertialNumber, t.secantModulus50}))
+        wrong = "went non-finite (NaN or inf) in its summary";
+    if (wrong.empty()) return;
+    throw Error("", "the triaxial run of " + formulationName(run.formulation) + " at SDP " +
+                        cli::numberText(run.sdp) + " mm " + wrong,
+                "check the scales and units of the options (mm, tonne, s, N, MPa): "
+                "--confining-stress, --density, --kn-star, --lattice-spacing, --inertial-number");
+}
+
 /// One run: bake (or reuse) the assets, build the cloud and its scene, consolidate and shear.
 /// A time step the simulation finds unstable is halved and the run started again.
 TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& files,
@@ -189,6 +225,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     run.runSeconds = runClock.seconds();
     const long long steps = run.test.consolidationSteps + run.test.shearSteps;
     run.msPerStep = steps > 0 ? 1e3 * run.runSeconds / double(steps) : 0.0;
+    refuseNonPhysicalRun(run);
     return run;
 }
 

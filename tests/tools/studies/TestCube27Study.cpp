@@ -256,6 +256,23 @@ TEST(Cube27Study, ProgramWritesTheCsvAndPlots)
     }
 }
 
+// Found by review: --delta-max 1e-300 printed P/P_exact as "-nan%" and exited 0.
+TEST(Cube27Study, ARunGoneNonFiniteIsNotReported)
+{
+    lsdem::test::ScratchDir dir;
+    const auto r = runCommand(kStudy + " cube27 --nodes 100 --formulation adapted --voxel 0.5 "
+                                       "--k-factors 1 --points 5 --no-plots --delta-max 1e-300 "
+                                       "--out " + dir.file("out"));
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("the cube27 runs of adapted at N = 100, k = 1000 went non-finite "
+                            "(NaN or inf)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("check the scales and units"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("nan%"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out/cube27.csv")));
+}
+
 TEST(Cube27Study, ProgramRefusesBadInput)
 {
     lsdem::test::ScratchDir dir;

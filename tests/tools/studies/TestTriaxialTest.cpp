@@ -333,8 +333,9 @@ TEST(TriaxialStudy, MeshesOfOneFileNameAreTwoAssetsOfTheShearScene)
 }
 
 // Refused once the time step is known (after the bake), before the consolidation. Found by
-// review: --inertial-number 1e-9 ran on for years.
-TEST(TriaxialStudy, ProgramRefusesARunTooLong)
+// review: --inertial-number 1e-9 ran on for years; --confining-stress 1e300 reported a negative
+// void ratio with exit 0.
+TEST(TriaxialStudy, ProgramRefusesARunTooLongOrGoneNonPhysical)
 {
     test::ScratchDir dir;
     const std::string grain = std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand/grain_0000.obj";
@@ -343,6 +344,15 @@ TEST(TriaxialStudy, ProgramRefusesARunTooLong)
     EXPECT_EQ(slow.exitCode, 1) << slow.output;
     EXPECT_NE(slow.output.find("the shearing would take 1.61e+10 time steps"), std::string::npos)
         << slow.output;
+    const test::CommandResult crushed =
+        smallTriaxial(grain, dir.file("crushed"), "--confining-stress 1e300");
+    EXPECT_EQ(crushed.exitCode, 1) << crushed.output;
+    EXPECT_NE(crushed.output.find("the triaxial run of adapted at SDP 0.2 mm became impossible"),
+              std::string::npos)
+        << crushed.output;
+    EXPECT_NE(crushed.output.find("check the scales and units"), std::string::npos)
+        << crushed.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("crushed/triaxial.csv")));
 }
 
 // Peak, critical state and E₅₀ of a made-up curve with known answers: q rises linearly with

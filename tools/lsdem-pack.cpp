@@ -144,7 +144,7 @@ int main(int argc, char** argv)
                    "asset names written in the CSV, as the scene's [assets.NAME]\n(default: "
                    "the file names without .vdb)")
         ->type_name("NAME");
-    lsdem::cli::addInteger(app, "--count", c.count, "grains to pack");
+    lsdem::cli::addInteger(app, "--count", c.count, "grains to pack")->default_str("")->required();
     lsdem::cli::addNumbers(app, "--box", c.box, "the inside of the box: min and max corners", 6);
     lsdem::cli::addNumbers(app, "--cylinder", c.cylinder,
                            "a vertical cylinder instead: axis at (CX, CY), RADIUS, floor Z0, "

@@ -150,6 +150,7 @@ TEST(LsdemPack, BadOptionsExitOne)
         {ball + " --box 0 0 0 5 5 5 --count 4 --settle -1 -o x.csv", "--settle must be a finite number > 0, got -1"},
         // Found by review: TBB ran out of memory starting them (exit 3).
         {ball + " --box 0 0 0 5 5 5 --count 4 --threads 99999999999 -o x.csv", "--threads wants a number from 1 to 1024, got 99999999999"},
+        {ball + " --box 0 0 0 5 5 5 -o x.csv", "--count is required"},
         // The output folder is checked before anything is read (the missing asset is not).
         {"missing.vdb --box 0 0 0 5 5 5 --count 4 -o nowhere/x.csv", "nowhere/x.csv"},
     };
@@ -183,6 +184,15 @@ TEST(LsdemPack, AnOutputThatIsAnInputIsRefused)
     }
     EXPECT_TRUE(readFile(ball) == asset) << "the asset was changed";
     EXPECT_EQ(readFile(a.dir.file("cat.csv")), "name,asset\nball,ball.vdb\n");
+}
+
+// Found by review: the help showed "--count INT=0", a count it refuses.
+TEST(LsdemPack, HelpShowsTheCountAsRequired)
+{
+    const CommandResult r = runCommand(kPack + " --help");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("--count INT REQUIRED"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("--count INT="), std::string::npos) << r.output;
 }
 
 // Found by review: fractions of 1e308 each added up to inf, and the shares became NaN (exit 3,

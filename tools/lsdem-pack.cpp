@@ -140,7 +140,7 @@ int main(int argc, char** argv)
         ->type_name("NAME");
     lsdem::cli::addNumbers(app, "--fractions", c.fractions,
                            "share of the grain count per asset or catalogue row (default: equal)");
-    app.add_option("--names", c.names,
+    lsdem::cli::addTexts(app, "--names", c.names,
                    "asset names written in the CSV, as the scene's [assets.NAME]\n(default: "
                    "the file names without .vdb)")
         ->type_name("NAME");
@@ -172,8 +172,8 @@ int main(int argc, char** argv)
         lsdem::PackingOptions& options = c.options;
         readContainer(c, options);
         if (c.seed < 0) throw Error("", "--seed wants a number >= 0");
-        // As the Python module's kMaxThreads: TBB would try to start them all.
-        constexpr long long kMaxThreads = 1024;
+        // TBB would try to start them all.
+        using lsdem::cli::kMaxThreads;
         if (c.threads < 0 || c.threads > kMaxThreads)
             throw Error("", "--threads wants a number from 1 to " + std::to_string(kMaxThreads) +
                                 ", got " + std::to_string(c.threads),

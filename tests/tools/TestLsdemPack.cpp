@@ -212,6 +212,20 @@ TEST(LsdemPack, HugeFractionsShareTheCountByTheirRatio)
     EXPECT_NE(table.find("\nother,"), std::string::npos) << table;
 }
 
+// A list option given again keeps its last list, as a single value does (--names here).
+TEST(LsdemPack, ARepeatedNamesOptionKeepsItsLastList)
+{
+    const Assets a;
+    const std::string csv = a.dir.file("packing.csv");
+    const CommandResult r =
+        runCommand(kPack + " " + a.dir.file("ball.vdb") + " --names first --names second " +
+                   "--count 1 --box 0 0 0 4.5 4.5 5 -o " + csv);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string table = readFile(csv);
+    EXPECT_NE(table.find("\nsecond,"), std::string::npos) << table;
+    EXPECT_EQ(table.find("first"), std::string::npos) << table;
+}
+
 TEST(LsdemPack, FillsACylinder)
 {
     const Assets a;

@@ -1,13 +1,11 @@
 /// @file StudyLimits.h
 /// @brief What the studies refuse before they start, the same for all of them: a plan over
 ///        kMaxStudySteps time steps would run for years (absurd but finite options: a crawling
-///        wall, a microscopic time step), and more than kMaxStudyThreads threads only exhaust
-///        memory starting them (the Python module's kMaxThreads).
+///        wall, a microscopic time step). (Threads: cli::kMaxThreads.)
 #pragma once
 
 namespace lsdem {
 
 constexpr long long kMaxStudySteps = 1000000000LL;
-constexpr long long kMaxStudyThreads = 1024;
 
 } // namespace lsdem

@@ -3,6 +3,7 @@
 #include "studies/FormulationList.h"
 #include "studies/StudyLimits.h"
 
+#include "common/CommandLine.h"
 #include "common/NumberText.h"
 
 #include "lsdem/ls/Error.h"
@@ -93,8 +94,8 @@ void checkTriaxialOptions(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             cli::numberText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
-    if (o.threads < 0 || o.threads > kMaxStudyThreads)
-        throw Error("", "--threads must be 0 (all cores) to " + std::to_string(kMaxStudyThreads) +
+    if (o.threads < 0 || o.threads > cli::kMaxThreads)
+        throw Error("", "--threads must be 0 (all cores) to " + std::to_string(cli::kMaxThreads) +
                             ", got " + std::to_string(o.threads),
                     "leave it out for all cores");
     triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made

@@ -5,6 +5,7 @@
 
 #include "lsdem/ls/Constants.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,14 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
     if (hasShear(o, f))  // rotation on the shear springs at distance R
         omegaMax2 = std::max(omegaMax2, o.shearRatio * kGrain * o.radius * o.radius / inertia);
     run.stabilityLimit = 2.0 / std::sqrt(omegaMax2);
+    // A stiffness so large that ω² overflows (--kn 1e305) leaves no time step to plan with:
+    // named here, rather than by the first run as a time step to fix.
+    if (!(run.stabilityLimit > 0.0) || !std::isfinite(run.stabilityLimit))
+        throw Error("", "--kn " + numberText(stiffness) + " is too stiff: the " +
+                            formulationName(f) + " run at N = " + std::to_string(nodes) +
+                            " gets no time step (its stability limit is " +
+                            numberText(run.stabilityLimit) + " s)",
+                    "give a smaller --kn (the paper's are 1e9 N/mm and 1e3 N/mm^3)");
     // Slowest vertical mode of a column (symmetric mode of wall–m–m–m–floor).
     const double trace = c.kWall + 3.0 * c.kSphere, det = 2.0 * c.kWall * c.kSphere;
     const double omega1 = std::sqrt((trace - std::sqrt(trace * trace - 4.0 * det)) / 2.0 / mass);

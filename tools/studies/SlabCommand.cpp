@@ -8,7 +8,6 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
-
 #include <CLI/CLI.hpp>
 
 #include <algorithm>

@@ -86,6 +86,26 @@ int main(int argc, char** argv)
            },
            "stop at step N as if interrupted (checkpoint written)")
         ->type_name("N");
+    CLI::Option* endTime =
+        app.add_option_function<std::string>(
+               "--end-time",
+               [&options](const std::string& text) {
+                   options.endTime = lsdem::cli::parseNumber(text, "--end-time");
+                   if (!(options.endTime > 0.0))
+                       throw Error("", "--end-time wants a time > 0, got " + text);
+               },
+               "end at this time instead of the scene's end (a restart: continue a\n"
+               "finished run to it); the checkpoints keep it")
+            ->type_name("T");
+    app.add_option_function<std::string>(
+           "--end-steps",
+           [&options](const std::string& text) {
+               options.endSteps = lsdem::cli::parseInteger(text, "--end-steps");
+               if (options.endSteps < 1) throw Error("", "--end-steps wants a step count >= 1");
+           },
+           "end after N steps in all, likewise")
+        ->type_name("N")
+        ->excludes(endTime);
     app.add_flag("-q,--quiet", quiet, "no progress line");
 
     const auto body = [&] {

@@ -109,6 +109,7 @@ public:
             py::gil_scoped_release release;
             const Checkpoint c = readCheckpoint(checkpointPath);
             mScene = parseScene(c.sceneText, c.scenePath);
+            if (c.end) mScene.end = *c.end;  // the end the run had, if not its text's
             mRecord = c.record;
             mArena->execute([&] {
                 World world = buildWorld(mScene, warnings);
@@ -204,6 +205,7 @@ public:
             c.scenePath = (fs::path(folder) / "python-scene.toml").string();
         }
         c.timeStep = mSim->timeStep();
+        c.end = mScene.end;  // as the run has it (set in Python after reading the file, maybe)
         // The histories this simulation was restarted with (lsdem-run writes them out again
         // on --restart; steps taken in Python add no rows), or none, with one (empty) list
         // per boundary as a run's record has.

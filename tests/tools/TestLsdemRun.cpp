@@ -189,6 +189,34 @@ TEST(LsdemRun, RestartOfAFinishedRunWritesNothing)
             << name;
 }
 
+// A finished run continued to a later end (--end-steps) gives the bytes of a run that went
+// there straight; the checkpoint keeps that end, so a restart after a stop on the way
+// continues to it without being told again.
+TEST(LsdemRun, AFinishedRunContinuesToALaterEnd)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400));
+    const CommandResult straight =
+        runCommand(kRun + " " + scene + " -q --end-steps 600 --out " + dir.file("s"));
+    ASSERT_EQ(straight.exitCode, 0) << straight.output;
+    EXPECT_NE(straight.output.find("finished at step 600"), std::string::npos) << straight.output;
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --out " + dir.file("a")).exitCode, 0);
+    const std::string restart = kRun + " -q --restart " + dir.file("a/checkpoint.lsdem");
+    const CommandResult further = runCommand(restart + " --end-steps 600 --stop-at-step 500");
+    ASSERT_EQ(further.exitCode, 130) << further.output;
+    const CommandResult rest = runCommand(restart);
+    ASSERT_EQ(rest.exitCode, 0) << rest.output;
+    EXPECT_NE(rest.output.find("finished at step 600"), std::string::npos) << rest.output;
+    for (const char* name : kOutputs)
+        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
+                  readFile(dir.file(std::string("s/") + name)))
+            << name;
+    // Both ends at once, or an end that is not a count, are refused.
+    EXPECT_EQ(runCommand(restart + " --end-steps 700 --end-time 1").exitCode, 1);
+    EXPECT_EQ(runCommand(restart + " --end-steps 0").exitCode, 1);
+    EXPECT_EQ(runCommand(restart + " --end-time nan").exitCode, 1);
+}
+
 // A restart continues frames.pvd, which lists the frames written before the checkpoint: with
 // --out another folder it would list frames that folder lacks, so it is refused there (before
 // anything is created); the checkpoint's own folder, however spelt, is fine.

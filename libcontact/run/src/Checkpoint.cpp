@@ -5,6 +5,7 @@
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -18,7 +19,7 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 2: each boundary also keeps its contact stiffness and dashpot (a servo wall's gain).
 /// 3: the fingerprint of the world's grains and their assets (WorldFingerprint.h) follows the
 ///    record.
-const uint32_t kVersion = 3;
+const uint32_t kVersion = 4;
 const uint32_t kOldestVersion = 1;
 
 /// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
@@ -190,6 +191,18 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         fingerprint.boundaryAssets = r.words();
         if (fingerprint.grainAssets.size() != fingerprint.grains.size()) r.fail();
     }
+    if (version >= 4 && r.pod<uint8_t>() != 0) {
+        EndCondition end;
+        end.time = r.pod<double>();
+        end.steps = r.pod<int64_t>();
+        end.boundary = r.pod<int32_t>();
+        end.displacement = r.pod<double>();
+        const bool sane = std::isfinite(end.time) && end.time >= 0.0 && end.steps >= 0 &&
+                          end.boundary >= -1 && std::isfinite(end.displacement) &&
+                          end.displacement >= 0.0;
+        if (!sane) r.fail();
+        checkpoint.end = end;
+    }
     return in;
 }
 
@@ -209,6 +222,13 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         w.words(fingerprint.grains);
         w.words(fingerprint.grainAssets);
         w.words(fingerprint.boundaryAssets);
+        w.pod<uint8_t>(checkpoint.end ? 1 : 0);
+        if (checkpoint.end) {
+            w.pod(checkpoint.end->time);
+            w.pod<int64_t>(checkpoint.end->steps);
+            w.pod<int32_t>(checkpoint.end->boundary);
+            w.pod(checkpoint.end->displacement);
+        }
 
         w.pod(world.time);
         w.pod<int64_t>(world.step);

@@ -216,6 +216,9 @@ private:
     const World& wholeWorld(World& gathered);
     void writeFiles(const World& whole);
     void printProgress();
+    /// The run's end: the scene's, or the one its checkpoint kept, or the one @a options give
+    /// (kept in this run's checkpoints).
+    void applyEnd(const RunOptions& options);
     /// Whether to rewrite the text outputs now (10 s after the last time; split over ranks,
     /// decided together at history steps, since it gathers the grains).
     bool flushDue(long long step);
@@ -253,6 +256,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
         mCheckpoint.scenePath = fs::absolute(options.scenePath).string();
         mCheckpoint.sceneText = mScene.text;
     }
+    applyEnd(options);
     mOutDir = options.outDir;
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
@@ -285,6 +289,9 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     }
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
+    if (mScene.end.boundary >= static_cast<int>(world.boundaries.size()))
+        throw Error(options.restartPath, "the checkpoint's end names a boundary its scene lacks",
+                    "the checkpoint is damaged: restart from an earlier copy");
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
     if (mWrites)  // for grains.csv's displacements
         for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
@@ -360,6 +367,17 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     mSinceFlush.restart();
     mSinceProgress.restart();
     mLoop.restart();
+}
+
+void Run::applyEnd(const RunOptions& options)
+{
+    if (mCheckpoint.end) mScene.end = *mCheckpoint.end;
+    if (options.endTime > 0.0 || options.endSteps > 0) {
+        mScene.end = EndCondition();
+        mScene.end.time = options.endTime;
+        mScene.end.steps = options.endSteps;
+        mCheckpoint.end = mScene.end;
+    }
 }
 
 const World& Run::wholeWorld(World& gathered)
@@ -526,8 +544,8 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
         run.fillResult(result);
         result.alreadyEnded = true;
         log << "the run had already finished at step " << result.step << " (t = " << result.time
-            << "): nothing to continue, nothing written (to go further, run the scene again "
-               "with a later end)\n";
+            << "): nothing to continue, nothing written (to go further, give a later end: "
+               "--end-time or --end-steps)\n";
         return result;
     }
     result.interrupted = run.stepToEnd();

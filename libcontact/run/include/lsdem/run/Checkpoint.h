@@ -6,8 +6,10 @@
 #pragma once
 
 #include "lsdem/run/RunRecord.h"
+#include "lsdem/scene/Scene.h"
 #include "lsdem/simulation/World.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,10 @@ struct Checkpoint
     std::string sceneText;
     double timeStep = 0.0;
     RunRecord record;
+    /// When the run ends. A run may be given an end other than its scene text's (lsdem-run
+    /// --end-time, Python's scene.end_time after loading); a restart continues to this one.
+    /// None: the scene text's (checkpoints before version 4).
+    std::optional<EndCondition> end;
 };
 
 /// Write @a world and @a checkpoint to @a path atomically.

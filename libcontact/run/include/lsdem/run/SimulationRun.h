@@ -24,6 +24,10 @@ struct RunOptions
     bool progress = false;    ///< a progress line with ETA on stderr
     /// Stop (as if interrupted, with a checkpoint) once the step count reaches this (0: never).
     long long stopAtStep = 0;
+    /// > 0: end at this time, or after this many steps in all, instead of the scene's end
+    /// (or the checkpoint's). The checkpoints keep it, so a restart continues to it.
+    double endTime = 0.0;
+    long long endSteps = 0;
     /// Split the run by space over these ranks (GhostDecomposition.h), each of which calls
     /// runSimulation with the same options; rank 0 writes the histories, grains.csv and the
     /// checkpoints (gathered from the ranks), each rank its piece of every ParaView frame.

@@ -205,7 +205,7 @@ public:
             c.scenePath = (fs::path(folder) / "python-scene.toml").string();
         }
         c.timeStep = mSim->timeStep();
-        c.end = mScene.end;  // as the run has it (set in Python after reading the file, maybe)
+        if (hasEndCondition()) c.end = mScene.end;  // as the run has it
         // The histories this simulation was restarted with (lsdem-run writes them out again
         // on --restart; steps taken in Python add no rows), or none, with one (empty) list
         // per boundary as a run's record has.

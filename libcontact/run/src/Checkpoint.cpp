@@ -19,6 +19,7 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 2: each boundary also keeps its contact stiffness and dashpot (a servo wall's gain).
 /// 3: the fingerprint of the world's grains and their assets (WorldFingerprint.h) follows the
 ///    record.
+/// 4: the run's end condition follows the fingerprint (a flag, then the end if set).
 const uint32_t kVersion = 4;
 const uint32_t kOldestVersion = 1;
 
@@ -199,7 +200,8 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         end.displacement = r.pod<double>();
         const bool sane = std::isfinite(end.time) && end.time >= 0.0 && end.steps >= 0 &&
                           end.boundary >= -1 && std::isfinite(end.displacement) &&
-                          end.displacement >= 0.0;
+                          end.displacement >= 0.0 &&
+                          (end.time > 0.0 || end.steps > 0 || end.boundary >= 0);
         if (!sane) r.fail();
         checkpoint.end = end;
     }

@@ -38,11 +38,19 @@ BlockMotion blockMotion(const SlabPanel& panel, const SlabRunResult& run)
     return m;
 }
 
+/// Whether every block ended where a number says (a run that went unstable has NaN or inf).
+bool hasFinitePositions(const SlabRunResult& run)
+{
+    return std::all_of(run.finalDisplacement.begin(), run.finalDisplacement.end(),
+                       [](const Vec3& d) { return d.allFinite(); });
+}
+
 } // namespace
 
 SlabFailureMode slabFailureMode(const SlabPanel& panel, const SlabRunResult& run)
 {
-    if (run.finalDisplacement.size() != panel.blocks().size() || run.curve.empty())
+    if (run.finalDisplacement.size() != panel.blocks().size() || run.curve.empty() ||
+        !hasFinitePositions(run))
         return SlabFailureMode::None;
     const BlockMotion m = blockMotion(panel, run);
     const double drop = -run.finalDisplacement[panel.centralBlock()].z();
@@ -76,6 +84,11 @@ std::string slabFailureSummary(const SlabPanel& panel, const SlabRunResult& run)
     s << formulationName(run.formulation) << ", SDP " << run.sdp << " mm, VDP " << run.vdp
       << " mm (" << run.nodes << " nodes per block), at delta = " << delta << " mm:\n";
     if (run.stopped) s << "  the run stopped early: " << run.error << "\n";
+    if (!hasFinitePositions(run)) {
+        s << "  the blocks' positions are not finite numbers (the run went unstable): no "
+             "failure mode to tell\n";
+        return s.str();
+    }
     s << "  central block " << panel.blocks()[centre].name << " moved down by " << -c.z()
       << " mm (sideways " << c.head<2>().norm() << " mm)\n"
       << "  its 4 face neighbours moved at most " << m.neighbours << " mm, the 4 diagonal ones "

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 
 using namespace lsdem;
@@ -451,6 +452,24 @@ SlabRunResult syntheticRun(const SlabPanel& panel, double peak, double centralDr
 }
 
 } // namespace
+
+// A run that went unstable ends with blocks at NaN: its summary says so instead of "moved
+// down by nan mm", and it has no failure mode.
+TEST(SlabStudy, ARunGoneUnstableHasNoFailureMode)
+{
+    SlabPanelOptions po;
+    po.blocksPerSide = 3;
+    const SlabPanel panel(po);
+    SlabRunResult r = syntheticRun(panel, 1000, 0.8, 0.01, true);
+    r.error = "the time step exploded";
+    r.finalDisplacement[0].x() = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(slabFailureMode(panel, r), SlabFailureMode::None);
+    const std::string summary = slabFailureSummary(panel, r);
+    EXPECT_NE(summary.find("not finite numbers (the run went unstable)"), std::string::npos)
+        << summary;
+    EXPECT_NE(summary.find("the time step exploded"), std::string::npos) << summary;
+    EXPECT_EQ(summary.find("nan"), std::string::npos) << summary;
+}
 
 // The convergence rule on runs whose differences and failure modes are set by hand: peaks
 // 700, 900, 980, 1000 N differ from the finest by 30, 10, 2 % (tolerance 5 %).

@@ -109,7 +109,7 @@ public:
             py::gil_scoped_release release;
             const Checkpoint c = readCheckpoint(checkpointPath);
             mScene = parseScene(c.sceneText, c.scenePath);
-            if (c.end) mScene.end = *c.end;  // the end the run had, if not its text's
+            applyCheckpointEnd(c, mScene, checkpointPath);  // the end the run had
             mRecord = c.record;
             mArena->execute([&] {
                 World world = buildWorld(mScene, warnings);

@@ -171,7 +171,7 @@ TEST(LsdemStudy, InputRefusedLateLeavesNoOutputFolder)
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"two-spheres --voxel 100", "voxel size 100"},
         {"two-spheres --voxel 1e-5", "voxel size 1e-05"},
-        {"cube27 --kn 1e305", "--kn 1e+305"},
+        {"cube27 --kn 1e305", "the stiffness 1e+305 (--kn"},
         {"triaxial --meshes /nonexistent.obj", "/nonexistent.obj"},
     };
     int index = 0;

@@ -94,29 +94,19 @@ CLI::Option* addNumber(CLI::App& app, const std::string& name, double& value,
 
 CLI::Option* lastListWins(CLI::Option* option)
 {
-    option->inject_separator();
+    // Each occurrence goes to the callback as it is parsed (an empty value too, to be refused
+    // as such), rather than all of them joined at the end.
+    option->trigger_on_parse();
     return option;
-}
-
-std::vector<std::string> lastOccurrence(const std::vector<std::string>& texts)
-{
-    const auto separator = std::find(texts.rbegin(), texts.rend(), std::string());
-    std::vector<std::string> last(separator.base(), texts.end());
-    // An empty value the user gave (not a separator) is kept, to be refused as such.
-    if (last.empty() && !texts.empty()) last.push_back(std::string());
-    return last;
 }
 
 CLI::Option* addTexts(CLI::App& app, const std::string& name, std::vector<std::string>& values,
                       const std::string& help)
 {
-    return lastListWins(
-               app.add_option_function<std::vector<std::string>>(
-                   name,
-                   [&values](const std::vector<std::string>& given) {
-                       values = lastOccurrence(given);
-                   },
-                   help))
+    return lastListWins(app.add_option_function<std::vector<std::string>>(
+                            name,
+                            [&values](const std::vector<std::string>& given) { values = given; },
+                            help))
         ->default_str(values.empty() ? "" : showList(values));
 }
 
@@ -126,9 +116,7 @@ CLI::Option* addNumbers(CLI::App& app, const std::string& name, std::vector<doub
     CLI::Option* option =
         app.add_option_function<std::vector<std::string>>(
                name,
-               [&values, name, group](const std::vector<std::string>& given) {
-                   // A group's repeats are kept or dropped by its policy; a list's last wins.
-                   const std::vector<std::string> texts = group > 0 ? given : lastOccurrence(given);
+               [&values, name, group](const std::vector<std::string>& texts) {
                    if (group > 0 && texts.size() % size_t(group) != 0)
                        throw Error("", "option " + name + " wants " + std::to_string(group) +
                                            " numbers, got " + std::to_string(texts.size()));
@@ -194,9 +182,9 @@ CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>&
     return lastListWins(
         app.add_option_function<std::vector<std::string>>(
             name,
-            [&values, name](const std::vector<std::string>& given) {
+            [&values, name](const std::vector<std::string>& texts) {
                 values.clear();
-                for (const std::string& text : lastOccurrence(given)) {
+                for (const std::string& text : texts) {
                     const double n = parseNumber(text, name);
                     if (n != std::floor(n))
                         throw Error("", name + " wants whole numbers, got " + text);

@@ -67,12 +67,8 @@ CLI::Option* addTexts(CLI::App& app, const std::string& name, std::vector<std::s
 
 /// Make the list option @a option keep only its last occurrence's values, as a single value's
 /// last occurrence wins (applyConventions): CLI11 would join "--nodes 1 2 --nodes 3" into
-/// 1 2 3. Its callback must read its values through lastOccurrence.
+/// 1 2 3. Its callback then runs once per occurrence, each replacing the values.
 CLI::Option* lastListWins(CLI::Option* option);
-
-/// The values of the last occurrence of a list option made by lastListWins (CLI11 hands over
-/// every occurrence's values with an empty string between them).
-std::vector<std::string> lastOccurrence(const std::vector<std::string>& texts);
 
 /// @a value as the help shows defaults ("0.05", "1e+09").
 std::string showNumber(double value);

@@ -87,11 +87,13 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
     // A stiffness so large that ω² overflows (--kn 1e305) leaves no time step to plan with:
     // named here, rather than by the first run as a time step to fix.
     if (!(run.stabilityLimit > 0.0) || !std::isfinite(run.stabilityLimit))
-        throw Error("", "--kn " + numberText(stiffness) + " is too stiff: the " +
-                            formulationName(f) + " run at N = " + std::to_string(nodes) +
+        throw Error("", "the stiffness " + numberText(stiffness) +
+                            " (--kn, or the paper's times a --k-factors factor) is too stiff: "
+                            "the " + formulationName(f) + " run at N = " + std::to_string(nodes) +
                             " gets no time step (its stability limit is " +
                             numberText(run.stabilityLimit) + " s)",
-                    "give a smaller --kn (the paper's are 1e9 N/mm and 1e3 N/mm^3)");
+                    "give a smaller --kn or --k-factors (the paper's stiffnesses are 1e9 N/mm "
+                    "and 1e3 N/mm^3)");
     // Slowest vertical mode of a column (symmetric mode of wall–m–m–m–floor).
     const double trace = c.kWall + 3.0 * c.kSphere, det = 2.0 * c.kWall * c.kSphere;
     const double omega1 = std::sqrt((trace - std::sqrt(trace * trace - 4.0 * det)) / 2.0 / mass);
@@ -119,6 +121,15 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
         refuseCube27Steps(steps, "would take", f, nodes, stiffness);  // NaN too, before max()
         run.steps = std::max(1LL, (long long)steps);
         run.timeStep = loadingTime / double(run.steps);
+    }
+    // Fewer steps than recorded points is no loading at all: the wall would jump.
+    if (run.steps < o.points) {
+        std::ostringstream s;
+        s << "the run of " << formulationName(f) << " at N = " << nodes << ", k = " << stiffness
+          << " would press the stack by delta_max in " << run.steps
+          << " time step(s), fewer than the " << o.points << " points it records";
+        throw Error("", s.str(),
+                    "give a lower --speed or more --periods (or --steps), or fewer --points");
     }
     run.speed = o.deltaMax / (run.timeStep * double(run.steps));
     return run;

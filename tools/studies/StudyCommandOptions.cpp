@@ -15,7 +15,7 @@ CLI::Option* addFormulationOption(CLI::App& command, std::vector<Formulation>& f
                    "--formulation",
                    [&formulations](const std::vector<std::string>& given) {
                        formulations.clear();
-                       for (const std::string& name : cli::lastOccurrence(given))
+                       for (const std::string& name : given)
                            formulations.push_back(parseFormulation(name));
                    },
                    "original, adapted, single-node, volume"))

@@ -11,22 +11,60 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
+#include "lsdem/ls/Error.h"
 #include "lsdem/ls/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 namespace lsdem {
 
 namespace {
 
-/// What the study writes into --out: its CSVs, triaxial.py's plots and the shearing scene with
-/// its assets (named after the meshes, so a rerun with other meshes leaves no stale ones).
+/// What the study writes into --out: its CSVs, triaxial.py's plots and the shearing scene
+/// (its assets: removeEarlierSceneAssets).
 const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv", "triaxial_curves.png",
                                    "triaxial_friction_angles.png", "scene/triaxial_shear.toml",
-                                   "scene/grains.csv", "scene/assets/*.vdb"};
+                                   "scene/grains.csv"};
+
+/// Remove the assets in DIR/scene/assets that an earlier run's shear scene names (they are
+/// named after its meshes, so a rerun with other meshes would leave them beside the new ones);
+/// any other file there is the user's and is kept. Call before that scene is removed.
+void removeEarlierSceneAssets(const std::string& outDir)
+{
+    namespace fs = std::filesystem;
+    std::ifstream in(fs::path(outDir) / "scene" / "triaxial_shear.toml");
+    if (!in) return;
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string scene = text.str();
+    std::error_code ec;
+    int removed = 0;
+    for (const fs::directory_entry& e :
+         fs::directory_iterator(fs::path(outDir) / "scene" / "assets", ec)) {
+        std::error_code typeError;
+        if (!e.is_regular_file(typeError) || e.path().extension() != ".vdb") continue;
+        const std::string named = "assets/" + e.path().filename().string();
+        if (scene.find("'" + named + "'") == std::string::npos &&
+            scene.find('"' + named + '"') == std::string::npos)
+            continue;
+        std::error_code removeError;
+        fs::remove(e.path(), removeError);
+        if (removeError)
+            throw Error(e.path().string(),
+                        "cannot remove this asset of an earlier run (" + removeError.message() + ")",
+                        "choose another --out");
+        ++removed;
+    }
+    if (removed > 0)
+        std::printf("removed %d asset%s of an earlier run's scene from %s/scene/assets\n", removed,
+                    removed == 1 ? "" : "s", outDir.c_str());
+}
 
 } // namespace
 
@@ -155,6 +193,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         std::fflush(stdout);
     };
     const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
+    removeEarlierSceneAssets(o.outDir);
     cli::prepareOutputFolder(o.outDir, kOwnFiles);
     const std::string csv = o.outDir + "/triaxial.csv";
     const std::string runsCsv = o.outDir + "/triaxial_runs.csv";

@@ -192,7 +192,9 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         fingerprint.boundaryAssets = r.words();
         if (fingerprint.grainAssets.size() != fingerprint.grains.size()) r.fail();
     }
-    if (version >= 4 && r.pod<uint8_t>() != 0) {
+    const uint8_t hasEnd = version >= 4 ? r.pod<uint8_t>() : 0;
+    if (hasEnd > 1) r.fail();
+    if (hasEnd == 1) {
         EndCondition end;
         end.time = r.pod<double>();
         end.steps = r.pod<int64_t>();
@@ -200,7 +202,7 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         end.displacement = r.pod<double>();
         const bool sane = std::isfinite(end.time) && end.time >= 0.0 && end.steps >= 0 &&
                           end.boundary >= -1 && std::isfinite(end.displacement) &&
-                          end.displacement >= 0.0 &&
+                          end.displacement >= 0.0 && (end.boundary < 0 || end.displacement > 0.0) &&
                           (end.time > 0.0 || end.steps > 0 || end.boundary >= 0);
         if (!sane) r.fail();
         checkpoint.end = end;
@@ -268,6 +270,15 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         }
         out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic
     });
+}
+
+void applyCheckpointEnd(const Checkpoint& checkpoint, Scene& scene, const std::string& path)
+{
+    if (!checkpoint.end) return;
+    if (checkpoint.end->boundary >= static_cast<int>(scene.boundaries.size()))
+        throw Error(path, "the checkpoint's end names a boundary its scene lacks",
+                    "the checkpoint is damaged: restart from an earlier copy");
+    scene.end = *checkpoint.end;
 }
 
 bool isCheckpointFile(const std::string& path)

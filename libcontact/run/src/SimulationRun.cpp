@@ -289,9 +289,6 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     }
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
-    if (mScene.end.boundary >= static_cast<int>(world.boundaries.size()))
-        throw Error(options.restartPath, "the checkpoint's end names a boundary its scene lacks",
-                    "the checkpoint is damaged: restart from an earlier copy");
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
     if (mWrites)  // for grains.csv's displacements
         for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
@@ -371,7 +368,7 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
 
 void Run::applyEnd(const RunOptions& options)
 {
-    if (mCheckpoint.end) mScene.end = *mCheckpoint.end;
+    if (mRestart) applyCheckpointEnd(mCheckpoint, mScene, options.restartPath);
     if (options.endTime > 0.0 || options.endSteps > 0) {
         mScene.end = EndCondition();
         mScene.end.time = options.endTime;

@@ -516,3 +516,25 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     fewer.grains.pop_back();
     EXPECT_NE(refusal(fewer).find("7 grains"), std::string::npos);
 }
+
+// The end a checkpoint kept is the scene's on restart (lsdem-run and Python alike), unless it
+// names a boundary the scene lacks: a damaged file, refused (Python indexed past the
+// boundaries and crashed; review finding).
+TEST(Checkpoint, AKeptEndIsCheckedAgainstTheScenesBoundaries)
+{
+    Scene scene;
+    scene.boundaries.resize(1);
+    scene.end.time = 1.0;
+    Checkpoint c;
+    applyCheckpointEnd(c, scene, "c.lsdem");
+    EXPECT_EQ(scene.end.time, 1.0);  // none kept: the scene's own
+    EndCondition end;
+    end.boundary = 0;
+    end.displacement = 0.5;
+    c.end = end;
+    applyCheckpointEnd(c, scene, "c.lsdem");
+    EXPECT_EQ(scene.end.boundary, 0);
+    EXPECT_EQ(scene.end.time, 0.0);
+    c.end->boundary = 1;
+    EXPECT_THROW(applyCheckpointEnd(c, scene, "c.lsdem"), Error);
+}

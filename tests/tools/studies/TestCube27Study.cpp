@@ -305,6 +305,10 @@ TEST(Cube27Study, ProgramRefusesBadInput)
         {"--periods 1e300", "needs at least 6.18809e+300 time steps"},
         {"--speed 1e-9", "time steps (the limit is 1e+09)"},
         {"--speed 0.3", "the study would take 1.71804e+09 time steps in its 16 runs"},
+        // Found by review: a plan of fewer steps than points (the wall jumping δ_max).
+        {"--periods 1e-300", "in 1 time step(s), fewer than the 30 points it records"},
+        {"--speed 1e9", "fewer than the 30 points it records"},
+        {"--k-factors 1e305", "(--kn, or the paper's times a --k-factors factor) is too stiff"},
     };
     for (const auto& [args, mustSay] : cases) {
         const auto r = runCommand(kStudy + " cube27 " + args + " --no-plots --out " + out);

@@ -135,7 +135,10 @@ TEST(SlabPlan, ARepeatedListOptionKeepsItsLastList)
     EXPECT_EQ(twice.output.substr(twice.output.find("cost:")),
               once.output.substr(once.output.find("cost:")));
     // An empty value is still refused, not taken for the boundary between two lists.
-    const auto empty = runCommand(base + " --sdp ''");
-    EXPECT_EQ(empty.exitCode, 1) << empty.output;
-    EXPECT_NE(empty.output.find("--sdp wants a number, got ''"), std::string::npos) << empty.output;
+    for (const char* values : {"''", "1 '' 0.5", "'' 0.5"}) {
+        const auto empty = runCommand(base + " --sdp " + values);
+        EXPECT_EQ(empty.exitCode, 1) << values << ": " << empty.output;
+        EXPECT_NE(empty.output.find("--sdp wants a number, got ''"), std::string::npos)
+            << values << ": " << empty.output;
+    }
 }

@@ -330,6 +330,16 @@ TEST(TriaxialStudy, MeshesOfOneFileNameAreTwoAssetsOfTheShearScene)
     EXPECT_EQ(scene.assets[0].file, dir.file("out/scene/assets/g.vdb"));
     EXPECT_EQ(scene.assets[1].file, dir.file("out/scene/assets/g_2.vdb"));
     EXPECT_NE(test::readFile(scene.assets[0].file), test::readFile(scene.assets[1].file));
+
+    // Run again with another mesh: the assets the earlier scene named go, a file of the
+    // user's beside them stays (review finding: every .vdb there was removed).
+    std::ofstream(dir.file("out/scene/assets/mine.vdb")) << "the user's";
+    const test::CommandResult again = smallTriaxial(sand + "/grain_0002.obj", dir.file("out"));
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out/scene/assets/g.vdb")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out/scene/assets/g_2.vdb")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/scene/assets/grain_0002.vdb")));
+    EXPECT_EQ(test::readFile(dir.file("out/scene/assets/mine.vdb")), "the user's");
 }
 
 // Refused once the time step is known (after the bake), before the consolidation. Found by

@@ -38,6 +38,10 @@ bool isCheckpointFile(const std::string& path);
 /// @throw Error naming the file if it is missing, truncated or not an lsdem checkpoint.
 Checkpoint readCheckpoint(const std::string& path);
 
+/// Give @a scene (read from @a checkpoint's text) the end the run had, if the checkpoint kept
+/// one. @throw Error naming @a path if that end names a boundary the scene lacks (damaged).
+void applyCheckpointEnd(const Checkpoint& checkpoint, Scene& scene, const std::string& path);
+
 /// Overwrite the dynamic state of @a world (built from the checkpoint's scene) with the state
 /// stored in @a path.
 /// @throw Error if the file does not match the world (grain or boundary counts differ).

@@ -78,14 +78,21 @@ int main(int argc, char** argv)
     lsdem::cli::addThreads(app, threads,
                            "worker threads (default: all cores; under mpirun, the cores shared "
                            "among\nthe ranks on each machine); results do not depend on N");
-    app.add_option_function<std::string>(
-           "--stop-at-step",
-           [&options](const std::string& text) {
-               options.stopAtStep = lsdem::cli::parseInteger(text, "--stop-at-step");
-               if (options.stopAtStep < 1) throw Error("", "--stop-at-step wants a step >= 1");
-           },
-           "stop at step N as if interrupted (checkpoint written)")
-        ->type_name("N");
+    // A step count >= 1 into @a value.
+    auto addStepCount = [&app](const std::string& name, long long& value, const std::string& what,
+                               const std::string& help) {
+        return app
+            .add_option_function<std::string>(
+                name,
+                [&value, name, what](const std::string& text) {
+                    value = lsdem::cli::parseInteger(text, name);
+                    if (value < 1) throw Error("", name + " wants " + what + " >= 1");
+                },
+                help)
+            ->type_name("N");
+    };
+    addStepCount("--stop-at-step", options.stopAtStep, "a step",
+                 "stop at step N as if interrupted (checkpoint written)");
     CLI::Option* endTime =
         app.add_option_function<std::string>(
                "--end-time",
@@ -97,14 +104,7 @@ int main(int argc, char** argv)
                "end at this time instead of the scene's end (a restart: continue a\n"
                "finished run to it); the checkpoints keep it")
             ->type_name("T");
-    app.add_option_function<std::string>(
-           "--end-steps",
-           [&options](const std::string& text) {
-               options.endSteps = lsdem::cli::parseInteger(text, "--end-steps");
-               if (options.endSteps < 1) throw Error("", "--end-steps wants a step count >= 1");
-           },
-           "end after N steps in all, likewise")
-        ->type_name("N")
+    addStepCount("--end-steps", options.endSteps, "a step count", "end after N steps in all, likewise")
         ->excludes(endTime);
     app.add_flag("-q,--quiet", quiet, "no progress line");
 

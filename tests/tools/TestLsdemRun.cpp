@@ -102,6 +102,13 @@ std::string writeScene(const ScratchDir& dir, const std::string& text)
 const char* const kOutputs[] = {"energy.csv", "boundary_floor.csv", "grains.csv", "frames.pvd",
                                  "frames_grains_1.vtu", "frames_contacts_2.vtu"};
 
+/// Every run output of folder @a a equals the one of folder @a b (both in @a dir), byte for byte.
+void expectSameOutputs(const ScratchDir& dir, const std::string& a, const std::string& b)
+{
+    for (const char* name : kOutputs)
+        EXPECT_EQ(readFile(dir.file(a + "/" + name)), readFile(dir.file(b + "/" + name))) << name;
+}
+
 } // namespace
 
 TEST(LsdemRun, WritesHistoriesFramesAndCheckpoint)
@@ -131,10 +138,7 @@ TEST(LsdemRun, OneAndTwoThreadsGiveIdenticalBytes)
                                            " --out " + dir.file(std::string("t") + threads));
         ASSERT_EQ(r.exitCode, 0) << r.output;
     }
-    for (const char* name : kOutputs)
-        EXPECT_EQ(readFile(dir.file(std::string("t1/") + name)),
-                  readFile(dir.file(std::string("t2/") + name)))
-            << name;
+    expectSameOutputs(dir, "t1", "t2");
 }
 
 TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
@@ -150,10 +154,7 @@ TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
     const CommandResult second =
         runCommand(kRun + " -q --restart " + dir.file("b/checkpoint.lsdem"));
     ASSERT_EQ(second.exitCode, 0) << second.output;
-    for (const char* name : kOutputs)
-        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
-                  readFile(dir.file(std::string("b/") + name)))
-            << name;
+    expectSameOutputs(dir, "a", "b");
     EXPECT_EQ(readFile(dir.file("a/frames_grains_4.vtu")), readFile(dir.file("b/frames_grains_4.vtu")));
 }
 
@@ -183,10 +184,7 @@ TEST(LsdemRun, RestartOfAFinishedRunWritesNothing)
     const CommandResult stopAtEnd =
         runCommand(kRun + " " + scene + " -q --stop-at-step 400 --out " + dir.file("b"));
     EXPECT_EQ(stopAtEnd.exitCode, 0) << stopAtEnd.output;
-    for (const char* name : kOutputs)
-        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
-                  readFile(dir.file(std::string("b/") + name)))
-            << name;
+    expectSameOutputs(dir, "a", "b");
 }
 
 // A finished run continued to a later end (--end-steps) gives the bytes of a run that went
@@ -207,10 +205,7 @@ TEST(LsdemRun, AFinishedRunContinuesToALaterEnd)
     const CommandResult rest = runCommand(restart);
     ASSERT_EQ(rest.exitCode, 0) << rest.output;
     EXPECT_NE(rest.output.find("finished at step 600"), std::string::npos) << rest.output;
-    for (const char* name : kOutputs)
-        EXPECT_EQ(readFile(dir.file(std::string("a/") + name)),
-                  readFile(dir.file(std::string("s/") + name)))
-            << name;
+    expectSameOutputs(dir, "a", "s");
     // Both ends at once, or an end that is not a count, are refused.
     EXPECT_EQ(runCommand(restart + " --end-steps 700 --end-time 1").exitCode, 1);
     EXPECT_EQ(runCommand(restart + " --end-steps 0").exitCode, 1);

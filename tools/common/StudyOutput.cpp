@@ -26,16 +26,21 @@ int removeMatching(const std::filesystem::path& folder, const std::string& patte
         const fs::file_type type = e.symlink_status(ec).type();
         if (type != fs::file_type::regular && type != fs::file_type::symlink) continue;
         if (::fnmatch(pattern.c_str(), e.path().filename().c_str(), 0) != 0) continue;
-        fs::remove(e.path(), ec);
-        if (ec)
-            throw Error(e.path().string(),
-                        "cannot remove this file of an earlier run (" + ec.message() + ")", kFix);
+        removeEarlierRunFile(e.path().string());
         ++removed;
     }
     return removed;
 }
 
 } // namespace
+
+void removeEarlierRunFile(const std::string& file)
+{
+    std::error_code ec;
+    std::filesystem::remove(file, ec);
+    if (ec)
+        throw Error(file, "cannot remove this file of an earlier run (" + ec.message() + ")", kFix);
+}
 
 void checkOutputFolder(const std::string& dir)
 {

@@ -19,6 +19,9 @@ void checkOutputFolder(const std::string& dir);
 /// in which '*' stands for any characters but '/' ("cube27_*_by_nodes.png").
 using StudyFiles = std::vector<std::string>;
 
+/// Remove @a file, written by an earlier run of the study. @throw Error naming it if it stays.
+void removeEarlierRunFile(const std::string& file);
+
 /// Create @a dir (and its parents), check that it is writable, and remove the files matching
 /// @a ownFiles that an earlier run of the study left there, so the folder holds this run's
 /// outputs only (no plot of a formulation not run this time, no scene not asked for). Call it

@@ -11,7 +11,6 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
-#include "lsdem/ls/Error.h"
 #include "lsdem/ls/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
@@ -53,12 +52,7 @@ void removeEarlierSceneAssets(const std::string& outDir)
         if (scene.find("'" + named + "'") == std::string::npos &&
             scene.find('"' + named + '"') == std::string::npos)
             continue;
-        std::error_code removeError;
-        fs::remove(e.path(), removeError);
-        if (removeError)
-            throw Error(e.path().string(),
-                        "cannot remove this asset of an earlier run (" + removeError.message() + ")",
-                        "choose another --out");
+        cli::removeEarlierRunFile(e.path().string());
         ++removed;
     }
     if (removed > 0)

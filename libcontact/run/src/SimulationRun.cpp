@@ -505,15 +505,6 @@ void Run::fillResult(RunResult& result) const
     }
 }
 
-} // namespace
-
-void requestStop()
-{
-    gStopRequested.store(true);
-}
-
-namespace {
-
 /// The header line saying what the run runs on (with threads or ranks given).
 void printWhereItRuns(const RunOptions& options, std::ostream& log)
 {
@@ -530,6 +521,11 @@ void printWhereItRuns(const RunOptions& options, std::ostream& log)
 }
 
 } // namespace
+
+void requestStop()
+{
+    gStopRequested.store(true);
+}
 
 RunResult runSimulation(const RunOptions& options, std::ostream& log)
 {

@@ -44,7 +44,7 @@ struct BakeCommandLine
     // Batch mode (--out-dir): many files, sizes relative to each grain.
     std::string outDir;
     double voxelPerSize = 0.0, nodeSpacingPerSize = 0.0;
-    int threads = 0;
+    long long threads = 0;
     bool rebake = false;
     CLI::Option *threadsOption = nullptr, *rebakeOption = nullptr;
     // The options whose presence matters (which shape, which node placement).
@@ -130,8 +130,7 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
             ->default_str("")
             ->group(batch);
     c.threadsOption =
-        addInteger(app, "--threads", c.threads, "files baked at once; 0: all cores")
-            ->type_name("N")
+        lsdem::cli::addThreads(app, c.threads, "files baked at once (default: all cores)")
             ->group(batch);
     c.rebakeOption =
         app.add_flag("--rebake", c.rebake,
@@ -215,8 +214,6 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
         if (c.spacingPerSizeOption->count() &&
             !(c.nodeSpacingPerSize > 0.0 && c.nodeSpacingPerSize < 1.0))
             throw Error("", "--node-spacing-per-size wants a fraction in (0, 1), e.g. 0.05");
-        if (c.threads < 0 || c.threads > 4096)
-            throw Error("", "--threads wants 0 (all cores) to 4096");
         if (placements == 0)
             throw Error("", "say how to place surface nodes",
                         "add --node-spacing SDP, --node-spacing-per-size F, --nodes N or "
@@ -281,7 +278,7 @@ int runBatch(const BakeCommandLine& c)
     batch.voxelPerSize = c.voxelPerSize;
     batch.nodeSpacingPerSize = c.nodeSpacingPerSize;
     batch.outDir = c.outDir;
-    batch.threads = c.threads;
+    batch.threads = static_cast<int>(c.threads);  // at most cli::kMaxThreads
     batch.rebake = c.rebake;
     const Stopwatch clock;
     ProgressLine progress(!c.quiet);

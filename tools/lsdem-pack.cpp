@@ -155,7 +155,7 @@ int main(int argc, char** argv)
     lsdem::cli::addNumber(app, "--settle", c.options.settleTolerance,
                           "at rest when kinetic energy < this x sum of m*g*d");
     app.add_option("-o,--out", c.out, "the grains CSV to write (atomically)")->type_name("FILE");
-    lsdem::cli::addInteger(app, "--threads", c.threads, "worker threads (default: all cores)");
+    lsdem::cli::addThreads(app, c.threads, "worker threads (default: all cores)");
 
     return lsdem::cli::runTool("lsdem-pack", [&] {
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
@@ -172,12 +172,6 @@ int main(int argc, char** argv)
         lsdem::PackingOptions& options = c.options;
         readContainer(c, options);
         if (c.seed < 0) throw Error("", "--seed wants a number >= 0");
-        // TBB would try to start them all.
-        using lsdem::cli::kMaxThreads;
-        if (c.threads < 0 || c.threads > kMaxThreads)
-            throw Error("", "--threads wants a number from 1 to " + std::to_string(kMaxThreads) +
-                                ", got " + std::to_string(c.threads),
-                        "leave it out for all cores");
         std::unique_ptr<tbb::global_control> limit;
         if (c.threads > 0)
             limit = std::make_unique<tbb::global_control>(

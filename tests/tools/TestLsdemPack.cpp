@@ -149,7 +149,7 @@ TEST(LsdemPack, BadOptionsExitOne)
         {ball + " --box 0 0 0 5 5 5 --count 4 --friction -1 -o x.csv", "--friction must be a finite number >= 0, got -1"},
         {ball + " --box 0 0 0 5 5 5 --count 4 --settle -1 -o x.csv", "--settle must be a finite number > 0, got -1"},
         // Found by review: TBB ran out of memory starting them (exit 3).
-        {ball + " --box 0 0 0 5 5 5 --count 4 --threads 99999999999 -o x.csv", "--threads wants a number from 1 to 1024, got 99999999999"},
+        {ball + " --box 0 0 0 5 5 5 --count 4 --threads 99999999999 -o x.csv", "--threads wants 0 (all cores) or a number up to 1024, got 99999999999"},
         {ball + " --box 0 0 0 5 5 5 -o x.csv", "--count is required"},
         // The output folder is checked before anything is read (the missing asset is not).
         {"missing.vdb --box 0 0 0 5 5 5 --count 4 -o nowhere/x.csv", "nowhere/x.csv"},

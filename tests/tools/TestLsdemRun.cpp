@@ -133,12 +133,14 @@ TEST(LsdemRun, OneAndTwoThreadsGiveIdenticalBytes)
 {
     ScratchDir dir;
     const std::string scene = writeScene(dir, smallScene(300));
-    for (const char* threads : {"1", "2"}) {
+    // 0 is all cores, as in every tool's --threads.
+    for (const char* threads : {"1", "2", "0"}) {
         const CommandResult r = runCommand(kRun + " " + scene + " -q --threads " + threads +
                                            " --out " + dir.file(std::string("t") + threads));
         ASSERT_EQ(r.exitCode, 0) << r.output;
     }
     expectSameOutputs(dir, "t1", "t2");
+    expectSameOutputs(dir, "t1", "t0");
 }
 
 TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
@@ -322,7 +324,7 @@ TEST(LsdemRun, BadInputFailsCleanlyWithoutOutput)
         runCommand(kRun + " " + dir.file("scene.toml") + " --threads 99999999999 --out " +
                    dir.file("x"));
     EXPECT_EQ(threads.exitCode, 1) << threads.output;
-    EXPECT_NE(threads.output.find("--threads wants a number from 1 to 1024"), std::string::npos)
+    EXPECT_NE(threads.output.find("--threads wants 0 (all cores) or a number up to 1024"), std::string::npos)
         << threads.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
     const CommandResult noOut = runCommand(kRun + " " + dir.file("scene.toml"));

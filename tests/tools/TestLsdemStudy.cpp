@@ -213,6 +213,12 @@ TEST(LsdemStudy, RerunRemovesTheEarlierRunsFilesOnly)
     EXPECT_EQ(lsdem::test::readFile(out + "/two_spheres_notes.txt"), "the user's too");
     EXPECT_NE(lsdem::test::readFile(out + "/two_spheres.csv").find("volume"), std::string::npos);
     EXPECT_EQ(lsdem::test::readFile(out + "/two_spheres.csv").find("original"), std::string::npos);
+    // The removal is reported, but not under -q (the summary only).
+    EXPECT_EQ(second.output.find("of an earlier run"), std::string::npos) << second.output;
+    const auto loud = runCommand(kStudy + " two-spheres --nodes 100 --voxel 0.5 --orientations 1 "
+                                          "--steps 2 --formulation volume --no-plots --out " + out);
+    ASSERT_EQ(loud.exitCode, 0) << loud.output;
+    EXPECT_NE(loud.output.find("of an earlier run from " + out), std::string::npos) << loud.output;
 
     // Refused input removes nothing: the earlier results stay until a run replaces them.
     const auto refused = runCommand(kStudy + tiny + " --voxel 100 --out " + out);

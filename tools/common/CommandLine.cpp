@@ -150,8 +150,8 @@ CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& he
             "--threads",
             [&threads](const std::string& text) {
                 const long long n = parseInteger(text, "--threads");
-                if (n < 1 || n > kMaxThreads)
-                    throw Error("", "--threads wants a number from 1 to " +
+                if (n < 0 || n > kMaxThreads)
+                    throw Error("", "--threads wants 0 (all cores) or a number up to " +
                                         std::to_string(kMaxThreads) + ", got " + text,
                                 "leave it out to use every core");
                 threads = n;

@@ -51,8 +51,9 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value
 /// and TBB would try to allocate for all of them (std::bad_alloc for 99999999999).
 constexpr long long kMaxThreads = 1024;
 
-/// Option `--threads N` into @a threads: a whole number from 1 to kMaxThreads, an Error naming
-/// --threads otherwise. Not given, @a threads keeps its value (0 for all cores).
+/// Option `--threads N` into @a threads: 0 for all cores (as when it is left out: @a threads
+/// keeps its value, 0) or a whole number up to kMaxThreads; an Error naming --threads otherwise.
+/// Every tool's --threads takes the same values.
 CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& help);
 
 /// Option @a name taking one or more whole positive numbers (node counts: "1e4" is allowed),

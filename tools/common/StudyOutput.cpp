@@ -61,7 +61,7 @@ void checkOutputFolder(const std::string& dir)
                     kFix);
 }
 
-void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles)
+void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles, bool quiet)
 {
     lsdem::prepareOutputFolder(dir, kFix);
     int removed = 0;
@@ -70,7 +70,7 @@ void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles)
         removed += removeMatching(std::filesystem::path(dir) / relative.parent_path(),
                                   relative.filename().string());
     }
-    if (removed > 0)
+    if (removed > 0 && !quiet)
         std::printf("removed %d file%s of an earlier run from %s\n", removed,
                     removed == 1 ? "" : "s", dir.c_str());
 }

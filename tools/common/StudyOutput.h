@@ -26,7 +26,8 @@ void removeEarlierRunFile(const std::string& file);
 /// @a ownFiles that an earlier run of the study left there, so the folder holds this run's
 /// outputs only (no plot of a formulation not run this time, no scene not asked for). Call it
 /// once every input is checked, just before the first file is written. Files matching no
-/// pattern (the user's) and folders are kept. @throw Error naming @a dir or a file.
-void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles);
+/// pattern (the user's) and folders are kept; how many went is printed unless @a quiet.
+/// @throw Error naming @a dir or a file.
+void prepareOutputFolder(const std::string& dir, const StudyFiles& ownFiles, bool quiet);
 
 } // namespace lsdem::cli

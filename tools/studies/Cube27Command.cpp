@@ -125,7 +125,7 @@ int Cube27Command::run(RunDistributor& ranks) const
 
     const Stopwatch wall;
     const Cube27Result result = runCube27(o, ranks);
-    cli::prepareOutputFolder(o.outDir, kOwnFiles);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     const std::string csv = o.outDir + "/cube27.csv";
     writeCube27Csv(result, o, csv);
     const double seconds = wall.seconds();

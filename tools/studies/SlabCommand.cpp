@@ -211,7 +211,7 @@ int SlabCommand::run(RunDistributor& ranks) const
     std::fflush(stdout);
     if (mEstimateOnly) return 0;
 
-    cli::prepareOutputFolder(o.outDir, kOwnFiles);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
     const SlabStudyResult result =

@@ -33,8 +33,9 @@ const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv", "triaxia
 
 /// Remove the assets in DIR/scene/assets that an earlier run's shear scene names (they are
 /// named after its meshes, so a rerun with other meshes would leave them beside the new ones);
-/// any other file there is the user's and is kept. Call before that scene is removed.
-void removeEarlierSceneAssets(const std::string& outDir)
+/// any other file there is the user's and is kept; how many went is printed unless @a quiet.
+/// Call before that scene is removed.
+void removeEarlierSceneAssets(const std::string& outDir, bool quiet)
 {
     namespace fs = std::filesystem;
     std::ifstream in(fs::path(outDir) / "scene" / "triaxial_shear.toml");
@@ -55,7 +56,7 @@ void removeEarlierSceneAssets(const std::string& outDir)
         cli::removeEarlierRunFile(e.path().string());
         ++removed;
     }
-    if (removed > 0)
+    if (removed > 0 && !quiet)
         std::printf("removed %d asset%s of an earlier run's scene from %s/scene/assets\n", removed,
                     removed == 1 ? "" : "s", outDir.c_str());
 }
@@ -137,9 +138,7 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
                "the end (N to 2N-1 rows)")
         ->type_name("N")
         ->group(output);
-    addInteger(*mCommand, "--threads", o.threads, "worker threads (0: all cores)")
-        ->type_name("N")
-        ->group(output);
+    cli::addThreads(*mCommand, o.threads, "worker threads (default: all cores)")->group(output);
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the summary");
     mCommand->footer("Units: mm, tonne, s, N (stresses in MPa). Writes DIR/triaxial.csv (rows of "
                      "every run),\nDIR/triaxial_runs.csv (one row per run) and, with "
@@ -187,8 +186,8 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         std::fflush(stdout);
     };
     const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
-    removeEarlierSceneAssets(o.outDir);
-    cli::prepareOutputFolder(o.outDir, kOwnFiles);
+    removeEarlierSceneAssets(o.outDir, o.quiet);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     const std::string csv = o.outDir + "/triaxial.csv";
     const std::string runsCsv = o.outDir + "/triaxial_runs.csv";
     writeTriaxialCsv(result, csv);

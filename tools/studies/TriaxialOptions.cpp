@@ -95,8 +95,8 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                             cli::numberText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
     if (o.threads < 0 || o.threads > cli::kMaxThreads)
-        throw Error("", "--threads must be 0 (all cores) to " + std::to_string(cli::kMaxThreads) +
-                            ", got " + std::to_string(o.threads),
+        throw Error("", "--threads wants 0 (all cores) or a number up to " +
+                            std::to_string(cli::kMaxThreads) + ", got " + std::to_string(o.threads),
                     "leave it out for all cores");
     triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made
 }

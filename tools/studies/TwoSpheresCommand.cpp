@@ -70,7 +70,7 @@ int TwoSpheresCommand::run(RunDistributor& ranks) const
 
     const Stopwatch wall;
     const TwoSpheresResult result = runTwoSpheres(o, ranks);
-    cli::prepareOutputFolder(o.outDir, kOwnFiles);
+    cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     const std::string csv = o.outDir + "/two_spheres.csv";
     writeTwoSpheresCsv(result, o, csv);
     const double seconds = wall.seconds();

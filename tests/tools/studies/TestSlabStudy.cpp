@@ -313,18 +313,19 @@ TEST(SlabStudy, ProgramRerunLeavesNoFilesOfTheEarlierRun)
         EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
 }
 
-// A thread count beyond kMaxThreads (1024) is refused as bad input naming --threads; TBB was
-// asked for 99999999999 threads and the study aborted with std::bad_alloc (exit 134).
+// A thread count beyond kMaxThreads (1024) or below 0 (all cores) is refused as bad input
+// naming --threads; TBB was asked for 99999999999 threads and the study aborted with
+// std::bad_alloc (exit 134).
 TEST(SlabStudy, ProgramRefusesAThreadCountOutOfRange)
 {
     lsdem::test::ScratchDir dir;
-    for (const char* threads : {"99999999999", "1025", "0", "-2"}) {
+    for (const char* threads : {"99999999999", "1025", "-1", "-2"}) {
         const auto r = runCommand(kStudy + " slab --blocks 3 --sdp 1 --vdp-fixed 0.5 --no-two-way "
                                            "--formulation adapted --samples 10 -q --no-plots "
                                            "--threads " + std::string(threads) + " --out '" +
                                   dir.file("x") + "'");
         EXPECT_EQ(r.exitCode, 1) << threads << ": " << r.output;
-        EXPECT_NE(r.output.find("--threads wants a number from 1 to 1024"), std::string::npos)
+        EXPECT_NE(r.output.find("--threads wants 0 (all cores) or a number up to 1024"), std::string::npos)
             << threads << ": " << r.output;
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("x")));

@@ -221,7 +221,7 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     // Found by review: these ran out of memory (exit 3).
     TriaxialOptions threads = o;
     threads.threads = 99999999999;
-    EXPECT_NE(message(threads).find("--threads must be 0 (all cores) to 1024, got 99999999999"),
+    EXPECT_NE(message(threads).find("--threads wants 0 (all cores) or a number up to 1024, got 99999999999"),
               std::string::npos)
         << message(threads);
     TriaxialOptions many = o;
@@ -296,7 +296,7 @@ TEST(TriaxialStudy, ProgramRefusesBadInputBeforeAnyWork)
     const std::string sand = std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand";
     const std::string grain = sand + "/grain_0000.obj";
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"--threads 99999999999", "--threads must be 0 (all cores) to 1024"},
+        {"--threads 99999999999", "--threads wants 0 (all cores) or a number up to 1024"},
         {"--grains 100000000000", "over the limit of a scene"},
         {sand + " " + grain, "gives this mesh twice"},
         {grain + " " + sand + "/../sand/grain_0000.obj", "gives this mesh twice"},

@@ -38,7 +38,7 @@ def plot_family(rows, formulation, by, out_dir, name, title):
             ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=3, label=label)
             ax.fill_between([r["delta"] for r in c], [r["P_min"] for r in c],
                             [r["P_max"] for r in c], alpha=0.15)
-        if formulation == "adapted":
+        if formulation in ("adapted", "volume"):  # each its own continuum limit
             c = sorted((r for r in sel if r["nodes"] == keys[-1]), key=lambda r: r["delta"])
             ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], "k--", label="exact (continuum)")
     else:

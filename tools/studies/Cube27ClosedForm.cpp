@@ -13,7 +13,7 @@ double cube27ClosedForm(double radius, double delta, double knStar)
     return 9.0 * kPi * knStar * radius * delta * delta / (kCube27Column * kCube27Column);
 }
 
-double cube27ExactForce(double radius, double delta, double knStar)
+double cube27ExactForce(double radius, double delta, double knStar, Formulation law)
 {
     if (delta <= 0.0) return 0.0;
     // The force is linear in k at fixed geometry: solve with k = 1 and scale. Both unknowns
@@ -32,10 +32,12 @@ double cube27ExactForce(double radius, double delta, double knStar)
         }
         return x1;
     };
+    const auto sphereForce =
+        law == Formulation::Volume ? exactSphereVolumeForce : exactSphereContactForce;
     auto travel = [&](double dWall) {
         const double force = kPi * radius * dWall * dWall;  // sphere–plane, exact
         const double dSphere = secant(
-            [&](double d) { return std::sqrt(exactSphereContactForce(radius, d, 1.0)) - std::sqrt(force); },
+            [&](double d) { return std::sqrt(sphereForce(radius, d, 1.0)) - std::sqrt(force); },
             std::sqrt(2.0) * dWall, 1.01 * std::sqrt(2.0) * dWall);
         return 2.0 * dWall + 2.0 * dSphere;
     };

@@ -4,6 +4,8 @@
 ///        exact.
 #pragma once
 
+#include "lsdem/contact/NormalModel.h"
+
 #include <cmath>
 
 namespace lsdem {
@@ -19,9 +21,11 @@ inline const double kCube27Column = 2.0 + 2.0 * std::sqrt(2.0);
 double cube27ClosedForm(double radius, double delta, double knStar);
 
 /// The same continuum limit without the parabolic approximation of the sphere–sphere caps:
-/// the sphere–sphere force is exactSphereContactForce (1-D quadrature), and d_w is found so
-/// that 2·d_w + 2·d_s = δ with equal forces in every contact of a column.
-double cube27ExactForce(double radius, double delta, double knStar);
+/// the sphere–sphere force is exactSphereContactForce (1-D quadrature), or
+/// exactSphereVolumeForce for @a law Volume (whose sphere–plane force is the same π·k·R·d_w²),
+/// and d_w is found so that 2·d_w + 2·d_s = δ with equal forces in every contact of a column.
+double cube27ExactForce(double radius, double delta, double knStar,
+                        Formulation law = Formulation::Adapted);
 
 /// The continuum kn* that the original law with stiffness @a kn behaves like with @a nodes
 /// nodes spread uniformly over @a area: kn·N / area.

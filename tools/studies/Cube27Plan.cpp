@@ -27,8 +27,9 @@ ColumnStiffness columnStiffness(Formulation f, double radius, double delta, doub
 {
     ColumnStiffness c;
     const NormalModel& law = normalModel(f);
-    if (!law.perNodeForces()) {
+    if (f == Formulation::SingleNode) {
         // One linear spring per contact (symmetric testing: two half-weight deepest nodes).
+        // (The volume law's force is the continuum integral: it stiffens as below.)
         c.kWall = c.kSphere = stiffness;
         return c;
     }

@@ -106,14 +106,18 @@ Samples simulateRun(const Cube27Options& o, Cube27Run& run,
 /// Runs that differ only in orientation: (formulation, N, k).
 using Key = std::tuple<int, int, double>;
 
-/// The exact column force at @a delta for stiffness @a k: k times the force at unit stiffness,
-/// kept in @a unitForce by δ (the runs share their δ values, and each costs a quadrature).
-double exactColumnForce(const Cube27Options& o, double delta, double k,
-                        std::map<double, double>& unitForce)
+/// The column forces at unit stiffness, by continuum law (adapted or volume) and δ.
+using UnitForces = std::map<std::pair<Formulation, double>, double>;
+
+/// The exact column force of @a law at @a delta for stiffness @a k: k times the force at unit
+/// stiffness, kept in @a unitForce (the runs share their δ values, each costs quadratures).
+double exactColumnForce(const Cube27Options& o, Formulation law, double delta, double k,
+                        UnitForces& unitForce)
 {
-    auto it = unitForce.find(delta);
+    auto it = unitForce.find({law, delta});
     if (it == unitForce.end())
-        it = unitForce.emplace(delta, cube27ExactForce(o.radius, delta, 1.0)).first;
+        it = unitForce.emplace(std::pair(law, delta), cube27ExactForce(o.radius, delta, 1.0, law))
+                 .first;
     return k * it->second;
 }
 
@@ -141,7 +145,7 @@ void refuseNonFiniteRow(const Cube27Row& r, bool last)
 /// Rows of results for one (formulation, N, k): per δ sample, the statistics over the
 /// orientations of @a runs and the closed-form and exact references.
 void appendRows(const Cube27Options& o, const Key& key, const std::vector<Samples>& runs,
-                double nodesActual, std::map<double, double>& unitForce,
+                double nodesActual, UnitForces& unitForce,
                 std::vector<Cube27Row>& rows)
 {
     const auto [formulation, nodes, stiffness] = key;
@@ -176,12 +180,16 @@ void appendRows(const Cube27Options& o, const Key& key, const std::vector<Sample
                 ? stiffness
                 : originalEffectiveStiffness(stiffness, row.nodesActual,
                                              4 * kPi * o.radius * o.radius);
-        if (!law.perNodeForces()) {
-            // Linear springs kn in every contact: d_s = d_w = δ/4, 9 columns.
+        if (row.formulation == Formulation::SingleNode) {
+            // Linear springs kn in every contact: d_s = d_w = δ/4, 9 columns. (The volume law
+            // has no per-node forces either, but its force is the continuum integral.)
             row.forceClosed = row.forceExact = 9.0 * stiffness * row.delta / 4.0;
         } else {
             row.forceClosed = cube27ClosedForm(o.radius, row.delta, kStar);
-            row.forceExact = exactColumnForce(o, row.delta, kStar, unitForce);
+            // The original law behaves like the adapted one with kStar (nodes spread evenly).
+            const Formulation continuum =
+                row.formulation == Formulation::Volume ? Formulation::Volume : Formulation::Adapted;
+            row.forceExact = exactColumnForce(o, continuum, row.delta, kStar, unitForce);
         }
         refuseNonFiniteRow(row, i + 1 == count);
         rows.push_back(row);
@@ -297,7 +305,7 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
         if (!samples.count(key)) order.push_back(key);
         samples[key].push_back(std::move(samplesOf[i]));
     }
-    std::map<double, double> unitForce;
+    UnitForces unitForce;
     for (const Key& key : order)
         appendRows(o, key, samples[key], nodesActual[std::get<1>(key)], unitForce, result.rows);
     return result;
@@ -315,7 +323,8 @@ void writeCube27Csv(const Cube27Result& result, const Cube27Options& o, const st
     csv << "# P: reaction on the top wall (mean over orientations), P_floor: on the floor, "
            "P_side: sum of |normal reaction| on the side walls; force in N, lengths in mm\n";
     csv << "# P_closed: 9 pi k R delta^2/(2+2 sqrt 2)^2 (continuum, parabolic caps); P_exact: "
-           "the same with exact sphere-sphere caps; k is kn* for adapted/volume and "
+           "the same with exact sphere-sphere caps (for volume: kv times the caps' integral of d); "
+           "k is kn* for adapted/volume and "
            "kn*N/(4 pi R^2) for original; single-node: 9 kn delta/4\n";
     csv << "formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_floor,P_side,"
            "P_closed,P_exact\n";

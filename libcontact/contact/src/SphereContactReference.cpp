@@ -10,9 +10,8 @@ namespace lsdem {
 
 namespace {
 
-} // namespace
-
-double exactSphereContactForce(double radius, double overlap, double knStar)
+/// ∫_cap d (n·e)^p dA with p = 1 (@a alongAxis) or 0, times @a stiffness.
+double capIntegral(double radius, double overlap, double stiffness, bool alongAxis)
 {
     if (overlap <= 0.0) return 0.0;
     const double r = radius, h = 2.0 * radius - overlap;
@@ -23,9 +22,21 @@ double exactSphereContactForce(double radius, double overlap, double knStar)
     for (size_t i = 0; i < x.size(); ++i) {
         const double u = 0.5 * (hi - lo) * x[i] + 0.5 * (hi + lo);
         const double rho = std::sqrt(r * r + h * h - 2.0 * r * h * u);
-        sum += w[i] * (r - rho) * (h - r * u) / rho;
+        sum += w[i] * (r - rho) * (alongAxis ? (h - r * u) / rho : 1.0);
     }
-    return knStar * 2.0 * kPi * r * r * 0.5 * (hi - lo) * sum;
+    return stiffness * 2.0 * kPi * r * r * 0.5 * (hi - lo) * sum;
+}
+
+} // namespace
+
+double exactSphereContactForce(double radius, double overlap, double knStar)
+{
+    return capIntegral(radius, overlap, knStar, true);
+}
+
+double exactSphereVolumeForce(double radius, double overlap, double kv)
+{
+    return capIntegral(radius, overlap, kv, false);
 }
 
 double leadingOrderSphereContactForce(double radius, double overlap, double knStar)

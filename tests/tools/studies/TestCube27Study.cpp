@@ -78,6 +78,18 @@ TEST(Cube27Study, ClosedFormFollowsFromTheColumnInSeries)
     }
     EXPECT_NEAR(lsdem::cube27ExactForce(R, 0.3, 2e3) / lsdem::cube27ExactForce(R, 0.3, 1e3), 2.0,
                 1e-12);
+
+    // The volume law's column: the same sphere–plane force (the wall's normal is the line),
+    // its own sphere–sphere integral (stiffer than the adapted one's), so a larger P.
+    const auto volume = lsdem::Formulation::Volume;
+    for (double d : {0.03, 0.3}) {
+        const double P = lsdem::cube27ExactForce(R, d, k, volume);
+        const double w = std::sqrt(P / 9.0 / (kPi * k * R));
+        const double s = 0.5 * (d - 2.0 * w);
+        EXPECT_NEAR(lsdem::exactSphereVolumeForce(R, s, k) / (P / 9.0), 1.0, 1e-10) << d;
+        EXPECT_GT(P, lsdem::cube27ExactForce(R, d, k)) << d;
+        EXPECT_LT(P, lsdem::cube27ClosedForm(R, d, k)) << d;
+    }
 }
 
 TEST(Cube27Study, SceneIsAStackJustTouchingTheBox)
@@ -156,6 +168,15 @@ TEST(Cube27Study, PlanScalesTheLoadingWithTheStiffness)
     EXPECT_NEAR(a.timeStep / c.timeStep, std::sqrt(kEffective / 1e3), 1e-6 * a.timeStep / c.timeStep);
     EXPECT_NEAR(a.timeStep, o.safety * a.stabilityLimit, 1e-3 * a.timeStep);
     EXPECT_NEAR(a.speed * a.timeStep * a.steps, o.deltaMax, 1e-12);
+    // The volume law stiffens like the adapted one without friction (it has no shear springs);
+    // it was planned as one linear spring per contact.
+    lsdem::Cube27Options frictionless = o;
+    frictionless.friction = 0.0;
+    const lsdem::Cube27Run v = lsdem::planCube27Run(o, lsdem::Formulation::Volume, 1000, 1e3, 0);
+    const lsdem::Cube27Run f =
+        lsdem::planCube27Run(frictionless, lsdem::Formulation::Adapted, 1000, 1e3, 0);
+    EXPECT_EQ(v.timeStep, f.timeStep);
+    EXPECT_EQ(v.steps, f.steps);
     // Explicit steps: too few is refused with the count to use.
     o.steps = 10;
     try {
@@ -202,6 +223,30 @@ TEST(Cube27Study, CoarseAdaptedRunMatchesTheClosedForm)
     EXPECT_NEAR(half.forceMean / r.forceMean, 0.5, 0.005);
     for (const lsdem::Cube27Run& run : result.runs)
         EXPECT_GT(run.stabilityLimitSeen, 2.0 * run.timeStep);
+}
+
+// The volume law against its own continuum limit (kv times the caps' integral of d), with the
+// tolerance and reasoning of the adapted run above: the two laws differ by under 1 % here, and
+// it was reported against 9·kv·δ/4, one linear spring per contact (−19.5 % at N = 4000).
+TEST(Cube27Study, CoarseVolumeRunMatchesItsOwnContinuumLimit)
+{
+    lsdem::Cube27Options o;
+    o.formulations = {lsdem::Formulation::Volume};
+    o.nodeCounts = {1000};
+    o.stiffness = {1000.0};
+    o.voxel = 0.15;
+    o.periods = 50;
+    o.orientations = 2;
+    o.points = 4;
+    o.quiet = true;
+    const lsdem::Cube27Result result = lsdem::runCube27(o);
+    const lsdem::Cube27Row& r = lastRow(result, lsdem::Formulation::Volume, 1000, 1000.0);
+    EXPECT_NEAR(r.delta, 0.3, 1e-9);
+    EXPECT_NEAR(r.forceExact, lsdem::cube27ExactForce(5.0, 0.3, 1e3, lsdem::Formulation::Volume),
+                1e-9);
+    EXPECT_NEAR(r.forceClosed, lsdem::cube27ClosedForm(5.0, 0.3, 1e3), 1e-9);
+    EXPECT_NEAR(r.forceMean / r.forceExact, 1.0, 0.04)
+        << "P = " << r.forceMean << " N, exact " << r.forceExact << " N";
 }
 
 // The original law: P at δ_max grows in proportion to N (by the node count ratio within

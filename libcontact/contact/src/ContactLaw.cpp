@@ -107,8 +107,8 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             const double size = c ? f.stiffness * c->depth : f.force.norm();
             if (size == 0.0 || f.stiffness <= 0.0) continue;
             const Vec3 n = c ? c->normal : Vec3(f.force / size);
-            // ½|F|²/k, which is ½·(k·d)·d for a per-node force.
-            elasticEnergy += c ? 0.5 * size * c->depth : 0.5 * size * size / f.stiffness;
+            // ½·(k·d)·d for a per-node force; the other laws' energy is added once per side.
+            if (c) elasticEnergy += 0.5 * size * c->depth;
             // += k·n·nᵀ, entry by entry (the same products as Eigen's expression, which goes
             // through a temporary matrix in memory and stalls reading it back).
             const Vec3 kn = f.stiffness * n;
@@ -133,6 +133,9 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             }
             f.force = total;
         }
+        if (!perNodeForces && !forces.empty())
+            elasticEnergy += normalLaw.elasticEnergy(side.contacts, model.normalStiffness,
+                                                     side.weight);
         if (side.history) {
             if (!inOrder)
                 std::sort(nextHistory.begin(), nextHistory.end(),

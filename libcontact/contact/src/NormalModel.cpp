@@ -6,6 +6,16 @@
 
 namespace lsdem {
 
+double NormalModel::elasticEnergy(const std::vector<NodeContact>& contacts, double stiffness,
+                                  double weight) const
+{
+    const bool perArea = stiffnessPerArea();
+    double sum = 0.0;
+    for (const NodeContact& c : contacts)
+        sum += nodeStiffness(perArea, stiffness, c.area) * c.depth * c.depth;
+    return 0.5 * weight * sum;
+}
+
 const NormalModel& normalModel(Formulation formulation)
 {
     switch (formulation) {

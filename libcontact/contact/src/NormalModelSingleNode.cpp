@@ -2,6 +2,8 @@
 // deepest penetrating node of the pair.
 #include "NormalModels.h"
 
+#include <algorithm>
+
 namespace lsdem::normal_models {
 
 namespace {
@@ -26,6 +28,15 @@ public:
             if (c.depth > deepest->depth) deepest = &c;  // first of equals: deterministic
         out.push_back({deepest->node, (weight * kn * deepest->depth) * deepest->normal,
                        deepest->point, weight * kn});
+    }
+
+    /// One spring of the deepest node.
+    double elasticEnergy(const std::vector<NodeContact>& contacts, double kn,
+                         double weight) const override
+    {
+        double deepest = 0.0;
+        for (const NodeContact& c : contacts) deepest = std::max(deepest, c.depth);
+        return 0.5 * weight * kn * deepest * deepest;
     }
 };
 

@@ -68,6 +68,15 @@ public:
     /// must keep the contract of perNodeForces().
     virtual void forces(const std::vector<NodeContact>& contacts, double stiffness,
                         double weight, std::vector<PointForce>& out) const = 0;
+
+    /// The elastic energy of the forces() of the same arguments (when they are not empty): the
+    /// potential whose derivative along the depths they are. Here ½·w·Σ k_a·d_a², k_a the
+    /// node stiffness: each node's spring for the per-node laws (whose energy resolveContact
+    /// sums node by node instead), and for the volume law, whose force kv·Σ A_a·d_a is that
+    /// sum's derivative (½|F|²/K with K = kv·Σ A_a would hold for a flat patch only: on a
+    /// sphere's cap it misses a quarter). The single-node law overrides it.
+    virtual double elasticEnergy(const std::vector<NodeContact>& contacts, double stiffness,
+                                 double weight) const;
 };
 
 /// The sub-model of @a formulation (one shared, immutable instance each).

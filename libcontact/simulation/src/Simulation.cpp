@@ -319,10 +319,19 @@ void Simulation::evaluateForces(double slipStep)
         Mat3 stiffness = Mat3::Zero();
         for (const GrainSlotRef* r = mContacts.grainSlotsBegin(size_t(i));
              r != mContacts.grainSlotsBegin(size_t(i) + 1); ++r) {
-            const PairForces& f = slots[size_t(r->slot)].result;
+            const ContactSlot& s = slots[size_t(r->slot)];
+            const PairForces& f = s.result;
             force += r->first ? f.forceOnFirst : f.forceOnSecond;
             torque += r->first ? f.torqueOnFirst : f.torqueOnSecond;
-            stiffness += f.normalStiffness;
+            // The partner moves too: its share 1 + m_i/m_j (1 for a boundary or a grain that
+            // forces do not move) makes the stability check a bound for every grain's
+            // translation at once (stepLimitOf).
+            const double partnerMass =
+                s.boundary < 0 ? mViews[size_t(r->first ? s.second : s.first)].mass : 0.0;
+            if (partnerMass > 0.0)
+                stiffness += (1.0 + g.body.mass / partnerMass) * f.normalStiffness;
+            else
+                stiffness += f.normalStiffness;
         }
         if (g.isFree()) {
             force += g.body.mass * w.gravity;
@@ -401,8 +410,12 @@ double Simulation::stepLimitOf(size_t i) const
         !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite())
         return std::numeric_limits<double>::quiet_NaN();
     if (mGrainStiffness[i].isZero()) return std::numeric_limits<double>::infinity();
-    // Stiffest direction of the grain's contacts: ω² = λ_max / m; explicit stepping is
-    // stable for dt < 2/ω.
+    // Stiffest direction of the grain's contacts, each scaled by 1 + m_i/m_j for a moving
+    // partner j: ω² = λ_max / m_i; explicit stepping is stable for dt < 2/ω. The largest such
+    // ω² over the grains bounds every translational mode of their normal springs together:
+    // (u_i/√m_i − u_j/√m_j)ᵀK(u_i/√m_i − u_j/√m_j) ≤ (1/m_i + 1/m_j)(u_iᵀK u_i + u_jᵀK u_j),
+    // which is (1 + m_i/m_j)/m_i and (1 + m_j/m_i)/m_j. Exact for two free bodies and a uniform
+    // chain; rotation, shear springs and dashpots are not in it (docs/dynamics.md).
     Eigen::SelfAdjointEigenSolver<Mat3> solver;
     solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
     const double lambda = solver.eigenvalues().maxCoeff();

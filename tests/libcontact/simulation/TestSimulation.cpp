@@ -3,12 +3,14 @@
 // Units: mm, N, s, tonne (so steel is 7.85e-9 t/mm³ and kn* = 1e3 N/mm³ is 1 GPa/mm).
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
+#include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Error.h"
 
 #include "support/TestSupport.h"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <type_traits>
@@ -610,6 +612,54 @@ TEST(Simulation, TooLargeATimeStepStopsWithTheStabilityLimit)
     const double m = sim.world().grains[0].body.mass;
     EXPECT_LT(sim.stabilityLimitSeen(), 2.0 * std::sqrt(m / (kKnStar * 80.0)));
     EXPECT_GT(sim.stabilityLimitSeen(), 2.0 * std::sqrt(m / (kKnStar * 80.0 * 1.5)));
+}
+
+// Two free boxes face to face: their highest mode is the relative one, ω² = 2K/m (K the
+// contact's normal stiffness, computed here on its own), so the limit is 2·sqrt(m/(2K)), √2
+// below a box's against a fixed face (the check took the partner as fixed, and let runs at up
+// to √2 times the limit create energy). Then a box between the floor (stiffness K_f) and a
+// second box: the chain's highest mode must stay within the limit seen.
+TEST(Simulation, StabilityLimitCountsTheMotionOfTheOtherGrain)
+{
+    const double overlap = 1e-3;
+    const ContactModel model = adapted(kKnStar);
+    Scene pair = oneMaterialScene("box", model);
+    pair.grains.push_back(grainAt(Vec3(0, 0, 0)));
+    pair.grains.push_back(grainAt(Vec3(0, 0, 4.0 - overlap)));
+    Simulation two(build(pair), 1e-7);
+    two.step();
+    const World& w = two.world();
+    auto view = [&](int i) {
+        ContactGrain c;
+        c.asset = w.grains[size_t(i)].asset.get();
+        c.pose = w.grains[size_t(i)].body.pose;
+        c.index = i;
+        c.mass = w.grains[size_t(i)].body.mass;
+        return c;
+    };
+    NodeCheckStats stats;
+    const Mat3 pairStiffness = computePairContact(view(0), view(1), model, 0.0, nullptr, stats)
+                                   .normalStiffness;
+    const double k = Eigen::SelfAdjointEigenSolver<Mat3>(pairStiffness).eigenvalues().maxCoeff();
+    const double m = w.grains[0].body.mass;
+    ASSERT_GT(k, kKnStar * 40.0);  // a face in contact (80 mm², less the rounded edges)
+    EXPECT_NEAR(two.stabilityLimitSeen() / (2.0 * std::sqrt(m / (2.0 * k))), 1.0, 1e-6);
+
+    Scene floor = oneMaterialScene("box", model);
+    floor.grains.push_back(grainAt(Vec3(0, 0, 2.0 - overlap)));
+    floor.boundaries.push_back(floorPlane());
+    Simulation one(build(floor), 1e-7);
+    one.step();
+    const double kFloor = 4.0 * m / (one.stabilityLimitSeen() * one.stabilityLimitSeen());
+
+    Scene chain = floor;
+    chain.grains.push_back(grainAt(Vec3(0, 0, 6.0 - 2.0 * overlap)));
+    Simulation three(build(chain), 1e-7);
+    three.step();
+    // ω² of [[K_f + K, −K], [−K, K]]/m: trace K_f + 2K, determinant K_f·K.
+    const double trace = kFloor + 2.0 * k, det = kFloor * k;
+    const double highest = (trace + std::sqrt(trace * trace - 4.0 * det)) / (2.0 * m);
+    EXPECT_LT(three.stabilityLimitSeen(), 2.0 / std::sqrt(highest));
 }
 
 // ---------------------------------------------------------------------------------------------

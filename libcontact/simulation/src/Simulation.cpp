@@ -413,6 +413,7 @@ double Simulation::stepLimitOf(size_t i) const
     // Stiffest direction of the grain's contacts, each scaled by 1 + m_i/m_j for a moving
     // partner j: ω² = λ_max / m_i; explicit stepping is stable for dt < 2/ω. The largest such
     // ω² over the grains bounds every translational mode of their normal springs together:
+    // with u = √m·x the mass-weighted displacements, a pair's spring energy is bounded as
     // (u_i/√m_i − u_j/√m_j)ᵀK(u_i/√m_i − u_j/√m_j) ≤ (1/m_i + 1/m_j)(u_iᵀK u_i + u_jᵀK u_j),
     // which is (1 + m_i/m_j)/m_i and (1 + m_j/m_i)/m_j. Exact for two free bodies and a uniform
     // chain; rotation, shear springs and dashpots are not in it (docs/dynamics.md).

@@ -108,3 +108,19 @@ TEST(RigidBody, SpinAboutAPrincipalAxisTurnsByExactlyOmegaDt)
         EXPECT_NEAR((b.angularMomentum - Vec3(0.0, 0.0, 3.0 * omega)).norm(), 0.0, 1e-15);
     }
 }
+
+// The kinetic energy itself, not only its conservation (a constant factor on the rotational
+// part would keep every ratio): ½mv² + ½ωᵀ(R·diag(I)·Rᵀ)ω, written out independently here for
+// a body turned away from its principal axes.
+TEST(RigidBody, KineticEnergyIsHalfMvSquaredPlusHalfOmegaIOmega)
+{
+    RigidBody b = tumblingBody();
+    const Vec3 omega(0.7, -1.3, 2.1);
+    b.setAngularVelocity(omega);
+    const Mat3 R = b.pose.orientation.toRotationMatrix();
+    const Mat3 inertia = R * b.principalInertia.asDiagonal() * R.transpose();
+    const double expected = 0.5 * b.mass * b.velocity.dot(b.velocity) +
+                            0.5 * omega.dot(inertia * omega);
+    EXPECT_NEAR(b.kineticEnergy(), expected, 1e-13 * expected);
+    EXPECT_NEAR((b.angularVelocity() - omega).norm(), 0.0, 1e-14);
+}

@@ -89,6 +89,21 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
                                      (inB - b.insideBoxMax).cwiseMax(0.0);
                 ASSERT_LE(outside.norm(), remembered.margin * slack) << "node " << i;
             }
+        // And every node left out is beyond the margin of B's sphere or of that box: one within
+        // both could come into contact while the list holds, and no walk would see it.
+        std::vector<bool> kept(a.nodes.size(), false);
+        for (const auto& [begin, end] : remembered.runs)
+            for (int i = begin; i < end; ++i) kept[static_cast<size_t>(i)] = true;
+        const double loose = 1.0 - 1e-9;
+        for (size_t i = 0; i < a.nodes.size(); ++i) {
+            if (kept[i]) continue;
+            const Vec3 inB = remembered.rotation * a.nodes.positions[i] + remembered.translation;
+            const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
+                                 (inB - b.insideBoxMax).cwiseMax(0.0);
+            ASSERT_TRUE(inB.norm() > (b.boundingRadius + remembered.margin) * loose ||
+                        outside.norm() > remembered.margin * loose)
+                << "node " << i << " left out, step " << step;
+        }
         if (listStats.nodesSampled > 0) {
             EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
             // Every node sampled this step left its cell for the next one.

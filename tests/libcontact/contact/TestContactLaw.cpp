@@ -159,6 +159,41 @@ TEST(ContactLaw, SymmetricSidesAddAtHalfWeight)
     EXPECT_NEAR(r.elasticEnergy, energy, 1e-14 * energy);
 }
 
+// The laws without per-node forces store the potential of their force: single-node ½·kn·d_max²
+// per side, volume ½·kv·Σ A·d² (whose derivative along the depths is its force kv·Σ A·d; the
+// ½|F|²/K of a linear spring would hold for a flat patch only). At half weight per side.
+TEST(ContactLaw, SingleNodeAndVolumeStoreTheirForcesPotential)
+{
+    TwoGrains g;
+    for (const Formulation law : {Formulation::SingleNode, Formulation::Volume}) {
+        SCOPED_TRACE(formulationName(law));
+        ContactModel m = adapted();
+        m.formulation = law;
+        m.normalStiffness = law == Formulation::SingleNode ? 1e6 : kKnStar;
+        ContactSide sides[2];
+        sides[0].tester = &g.a;
+        sides[0].other = &g.b;
+        sides[0].contacts = g.aInB;
+        sides[0].weight = 0.5;
+        sides[1].tester = &g.b;
+        sides[1].other = &g.a;
+        sides[1].contacts = g.bInA;
+        sides[1].weight = 0.5;
+        const PairForces r = resolveContact(sides, 2, m, 0.0, nullptr, nullptr);
+        double energy = 0.0;
+        for (const auto* list : {&g.aInB, &g.bInA}) {
+            double deepest = 0.0, sum = 0.0;
+            for (const NodeContact& c : *list) {
+                deepest = std::max(deepest, c.depth);
+                sum += c.area * c.depth * c.depth;
+            }
+            energy += law == Formulation::SingleNode ? 0.25 * 1e6 * deepest * deepest
+                                                     : 0.25 * kKnStar * sum;
+        }
+        EXPECT_NEAR(r.elasticEnergy, energy, 1e-14 * energy);
+    }
+}
+
 // A flat contact of stiffness K = Σ kn*·A closing at speed v between masses m_A and m_B: the
 // dashpot adds 2β·sqrt(m·K)·v against the approach, with m the reduced mass (or the moving
 // body's mass against an immovable one). Opening, it pulls (no cut-off on tension).

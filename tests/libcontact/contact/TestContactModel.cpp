@@ -60,9 +60,8 @@ TEST(ContactModel, DampingRatioFromRestitutionInvertsTheDampedOscillator)
         const double beta = ViscousDamping::fromRestitution(e).ratio;
         EXPECT_GT(beta, 0.0);
         EXPECT_LT(beta, 1.0);
+        // The decay of a damped oscillator's half period, independent of how β is solved for.
         EXPECT_NEAR(std::exp(-kPi * beta / std::sqrt(1 - beta * beta)), e, 1e-14) << e;
-        const double lnE = std::log(e);
-        EXPECT_NEAR(beta, -lnE / std::sqrt(kPi * kPi + lnE * lnE), 1e-15) << e;
         EXPECT_EQ(dampingRatioFromRestitution(e), beta);
     }
     EXPECT_EQ(ViscousDamping::fromRestitution(1.0).ratio, 0.0);  // elastic: no dashpot

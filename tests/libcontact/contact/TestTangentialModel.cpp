@@ -88,6 +88,17 @@ TEST(ShearSpring, SlidingSpheresReachCoulombAndKeepHistoryPerNode)
     // inside the 8° contact cap n_y² < 0.02.
     EXPECT_NEAR(shearY / (1e3 * contactArea * 1e-6), 1.0, 0.02);
     EXPECT_LT(shearY, 1e3 * contactArea * 1e-6);
+    // Symmetric testing takes both grains' nodes at half weight, shear springs included, so
+    // the same slip gives the same shear (up to the two node sets' areas in the cap, a few %;
+    // a shear spring at full weight would double it).
+    {
+        ContactModel both = m, bothFrictionless = frictionless;
+        both.testing = bothFrictionless.testing = NodeTesting::Symmetric;
+        PairHistory fresh;
+        const PairForces normal = computePairContact(g0, g1, bothFrictionless, 0.0, nullptr, stats);
+        const PairForces sheared = computePairContact(g0, g1, both, dt, &fresh, stats);
+        EXPECT_NEAR((sheared.forceOnFirst.y() - normal.forceOnFirst.y()) / shearY, 1.0, 0.05);
+    }
     // Keep sliding (the spheres stay in place, only velocities drive the springs).
     for (int step = 0; step < 2000; ++step) r = computePairContact(g0, g1, m, 1e-4, &history, stats);
     // Every node slides: Σ μ|F_n,a| = μ·Σ|F_n,a|, which equals μ times the centre-line force

@@ -115,6 +115,38 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
     EXPECT_LT(refreshes, steps / 2);            // and was reused most of the time
 }
 
+// A flat box A held just above a flat box B, its bottom face outside the box of B's inside by
+// less than the list's margin (and well inside B's bounding sphere): those nodes may touch B
+// after a move smaller than the margin, so the list must keep every one of them.
+TEST(CandidateBlocks, KeepsTheNodesJustOutsideTheBoxOfBsInside)
+{
+    BakeOptions o;
+    o.voxelSize = 0.08;
+    o.nodeSpacing = 0.1;
+    std::vector<std::string> warnings;
+    const GrainAsset slab = bakeAnalytic(AnalyticShape::box(2.0, 2.0, 0.8), o, warnings);
+    RigidPose poseA, poseB;
+    CandidateBlocks remembered;
+    const double margin = CandidateBlocks::kMarginFraction * slab.boundingRadius;
+    // A's bottom face (z = −0.4 in A) half a margin above the top of B's inside box.
+    poseA.position = Vec3(0, 0, slab.insideBoxMax.z() + 0.4 + 0.5 * margin);
+    std::vector<NodeContact> contacts;
+    NodeCheckStats stats;
+    findNodeContacts(slab, poseA, slab, poseB, contacts, stats, &remembered);
+    EXPECT_TRUE(contacts.empty());
+    ASSERT_TRUE(remembered.valid);
+    std::vector<bool> kept(slab.nodes.size(), false);
+    for (const auto& [begin, end] : remembered.runs)
+        for (int i = begin; i < end; ++i) kept[static_cast<size_t>(i)] = true;
+    int bottomNodes = 0;
+    for (size_t i = 0; i < slab.nodes.size(); ++i) {
+        if (slab.nodes.positions[i].z() > -0.4 + 1e-9) continue;  // A's bottom face only
+        ++bottomNodes;
+        EXPECT_TRUE(kept[i]) << "bottom node " << i << " left out";
+    }
+    EXPECT_GT(bottomNodes, 100);
+}
+
 // A grain without node blocks cannot remember any: the list is walked in full every step and
 // marked not valid, so it is not trusted should blocks be made later.
 TEST(CandidateBlocks, WithoutNodeBlocksEveryStepIsAFullWalk)

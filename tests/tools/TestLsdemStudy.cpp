@@ -1,12 +1,12 @@
 // lsdem-study two-spheres as a user runs it: a small study end to end, and bad input refused
 // with a clear message, a non-zero exit and no results written.
 #include "lsdem/contact/SphereContactReference.h"
+#include "lsdem/ls/CsvText.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <sstream>
 
 using lsdem::test::runCommand;
 
@@ -51,9 +51,8 @@ TEST(LsdemStudy, VolumeRowsAreComparedWithTheVolumeLawsLimit)
     while (std::getline(in, line))
         if (!line.empty() && line[0] != '#') last = line;
     // formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact
-    std::istringstream fields(last);
     std::vector<std::string> f;
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    ASSERT_TRUE(lsdem::splitCsvRecord(last, f)) << last;
     ASSERT_EQ(f.size(), 11u) << last;
     EXPECT_EQ(f[0], "volume");
     const double kv = std::stod(f[3]), delta = std::stod(f[5]), exact = std::stod(f[10]);

@@ -143,6 +143,14 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value
         ->default_str(std::to_string(value));
 }
 
+void checkThreads(long long threads)
+{
+    if (threads < 0 || threads > kMaxThreads)
+        throw Error("", "--threads wants 0 (all cores) or a number up to " +
+                            std::to_string(kMaxThreads) + ", got " + std::to_string(threads),
+                    "leave it out to use every core");
+}
+
 CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& help)
 {
     return app
@@ -150,10 +158,7 @@ CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& he
             "--threads",
             [&threads](const std::string& text) {
                 const long long n = parseInteger(text, "--threads");
-                if (n < 0 || n > kMaxThreads)
-                    throw Error("", "--threads wants 0 (all cores) or a number up to " +
-                                        std::to_string(kMaxThreads) + ", got " + text,
-                                "leave it out to use every core");
+                checkThreads(n);
                 threads = n;
             },
             help)

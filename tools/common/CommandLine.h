@@ -56,6 +56,10 @@ constexpr long long kMaxThreads = 1024;
 /// Every tool's --threads takes the same values.
 CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& help);
 
+/// The check of addThreads, for a count set otherwise (an options struct built in code).
+/// @throw Error naming --threads unless 0 ≤ @a threads ≤ kMaxThreads.
+void checkThreads(long long threads);
+
 /// Option @a name taking one or more whole positive numbers (node counts: "1e4" is allowed),
 /// which replace @a values.
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,

@@ -94,10 +94,7 @@ void checkTriaxialOptions(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             cli::numberText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
-    if (o.threads < 0 || o.threads > cli::kMaxThreads)
-        throw Error("", "--threads wants 0 (all cores) or a number up to " +
-                            std::to_string(cli::kMaxThreads) + ", got " + std::to_string(o.threads),
-                    "leave it out for all cores");
+    cli::checkThreads(o.threads);
     triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made
 }
 

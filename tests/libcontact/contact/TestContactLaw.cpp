@@ -41,6 +41,19 @@ struct TwoGrains
         b.pose.position = Vec3(0.1, -0.2, 2.0);
         b.index = 1;
     }
+
+    /// Symmetric testing: A's nodes in B, then B's in A, each at half weight.
+    void halfWeightSides(ContactSide sides[2]) const
+    {
+        sides[0].tester = &a;
+        sides[0].other = &b;
+        sides[0].contacts = aInB;
+        sides[0].weight = 0.5;
+        sides[1].tester = &b;
+        sides[1].other = &a;
+        sides[1].contacts = bInA;
+        sides[1].weight = 0.5;
+    }
 };
 
 ContactModel adapted(double ks = 0.0, double friction = 0.0, double beta = 0.0)
@@ -113,14 +126,7 @@ TEST(ContactLaw, SymmetricSidesAddAtHalfWeight)
 {
     TwoGrains g;
     ContactSide sides[2];
-    sides[0].tester = &g.a;
-    sides[0].other = &g.b;
-    sides[0].contacts = g.aInB;
-    sides[0].weight = 0.5;
-    sides[1].tester = &g.b;
-    sides[1].other = &g.a;
-    sides[1].contacts = g.bInA;
-    sides[1].weight = 0.5;
+    g.halfWeightSides(sides);
     std::vector<PointForce> all;
     const PairForces r = resolveContact(sides, 2, adapted(), 0.0, &all);
 
@@ -171,14 +177,7 @@ TEST(ContactLaw, SingleNodeAndVolumeStoreTheirForcesPotential)
         m.formulation = law;
         m.normalStiffness = law == Formulation::SingleNode ? 1e6 : kKnStar;
         ContactSide sides[2];
-        sides[0].tester = &g.a;
-        sides[0].other = &g.b;
-        sides[0].contacts = g.aInB;
-        sides[0].weight = 0.5;
-        sides[1].tester = &g.b;
-        sides[1].other = &g.a;
-        sides[1].contacts = g.bInA;
-        sides[1].weight = 0.5;
+        g.halfWeightSides(sides);
         const PairForces r = resolveContact(sides, 2, m, 0.0, nullptr, nullptr);
         double energy = 0.0;
         for (const auto* list : {&g.aInB, &g.bInA}) {

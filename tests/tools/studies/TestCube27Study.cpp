@@ -49,6 +49,21 @@ const lsdem::Cube27Row& lastRow(const lsdem::Cube27Result& result, lsdem::Formul
     return *last;
 }
 
+/// A coarse study of law @a f at N = 1000 (voxel 0.15 mm, 50 periods, 2 orientations).
+lsdem::Cube27Options coarseStudy(lsdem::Formulation f, std::vector<double> stiffness, int points)
+{
+    lsdem::Cube27Options o;
+    o.formulations = {f};
+    o.nodeCounts = {1000};
+    o.stiffness = std::move(stiffness);
+    o.voxel = 0.15;
+    o.periods = 50;
+    o.orientations = 2;
+    o.points = points;
+    o.quiet = true;
+    return o;
+}
+
 } // namespace
 
 // The closed form restated from its derivation: per column, wall–sphere P = π k R d_w²,
@@ -195,16 +210,8 @@ TEST(Cube27Study, PlanScalesTheLoadingWithTheStiffness)
 // equal the top one (quasi-static) and the side walls carry little.
 TEST(Cube27Study, CoarseAdaptedRunMatchesTheClosedForm)
 {
-    lsdem::Cube27Options o;
-    o.formulations = {lsdem::Formulation::Adapted};
-    o.nodeCounts = {1000};
-    o.stiffness = {500.0, 1000.0};
-    o.voxel = 0.15;
-    o.periods = 50;
-    o.orientations = 2;
-    o.points = 10;
-    o.quiet = true;
-    const lsdem::Cube27Result result = lsdem::runCube27(o);
+    const lsdem::Cube27Result result =
+        lsdem::runCube27(coarseStudy(lsdem::Formulation::Adapted, {500.0, 1000.0}, 10));
     ASSERT_EQ(result.rows.size(), 2u * 11u);
     const lsdem::Cube27Row& r = lastRow(result, lsdem::Formulation::Adapted, 1000, 1000.0);
     EXPECT_NEAR(r.delta, 0.3, 1e-9);
@@ -230,16 +237,8 @@ TEST(Cube27Study, CoarseAdaptedRunMatchesTheClosedForm)
 // it was reported against 9·kv·δ/4, one linear spring per contact (−19.5 % at N = 4000).
 TEST(Cube27Study, CoarseVolumeRunMatchesItsOwnContinuumLimit)
 {
-    lsdem::Cube27Options o;
-    o.formulations = {lsdem::Formulation::Volume};
-    o.nodeCounts = {1000};
-    o.stiffness = {1000.0};
-    o.voxel = 0.15;
-    o.periods = 50;
-    o.orientations = 2;
-    o.points = 4;
-    o.quiet = true;
-    const lsdem::Cube27Result result = lsdem::runCube27(o);
+    const lsdem::Cube27Result result =
+        lsdem::runCube27(coarseStudy(lsdem::Formulation::Volume, {1000.0}, 4));
     const lsdem::Cube27Row& r = lastRow(result, lsdem::Formulation::Volume, 1000, 1000.0);
     EXPECT_NEAR(r.delta, 0.3, 1e-9);
     EXPECT_NEAR(r.forceExact, lsdem::cube27ExactForce(5.0, 0.3, 1e3, lsdem::Formulation::Volume),

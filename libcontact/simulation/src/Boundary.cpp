@@ -137,7 +137,8 @@ bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
 }
 
 void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
-                          std::vector<NodeContact>& out, NodeCheckStats& stats)
+                          std::vector<NodeContact>& out, NodeCheckStats& stats,
+                          CandidateBlocks* candidates)
 {
     switch (b.shape) {
     case BoundaryShape::Plane: findPlaneContacts(a, pose, movedPlane(b), out, stats); return;
@@ -145,7 +146,7 @@ void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boun
         findSphereContacts(a, pose, b.center + b.displacement, b.radius, out, stats);
         return;
     case BoundaryShape::LevelSet:
-        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats);
+        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats, candidates);
         return;
     case BoundaryShape::Cylinder:
         findCylinderContacts(a, pose, b.center + b.displacement, b.axis, b.radius, out, stats);

@@ -147,7 +147,10 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
     }
     w.pairHistory.erase(it, w.pairHistory.end());
     mPairSlots = mSlots.size();
+    // Grain–boundary slots likewise (sorted by grain, then boundary): a level-set obstacle's
+    // slot keeps the grain's nodes near it.
     auto bit = w.boundaryHistory.begin();
+    size_t keptBoundary = previousPairs;
     for (int i = 0; i < n; ++i)
         for (int b : nearBoundaries[size_t(i)]) {
             const std::pair<int, int> key(i, b);
@@ -159,6 +162,15 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
             s.first = i;
             s.boundary = b;
             s.boundaryHistory = &bit->second;
+            while (keptBoundary < previous.size() &&
+                   std::make_pair(previous[keptBoundary].first, previous[keptBoundary].boundary) <
+                       key)
+                ++keptBoundary;
+            if (keptBoundary < previous.size() && previous[keptBoundary].first == i &&
+                previous[keptBoundary].boundary == b) {
+                s.candidates = std::move(previous[keptBoundary].candidates);
+                s.forces.swap(previous[keptBoundary].forces);
+            }
             ++bit;
         }
     w.boundaryHistory.erase(bit, w.boundaryHistory.end());

@@ -298,7 +298,9 @@ void Simulation::evaluateForces(double slipStep)
             side.history = s.boundaryHistory;
             side.contacts.swap(scratch.contacts[0]);
             side.contacts.clear();
-            findBoundaryContacts(*gi.asset, gi.body.pose, b, side.contacts, s.stats);
+            // A level-set obstacle remembers the grain's nodes near it, as a grain pair does.
+            findBoundaryContacts(*gi.asset, gi.body.pose, b, side.contacts, s.stats,
+                                 &s.candidates.ofFirst);
             s.result = resolveContact(&side, 1, w.model(gi.material, b.material), slipStep, out,
                                       &scratch);
             side.contacts.swap(scratch.contacts[0]);

@@ -2,6 +2,7 @@
 // finite patch, sphere, level-set obstacle), moved by their displacement; and the penetrating
 // nodes findBoundaryContacts reports for each shape, against distances worked out here.
 #include "lsdem/simulation/Boundary.h"
+#include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/Constants.h"
 
@@ -254,6 +255,18 @@ TEST(Boundary, LevelSetContactsAreTheNarrowPhaseAtTheMovedPose)
     EXPECT_EQ(contacts[0].node, 5);
     EXPECT_EQ(contacts[0].depth, direct[0].depth);
     EXPECT_EQ(contacts[0].normal, direct[0].normal);
+    // With the grain's nodes near it remembered (a simulation's slot keeps them; they need
+    // the nodes in blocks), the same contact, and the list is made for the next call.
+    GrainAsset grouped = sixNodes();
+    grouped.nodeBlocks = groupNodesIntoBlocks(grouped.nodes);
+    CandidateBlocks remembered;
+    std::vector<NodeContact> withList;
+    findBoundaryContacts(grouped, pose, l, withList, stats, &remembered);
+    EXPECT_TRUE(remembered.valid);
+    ASSERT_EQ(withList.size(), 1u);
+    EXPECT_EQ(withList[0].node, 5);
+    EXPECT_EQ(withList[0].depth, direct[0].depth);
+    EXPECT_EQ(withList[0].normal, direct[0].normal);
     // The top face is 0.5 from the box's centre along its turned z axis. Near a face the box's
     // distance is linear, which trilinear interpolation reproduces (float storage: ~1e-7).
     const Vec3 up = l.pose.orientation * Vec3::UnitZ();

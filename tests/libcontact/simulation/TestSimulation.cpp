@@ -841,3 +841,47 @@ TEST(Simulation, AutomaticTimeStepIsSetByTheStiffestNodeAndTheLightestTurn)
     const double expected = 0.3 * 2.0 * std::sqrt(turn / (kKnStar * largestArea));
     EXPECT_NEAR(automaticTimeStep(world, 0.3), expected, 1e-12 * expected);
 }
+
+// A level-set obstacle remembers which of a grain's nodes are near it, as a grain pair does
+// (CandidateBlocks.h), and keeps that knowledge when the contact list is rebuilt for another
+// grain's motion. A sphere grain rests (no gravity) 0.3 mm off the ellipsoid obstacle where
+// the ellipsoid's surface is oblique, so its nearest nodes lie inside the obstacle's bounding
+// sphere and the box of its inside and must be sampled to be found clear. Once found clear,
+// the pair is skipped until a node could have moved half the gap: no node is sampled again,
+// while a second grain flying past makes the list rebuild every few steps. Without the
+// remembered nodes every step (or every rebuild) samples them again.
+TEST(Simulation, LevelSetObstacleRemembersTheNodesNearItOverRebuilds)
+{
+    Scene scene = oneMaterialScene("sphere", adapted(kKnStar));
+    AssetSpec obstacleAsset;
+    obstacleAsset.name = "ellipsoid";
+    obstacleAsset.file = assetFile("ellipsoid");  // semi-axes 3, 4, 5
+    scene.assets.push_back(obstacleAsset);
+    // The ellipsoid's surface point along (1, 1, 1) and its unit normal there.
+    const Vec3 axes(3.0, 4.0, 5.0);
+    const Vec3 along = Vec3::Ones().normalized();
+    const Vec3 onSurface = along / along.cwiseQuotient(axes).norm();
+    const Vec3 normal = onSurface.cwiseQuotient(axes.cwiseProduct(axes)).normalized();
+    const double gap = 0.3;
+    scene.grains.push_back(grainAt(onSurface + (kRadius + gap) * normal));
+    GrainSpec flier = grainAt(Vec3(100.0, 0.0, 0.0));
+    flier.velocity = Vec3(1e4, 0.0, 0.0);  // 0.1 mm a step: past half the skin every few steps
+    scene.grains.push_back(flier);
+    BoundarySpec obstacle;
+    obstacle.name = "ellipsoid";
+    obstacle.shape = BoundaryShape::LevelSet;
+    obstacle.asset = 1;
+    scene.boundaries.push_back(obstacle);
+    scene.gravity = Vec3::Zero();
+    Simulation sim(build(scene), 1e-5);
+    sim.step();
+    const long long sampledAtFirst = sim.counters().nodes.nodesSampled;
+    const long long rebuildsAtFirst = sim.counters().listRebuilds;
+    EXPECT_GT(sampledAtFirst, 0);  // the near nodes were sampled and found clear
+    for (int step = 0; step < 60; ++step) sim.step();
+    EXPECT_GE(sim.counters().listRebuilds - rebuildsAtFirst, 5);
+    EXPECT_EQ(sim.counters().nodes.nodesSampled, sampledAtFirst);
+    EXPECT_EQ(sim.contactNodes(), 0);
+    EXPECT_EQ(sim.world().grains[0].force, Vec3::Zero());
+    EXPECT_EQ(sim.world().grains[0].body.pose.position, scene.grains[0].pose.position);
+}

@@ -50,7 +50,11 @@ struct Boundary
 /// Append every node of grain @a a (at @a pose) inside boundary @a b, in node order, with the
 /// boundary's outward normal (pushing the grain out) and the contact point halfway to its
 /// surface.
+/// @param candidates  for a level-set obstacle, the grain's nodes near it remembered from
+///                    earlier calls for this grain and boundary (CandidateBlocks.h), kept up
+///                    to date; the other shapes ignore it. The contacts are the same either way.
 void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
-                          std::vector<NodeContact>& out, NodeCheckStats& stats);
+                          std::vector<NodeContact>& out, NodeCheckStats& stats,
+                          CandidateBlocks* candidates = nullptr);
 
 } // namespace lsdem

@@ -57,7 +57,7 @@ SlabCommand::SlabCommand(CLI::App& study)
         ->add_flag_callback("--seed", [&o] { o = slabSeedOptions(); },
                             "the seed's resolution, adapted only: SDP 1 0.7 ... 0.09 0.06 at\n"
                             "VDP 0.025, then VDP 0.4 0.28 ... 0.035 0.025 (steps of sqrt 2);\n"
-                            "hours on 2 cores: see --estimate, and run it under mpirun")
+                            "about 20 min on 2 cores (see --estimate); mpirun spreads its runs")
         ->excludes(full);
 
     const std::string panel = "Panel";

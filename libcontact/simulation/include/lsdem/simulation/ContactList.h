@@ -28,7 +28,7 @@ struct ContactSlot
     PairForces result;
     NodeCheckStats stats;
     std::vector<PointForce> forces;  ///< point forces, when they are recorded
-    PairCandidates candidates;       ///< node blocks near the other grain, kept over steps
+    PairCandidates candidates;  ///< nodes near the other grain or level-set obstacle, kept over steps
 };
 
 /// A grain's part in a slot: which slot, and whether the grain is its first body.

@@ -11,6 +11,27 @@
 
 namespace lsdem {
 
+namespace {
+
+/// Remove the nodes @a nodes (ascending, each in one of the runs) from the runs [begin, end)
+/// of @a runs (ascending), splitting a run where a node leaves its middle.
+void leaveOut(std::vector<std::pair<int, int>>& runs, const std::vector<int>& nodes)
+{
+    std::vector<std::pair<int, int>> kept;
+    kept.reserve(runs.size() + nodes.size());
+    size_t k = 0;
+    for (auto [begin, end] : runs) {
+        for (; k < nodes.size() && nodes[k] < end; ++k) {
+            if (nodes[k] > begin) kept.emplace_back(begin, nodes[k]);
+            begin = nodes[k] + 1;
+        }
+        if (begin < end) kept.emplace_back(begin, end);
+    }
+    runs.swap(kept);
+}
+
+} // namespace
+
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
                       const RigidPose& poseB, std::vector<NodeContact>& out,
                       NodeCheckStats& stats, CandidateBlocks* candidates)
@@ -97,6 +118,12 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     // (sampled for the gap only; such a node is still culled). 0: no gap is kept.
     double sphereBand = 0.0;
     double nearestInBand = std::numeric_limits<double>::infinity();  // their gaps
+    // When the remembered nodes are found afresh, a node sampled at φ_B above this cannot come
+    // into contact while they hold (it moves less than the margin relative to B, and φ_B
+    // changes by at most levelSetSlope per unit of distance): it is left out of them. The
+    // slack covers round-off (φ_B and the move are computed, not exact). Infinite: none.
+    double leaveOutAbove = std::numeric_limits<double>::infinity();
+    std::vector<int>* leftOut = nullptr;  // such nodes, ascending (this thread's buffer)
     auto visit = [&](int begin, int end) {
         // Most nodes of a run lie outside B's bounding sphere. That test is made in A's frame
         // (a difference and a square, no rotation); only the nodes inside are carried to B's
@@ -151,6 +178,7 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
             if (!(s.phi < 0.0)) {
                 smallestPhi = std::min(smallestPhi, s.phi);  // (a NaN φ leaves it: see below)
                 anyInside |= std::isnan(s.phi);
+                if (s.phi > leaveOutAbove) leftOut->push_back(i);
                 continue;
             }
             anyInside = true;
@@ -205,10 +233,30 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     sphereBand = candidates->wasClear ? candidates->margin : 0.0;
     nextCells.clear();
     lastCells = &candidates->cells;
+    if (!runsHold) {
+        thread_local std::vector<int> leftOutBuffer;
+        leftOut = &leftOutBuffer;
+        leftOut->clear();
+        leaveOutAbove = b.levelSetSlope * candidates->margin * (1.0 + 1e-6) +
+                        1e-9 * b.levelSet->voxelSize;
+    }
     long long visited = 0;
     for (const auto& [begin, end] : candidates->runs) {
         visited += end - begin;
         visit(begin, end);
+    }
+    if (leftOut && !leftOut->empty()) {
+        // Found afresh at this very map: the nodes sampled too far from B's surface to reach it
+        // while the list holds leave the runs, and their cells the remembered ones.
+        const std::vector<int>& gone = *leftOut;
+        leaveOut(candidates->runs, gone);
+        size_t kept = 0, k = 0;
+        for (const CandidateBlocks::SampledCell& c : nextCells) {
+            while (k < gone.size() && gone[k] < c.node) ++k;
+            if (k < gone.size() && gone[k] == c.node) continue;
+            nextCells[kept++] = c;
+        }
+        nextCells.resize(kept);
     }
     // Copied, not swapped: a swap would hand this pair the thread's buffer, grown by the
     // largest pair it served, and thousands of pairs would each end up that large.

@@ -5,12 +5,14 @@
 #include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/LevelSetSampler.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <iostream>
 #include <map>
 #include <random>
 
@@ -47,7 +49,9 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
     poseB.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
     std::mt19937_64 rng(11);
     CandidateBlocks remembered;
+    LevelSetSampler sampler(*b.levelSet);
     int refreshes = 0, steps = 400, stepsInContact = 0;
+    long long leftOutFarFromB = 0, sampledByList = 0, sampledByWalk = 0;
     for (int step = 0; step < steps; ++step) {
         // Steps of up to 1 % of A's bounding radius and 0.6° per axis: the list (margin 2 %)
         // lasts a few steps, then must be refreshed.
@@ -89,8 +93,10 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
                                      (inB - b.insideBoxMax).cwiseMax(0.0);
                 ASSERT_LE(outside.norm(), remembered.margin * slack) << "node " << i;
             }
-        // And every node left out is beyond the margin of B's sphere or of that box: one within
-        // both could come into contact while the list holds, and no walk would see it.
+        // And every node left out is beyond the margin of B's sphere or of that box, or was
+        // sampled too far outside B to reach it within the margin (φ_B above the slope bound
+        // times the margin, at the list's map): any other could come into contact while the
+        // list holds, and no walk would see it.
         std::vector<bool> kept(a.nodes.size(), false);
         for (const auto& [begin, end] : remembered.runs)
             for (int i = begin; i < end; ++i) kept[static_cast<size_t>(i)] = true;
@@ -100,19 +106,30 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
             const Vec3 inB = remembered.rotation * a.nodes.positions[i] + remembered.translation;
             const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
                                  (inB - b.insideBoxMax).cwiseMax(0.0);
-            ASSERT_TRUE(inB.norm() > (b.boundingRadius + remembered.margin) * loose ||
-                        outside.norm() > remembered.margin * loose)
+            if (inB.norm() > (b.boundingRadius + remembered.margin) * loose ||
+                outside.norm() > remembered.margin * loose)
+                continue;
+            ASSERT_GT(sampler.phi(inB), b.levelSetSlope * remembered.margin * loose)
                 << "node " << i << " left out, step " << step;
+            ++leftOutFarFromB;
         }
-        if (listStats.nodesSampled > 0) {
-            EXPECT_EQ(listStats.nodesSampled, fullStats.nodesSampled);
-            // Every node sampled this step left its cell for the next one.
-            EXPECT_EQ(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
-        }
+        // The list samples no node that a full walk does not, and nodes left out for φ_B only
+        // at the steps that found it afresh; each sampled node it keeps leaves its cell.
+        EXPECT_LE(listStats.nodesSampled, fullStats.nodesSampled);
+        EXPECT_LE(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
+        for (const CandidateBlocks::SampledCell& c : remembered.cells)
+            ASSERT_TRUE(kept[static_cast<size_t>(c.node)]) << "cell of node " << c.node;
+        sampledByList += listStats.nodesSampled;
+        sampledByWalk += fullStats.nodesSampled;
     }
     EXPECT_GT(stepsInContact, steps * 9 / 10);  // the trajectory stays in contact
     EXPECT_GT(refreshes, 5);                    // the list had to follow the motion
     EXPECT_LT(refreshes, steps / 2);            // and was reused most of the time
+    // Nodes near B's sphere and box but far from its surface were left out, and sampled less.
+    EXPECT_GT(leftOutFarFromB, 0);
+    EXPECT_LT(sampledByList, sampledByWalk);
+    std::cout << "[ measured ] nodes sampled along the trajectory: " << sampledByList
+              << " with the list, " << sampledByWalk << " by full walks\n";
 }
 
 // A flat box A held just above a flat box B, its bottom face outside the box of B's inside by

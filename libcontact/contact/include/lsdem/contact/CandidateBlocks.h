@@ -8,11 +8,13 @@
 /// frame to B's at that moment. While no node of A has since moved more than m relative to B,
 /// every node clear of B now was clear of B with the margin then, so visiting only the listed
 /// nodes (each still tested as a full walk tests it) finds exactly the contacts a full walk
-/// finds, in the same order. A node x of A moves relative to B by at most
+/// finds, in the same order. A node sampled at φ_B > L·m when the list is made (L the slope
+/// bound of B's level set) leaves it too: within m of where it was, φ_B stays positive.
+/// A node x of A moves relative to B by at most
 /// |Δt| + 2 sin(θ/2)·|x|, where Δt and θ are the change of the map's translation and the angle
 /// of its change of rotation, and |x| is at most A's bounding radius.
 ///
-/// It also keeps, for each node sampled in B at the last step, the voxel cell of B it fell in
+/// It also keeps, for each listed node sampled in B at the last step, the voxel cell it fell in
 /// and that cell's corner values: contacts last thousands of steps and a node moves a tiny
 /// fraction of a voxel per step, so most samples are interpolated from these (read in order,
 /// one stream) instead of from the grid's leaves (scattered), with the same result.

@@ -50,10 +50,39 @@ void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max)
 
 namespace {
 
-/// The largest difference along an edge from a voxel of the 4³ place whose brick is
-/// @a bricks[0][0][0] to its +x, +y or +z neighbour, the neighbours read from the bricks after
-/// it (@a bricks[i][j][k] is the brick i, j, k places further along x, y, z).
-double largestStepFromPlace(const LevelSetBricks& grid, const uint32_t (&bricks)[2][2][2])
+/// The slope bound of one cell whose corner (i, j, k) ∈ {0, 1}³ has the value @a corner(i, j, k),
+/// if some corner is at φ ≥ 0, else 0: the root of the sum of the squares of the largest
+/// difference along each axis.
+template <typename Corner> double cellSlope(Corner&& corner)
+{
+    double v[2][2][2];
+    bool anyOutside = false;
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j)
+            for (int k = 0; k < 2; ++k) {
+                v[i][j][k] = corner(i, j, k);
+                anyOutside |= v[i][j][k] >= 0.0;
+            }
+    if (!anyOutside) return 0.0;
+    double dx = 0.0, dy = 0.0, dz = 0.0;
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+            dx = std::max(dx, std::abs(v[1][a][b] - v[0][a][b]));
+            dy = std::max(dy, std::abs(v[a][1][b] - v[a][0][b]));
+            dz = std::max(dz, std::abs(v[a][b][1] - v[a][b][0]));
+        }
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/// The largest slope bound of a cell (below) whose lower corner is a voxel of the 4³ place
+/// whose brick is @a bricks[0][0][0] and that has a corner at φ ≥ 0, in value units per voxel;
+/// the corners after the place are read from the bricks after it (@a bricks[i][j][k] is the
+/// brick i, j, k places further along x, y, z).
+///
+/// In a cell the trilinear interpolant's derivative along x is, at every point, a weighted
+/// mean of the cell's four differences along x; so |∇φ| there is at most the root of the sum
+/// of the squares of the largest difference along each axis.
+double largestCellSlopeFromPlace(const LevelSetBricks& grid, const uint32_t (&bricks)[2][2][2])
 {
     constexpr int kDim = LevelSetBricks::kDim, kWindow = kDim + 1;
     float window[kWindow][kWindow][kWindow];
@@ -65,12 +94,10 @@ double largestStepFromPlace(const LevelSetBricks& grid, const uint32_t (&bricks)
     double largest = 0.0;
     for (int x = 0; x < kDim; ++x)
         for (int y = 0; y < kDim; ++y)
-            for (int z = 0; z < kDim; ++z) {
-                const double v = window[x][y][z];
-                largest = std::max({largest, std::abs(window[x + 1][y][z] - v),
-                                    std::abs(window[x][y + 1][z] - v),
-                                    std::abs(window[x][y][z + 1] - v)});
-            }
+            for (int z = 0; z < kDim; ++z)
+                largest = std::max(largest, cellSlope([&](int i, int j, int k) {
+                                       return double(window[x + i][y + j][z + k]);
+                                   }));
     return largest;
 }
 
@@ -81,10 +108,11 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
     const LevelSetBricks& grid = *levelSet.grid;
     const openvdb::CoordBBox table = grid.tableBox();
     if (table.empty()) return 0.0;  // the background everywhere: flat
-    // Every edge with a voxel in the table, including those to the background around it, is
-    // in the window of some place of the table or of the layer of places before it: a place's
-    // voxels and one more voxel along +x, +y and +z, read from at most 8 bricks. A window of
-    // one shared brick (the background, an interior tile) holds one value and no slope.
+    // Every cell with a corner in the table, including those reaching into the background
+    // around it, has its lower corner in a place of the table or of the layer of places before
+    // it; its window is the place's voxels and one more voxel along +x, +y and +z, read from
+    // at most 8 bricks. A window of one shared brick (the background, an interior tile) holds
+    // one value and no slope.
     constexpr int kDim = LevelSetBricks::kDim;
     const openvdb::Coord extent = table.dim();  // voxels, whole bricks
     const openvdb::Coord places(extent.x() / kDim, extent.y() / kDim, extent.z() / kDim);
@@ -103,12 +131,13 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
                                     oneBrick &= bricks[i][j][k] == bricks[0][0][0];
                                 }
                         // A varying brick is at one place only, so 8 equal ones are shared.
-                        if (!oneBrick) found = std::max(found, largestStepFromPlace(grid, bricks));
+                        if (!oneBrick)
+                            found = std::max(found, largestCellSlopeFromPlace(grid, bricks));
                     }
             return found;
         },
         [](double a, double b) { return std::max(a, b); });
-    return std::sqrt(3.0) * largest / levelSet.voxelSize;
+    return largest / levelSet.voxelSize;
 }
 
 void deriveContactBounds(GrainAsset& asset)

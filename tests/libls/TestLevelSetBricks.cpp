@@ -334,8 +334,9 @@ TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)
 
 namespace {
 
-/// levelSetSlopeBound's definition, voxel by voxel: √3 times the largest difference along an
-/// edge with a voxel in the table (or the layer before it), over the voxel size.
+/// levelSetSlopeBound's definition, cell by cell: over the cells with a corner in the table
+/// (or the layer before it) and a corner at φ ≥ 0, the largest root of the sum of the squares
+/// of the cell's largest difference along each axis, over the voxel size.
 double slopeBoundVoxelByVoxel(const LevelSetGrid& levelSet)
 {
     const LevelSetBricks& grid = *levelSet.grid;
@@ -346,21 +347,35 @@ double slopeBoundVoxelByVoxel(const LevelSetGrid& levelSet)
     for (int x = lo.x(); x <= hi.x(); ++x)
         for (int y = lo.y(); y <= hi.y(); ++y)
             for (int z = lo.z(); z <= hi.z(); ++z) {
-                const openvdb::Coord c(x, y, z);
-                const double v = grid.value(c);
-                largest = std::max({largest, std::abs(grid.value(c.offsetBy(1, 0, 0)) - v),
-                                    std::abs(grid.value(c.offsetBy(0, 1, 0)) - v),
-                                    std::abs(grid.value(c.offsetBy(0, 0, 1)) - v)});
+                double v[2][2][2];
+                bool outside = false;
+                for (int i = 0; i < 2; ++i)
+                    for (int j = 0; j < 2; ++j)
+                        for (int k = 0; k < 2; ++k) {
+                            v[i][j][k] = grid.value(openvdb::Coord(x + i, y + j, z + k));
+                            outside |= v[i][j][k] >= 0.0;
+                        }
+                if (!outside) continue;
+                double dx = 0.0, dy = 0.0, dz = 0.0;
+                for (int a = 0; a < 2; ++a)
+                    for (int b = 0; b < 2; ++b) {
+                        dx = std::max(dx, std::abs(v[1][a][b] - v[0][a][b]));
+                        dy = std::max(dy, std::abs(v[a][1][b] - v[a][0][b]));
+                        dz = std::max(dz, std::abs(v[a][b][1] - v[a][b][0]));
+                    }
+                largest = std::max(largest, std::sqrt(dx * dx + dy * dy + dz * dz));
             }
-    return std::sqrt(3.0) * largest / levelSet.voxelSize;
+    return largest / levelSet.voxelSize;
 }
 
 } // namespace
 
 // The bound is found brick by brick (a window of each brick and one voxel more on its far
-// sides, windows of one shared brick skipped): the same number as voxel by voxel, for a
-// sphere, a box (flat faces, interior tiles), an ellipsoid, and grids with one voxel raised or
-// lowered in a brick's first or last layer, at the table's corners and just outside them.
+// sides, windows of one shared brick skipped): the same number as cell by cell, for a
+// sphere, a box (flat faces, interior tiles), an ellipsoid, and grids with one voxel raised
+// to a spike outside or lowered, in a brick's first or last layer, at the table's corners
+// and just outside them. A voxel lowered deep inside changes no cell with a corner outside,
+// and so not the bound.
 TEST(LevelSetBricks, SlopeBoundBrickByBrickEqualsVoxelByVoxel)
 {
     BakeOptions o;
@@ -381,23 +396,40 @@ TEST(LevelSetBricks, SlopeBoundBrickByBrickEqualsVoxelByVoxel)
         for (const openvdb::Coord& raised :
              {table.min(), table.max(), table.min().offsetBy(-1), table.max().offsetBy(1),
               middle, middle.offsetBy(3), middle.offsetBy(4)}) {
-            for (const double by : {7.0, -7.0}) {  // lowered: its edge to the outside is the largest
+            for (const double by : {7.0, -7.0}) {
                 openvdb::FloatGrid::Ptr grid = toFloatGrid(*asset.levelSet->grid);
                 auto accessor = grid->getAccessor();
-                accessor.setValue(raised, accessor.getValue(raised) + float(by * o.voxelSize));
+                const double was = accessor.getValue(raised);
+                // Raised: a spike 7 voxels outside; lowered: 7 voxels further in.
+                const double now = by > 0.0 ? std::max(was, 0.0) + by * o.voxelSize
+                                            : was + by * o.voxelSize;
+                accessor.setValue(raised, float(now));
                 LevelSetGrid stepped = *asset.levelSet;
                 stepped.grid = toLevelSetGrid(*grid);
                 const double steppedReference = slopeBoundVoxelByVoxel(stepped);
                 EXPECT_EQ(levelSetSlopeBound(stepped), steppedReference) << raised << " " << by;
-                EXPECT_GT(steppedReference, std::sqrt(3.0) * 5.0);  // the changed voxel counts
+                // The changed voxel counts when a cell around it has a corner outside (it
+                // differs from its neighbours along each axis by about 7 voxels there), and
+                // changes nothing otherwise.
+                bool nearOutside = false;
+                for (int i = -1; i <= 1; ++i)
+                    for (int j = -1; j <= 1; ++j)
+                        for (int k = -1; k <= 1; ++k)
+                            nearOutside |= stepped.grid->value(raised.offsetBy(i, j, k)) >= 0.0f;
+                if (nearOutside)
+                    EXPECT_GT(steppedReference, std::sqrt(3.0) * 5.0) << raised << " " << by;
+                else
+                    EXPECT_EQ(steppedReference, reference) << raised << " " << by;
             }
         }
     }
 }
 
-// The steepest edge of a grid can be the one from the background just before the table to the
-// table's first voxel: a voxel at −0.5 on the table's low face along one axis, its other five
-// neighbours at −0.45, the background at 0.1. Only that edge differs by 0.6.
+// The steepest cell of a grid can be one reaching from the background just before the table
+// to the table's first voxel: a voxel at −0.5 on the table's low face along one axis, its
+// other five neighbours at −0.45, the background at 0.1. Only the edge into the table differs
+// by 0.6; the cells that hold it differ by 0.55 along the other two axes (a neighbour at −0.45
+// against the background), and no other cell by more than 0.55 along any axis.
 TEST(LevelSetBricks, SlopeBoundCountsTheEdgeIntoTheTableFromBelow)
 {
     for (int axis = 0; axis < 3; ++axis) {
@@ -415,46 +447,58 @@ TEST(LevelSetBricks, SlopeBoundCountsTheEdgeIntoTheTableFromBelow)
         levelSet.grid = toLevelSetGrid(*grid);
         levelSet.voxelSize = 1.0;
         EXPECT_EQ(levelSet.grid->tableBox().min()[axis], c[axis]) << axis;
-        EXPECT_NEAR(levelSetSlopeBound(levelSet), std::sqrt(3.0) * 0.6, 1e-6) << axis;
+        EXPECT_NEAR(levelSetSlopeBound(levelSet), std::sqrt(0.6 * 0.6 + 2 * 0.55 * 0.55), 1e-6)
+            << axis;
         EXPECT_EQ(levelSetSlopeBound(levelSet), slopeBoundVoxelByVoxel(levelSet)) << axis;
     }
 }
 
-// levelSetSlopeBound: φ of a baked sphere (a distance, so neighbouring voxels differ by at
-// most a voxel) has a bound just under √3, and the interpolant never changes faster than it:
-// |φ(x) − φ(y)| ≤ L·|x − y| for random pairs of nearby and distant points, inside, across the
-// surface and out into the background. A grid with a steeper step gets a steeper bound.
+// levelSetSlopeBound: outside a baked sphere φ is a distance, whose gradient has length 1, so
+// the bound is a little above 1 (a cell's largest differences along the three axes come from
+// its different edges); and the interpolant never changes faster than it along a segment that
+// stays at φ ≥ 0 (checked at 64 points): |φ(x) − φ(y)| ≤ L·|x − y| for random pairs, near and
+// far, across the band and out into the background. Inside, where it does not count, the
+// distance has its steepest cells (about √3) around the centre. A voxel raised to a spike
+// outside gets a steeper bound.
 TEST(LevelSetBricks, SlopeBoundHoldsForTheInterpolant)
 {
     const GrainAsset asset = bakedSphere();
     const double slope = levelSetSlopeBound(*asset.levelSet);
     EXPECT_EQ(slope, asset.levelSetSlope);  // derived when baked
-    EXPECT_GT(slope, 0.95 * std::sqrt(3.0));
-    // Float and 24-bit rounding; and deep values, rounded down by less than a deep step,
-    // may differ from a neighbour by that much more than a voxel.
-    const double deepStep = asset.levelSet->grid->deepStep();
-    EXPECT_LE(slope, std::sqrt(3.0) * (1.0 + 1e-4 + deepStep / kVox));
+    EXPECT_GT(slope, 1.0);
+    EXPECT_LT(slope, 1.1);
 
     LevelSetSampler sampler(*asset.levelSet);
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> coordinate(-1.4, 1.4), step(-0.2, 0.2);
     double steepest = 0.0;
+    int outsidePairs = 0;
     for (int k = 0; k < 200000; ++k) {
         const Vec3 x(coordinate(rng), coordinate(rng), coordinate(rng));
         const Vec3 y = x + (k % 2 ? Vec3(step(rng), step(rng), step(rng))
                                   : Vec3(coordinate(rng), coordinate(rng), coordinate(rng)));
+        bool outside = true;
+        for (int t = 0; t <= 64 && outside; ++t) outside = sampler.phi(x + (y - x) * (t / 64.0)) >= 0.0;
+        if (!outside) continue;
+        ++outsidePairs;
         const double ratio = std::abs(sampler.phi(x) - sampler.phi(y)) / (x - y).norm();
         steepest = std::max(steepest, ratio);
         ASSERT_LE(ratio, slope) << x.transpose() << " / " << y.transpose();
     }
+    EXPECT_GT(outsidePairs, 20000);
     EXPECT_GT(steepest, 0.9);  // the pairs did cross the distance field
 
-    // One voxel raised by 10 voxels: the bound follows (√3 · 10 voxels / voxel = 17.3).
+    // A voxel a voxel outside the surface raised by 10 voxels: the bound follows (each of its
+    // cells differs by about 10 voxels along each axis: √3 · 10).
     openvdb::FloatGrid::Ptr grid = toFloatGrid(*asset.levelSet->grid);
-    const openvdb::Coord c(20, 20, 20);
+    const Vec3 index = (Vec3(kRadius + kVox, 0.0, 0.0) - asset.levelSet->origin) / kVox;
+    const openvdb::Coord c(int(std::lround(index.x())), int(std::lround(index.y())),
+                           int(std::lround(index.z())));
     auto accessor = grid->getAccessor();
+    ASSERT_GT(accessor.getValue(c), 0.0f);
+    ASSERT_LT(accessor.getValue(c), float(2 * kVox));
     accessor.setValue(c, accessor.getValue(c) + float(10 * kVox));
     LevelSetGrid stepped = *asset.levelSet;
     stepped.grid = toLevelSetGrid(*grid);
-    EXPECT_GT(levelSetSlopeBound(stepped), std::sqrt(3.0) * 10.0);
+    EXPECT_GT(levelSetSlopeBound(stepped), std::sqrt(3.0) * 9.0);
 }

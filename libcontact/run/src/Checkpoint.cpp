@@ -20,7 +20,10 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 3: the fingerprint of the world's grains and their assets (WorldFingerprint.h) follows the
 ///    record.
 /// 4: the run's end condition follows the fingerprint (a flag, then the end if set).
-const uint32_t kVersion = 4;
+/// 5: the assets' fingerprints take the level set's slope bound where φ ≥ 0
+///    (levelSetSlopeBound since 2026-11-27); those of a version 3 or 4 file took the earlier
+///    bound over the whole grid, so its assets are not compared (its grains still are).
+const uint32_t kVersion = 5;
 const uint32_t kOldestVersion = 1;
 
 /// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
@@ -191,6 +194,10 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         fingerprint.grainAssets = r.words();
         fingerprint.boundaryAssets = r.words();
         if (fingerprint.grainAssets.size() != fingerprint.grains.size()) r.fail();
+        if (version < 5) {  // fingerprints of the earlier slope bound: not comparable
+            fingerprint.grainAssets.clear();
+            fingerprint.boundaryAssets.clear();
+        }
     }
     const uint8_t hasEnd = version >= 4 ? r.pod<uint8_t>() : 0;
     if (hasEnd > 1) r.fail();

@@ -96,7 +96,7 @@ void checkSameInputs(const WorldFingerprint& stored, const World& world, const s
                " (a grain file changed?)");
     for (size_t k = 0; k < now.grains.size(); ++k) {
         const std::string grain = "grain " + std::to_string(k) + " ('" + world.grains[k].name + "')";
-        if (now.grainAssets[k] != stored.grainAssets[k])
+        if (!stored.grainAssets.empty() && now.grainAssets[k] != stored.grainAssets[k])
             refuse(grain + ": its asset is not the one the run was checkpointed with (its file or "
                            "mesh changed since), so a restart would not continue the same run");
         if (now.grains[k] != stored.grains[k])

@@ -28,7 +28,8 @@ struct WorldFingerprint
 WorldFingerprint fingerprintOf(const World& world);
 
 /// @throw Error at @a path (the checkpoint) naming the first grain or boundary of @a world
-///        that differs from @a stored, and why that matters.
+///        that differs from @a stored, and why that matters. Assets are compared only when
+///        @a stored has their fingerprints (a checkpoint of an earlier format may not).
 void checkSameInputs(const WorldFingerprint& stored, const World& world, const std::string& path);
 
 } // namespace lsdem

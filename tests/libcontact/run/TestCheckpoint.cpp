@@ -502,6 +502,21 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     World obstacle = build(stackScene(2));
     obstacle.boundaries[0].asset = obstacle.grains[0].asset;
     EXPECT_NE(refusal(obstacle).find("boundary 'floor': its level set"), std::string::npos);
+    // A checkpoint of format 4 (before the slope bound took only φ ≥ 0, 2026-11-27) has asset
+    // fingerprints of the earlier bound: its assets are not compared (the boundary's new level
+    // set passes), its grains still are.
+    {
+        std::string bytes = readBytes(path);
+        const uint32_t four = 4;
+        std::memcpy(bytes.data() + 8, &four, sizeof four);  // after the magic
+        const std::string older = dir.file("format4.lsdem");
+        writeBytes(older, bytes);
+        World w = obstacle;
+        EXPECT_NO_THROW(restoreWorldState(older, w));
+        World renamedToo = obstacle;
+        renamedToo.grains[3].name = "other";
+        EXPECT_THROW(restoreWorldState(older, renamedToo), Error);
+    }
 
     World renamed = build(stackScene(2));
     renamed.grains[3].name = "other";

@@ -48,9 +48,10 @@ struct GrainAsset
     /// level set when an asset is baked or loaded; unbounded by default.
     Vec3 insideBoxMin = Vec3::Constant(-std::numeric_limits<double>::infinity());
     Vec3 insideBoxMax = Vec3::Constant(std::numeric_limits<double>::infinity());
-    /// An upper bound on |∇φ| of the level set's interpolant (levelSetSlopeBound), derived
-    /// when an asset is baked or loaded; infinite (nothing known) by default. With it, φ ≥ g
-    /// at a node means the node stays outside while it moves less than g over this.
+    /// An upper bound on |∇φ| of the level set's interpolant wherever φ ≥ 0
+    /// (levelSetSlopeBound), derived when an asset is baked or loaded; infinite (nothing
+    /// known) by default. With it, φ ≥ g at a node means the node stays outside while it
+    /// moves less than g over this.
     double levelSetSlope = std::numeric_limits<double>::infinity();
     AreaRule areaRule = AreaRule::Mesh;
     NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)

@@ -38,10 +38,14 @@ void initializeOpenVdb();
 /// negative.
 void insideBox(const LevelSetGrid& levelSet, Vec3& min, Vec3& max);
 
-/// An upper bound on the slope |∇φ| of the trilinear interpolant of @a levelSet, anywhere:
-/// √3 times the largest difference between two face-neighbouring voxels, over the voxel size
-/// (in a cell each partial derivative is a mean of its four edges' differences). So φ at two
-/// points differs by at most this times their distance. About √3 for a signed distance.
+/// An upper bound on the slope |∇φ| of the trilinear interpolant of @a levelSet wherever
+/// φ ≥ 0: the largest, over the cells with a corner at φ ≥ 0 (every point at φ ≥ 0 lies in
+/// one), of the root of the sum of the squares of the cell's largest difference along each
+/// axis, over the voxel size (in a cell each partial derivative is a mean of its four edges'
+/// differences along its axis). So a point at φ = g > 0 cannot reach φ < 0 by a move shorter
+/// than g over this: on the way φ stays ≥ 0 until it first crosses zero. About 1 for a signed
+/// distance; the interior (where a mesh's fill or a shape's ridges may be steeper) does not
+/// count.
 double levelSetSlopeBound(const LevelSetGrid& levelSet);
 
 struct GrainAsset;

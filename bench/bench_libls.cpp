@@ -325,8 +325,10 @@ BENCHMARK(BM_AssetMemory)->Iterations(1);
 
 /// The slope bound that every bake and load derives (levelSetSlopeBound), on the R/100
 /// sphere's grid (about the size of the 100k-triangle scan's): as the library finds it, window
-/// by window over the bricks, against arg 1: its definition voxel by voxel, four look-ups per
-/// voxel over the whole table, in parallel by x (how it was found until 2026-11-27).
+/// by window over the bricks, against arg 1: the earlier bound (√3 times the largest step
+/// between neighbours anywhere, until the seventh session of 2026-11-27) voxel by voxel, four
+/// look-ups per voxel over the whole table, in parallel by x (how it was found until earlier
+/// that day): a yardstick of cost, not of the same number.
 void BM_SlopeBound(benchmark::State& state)
 {
     const LevelSetGrid& levelSet = *sphereAsset().levelSet;

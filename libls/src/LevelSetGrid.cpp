@@ -123,15 +123,17 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
                 for (int by = -1; by < places.y(); ++by)
                     for (int bz = -1; bz < places.z(); ++bz) {
                         uint32_t bricks[2][2][2];
-                        bool oneBrick = true;
+                        bool oneBrick = true, allDeep = true;
                         for (int i = 0; i < 2; ++i)
                             for (int j = 0; j < 2; ++j)
                                 for (int k = 0; k < 2; ++k) {
                                     bricks[i][j][k] = grid.brick(bx + i, by + j, bz + k);
                                     oneBrick &= bricks[i][j][k] == bricks[0][0][0];
+                                    allDeep &= grid.isDeep(bricks[i][j][k]);
                                 }
-                        // A varying brick is at one place only, so 8 equal ones are shared.
-                        if (!oneBrick)
+                        // A varying brick is at one place only, so 8 equal ones are shared;
+                        // deep bricks lie wholly inside, where no cell counts.
+                        if (!oneBrick && !allDeep)
                             found = std::max(found, largestCellSlopeFromPlace(grid, bricks));
                     }
             return found;

@@ -30,6 +30,18 @@ void leaveOut(std::vector<std::pair<int, int>>& runs, const std::vector<int>& no
     runs.swap(kept);
 }
 
+/// Remove from @a cells (ascending by node) those of the nodes @a nodes (ascending).
+void leaveOut(std::vector<CandidateBlocks::SampledCell>& cells, const std::vector<int>& nodes)
+{
+    size_t kept = 0, k = 0;
+    for (const CandidateBlocks::SampledCell& c : cells) {
+        while (k < nodes.size() && nodes[k] < c.node) ++k;
+        if (k < nodes.size() && nodes[k] == c.node) continue;
+        cells[kept++] = c;
+    }
+    cells.resize(kept);
+}
+
 } // namespace
 
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
@@ -248,15 +260,8 @@ void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAs
     if (leftOut && !leftOut->empty()) {
         // Found afresh at this very map: the nodes sampled too far from B's surface to reach it
         // while the list holds leave the runs, and their cells the remembered ones.
-        const std::vector<int>& gone = *leftOut;
-        leaveOut(candidates->runs, gone);
-        size_t kept = 0, k = 0;
-        for (const CandidateBlocks::SampledCell& c : nextCells) {
-            while (k < gone.size() && gone[k] < c.node) ++k;
-            if (k < gone.size() && gone[k] == c.node) continue;
-            nextCells[kept++] = c;
-        }
-        nextCells.resize(kept);
+        leaveOut(candidates->runs, *leftOut);
+        leaveOut(nextCells, *leftOut);
     }
     // Copied, not swapped: a swap would hand this pair the thread's buffer, grown by the
     // largest pair it served, and thousands of pairs would each end up that large.

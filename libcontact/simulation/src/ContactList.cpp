@@ -125,6 +125,20 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
     const size_t previousPairs = keepPairKnowledge ? mPairSlots : 0;
     mSlots.clear();
     mSlots.reserve(pairs.size() + previous.size() - previousPairs);
+    // Slot @a s takes the knowledge of the previous slot with the same @a key (keyOf of it),
+    // found by advancing @a cursor through previous[cursor, end), sorted by that key.
+    auto inherit = [&](ContactSlot& s, size_t& cursor, size_t end, const std::pair<int, int>& key,
+                       auto keyOf) {
+        while (cursor < end && keyOf(previous[cursor]) < key) ++cursor;
+        if (cursor < end && keyOf(previous[cursor]) == key) {
+            s.candidates = std::move(previous[cursor].candidates);
+            s.forces.swap(previous[cursor].forces);
+        }
+    };
+    auto pairOf = [](const ContactSlot& o) { return std::make_pair(o.first, o.second); };
+    auto grainAndBoundaryOf = [](const ContactSlot& o) {
+        return std::make_pair(o.first, o.boundary);
+    };
     size_t kept = 0;
     auto it = w.pairHistory.begin();
     for (const auto& p : pairs) {
@@ -135,14 +149,7 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
         s.first = p.first;
         s.second = p.second;
         s.pairHistory = &it->second;
-        while (kept < previousPairs &&
-               std::make_pair(previous[kept].first, previous[kept].second) < p)
-            ++kept;
-        if (kept < previousPairs && previous[kept].first == p.first &&
-            previous[kept].second == p.second) {
-            s.candidates = std::move(previous[kept].candidates);
-            s.forces.swap(previous[kept].forces);
-        }
+        inherit(s, kept, previousPairs, p, pairOf);
         ++it;
     }
     w.pairHistory.erase(it, w.pairHistory.end());
@@ -162,15 +169,7 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
             s.first = i;
             s.boundary = b;
             s.boundaryHistory = &bit->second;
-            while (keptBoundary < previous.size() &&
-                   std::make_pair(previous[keptBoundary].first, previous[keptBoundary].boundary) <
-                       key)
-                ++keptBoundary;
-            if (keptBoundary < previous.size() && previous[keptBoundary].first == i &&
-                previous[keptBoundary].boundary == b) {
-                s.candidates = std::move(previous[keptBoundary].candidates);
-                s.forces.swap(previous[keptBoundary].forces);
-            }
+            inherit(s, keptBoundary, previous.size(), key, grainAndBoundaryOf);
             ++bit;
         }
     w.boundaryHistory.erase(bit, w.boundaryHistory.end());

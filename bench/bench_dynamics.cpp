@@ -1,6 +1,6 @@
 // Step time of the dynamics (issue: 1000 spheres settling in a box). Run:
-//   build/bench/bench_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-//       --benchmark_enable_random_interleaving=true
+//   build/bench/bench_dynamics --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//       --benchmark_enable_random_interleaving=true   (one command line)
 // (interleaved: the 1- and 2-thread repetitions alternate, so the host's drift over the minute
 // the run takes falls on both and their ratio holds; run one after the other, it does not.)
 // 1000 equal spheres (R = 5 mm, ~1000 nodes each, voxels R/10) in a 10×10×10 stack with

@@ -181,6 +181,23 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
         ->default_str(std::to_string(value));
 }
 
+CLI::Option* addIntegers(CLI::App& app, const std::string& name, std::vector<long long>& values,
+                         const std::string& help)
+{
+    std::vector<std::string> defaults;
+    for (long long v : values) defaults.push_back(std::to_string(v));
+    return lastListWins(
+        app.add_option_function<std::vector<std::string>>(
+            name,
+            [&values, name](const std::vector<std::string>& texts) {
+                values.clear();
+                for (const std::string& text : texts) values.push_back(parseInteger(text, name));
+            },
+            help))
+        ->type_name("INT")
+        ->default_str(defaults.empty() ? "" : showList(defaults));
+}
+
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,
                        const std::string& help)
 {

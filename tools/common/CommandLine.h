@@ -60,6 +60,11 @@ CLI::Option* addThreads(CLI::App& app, long long& threads, const std::string& he
 /// @throw Error naming --threads unless 0 ≤ @a threads ≤ kMaxThreads.
 void checkThreads(long long threads);
 
+/// Option @a name taking one or more whole numbers, which replace @a values (range checks are
+/// the caller's, so the message can say what the numbers are for).
+CLI::Option* addIntegers(CLI::App& app, const std::string& name, std::vector<long long>& values,
+                         const std::string& help);
+
 /// Option @a name taking one or more whole positive numbers (node counts: "1e4" is allowed),
 /// which replace @a values.
 CLI::Option* addCounts(CLI::App& app, const std::string& name, std::vector<int>& values,

@@ -84,7 +84,9 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->type_name("PATH")
         ->group(sample);
     addInteger(*mCommand, "--grains", o.grains, "grains in the sample")->type_name("N")->group(sample);
-    addInteger(*mCommand, "--seed", o.seed, "random seed (which mesh, orientation)")
+    cli::addIntegers(*mCommand, "--seed", o.seeds,
+                     "random seeds, one sample each (which mesh, orientation): every run is\n"
+                     "made on each, and the summary gives their means")
         ->type_name("S")
         ->group(sample);
     addNumber(*mCommand, "--lattice-spacing", o.latticeSpacing,
@@ -167,20 +169,28 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     std::fflush(stdout);
 
     const Stopwatch wall;
+    // A run is named by its formulation and SDP, and by its seed when there are several.
+    const bool seeds = o.seeds.size() > 1;
+    auto runName = [&](Formulation f, double sdp, long long seed) {
+        char text[96];
+        std::snprintf(text, sizeof text, seeds ? "%s SDP %g seed %lld" : "%s SDP %g",
+                      formulationName(f).c_str(), sdp, seed);
+        return std::string(text);
+    };
     auto onRun = [&](const TriaxialRun& r) {
         if (o.quiet) return;
-        std::printf("  done: %s SDP %g: %.0f nodes/grain, peak phi %.2f deg, critical phi "
+        std::printf("  done: %s: %.0f nodes/grain, peak phi %.2f deg, critical phi "
                     "%.2f deg, %.0f s\n",
-                    formulationName(r.formulation).c_str(), r.sdp, r.nodesPerGrain,
+                    runName(r.formulation, r.sdp, r.seed).c_str(), r.nodesPerGrain,
                     r.test.peakFrictionAngle, r.test.criticalFrictionAngle, r.runSeconds);
         std::fflush(stdout);
     };
     int shearingRows = 0;
-    auto progress = [&](Formulation f, double sdp, const TriaxialRow& row) {
+    auto progress = [&](Formulation f, double sdp, long long seed, const TriaxialRow& row) {
         if (o.quiet) return;
         if (row.stage == 1 && ++shearingRows % 20 != 0) return;  // every tenth of the shearing
-        std::printf("  %s SDP %g: %s step %lld, eps_a %.3f, p %.4g, q %.4g, e %.3f\n",
-                    formulationName(f).c_str(), sdp,
+        std::printf("  %s: %s step %lld, eps_a %.3f, p %.4g, q %.4g, e %.3f\n",
+                    runName(f, sdp, seed).c_str(),
                     row.stage == 0 ? "consolidating" : "shearing", row.step, row.axialStrain,
                     row.state.p, row.state.q, row.state.voidRatio);
         std::fflush(stdout);
@@ -196,36 +206,44 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
                 "spacing %.17g mm\n",
                 result.grains, result.meshes, result.meanDiameter, result.spacing);
-    std::printf("%-9s %6s %6s %7s %6s %8s %7s %8s %7s %8s %9s %8s %8s %8s\n", "formul.",
-                "SDP", "nodes", "e0", "Z0", "E50 MPa", "phi_pk", "eps_pk", "phi_cs", "e_cs",
+    std::printf("%-9s %6s %5s %6s %7s %6s %8s %7s %8s %7s %8s %9s %8s %8s %8s\n", "formul.",
+                "SDP", "seed", "nodes", "e0", "Z0", "E50 MPa", "phi_pk", "eps_pk", "phi_cs", "e_cs",
                 "I_max", "steps", "ms/step", "wall s");
     for (const TriaxialRun& r : result.runs) {
         const TriaxialTestResult& t = r.test;
-        std::printf("%-9s %6.3g %6.0f %7.3f %6.2f %8.2f %7.2f %7.3f %8.2f %7.3f %9.2e %8lld "
+        std::printf("%-9s %6.3g %5lld %6.0f %7.3f %6.2f %8.2f %7.2f %7.3f %8.2f %7.3f %9.2e %8lld "
                     "%8.2f %8.0f%s\n",
-                    formulationName(r.formulation).c_str(), r.sdp, r.nodesPerGrain,
+                    formulationName(r.formulation).c_str(), r.sdp, r.seed, r.nodesPerGrain,
                     t.consolidated.voidRatio, t.consolidated.coordination, t.secantModulus50,
                     t.peakFrictionAngle,
                     t.peakAxialStrain, t.criticalFrictionAngle, t.criticalVoidRatio,
                     t.maxInertialNumber, t.consolidationSteps + t.shearSteps, r.msPerStep,
                     r.runSeconds, t.consolidatedWithinTolerance ? "" : "  (not consolidated)");
     }
+    if (seeds)
+        for (const TriaxialSeedMean& m : triaxialSeedMeans(result))
+            std::printf("%s SDP %g, mean of %d seeds (standard deviation): peak friction angle "
+                        "%.2f (%.2f) deg, E50 %.2f (%.2f) MPa\n",
+                        formulationName(m.formulation).c_str(), m.sdp, m.seeds,
+                        m.peakFrictionAngle, m.peakFrictionAngleSpread, m.secantModulus50,
+                        m.secantModulus50Spread);
     for (Formulation f : o.formulations) {
         const double change = finestPeakChange(result, f);
         if (std::isfinite(change))
-            std::printf("%s, between the two finest SDPs: peak friction angle %+.2f deg, "
+            std::printf("%s, between the two finest SDPs%s: peak friction angle %+.2f deg, "
                         "E50 %+.1f %%\n",
-                        formulationName(f).c_str(), change, 100.0 * finestModulusChange(result, f));
+                        formulationName(f).c_str(), seeds ? " (means over the seeds)" : "",
+                        change, 100.0 * finestModulusChange(result, f));
     }
-    // The first formulation's finest run, as a scene to rerun the shearing with lsdem-run
-    // (ParaView frames, wall histories) or to edit.
+    // The first formulation's finest run (of the first seed), as a scene to rerun the
+    // shearing with lsdem-run (ParaView frames, wall histories) or to edit.
     const TriaxialRun* finest = nullptr;
     for (const TriaxialRun& r : result.runs)
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
     const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
     std::printf("time %.0f s\nwrote %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str());
-    std::printf("wrote %s: the shearing of %s SDP %g for lsdem-run (ParaView frames)\n",
-                scene.c_str(), formulationName(finest->formulation).c_str(), finest->sdp);
+    std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n", scene.c_str(),
+                runName(finest->formulation, finest->sdp, finest->seed).c_str());
     return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
 }
 

@@ -52,7 +52,15 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                             std::to_string(kMaxGrains) + ")",
                     "give at most --grains " + std::to_string(kMaxGrains) +
                         " (1000 is the default)");
-    if (o.seed < 0) throw Error("", "--seed wants a number >= 0");
+    if (o.seeds.empty()) throw Error("", "--seed needs at least one seed", "e.g. --seed 1 2 3");
+    for (size_t i = 0; i < o.seeds.size(); ++i) {
+        if (o.seeds[i] < 0)
+            throw Error("", "--seed wants numbers >= 0, got " + std::to_string(o.seeds[i]));
+        for (size_t j = 0; j < i; ++j)
+            if (o.seeds[j] == o.seeds[i])
+                throw Error("", "--seed " + std::to_string(o.seeds[i]) + " is given twice",
+                            "give each seed once: each is one sample");
+    }
     requirePositive(o.vdp, "--vdp", "e.g. --vdp 0.03 (mm)");
     if (o.sdps.empty()) throw Error("", "--sdps needs at least one node spacing");
     for (double s : o.sdps) requirePositive(s, "--sdps", "e.g. --sdps 0.1 0.07 0.05 (mm)");

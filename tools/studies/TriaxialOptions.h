@@ -1,6 +1,6 @@
 /// @file TriaxialOptions.h
 /// @brief The options of the triaxial study (`lsdem-study triaxial`): the sample (grain meshes,
-///        count, seed), the resolutions (one VDP, several SDPs), the contact law, and the test
+///        count, seeds), the resolutions (one VDP, several SDPs), the contact law, and the test
 ///        (confining stress, inertial number, axial strain). Units: mm, tonne, s, N (stresses in
 ///        N/mm² = MPa).
 #pragma once
@@ -21,7 +21,9 @@ struct TriaxialOptions
     /// Spacing of the starting lattice, mm (0: 2.2 times the largest bounding radius at the
     /// coarsest SDP). Give it to extend a study with finer SDPs on the same lattice.
     double latticeSpacing = 0.0;
-    long long seed = 1;            ///< which mesh and orientation each grain gets (>= 0)
+    /// Samples, one per seed: which mesh and orientation each grain gets (each >= 0, no two
+    /// alike). Every formulation and SDP is run on each; the summary takes their means.
+    std::vector<long long> seeds = {1};
     double vdp = 0.03;             ///< voxel size, mm (the same for every run)
     std::vector<double> sdps = {0.1, 0.07, 0.05};  ///< node spacings, mm, coarsest first
     std::vector<Formulation> formulations = {Formulation::Adapted, Formulation::Original};

@@ -2,6 +2,7 @@
 
 #include "lsdem/ls/AtomicFile.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,13 +13,13 @@ void writeTriaxialCsv(const TriaxialStudyResult& r, const std::string& path)
 {
     std::ostringstream out;
     out.precision(10);
-    out << "formulation,sdp,nodes_per_grain,stage,step,time,axial_strain,volumetric_strain,"
+    out << "formulation,sdp,seed,nodes_per_grain,stage,step,time,axial_strain,volumetric_strain,"
            "sigma_x,sigma_y,sigma_z,p,q,q_over_p,friction_angle,void_ratio,coordination,"
            "inertial_number,kinetic_energy,size_x,size_y,size_z\n";
     for (const TriaxialRun& run : r.runs)
         for (const TriaxialRow& row : run.test.rows) {
             const TriaxialState& s = row.state;
-            out << formulationName(run.formulation) << ',' << run.sdp << ','
+            out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.seed << ','
                 << run.nodesPerGrain << ',' << (row.stage == 0 ? "consolidation" : "shearing")
                 << ',' << row.step << ',' << row.time << ',' << row.axialStrain << ','
                 << row.volumetricStrain << ',' << s.stress.x() << ',' << s.stress.y() << ','
@@ -35,13 +36,14 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
 {
     std::ostringstream out;
     out.precision(17);  // exact: the spacing and kn extend a study (--lattice-spacing)
-    out << "formulation,sdp,vdp,nodes_per_grain,grains,lattice_spacing,stiffness,time_step,stability_limit,strain_rate,"
+    out << "formulation,sdp,seed,vdp,nodes_per_grain,grains,lattice_spacing,stiffness,time_step,stability_limit,strain_rate,"
            "consolidation_steps,consolidated,shear_steps,void_ratio_0,coordination_0,"
            "peak_friction_angle,peak_axial_strain,critical_friction_angle,critical_void_ratio,"
            "max_inertial_number,secant_modulus_50,bake_seconds,run_seconds,ms_per_step\n";
     for (const TriaxialRun& run : r.runs) {
         const TriaxialTestResult& t = run.test;
-        out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.vdp << ','
+        out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.seed << ','
+            << run.vdp << ','
             << run.nodesPerGrain << ',' << r.grains << ',' << r.spacing << ',' << run.stiffness << ',' << run.dt
             << ',' << run.stabilityLimit << ',' << run.strainRate << ',' << t.consolidationSteps << ','
             << (t.consolidatedWithinTolerance ? "yes" : "no") << ',' << t.shearSteps << ','
@@ -54,21 +56,56 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
     writeTextFileAtomically(path, out.str());
 }
 
+std::vector<TriaxialSeedMean> triaxialSeedMeans(const TriaxialStudyResult& r)
+{
+    std::vector<TriaxialSeedMean> means;
+    for (const TriaxialRun& run : r.runs) {
+        auto same = [&](const TriaxialSeedMean& m) {
+            return m.formulation == run.formulation && m.sdp == run.sdp;
+        };
+        if (std::find_if(means.begin(), means.end(), same) != means.end()) continue;
+        // This formulation and SDP's runs, one per seed, in the study's order.
+        std::vector<double> peaks, moduli;
+        for (const TriaxialRun& other : r.runs)
+            if (other.formulation == run.formulation && other.sdp == run.sdp) {
+                peaks.push_back(other.test.peakFrictionAngle);
+                moduli.push_back(other.test.secantModulus50);
+            }
+        TriaxialSeedMean m;
+        m.formulation = run.formulation;
+        m.sdp = run.sdp;
+        m.seeds = int(peaks.size());
+        auto meanAndSpread = [](const std::vector<double>& v, double& mean, double& spread) {
+            double sum = 0.0;
+            for (double x : v) sum += x;
+            mean = sum / double(v.size());
+            if (v.size() < 2) return;  // spread stays NaN: one sample has none
+            double squares = 0.0;
+            for (double x : v) squares += (x - mean) * (x - mean);
+            spread = std::sqrt(squares / double(v.size() - 1));
+        };
+        meanAndSpread(peaks, m.peakFrictionAngle, m.peakFrictionAngleSpread);
+        meanAndSpread(moduli, m.secantModulus50, m.secantModulus50Spread);
+        means.push_back(m);
+    }
+    return means;
+}
+
 namespace {
 
-/// The runs of @a f at the finest SDP and the one before it (null where there is none).
-std::pair<const TriaxialRun*, const TriaxialRun*> twoFinest(const TriaxialStudyResult& r,
-                                                            Formulation f)
+/// The means of @a f at the finest SDP and the one before it (null where there is none).
+std::pair<const TriaxialSeedMean*, const TriaxialSeedMean*>
+twoFinest(const std::vector<TriaxialSeedMean>& means, Formulation f)
 {
-    const TriaxialRun* finest = nullptr;
-    const TriaxialRun* next = nullptr;
-    for (const TriaxialRun& run : r.runs) {
-        if (run.formulation != f) continue;
-        if (!finest || run.sdp < finest->sdp) {
+    const TriaxialSeedMean* finest = nullptr;
+    const TriaxialSeedMean* next = nullptr;
+    for (const TriaxialSeedMean& m : means) {
+        if (m.formulation != f) continue;
+        if (!finest || m.sdp < finest->sdp) {
             next = finest;
-            finest = &run;
-        } else if (!next || run.sdp < next->sdp) {
-            next = &run;
+            finest = &m;
+        } else if (!next || m.sdp < next->sdp) {
+            next = &m;
         }
     }
     return {finest, next};
@@ -78,17 +115,19 @@ std::pair<const TriaxialRun*, const TriaxialRun*> twoFinest(const TriaxialStudyR
 
 double finestPeakChange(const TriaxialStudyResult& r, Formulation f)
 {
-    const auto [finest, next] = twoFinest(r, f);
+    const std::vector<TriaxialSeedMean> means = triaxialSeedMeans(r);
+    const auto [finest, next] = twoFinest(means, f);
     if (!finest || !next) return std::numeric_limits<double>::quiet_NaN();
-    return finest->test.peakFrictionAngle - next->test.peakFrictionAngle;
+    return finest->peakFrictionAngle - next->peakFrictionAngle;
 }
 
 double finestModulusChange(const TriaxialStudyResult& r, Formulation f)
 {
-    const auto [finest, next] = twoFinest(r, f);
-    if (!finest || !next || !(next->test.secantModulus50 > 0.0))
+    const std::vector<TriaxialSeedMean> means = triaxialSeedMeans(r);
+    const auto [finest, next] = twoFinest(means, f);
+    if (!finest || !next || !(next->secantModulus50 > 0.0))
         return std::numeric_limits<double>::quiet_NaN();
-    return finest->test.secantModulus50 / next->test.secantModulus50 - 1.0;
+    return finest->secantModulus50 / next->secantModulus50 - 1.0;
 }
 
 } // namespace lsdem

@@ -5,24 +5,40 @@
 
 #include "studies/TriaxialStudy.h"
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 namespace lsdem {
 
-/// DIR/triaxial.csv: formulation, sdp, nodes, stage, step, time, strains, stresses, p, q, q/p,
+/// DIR/triaxial.csv: formulation, sdp, seed, nodes, stage, step, time, strains, stresses, p, q, q/p,
 /// mobilised friction angle, void ratio, coordination, inertial number, kinetic energy, size.
 void writeTriaxialCsv(const TriaxialStudyResult& r, const std::string& path);
 
-/// DIR/triaxial_runs.csv: one row per run: resolution, stiffness, time step, steps, the
+/// DIR/triaxial_runs.csv: one row per run: resolution, seed, stiffness, time step, steps, the
 /// consolidated state, peak and critical-state figures, cost.
 void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path);
 
-/// The change of the peak friction angle between the two finest SDPs of @a f (degrees), NaN if
-/// the study ran @a f at fewer than two SDPs.
+/// A formulation and SDP's figures over the study's seeds (one run each): the mean and the
+/// sample standard deviation (NaN for one seed).
+struct TriaxialSeedMean
+{
+    Formulation formulation = Formulation::Adapted;
+    double sdp = 0.0;
+    int seeds = 0;
+    double peakFrictionAngle = 0.0, peakFrictionAngleSpread = std::nan("");  ///< degrees
+    double secantModulus50 = 0.0, secantModulus50Spread = std::nan("");      ///< MPa
+};
+
+/// One entry per formulation and SDP, in the order of the study's runs.
+std::vector<TriaxialSeedMean> triaxialSeedMeans(const TriaxialStudyResult& r);
+
+/// The change of the peak friction angle between the two finest SDPs of @a f (degrees; of the
+/// means over the seeds), NaN if the study ran @a f at fewer than two SDPs.
 double finestPeakChange(const TriaxialStudyResult& r, Formulation f);
 
-/// The relative change of E₅₀ between the two finest SDPs of @a f (0.1: 10 % stiffer at the
-/// finest), NaN if there are fewer than two.
+/// The relative change of E₅₀ (of the means over the seeds) between the two finest SDPs of @a f
+/// (0.1: 10 % stiffer at the finest), NaN if there are fewer than two.
 double finestModulusChange(const TriaxialStudyResult& r, Formulation f);
 
 } // namespace lsdem

@@ -56,6 +56,7 @@ std::string encodeRun(const TriaxialRun& r)
 {
     RecordWriter w;
     w.text(formulationName(r.formulation));
+    w.integer(r.seed);
     w.number(r.sdp).number(r.vdp).number(r.nodesPerGrain).number(r.stiffness).number(r.dt);
     w.number(r.stabilityLimit);
     w.number(r.strainRate).number(r.bakeSeconds).number(r.runSeconds).number(r.msPerStep);
@@ -83,6 +84,7 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
     RecordReader in(bytes);
     TriaxialRun r;
     r.formulation = parseFormulation(in.text());
+    r.seed = in.integer();
     r.sdp = in.number();
     r.vdp = in.number();
     r.nodesPerGrain = in.number();
@@ -170,13 +172,14 @@ void refuseNonPhysicalRun(const TriaxialRun& run)
 /// One run: bake (or reuse) the assets, build the cloud and its scene, consolidate and shear.
 /// A time step the simulation finds unstable is halved and the run started again.
 TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& files,
-                   Formulation f, double sdp, double spacing, double kn,
+                   Formulation f, double sdp, long long seed, double spacing, double kn,
                    const std::function<void(const TriaxialRow&)>& progress)
 {
     const std::shared_ptr<const TriaxialAssets> assets = sharedTriaxialAssets(files, o.vdp, sdp);
     TriaxialRun run;
     run.formulation = f;
     run.sdp = sdp;
+    run.seed = seed;
     run.vdp = o.vdp;
     run.nodesPerGrain = assets->meanNodes;
     run.stiffness = kn;
@@ -203,7 +206,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
                     "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,
-                          static_cast<std::uint64_t>(o.seed));
+                          static_cast<std::uint64_t>(seed));
     const Scene scene = triaxialScene(o, *assets, cloud, f, kn);
     std::vector<std::string> warnings;
     World world = buildWorld(scene, warnings);
@@ -239,20 +242,22 @@ double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter)
 TriaxialStudyResult runTriaxialStudy(
     const TriaxialOptions& o, RunDistributor& ranks,
     const std::function<void(const TriaxialRun&)>& onRun,
-    const std::function<void(Formulation, double, const TriaxialRow&)>& progress)
+    const std::function<void(Formulation, double, long long, const TriaxialRow&)>& progress)
 {
     checkTriaxialOptions(o);
     const std::vector<std::string> files = triaxialMeshFiles(o);
-    // A run is described by its formulation, SDP, the lattice spacing and the stiffness: the
-    // rest is in the options every rank has.
+    // A run is described by its formulation, SDP, seed, the lattice spacing and the
+    // stiffness: the rest is in the options every rank has.
     const RunDistributor::Job job = [&](const std::string& description) {
         RecordReader in(description);
         const Formulation f = parseFormulation(in.text());
-        const double sdp = in.number(), spacing = in.number(), kn = in.number();
+        const double sdp = in.number();
+        const long long seed = in.integer();
+        const double spacing = in.number(), kn = in.number();
         std::function<void(const TriaxialRow&)> tell;
         if (progress && ranks.isRoot())
-            tell = [&](const TriaxialRow& row) { progress(f, sdp, row); };
-        return encodeRun(runOne(o, files, f, sdp, spacing, kn, tell));
+            tell = [&](const TriaxialRow& row) { progress(f, sdp, seed, row); };
+        return encodeRun(runOne(o, files, f, sdp, seed, spacing, kn, tell));
     };
     if (!ranks.isRoot()) {
         ranks.serve(job);
@@ -271,15 +276,19 @@ TriaxialStudyResult runTriaxialStudy(
 
     std::vector<std::string> descriptions;
     std::vector<double> costs;
+    // Every seed's sample on the lattice of the coarsest assets (the lattice's spacing does
+    // not depend on the seed, only which mesh and orientation each site gets).
     for (Formulation f : o.formulations)
-        for (double sdp : o.sdps) {
-            RecordWriter w;
-            w.text(formulationName(f)).number(sdp).number(result.spacing);
-            w.number(f == Formulation::Adapted ? o.knStar : knOriginal);
-            descriptions.push_back(w.bytes());
-            // Nodes grow as 1/SDP²; original's step also shrinks with the SDP.
-            costs.push_back(std::pow(o.sdps.front() / sdp, f == Formulation::Adapted ? 2.0 : 3.0));
-        }
+        for (double sdp : o.sdps)
+            for (long long seed : o.seeds) {
+                RecordWriter w;
+                w.text(formulationName(f)).number(sdp).integer(seed).number(result.spacing);
+                w.number(f == Formulation::Adapted ? o.knStar : knOriginal);
+                descriptions.push_back(w.bytes());
+                // Nodes grow as 1/SDP²; original's step also shrinks with the SDP.
+                costs.push_back(
+                    std::pow(o.sdps.front() / sdp, f == Formulation::Adapted ? 2.0 : 3.0));
+            }
     result.runs.resize(descriptions.size());
     ranks.runAll(descriptions, costs, job, [&](size_t index, int, const std::string& bytes) {
         result.runs[index] = decodeRun(bytes, o.maxAxialStrain);

@@ -1,7 +1,7 @@
 /// @file TriaxialStudy.h
 /// @brief The triaxial study: the same sample (the meshes of --meshes on the same lattice,
 ///        consolidated to σ₃) tested with each formulation at each node spacing (SDP), the
-///        voxel size (VDP) fixed. Adapted should converge as the SDP shrinks; original, whose
+///        voxel size (VDP) fixed, on one sample per seed. Adapted should converge as the SDP shrinks; original, whose
 ///        kn is per node, stiffens instead. Each run is independent, so under MPI the runs are
 ///        spread over the ranks (RunDistributor.h).
 #pragma once
@@ -21,6 +21,7 @@ struct TriaxialRun
 {
     Formulation formulation = Formulation::Adapted;
     double sdp = 0.0, vdp = 0.0;
+    long long seed = 1;            ///< the sample's seed
     double nodesPerGrain = 0.0;    ///< mean over the meshes
     double stiffness = 0.0;        ///< kn* (N/mm³) or kn (N/mm)
     double dt = 0.0;
@@ -33,7 +34,8 @@ struct TriaxialRun
 
 struct TriaxialStudyResult
 {
-    std::vector<TriaxialRun> runs;  ///< formulations in the order given, each SDP coarsest first
+    /// formulations in the order given, each SDP coarsest first, each seed in the order given
+    std::vector<TriaxialRun> runs;
     int meshes = 0;
     long long grains = 0;
     double spacing = 0.0;           ///< of the starting lattice, mm
@@ -47,7 +49,8 @@ struct TriaxialStudyResult
 TriaxialStudyResult runTriaxialStudy(
     const TriaxialOptions& o, RunDistributor& ranks,
     const std::function<void(const TriaxialRun&)>& onRun = {},
-    const std::function<void(Formulation, double sdp, const TriaxialRow&)>& progress = {});
+    const std::function<void(Formulation, double sdp, long long seed, const TriaxialRow&)>&
+        progress = {});
 
 /// ε̇ from the inertial number: I = ε̇·d·sqrt(ρ/σ₃).
 double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter);

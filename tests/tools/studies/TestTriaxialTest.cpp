@@ -24,6 +24,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 using namespace lsdem;
@@ -209,6 +210,15 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions tension = o;
     tension.confiningStress = -0.1;
     EXPECT_NE(message(tension).find("--confining-stress"), std::string::npos);
+    TriaxialOptions noSeed = o;
+    noSeed.seeds = {};
+    EXPECT_NE(message(noSeed).find("--seed needs at least one seed"), std::string::npos);
+    TriaxialOptions negativeSeed = o;
+    negativeSeed.seeds = {1, -2};
+    EXPECT_NE(message(negativeSeed).find("--seed wants numbers >= 0, got -2"), std::string::npos);
+    TriaxialOptions seedTwice = o;
+    seedTwice.seeds = {3, 1, 3};
+    EXPECT_NE(message(seedTwice).find("--seed 3 is given twice"), std::string::npos);
     TriaxialOptions few = o;
     few.grains = 3;
     EXPECT_NE(message(few).find("--grains"), std::string::npos);
@@ -237,6 +247,91 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
                                   " and as " + folder + "/grain_0003.obj"),
               std::string::npos)
         << message(twice);
+}
+
+// Several seeds: each is a sample of its own on the same lattice, every formulation and SDP is
+// run on each (seeds innermost), a run is the one a study of its seed alone makes, and the
+// summary's means and spreads are those of the runs.
+TEST(TriaxialStudy, EachSeedIsASampleAndTheSummaryTakesTheirMeans)
+{
+    TriaxialOptions o = smallOptions();
+    o.grains = 27;
+    o.sdps = {0.2, 0.15};
+    o.formulations = {Formulation::Adapted};
+    o.seeds = {1, 2};
+    o.maxAxialStrain = 0.01;
+    o.records = 10;
+    const TriaxialStudyResult r = runTriaxialStudy(o, serialRunDistributor());
+    ASSERT_EQ(r.runs.size(), 4u);
+    const double sdps[4] = {0.2, 0.2, 0.15, 0.15};
+    const long long seeds[4] = {1, 2, 1, 2};
+    for (size_t k = 0; k < 4; ++k) {
+        EXPECT_EQ(r.runs[k].sdp, sdps[k]) << k;
+        EXPECT_EQ(r.runs[k].seed, seeds[k]) << k;
+    }
+    // Two samples: the same lattice, other meshes and orientations, so another packing.
+    EXPECT_NE(r.runs[0].test.consolidated.voidRatio, r.runs[1].test.consolidated.voidRatio);
+    EXPECT_NE(r.runs[0].test.consolidatedPoses[0].orientation.coeffs(),
+              r.runs[1].test.consolidatedPoses[0].orientation.coeffs());
+
+    // Seed 2 at SDP 0.2 is the run a study of seed 2 alone makes, number for number.
+    TriaxialOptions alone = o;
+    alone.sdps = {0.2};
+    alone.seeds = {2};
+    const TriaxialStudyResult single = runTriaxialStudy(alone, serialRunDistributor());
+    ASSERT_EQ(single.runs.size(), 1u);
+    EXPECT_EQ(single.spacing, r.spacing);
+    EXPECT_EQ(single.runs[0].seed, 2);
+    EXPECT_EQ(single.runs[0].test.peakFrictionAngle, r.runs[1].test.peakFrictionAngle);
+    EXPECT_EQ(single.runs[0].test.secantModulus50, r.runs[1].test.secantModulus50);
+    EXPECT_EQ(single.runs[0].test.shearSteps, r.runs[1].test.shearSteps);
+
+    // The means: of two samples a and b, (a + b)/2 and the spread |a − b|/√2.
+    const std::vector<TriaxialSeedMean> means = triaxialSeedMeans(r);
+    ASSERT_EQ(means.size(), 2u);
+    for (size_t m = 0; m < 2; ++m) {
+        const TriaxialTestResult& a = r.runs[2 * m].test;
+        const TriaxialTestResult& b = r.runs[2 * m + 1].test;
+        EXPECT_EQ(means[m].sdp, sdps[2 * m]);
+        EXPECT_EQ(means[m].seeds, 2);
+        EXPECT_NEAR(means[m].peakFrictionAngle, 0.5 * (a.peakFrictionAngle + b.peakFrictionAngle),
+                    1e-12);
+        EXPECT_NEAR(means[m].peakFrictionAngleSpread,
+                    std::abs(a.peakFrictionAngle - b.peakFrictionAngle) / std::sqrt(2.0), 1e-12);
+        EXPECT_NEAR(means[m].secantModulus50, 0.5 * (a.secantModulus50 + b.secantModulus50),
+                    1e-12 * a.secantModulus50);
+        EXPECT_NEAR(means[m].secantModulus50Spread,
+                    std::abs(a.secantModulus50 - b.secantModulus50) / std::sqrt(2.0),
+                    1e-12 * a.secantModulus50);
+    }
+    EXPECT_NEAR(finestPeakChange(r, Formulation::Adapted),
+                means[1].peakFrictionAngle - means[0].peakFrictionAngle, 1e-12);
+    EXPECT_NEAR(finestModulusChange(r, Formulation::Adapted),
+                means[1].secantModulus50 / means[0].secantModulus50 - 1.0, 1e-12);
+    // One seed has no spread.
+    EXPECT_TRUE(std::isnan(triaxialSeedMeans(single)[0].peakFrictionAngleSpread));
+
+    // Both files name each row's seed.
+    const std::string dir = ::testing::TempDir() + "/triaxial_seeds";
+    std::filesystem::create_directories(dir);
+    writeTriaxialCsv(r, dir + "/triaxial.csv");
+    writeTriaxialRunsCsv(r, dir + "/triaxial_runs.csv");
+    std::ifstream runs(dir + "/triaxial_runs.csv");
+    std::string header, line;
+    std::getline(runs, header);
+    EXPECT_EQ(header.rfind("formulation,sdp,seed,", 0), 0u) << header;
+    for (size_t k = 0; k < 4; ++k) {
+        ASSERT_TRUE(std::getline(runs, line));
+        std::istringstream fields(line);
+        std::string formulation, sdp, seed;
+        std::getline(fields, formulation, ',');
+        std::getline(fields, sdp, ',');
+        std::getline(fields, seed, ',');
+        EXPECT_EQ(seed, std::to_string(seeds[k])) << line;
+    }
+    std::ifstream rows(dir + "/triaxial.csv");
+    std::getline(rows, header);
+    EXPECT_EQ(header.rfind("formulation,sdp,seed,", 0), 0u) << header;
 }
 
 // Found by review: two meshes of one file name (from two folders) were two [assets.g] of the
@@ -298,6 +393,8 @@ TEST(TriaxialStudy, ProgramRefusesBadInputBeforeAnyWork)
     const std::vector<std::pair<std::string, std::string>> cases = {
         {"--threads 99999999999", "--threads wants 0 (all cores) or a number up to 1024"},
         {"--grains 100000000000", "over the limit of a scene"},
+        {"--seed 2 1 2", "--seed 2 is given twice"},
+        {"--seed 1 x", "--seed"},
         {sand + " " + grain, "gives this mesh twice"},
         {grain + " " + sand + "/../sand/grain_0000.obj", "gives this mesh twice"},
     };

@@ -172,10 +172,9 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     // A run is named by its formulation and SDP, and by its seed when there are several.
     const bool seeds = o.seeds.size() > 1;
     auto runName = [&](Formulation f, double sdp, long long seed) {
-        char text[96];
-        std::snprintf(text, sizeof text, seeds ? "%s SDP %g seed %lld" : "%s SDP %g",
-                      formulationName(f).c_str(), sdp, seed);
-        return std::string(text);
+        char text[64];
+        std::snprintf(text, sizeof text, "%s SDP %g", formulationName(f).c_str(), sdp);
+        return seeds ? std::string(text) + " seed " + std::to_string(seed) : std::string(text);
     };
     auto onRun = [&](const TriaxialRun& r) {
         if (o.quiet) return;

@@ -14,11 +14,13 @@ namespace lsdem {
 namespace {
 
 /// Remove the nodes @a nodes (ascending, each in one of the runs) from the runs [begin, end)
-/// of @a runs (ascending), splitting a run where a node leaves its middle.
+/// of @a runs (ascending), splitting a run where a node leaves its middle. The runs are built
+/// in this thread's buffer and copied back, so a pair allocates only when its runs outgrow
+/// what it holds.
 void leaveOut(std::vector<std::pair<int, int>>& runs, const std::vector<int>& nodes)
 {
-    std::vector<std::pair<int, int>> kept;
-    kept.reserve(runs.size() + nodes.size());
+    thread_local std::vector<std::pair<int, int>> kept;
+    kept.clear();
     size_t k = 0;
     for (auto [begin, end] : runs) {
         for (; k < nodes.size() && nodes[k] < end; ++k) {
@@ -27,7 +29,7 @@ void leaveOut(std::vector<std::pair<int, int>>& runs, const std::vector<int>& no
         }
         if (begin < end) kept.emplace_back(begin, end);
     }
-    runs.swap(kept);
+    runs.assign(kept.begin(), kept.end());
 }
 
 /// Remove from @a cells (ascending by node) those of the nodes @a nodes (ascending).

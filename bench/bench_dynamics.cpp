@@ -46,7 +46,7 @@ Scene settlingScene(NodeTesting testing)
         c.materialA = 0;
         c.materialB = other;
         c.model = model;
-        c.restitution = 0.5;
+        c.model.damping = ViscousDamping(0.5);
         scene.contacts.push_back(c);
     }
     // Centres 1.99 R apart with ±0.005 R jitter: slight overlaps, so all neighbours touch.

@@ -149,7 +149,7 @@ Scene sandScene()
         c.materialA = 0;
         c.materialB = other;
         c.model = model;
-        c.restitution = 0.5;
+        c.model.damping = ViscousDamping(0.5);
         scene.contacts.push_back(c);
     }
     scene.gravity = Vec3(0, 0, -9810.0);  // mm/s²

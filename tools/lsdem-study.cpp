@@ -6,6 +6,7 @@
 #include "studies/SlabCommand.h"
 #include "studies/TriaxialCommand.h"
 #include "studies/TwoSpheresCommand.h"
+#include "studies/verify/VerifyCommand.h"
 
 #include "lsdem/ls/Error.h"
 
@@ -63,6 +64,7 @@ int main(int argc, char** argv)
     Cube27Command cube27(app);
     SlabCommand slab(app);
     TriaxialCommand triaxial(app);
+    VerifyCommand verify(app);
     app.set_help_all_flag("--help-all", "print the help of every study and exit");
     if (argc < 2) {
         std::cerr << app.help();
@@ -76,11 +78,12 @@ int main(int argc, char** argv)
         };
         if (study[0] != '-' && std::as_const(app).get_subcommands(named).empty())
             throw Error("", "unknown study '" + study + "'",
-                        "available: two-spheres, cube27, slab, triaxial");
+                        "available: two-spheres, cube27, slab, triaxial, verify");
         if (const auto exitCode = cli::parse(app, argc, argv)) return *exitCode;
         if (twoSpheres.chosen()) return twoSpheres.run(*ranks);
         if (cube27.chosen()) return cube27.run(*ranks);
         if (triaxial.chosen()) return triaxial.run(*ranks);
+        if (verify.chosen()) return verify.run(*ranks);
         return slab.run(*ranks);
     });
 }

@@ -367,7 +367,7 @@ void bindScenes(py::module_& m)
                  c.model.normalStiffness = normalStiffness;
                  c.model.shearStiffness = shearStiffness;
                  c.model.friction = friction;
-                 c.restitution = restitution;
+                 c.model.damping = ViscousDamping(restitution);
                  c.where = "contact " + a + "-" + b;
                  s.contacts.push_back(c);
              },

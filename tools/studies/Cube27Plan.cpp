@@ -81,9 +81,11 @@ Cube27Run planCube27Run(const Cube27Options& o, Formulation f, int nodes, double
     // Stiffest grain: the top (or bottom) sphere, a wall on one side and a sphere on the other;
     // the middle one has two sphere contacts.
     const double kGrain = std::max(c.kWall + c.kSphere, 2.0 * c.kSphere);
+    // Translation plus rotation on the shear springs at distance R: the bound the stability
+    // check takes (StableStep.h: the largest ω² of translation and rotation together is at
+    // most the sum of each's).
     double omegaMax2 = kGrain / mass;
-    if (hasShear(o, f))  // rotation on the shear springs at distance R
-        omegaMax2 = std::max(omegaMax2, o.shearRatio * kGrain * o.radius * o.radius / inertia);
+    if (hasShear(o, f)) omegaMax2 += o.shearRatio * kGrain * o.radius * o.radius / inertia;
     run.stabilityLimit = 2.0 / std::sqrt(omegaMax2);
     // A stiffness so large that ω² overflows (--kn 1e305) leaves no time step to plan with:
     // named here, rather than by the first run as a time step to fix.

@@ -43,7 +43,7 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
         c.materialA = 0;
         c.materialB = other;
         c.model = model;
-        c.restitution = o.restitution;
+        c.model.damping = ViscousDamping(o.restitution);
         c.where = scene.path;
         scene.contacts.push_back(c);
     }

@@ -23,7 +23,7 @@ Scene makeSlabScene(const SlabStudyOptions& o, Formulation formulation,
     scene.materials.push_back({"rigid", 0.0});
     ContactSpec contact;
     contact.model = slabContactModel(o, formulation);
-    contact.restitution = o.material.restitution;
+    contact.model.damping = ViscousDamping(o.material.restitution);
     contact.materialA = contact.materialB = 0;
     contact.where = "blocks";
     scene.contacts.push_back(contact);

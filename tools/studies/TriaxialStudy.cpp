@@ -119,8 +119,8 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
 /// two spheres of the mean diameter d carrying σ₃·d² has k = 2·sqrt(π·k*·(d/4)·F) (the adapted
 /// law's F = π·k*·R·δ²; original acts like k* = kn / node area), about ten such contacts press
 /// a grain, and half the limit 2·sqrt(m/k) leaves room for the peaks (the 27-grain sample saw
-/// a limit 3 times this step). Never above the
-/// single-node automatic step at safety 0.45 (the stability check guards the rest).
+/// a limit 3 times this step). Never above the stable step of the stiffest contact a grain can
+/// make (automaticTimeStep at safety 1; the stability check guards the rest).
 double triaxialTimeStep(const World& world, const TriaxialOptions& o, Formulation f,
                         const TriaxialAssets& a, double kn)
 {
@@ -131,7 +131,7 @@ double triaxialTimeStep(const World& world, const TriaxialOptions& o, Formulatio
     double lightest = 1e300;
     for (const Grain& g : world.grains) lightest = std::min(lightest, g.body.mass);
     const double estimate = 0.5 * 2.0 * std::sqrt(lightest / (10.0 * contact));
-    return std::min(estimate, automaticTimeStep(world, 0.45));
+    return std::min(estimate, automaticTimeStep(world, 1.0));
 }
 
 /// Refuse to report @a run if its figures went NaN or inf, or its cell is impossible (walls

@@ -1,6 +1,7 @@
 #include "lsdem/contact/ContactLaw.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -38,6 +39,151 @@ void accumulateMoment(Vec3& sum, const Vec3& p, const Point3& c, const Vec3& f, 
         sum = Vec3(sum.x() + mx, sum.y() + my, sum.z() + mz);
 }
 
+/// The unit direction of point force @a f of a side: its contact's normal for a per-node law
+/// (@a contact not null), else the force's own direction (zero for a zero force).
+Vec3 directionOf(const PointForce& f, const NodeContact* contact)
+{
+    if (contact) return contact->normal;
+    const double size = f.force.norm();
+    return size > 0.0 ? Vec3(f.force / size) : Vec3::Zero();
+}
+
+/// The contact seen as one body of springs: where it acts, along which normal, how stiff it is
+/// along it and how fast its force grows with penetration. What its dashpot is made from.
+struct ContactAxis
+{
+    Vec3 centre = Vec3::Zero();  ///< stiffness-weighted centre of the point forces
+    Vec3 normal = Vec3::Zero();  ///< unit, pushing first out of second (zero: none)
+    double stiffness = 0.0;      ///< Σ k_f·(n_f·n)²: the stiffness along the normal
+    double force = 0.0;          ///< P: the elastic force along the normal (on first)
+    double exponent = 1.0;       ///< d ln P / d ln δ ≈ δ_max·K/P (1 for a flat face)
+};
+
+/// The axis of the elastic point forces @a forces[s] of the @a sideCount sides. @a summed: the
+/// law sums the nodes (every law but the single-node one, whose force is one node's spring).
+ContactAxis contactAxis(const ContactSide* sides, int sideCount,
+                        const std::vector<PointForce>* forces, bool perNodeForces, bool summed)
+{
+    ContactAxis axis;
+    const ContactGrain* first = sides[0].tester;
+    double total = 0.0, deepest = 0.0, area = 0.0, areaSquares = 0.0;
+    Vec3 weightedPoint = Vec3::Zero(), weightedNormal = Vec3::Zero();
+    for (int s = 0; s < sideCount; ++s) {
+        const double sign = sides[s].tester == first ? 1.0 : -1.0;
+        for (size_t k = 0; k < forces[s].size(); ++k) {
+            const PointForce& f = forces[s][k];
+            const NodeContact* c = perNodeForces ? &sides[s].contacts[k] : nullptr;
+            total += f.stiffness;
+            weightedPoint += f.stiffness * f.point;
+            weightedNormal += (sign * f.stiffness) * directionOf(f, c);
+        }
+        for (const NodeContact& c : sides[s].contacts) {
+            deepest = std::max(deepest, c.depth);
+            area += c.area;
+            areaSquares += c.area * c.area;
+        }
+    }
+    const double normalLength = weightedNormal.norm();
+    if (!(total > 0.0) || !(normalLength > 0.0)) return axis;
+    axis.centre = weightedPoint / total;
+    axis.normal = weightedNormal / normalLength;
+    // Along the normal: the stiffness K, and the elastic force P that it builds up.
+    double& force = axis.force;
+    for (int s = 0; s < sideCount; ++s) {
+        const double sign = sides[s].tester == first ? 1.0 : -1.0;
+        for (size_t k = 0; k < forces[s].size(); ++k) {
+            const PointForce& f = forces[s][k];
+            const double along = directionOf(f, perNodeForces ? &sides[s].contacts[k] : nullptr)
+                                     .dot(axis.normal);
+            axis.stiffness += f.stiffness * along * along;
+            force += sign * f.force.dot(axis.normal);
+        }
+    }
+    // P = κ·δ^p gives p = δ·K/P, δ the contact's overlap. The deepest node stands for it; on
+    // a curved contact, whose nodes' depths spread evenly over [0, δ] (a cap's area grows in
+    // proportion to depth), the deepest of n nodes is δ·n/(n + 1) deep on average, so the
+    // overlap is δ_max·(1 + 1/n), n the nodes' effective count (Σ A)²/Σ A². (A flat face's
+    // nodes all sit at one depth, but there n is large.) Without that, a contact of a few nodes
+    // would look flat, p → 1, and get a linear spring's damping. Every node is at most δ_max
+    // deep, so P ≤ δ_max·K: p ≥ 1.
+    if (force > 0.0) {
+        const double nodes = summed && areaSquares > 0.0 ? area * area / areaSquares : 0.0;
+        const double overlap = nodes > 0.0 ? deepest * (1.0 + 1.0 / nodes) : deepest;
+        axis.exponent = std::max(1.0, overlap * axis.stiffness / force);
+    }
+    return axis;
+}
+
+/// The contact's stiffness for the stability check (PairForces), summed point force by point
+/// force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ − k_t·r rᵀ
+/// (k' = k_n − k_t), with Σ k_t and Σ k_t·|r|² for the diagonal terms added at the end.
+class StiffnessSum
+{
+public:
+    StiffnessSum(const ContactGrain& first, const ContactGrain& second)
+        : mFirstCentre(first.pose.position), mSecondCentre(second.pose.position),
+          mFirstMoves(first.mass > 0.0), mSecondMoves(second.mass > 0.0)
+    {
+    }
+
+    void add(double normalStiffness, double shearStiffness, const Vec3& n, const Vec3& point)
+    {
+        const double k = normalStiffness - shearStiffness;
+        addLower(mTranslation, k, n, n);
+        mShear += shearStiffness;
+        if (mFirstMoves) addLever(mFirst, k, shearStiffness, n, point - mFirstCentre);
+        if (mSecondMoves) addLever(mSecond, k, shearStiffness, n, point - mSecondCentre);
+    }
+
+    void store(PairForces& result) const
+    {
+        result.translationalStiffness = full(mTranslation, mShear);
+        if (mFirstMoves) result.rotationalStiffnessOfFirst = full(mFirst.lower, mFirst.diagonal);
+        if (mSecondMoves)
+            result.rotationalStiffnessOfSecond = full(mSecond.lower, mSecond.diagonal);
+    }
+
+private:
+    /// Lower triangle xx, yx, zx, yy, zy, zz.
+    using Lower = std::array<double, 6>;
+    struct Rotation
+    {
+        Lower lower{};
+        double diagonal = 0.0;
+    };
+
+    static void addLower(Lower& m, double k, const Vec3& a, const Vec3& b)
+    {
+        m[0] += k * a.x() * b.x();
+        m[1] += k * a.y() * b.x();
+        m[2] += k * a.z() * b.x();
+        m[3] += k * a.y() * b.y();
+        m[4] += k * a.z() * b.y();
+        m[5] += k * a.z() * b.z();
+    }
+    static void addLever(Rotation& m, double k, double shear, const Vec3& n, const Vec3& r)
+    {
+        addLower(m.lower, k, r.cross(n), r.cross(n));
+        if (shear > 0.0) {
+            addLower(m.lower, -shear, r, r);
+            m.diagonal += shear * r.squaredNorm();
+        }
+    }
+    static Mat3 full(const Lower& m, double diagonal)
+    {
+        Mat3 out;
+        out << m[0] + diagonal, m[1], m[2], m[1], m[3] + diagonal, m[4], m[2], m[4],
+            m[5] + diagonal;
+        return out;
+    }
+
+    Vec3 mFirstCentre, mSecondCentre;
+    bool mFirstMoves, mSecondMoves;
+    Lower mTranslation{};
+    double mShear = 0.0;
+    Rotation mFirst, mSecond;
+};
+
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
@@ -46,34 +192,55 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     ContactScratch temporary;
     ContactScratch& work = scratch ? *scratch : temporary;
     PairForces result;
-    const ContactGrain* first = sides[0].tester;
+    const ContactGrain& first = *sides[0].tester;
+    const ContactGrain& second = *sides[0].other;
 
-    // The normal laws first, for every side, so that the dashpot sees the whole contact's
-    // stiffness K (both directions of symmetric testing together).
+    // The normal laws first, for every side: the dashpot is the whole contact's.
     const NormalModel& normalLaw = model.normal();
     const ShearSpringModel shearSprings = model.tangential();
     std::vector<PointForce>* normal = work.forces;
-    double totalStiffness = 0.0;
     for (int s = 0; s < sideCount; ++s) {
         normal[s].clear();
         normalLaw.forces(sides[s].contacts, model.normalStiffness, sides[s].weight, normal[s]);
-        for (const PointForce& f : normal[s]) totalStiffness += f.stiffness;
         result.contactNodes += static_cast<int>(sides[s].contacts.size());
     }
-    // c_f = 2β·sqrt(m/K)·k_f: the dashpots add up to 2β·sqrt(m·K), shared by stiffness.
-    const double dashpotPerStiffness = model.damping().dashpotPerStiffness(
-        effectiveMass(*sides[0].tester, *sides[0].other), totalStiffness);
     const bool perNodeShear = shearSprings.active(normalLaw);
     // A per-node law gives contact i exactly one force, k_i·d_i along its unit normal n_i
     // (NormalModel::perNodeForces): its size and direction are read from the contact rather
     // than recovered from the force with a root and divisions.
     const bool perNodeForces = normalLaw.perNodeForces();
     const bool shearPerArea = normalLaw.stiffnessPerArea();
+    for (int s = 0; s < sideCount; ++s)
+        if (perNodeForces && normal[s].size() != sides[s].contacts.size())
+            throw std::logic_error("resolveContact: a per-node normal law gave " +
+                                   std::to_string(normal[s].size()) + " forces for " +
+                                   std::to_string(sides[s].contacts.size()) + " contacts");
+
+    // The dashpot, on first at the contact's centre (second gets the opposite).
+    Vec3 dashpotForce = Vec3::Zero();
+    ContactAxis axis;
+    if (model.damping.active()) {
+        axis = contactAxis(sides, sideCount, normal, perNodeForces,
+                           perNodeForces || normalLaw.stiffnessPerArea());
+        result.dashpot = model.damping.dashpot(effectiveMass(first, second), axis.stiffness,
+                                               axis.exponent);
+        if (result.dashpot > 0.0) {
+            const Vec3 relative =
+                first.pointVelocity(axis.centre) - second.pointVelocity(axis.centre);
+            // It may push but not pull: at most the elastic force, against it, as the bodies
+            // part (DampingModel.h).
+            const double viscous =
+                std::max(-result.dashpot * relative.dot(axis.normal), -std::max(axis.force, 0.0));
+            dashpotForce = viscous * axis.normal;
+        }
+    }
+    // The turn of the shear history about the normal in this step: the pair's mean spin.
+    const Vec3 meanTurn = (0.5 * dt) * (first.angularVelocity + second.angularVelocity);
 
     // Sums kept in locals (registers), not in `result`, which the compiler must assume the
     // stores to the point forces may alias; the additions happen in the same order.
-    double elasticEnergy = result.elasticEnergy;
-    Mat3 normalStiffness = result.normalStiffness;
+    double elasticEnergy = 0.0;
+    StiffnessSum stiffness(first, second);
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
         std::vector<PointForce>& forces = normal[s];
@@ -97,10 +264,6 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                        ? (*stored)[cursor].force
                        : Vec3::Zero();
         };
-        if (perNodeForces && forces.size() != side.contacts.size())
-            throw std::logic_error("resolveContact: a per-node normal law gave " +
-                                   std::to_string(forces.size()) + " forces for " +
-                                   std::to_string(side.contacts.size()) + " contacts");
         for (size_t k = 0; k < forces.size(); ++k) {
             PointForce& f = forces[k];
             const NodeContact* c = perNodeForces ? &side.contacts[k] : nullptr;
@@ -109,29 +272,21 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             const Vec3 n = c ? c->normal : Vec3(f.force / size);
             // ½·(k·d)·d for a per-node force; the other laws' energy is added once per side.
             if (c) elasticEnergy += 0.5 * size * c->depth;
-            // += k·n·nᵀ, entry by entry (the same products as Eigen's expression, which goes
-            // through a temporary matrix in memory and stalls reading it back).
-            const Vec3 kn = f.stiffness * n;
-            for (int col = 0; col < 3; ++col)
-                for (int row = 0; row < 3; ++row) normalStiffness(row, col) += kn[row] * n[col];
-            const Vec3 relativeVelocity =
-                side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
-            Vec3 total = f.force;
-            if (dashpotPerStiffness > 0.0)
-                total -= (dashpotPerStiffness * f.stiffness * relativeVelocity.dot(n)) * n;
+            double shearStiffness = 0.0;
             if (perNodeShear && side.history) {
                 // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
                 // that left contact lose their history; nodes that entered start from zero.
-                const double shearStiffness =
-                    shearSprings.nodeStiffness(shearPerArea, c->area, side.weight);
-                const Vec3 shear = updateShearForce(storedShear(c->node), c->normal,
-                                                    relativeVelocity * dt, shearStiffness,
-                                                    shearSprings.friction * size);
+                shearStiffness = shearSprings.nodeStiffness(shearPerArea, c->area, side.weight);
+                const Vec3 relativeVelocity =
+                    side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
+                const Vec3 shear = updateShearForce(
+                    storedShear(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
+                    shearStiffness, shearSprings.friction * size);
                 nextHistory.push_back({c->node, shear});
-                total += shear;
+                f.force += shear;
                 elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
             }
-            f.force = total;
+            stiffness.add(f.stiffness, shearStiffness, n, f.point);
         }
         if (!perNodeForces && !forces.empty())
             elasticEnergy += normalLaw.elasticEnergy(side.contacts, model.normalStiffness,
@@ -143,7 +298,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             side.history->replaceWith(nextHistory);
         }
 
-        const bool testerIsFirst = side.tester == first;
+        const bool testerIsFirst = side.tester == &first;
         Vec3& forceOnTester = testerIsFirst ? result.forceOnFirst : result.forceOnSecond;
         Vec3& torqueOnTester = testerIsFirst ? result.torqueOnFirst : result.torqueOnSecond;
         Vec3& forceOnOther = testerIsFirst ? result.forceOnSecond : result.forceOnFirst;
@@ -163,9 +318,21 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         torqueOnOther = otherTorque;
         if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
         if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
+        if (s == 0 && result.dashpot > 0.0) {
+            if (allForces) allForces->push_back({-1, dashpotForce, axis.centre, 0.0});
+            ++result.pointForcesOnFirst;
+        }
+    }
+    if (result.dashpot > 0.0) {
+        result.forceOnFirst += dashpotForce;
+        accumulateMoment(result.torqueOnFirst, axis.centre, Point3(first.pose.position),
+                         dashpotForce, false);
+        result.forceOnSecond -= dashpotForce;
+        accumulateMoment(result.torqueOnSecond, axis.centre, Point3(second.pose.position),
+                         dashpotForce, true);
     }
     result.elasticEnergy = elasticEnergy;
-    result.normalStiffness = normalStiffness;
+    stiffness.store(result);
     return result;
 }
 

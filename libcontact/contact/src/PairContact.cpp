@@ -55,6 +55,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         // resolveContact names the first side's tester "first": swap back to the caller's.
         std::swap(result.forceOnFirst, result.forceOnSecond);
         std::swap(result.torqueOnFirst, result.torqueOnSecond);
+        std::swap(result.rotationalStiffnessOfFirst, result.rotationalStiffnessOfSecond);
         result.pointForcesOnFirst = 0;
     }
     return result;

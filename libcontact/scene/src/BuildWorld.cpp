@@ -162,8 +162,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
     for (const MaterialSpec& m : scene.materials) w.materialNames.push_back(m.name);
     w.models.assign(static_cast<size_t>(w.materialCount) * w.materialCount, ContactModel{});
     for (const ContactSpec& c : scene.contacts) {
-        ContactModel m = c.model;
-        m.dampingRatio = c.restitution < 1.0 ? dampingRatioFromRestitution(c.restitution) : 0.0;
+        const ContactModel& m = c.model;
         w.models[static_cast<size_t>(c.materialA) * w.materialCount + c.materialB] = m;
         w.models[static_cast<size_t>(c.materialB) * w.materialCount + c.materialA] = m;
     }

@@ -43,10 +43,11 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
     if (model.friction > 0.0 && !(model.shearStiffness > 0.0))
         t.fail("friction", "has no effect without shear springs (shear_stiffness is 0)",
                "give shear_stiffness > 0 (ks* or ks, see docs/contact.md), or remove friction");
-    c.restitution = t.number("restitution", 1.0);
-    if (!(c.restitution > 0.0 && c.restitution <= 1.0))
-        t.fail("restitution", "must be in (0, 1] (got " + TableReader::show(c.restitution) + ")",
+    const double restitution = t.number("restitution", 1.0);
+    if (!(restitution > 0.0 && restitution <= 1.0))
+        t.fail("restitution", "must be in (0, 1] (got " + TableReader::show(restitution) + ")",
                "1 means no contact damping");
+    model.damping = ViscousDamping(restitution);
     t.rejectUnknownKeys();
     return c;
 }

@@ -191,7 +191,7 @@ void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
     t.number("normal_stiffness", m.normalStiffness, m.normal().stiffnessUnit());
     if (m.shearStiffness > 0.0) t.number("shear_stiffness", m.shearStiffness);
     if (m.friction > 0.0) t.number("friction", m.friction);
-    if (c.restitution != 1.0) t.number("restitution", c.restitution);
+    if (m.damping.active()) t.number("restitution", m.damping.restitution());
 }
 
 void writeOrientation(TomlText& t, const Quat& q)

@@ -7,8 +7,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include <Eigen/Eigenvalues>
-
 #include <climits>
 #include <cmath>
 #include <cstring>
@@ -72,7 +70,9 @@ bool isEmpty(const PairForces& r)
     };
     return zero(r.forceOnFirst.data(), 3) && zero(r.torqueOnFirst.data(), 3) &&
            zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
-           zero(&r.elasticEnergy, 1) && zero(r.normalStiffness.data(), 9);
+           zero(&r.elasticEnergy, 1) && zero(r.translationalStiffness.data(), 9) &&
+           zero(r.rotationalStiffnessOfFirst.data(), 9) &&
+           zero(r.rotationalStiffnessOfSecond.data(), 9) && zero(&r.dashpot, 1);
 }
 
 /// What a grain–boundary slot adds to its boundary: the reaction and, for a plane, the
@@ -83,17 +83,15 @@ struct BoundaryReaction
     double stiffness = 0.0, dashpot = 0.0;
 };
 
-BoundaryReaction boundaryReaction(const World& w, const ContactSlot& s, double grainMass)
+BoundaryReaction boundaryReaction(const World& w, const ContactSlot& s)
 {
     BoundaryReaction reaction;
     const Boundary& b = w.boundaries[size_t(s.boundary)];
     reaction.force = s.result.forceOnSecond;
     if (b.shape == BoundaryShape::Plane) {
-        reaction.stiffness = b.plane.normal.dot(s.result.normalStiffness * b.plane.normal);
-        const ViscousDamping damping =
-            w.model(w.grains[size_t(s.first)].material, b.material).damping();
-        reaction.dashpot =
-            damping.dashpotPerStiffness(grainMass, reaction.stiffness) * reaction.stiffness;
+        // (A plane's point forces all act along its normal: the contact's dashpot is along it.)
+        reaction.stiffness = b.plane.normal.dot(s.result.translationalStiffness * b.plane.normal);
+        reaction.dashpot = s.result.dashpot;
     }
     return reaction;
 }
@@ -135,7 +133,8 @@ void addReaction(Boundary& b, const BoundaryReaction& reaction)
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
                        bool recordContactForces)
     : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
-      mStabilityLimit(std::numeric_limits<double>::infinity())
+      mStabilityLimit(std::numeric_limits<double>::infinity()),
+      mLargestDampingRatio(largestDampingRatio(mWorld))
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -152,7 +151,8 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
                        bool recordContactForces, GhostDecomposition& ghosts)
     : mWorld(std::move(world)), mDt(dt), mRecordForces(recordContactForces),
-      mStabilityLimit(std::numeric_limits<double>::infinity()), mGhosts(&ghosts)
+      mStabilityLimit(std::numeric_limits<double>::infinity()),
+      mLargestDampingRatio(largestDampingRatio(mWorld)), mGhosts(&ghosts)
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
@@ -318,7 +318,7 @@ void Simulation::evaluateForces(double slipStep)
         if (!integratesGrain(size_t(i))) return;  // a ghost's sum is its owner's
         Grain& g = w.grains[size_t(i)];
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-        Mat3 stiffness = Mat3::Zero();
+        GrainStiffness stiffness;
         for (const GrainSlotRef* r = mContacts.grainSlotsBegin(size_t(i));
              r != mContacts.grainSlotsBegin(size_t(i) + 1); ++r) {
             const ContactSlot& s = slots[size_t(r->slot)];
@@ -330,10 +330,10 @@ void Simulation::evaluateForces(double slipStep)
             // translation at once (stepLimitOf).
             const double partnerMass =
                 s.boundary < 0 ? mViews[size_t(r->first ? s.second : s.first)].mass : 0.0;
-            if (partnerMass > 0.0)
-                stiffness += (1.0 + g.body.mass / partnerMass) * f.normalStiffness;
-            else
-                stiffness += f.normalStiffness;
+            const double share = partnerMass > 0.0 ? 1.0 + g.body.mass / partnerMass : 1.0;
+            stiffness.translation += share * f.translationalStiffness;
+            stiffness.rotation +=
+                share * (r->first ? f.rotationalStiffnessOfFirst : f.rotationalStiffnessOfSecond);
         }
         if (g.isFree()) {
             force += g.body.mass * w.gravity;
@@ -378,7 +378,7 @@ void Simulation::evaluateForces(double slipStep)
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         if (s.boundary >= 0 && !mGhosts)
-            addReaction(w.boundaries[s.boundary], boundaryReaction(w, s, mViews[s.first].mass));
+            addReaction(w.boundaries[s.boundary], boundaryReaction(w, s));
         for (size_t f = 0; f < s.forces.size(); ++f) {
             const bool onFirst = static_cast<int>(f) < r.pointForcesOnFirst;
             const int grain = onFirst ? s.first : s.second;
@@ -411,19 +411,7 @@ double Simulation::stepLimitOf(size_t i) const
     if (!b.pose.position.allFinite() || !b.velocity.allFinite() ||
         !b.angularMomentum.allFinite() || !b.pose.orientation.coeffs().allFinite())
         return std::numeric_limits<double>::quiet_NaN();
-    if (mGrainStiffness[i].isZero()) return std::numeric_limits<double>::infinity();
-    // Stiffest direction of the grain's contacts, each scaled by 1 + m_i/m_j for a moving
-    // partner j: ω² = λ_max / m_i; explicit stepping is stable for dt < 2/ω. The largest such
-    // ω² over the grains bounds every translational mode of their normal springs together:
-    // with u = √m·x the mass-weighted displacements, a pair's spring energy is bounded as
-    // (u_i/√m_i − u_j/√m_j)ᵀK(u_i/√m_i − u_j/√m_j) ≤ (1/m_i + 1/m_j)(u_iᵀK u_i + u_jᵀK u_j),
-    // which is (1 + m_i/m_j)/m_i and (1 + m_j/m_i)/m_j. Exact for two free bodies and a uniform
-    // chain; rotation, shear springs and dashpots are not in it (docs/dynamics.md).
-    Eigen::SelfAdjointEigenSolver<Mat3> solver;
-    solver.computeDirect(mGrainStiffness[i], Eigen::EigenvaluesOnly);
-    const double lambda = solver.eigenvalues().maxCoeff();
-    return lambda > 0.0 ? 2.0 * std::sqrt(b.mass / lambda)
-                        : std::numeric_limits<double>::infinity();
+    return stableStep(mGrainStiffness[i], b, mLargestDampingRatio);
 }
 
 void Simulation::judgeStepLimits()
@@ -488,7 +476,7 @@ void Simulation::sumBoundaryReactions()
         const ContactSlot& s = slots[k];
         const PairForces& r = s.result;
         if (isEmpty(r)) continue;  // adds nothing
-        const BoundaryReaction reaction = boundaryReaction(w, s, mViews[size_t(s.first)].mass);
+        const BoundaryReaction reaction = boundaryReaction(w, s);
         OrderedTerm t;
         t.key[0] = ids[size_t(s.first)];
         t.key[1] = s.boundary;
@@ -604,29 +592,6 @@ Energies Simulation::energies() const
     e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
                                      mWorld.energy.initialTotal);
     return e;
-}
-
-double automaticTimeStep(const World& world, double safety)
-{
-    double stiffest = 0.0;
-    double largestArea = 0.0;
-    for (const Grain& g : world.grains)
-        for (double a : g.asset->nodes.areas) largestArea = std::max(largestArea, a);
-    for (const ContactModel& m : world.models) {
-        const double normal = m.normal().nodeStiffness(m.normalStiffness, largestArea);
-        const double shear = m.normal().nodeStiffness(m.shearStiffness, largestArea);
-        stiffest = std::max({stiffest, normal, shear});
-    }
-    double lightest = std::numeric_limits<double>::infinity();
-    for (const Grain& g : world.grains) {
-        if (!g.isFree()) continue;
-        const double r = g.asset->boundingRadius;
-        lightest = std::min({lightest, g.body.mass, g.body.principalInertia.minCoeff() / (r * r)});
-    }
-    if (!(stiffest > 0.0) || !std::isfinite(lightest))
-        throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
-                    "give [simulation] time_step explicitly");
-    return safety * 2.0 * std::sqrt(lightest / stiffest);
 }
 
 } // namespace lsdem

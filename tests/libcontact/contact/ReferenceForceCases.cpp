@@ -42,7 +42,7 @@ ContactModel modelFor(Formulation f, NodeTesting testing)
     case Formulation::Volume: m.normalStiffness = 1e3; m.shearStiffness = 800.0; break;
     }
     m.friction = 0.4;
-    m.dampingRatio = 0.2;
+    m.damping = ViscousDamping(0.55);
     return m;
 }
 
@@ -163,7 +163,8 @@ std::string fixed(double v, int digits = 3)
 Outcome elasticOnly(const Case& c)
 {
     Case s = c;
-    s.model.shearStiffness = s.model.friction = s.model.dampingRatio = 0.0;
+    s.model.shearStiffness = s.model.friction = 0.0;
+    s.model.damping = ViscousDamping();
     Evaluation e = c.evaluations[0];
     e.first.velocity = e.first.angularVelocity = Vec3::Zero();
     e.second.velocity = e.second.angularVelocity = Vec3::Zero();

@@ -306,7 +306,7 @@ void writeReferenceFile(const std::string& path, Formulation f, const std::vecto
         << "# intended change of the contact laws, and say why in the commit.\n"
         << "#\n"
         << "# Each case: two bodies in contact, the model (normal stiffness, shear stiffness,\n"
-        << "# friction, damping ratio; units consistent, e.g. mm, N, s, t) and two evaluations,\n"
+        << "# friction, restitution; units consistent, e.g. mm, N, s, t) and two evaluations,\n"
         << "# the second one step dt later (the bodies moved at their velocities) with the shear\n"
         << "# history of the first. Expected: penetrating nodes; force and torque on the first\n"
         << "# grain and on the second body (a boundary's torque is about its reference point);\n"
@@ -324,7 +324,7 @@ void writeReferenceFile(const std::string& path, Formulation f, const std::vecto
             << "testing " << nodeTestingName(c.model.testing) << "\n"
             << "model " << number(c.model.normalStiffness) << " "
             << number(c.model.shearStiffness) << " " << number(c.model.friction) << " "
-            << number(c.model.dampingRatio) << "\n"
+            << number(c.model.damping.restitution()) << "\n"
             << "first " << c.firstAsset << " " << number(c.firstMass) << "\n";
         if (isGrainPair(c))
             out << "second " << c.secondAsset << " " << number(c.secondMass) << "\n";
@@ -414,7 +414,7 @@ Case caseFromBlock(const Block& b)
     c.model.normalStiffness = b.number("model", 0, 4);
     c.model.shearStiffness = b.number("model", 1, 4);
     c.model.friction = b.number("model", 2, 4);
-    c.model.dampingRatio = b.number("model", 3, 4);
+    c.model.damping = ViscousDamping(b.number("model", 3, 4));
     c.firstAsset = b.words("first", 2)[0];
     c.firstMass = b.number("first", 1, 2);
     if (isGrainPair(c)) {

@@ -1,9 +1,11 @@
 // resolveContact on hand-made penetrating nodes (no level sets involved): action and reaction
 // with torques about each centroid, the two half-weight sides of symmetric testing, the dashpot
-// against the critical-damping closed form, the shear history of the nodes now in contact, and
-// the elastic energy and contact stiffness it reports. Every expected value is summed here by
+// on the contact's approach (critical-damping fraction, no resistance to rolling), the shear
+// history of the nodes now in contact and its objectivity, and the elastic energy and contact
+// stiffness (translation and rotation) it reports. Every expected value is summed here by
 // hand from the documented laws (docs/contact.md, docs/dynamics.md).
 #include "lsdem/contact/ContactLaw.h"
+#include "lsdem/ls/Constants.h"
 
 #include <gtest/gtest.h>
 
@@ -56,14 +58,14 @@ struct TwoGrains
     }
 };
 
-ContactModel adapted(double ks = 0.0, double friction = 0.0, double beta = 0.0)
+ContactModel adapted(double ks = 0.0, double friction = 0.0, double restitution = 1.0)
 {
     ContactModel m;
     m.formulation = Formulation::Adapted;
     m.normalStiffness = kKnStar;
     m.shearStiffness = ks;
     m.friction = friction;
-    m.dampingRatio = beta;
+    m.damping = ViscousDamping(restitution);
     return m;
 }
 
@@ -152,12 +154,29 @@ TEST(ContactLaw, SymmetricSidesAddAtHalfWeight)
     EXPECT_EQ(r.pointForcesOnFirst, 2);
     ASSERT_EQ(all.size(), 3u);
     expectVecNear(all[2].force, adaptedForce(g.bInA[0], 0.5), tol);  // on B, B's node
-    // The contact stiffness Σ k·n nᵀ of every normal point force, both sides.
-    Mat3 k = Mat3::Zero();
+    // The contact stiffness Σ k·n nᵀ of every normal point force, both sides (no shear); in
+    // rotation Σ k·w wᵀ with w = (p − c) × n about each centroid c (both may move).
+    Mat3 k = Mat3::Zero(), kA = Mat3::Zero(), kB = Mat3::Zero();
     for (const auto* list : {&g.aInB, &g.bInA})
-        for (const NodeContact& c : *list)
-            k += 0.5 * kKnStar * c.area * c.normal * c.normal.transpose();
-    EXPECT_LT((r.normalStiffness - k).norm(), 1e-12 * k.norm());
+        for (const NodeContact& c : *list) {
+            const double kc = 0.5 * kKnStar * c.area;
+            k += kc * c.normal * c.normal.transpose();
+            const Vec3 wA = (c.point - g.a.pose.position).cross(c.normal);
+            const Vec3 wB = (c.point - g.b.pose.position).cross(c.normal);
+            kA += kc * wA * wA.transpose();
+            kB += kc * wB * wB.transpose();
+        }
+    EXPECT_LT((r.translationalStiffness - k).norm(), 1e-12 * k.norm());
+    // (The bodies' masses are 0 here: immovable, so no rotational stiffness is summed.)
+    EXPECT_TRUE(r.rotationalStiffnessOfFirst.isZero());
+    TwoGrains movable = g;
+    movable.a.mass = 1.0;
+    movable.b.mass = 2.0;
+    ContactSide movableSides[2];
+    movable.halfWeightSides(movableSides);
+    const PairForces rm = resolveContact(movableSides, 2, adapted(), 0.0, nullptr);
+    EXPECT_LT((rm.rotationalStiffnessOfFirst - kA).norm(), 1e-12 * kA.norm());
+    EXPECT_LT((rm.rotationalStiffnessOfSecond - kB).norm(), 1e-12 * kB.norm());
     // ½|F|²/k = ½·k·d² per point force.
     double energy = 0.0;
     for (const NodeContact& c : g.aInB) energy += 0.25 * kKnStar * c.area * c.depth * c.depth;
@@ -195,7 +214,9 @@ TEST(ContactLaw, SingleNodeAndVolumeStoreTheirForcesPotential)
 
 // A flat contact of stiffness K = Σ kn*·A closing at speed v between masses m_A and m_B: the
 // dashpot adds 2β·sqrt(m·K)·v against the approach, with m the reduced mass (or the moving
-// body's mass against an immovable one). Opening, it pulls (no cut-off on tension).
+// body's mass against an immovable one) and β the ratio for the contact's exponent
+// p = (1 + 1/n)·δ_max·K/P (n = (Σ A)²/Σ A², the nodes' effective count). Opening, it pulls,
+// but never more than the elastic force pushes. Tangential motion is not damped.
 TEST(ContactLaw, DashpotIsTheCriticalFractionOfTheWholeContact)
 {
     TwoGrains g;
@@ -207,7 +228,19 @@ TEST(ContactLaw, DashpotIsTheCriticalFractionOfTheWholeContact)
         elastic += kKnStar * c.depth * c.area;
         stiffness += kKnStar * c.area;
     }
-    const double beta = 0.3, v = 2.0;
+    const double restitution = 0.4, v = 2.0;
+    double areas = 0.0, squares = 0.0;
+    for (const NodeContact& c : flat) {
+        areas += c.area;
+        squares += c.area * c.area;
+    }
+    const double exponent = (1.0 + squares / (areas * areas)) * 0.1 * stiffness / elastic;
+    // β between the table's exponents either side (steps of 1/8), linearly.
+    const double position = (exponent - 1.0) / 0.125, below = std::floor(position);
+    const double beta = (1.0 - (position - below)) *
+                            dampingRatioFor(restitution, 1.0 + 0.125 * below) +
+                        (position - below) * dampingRatioFor(restitution, 1.0 + 0.125 * (below + 1));
+    ASSERT_GT(exponent, 1.0);
     struct Masses { double a, b, effective; };
     for (const Masses m : {Masses{2.0, 3.0, 1.2}, Masses{2.0, 0.0, 2.0}, Masses{0.0, 3.0, 3.0}}) {
         g.a.mass = m.a;
@@ -219,12 +252,15 @@ TEST(ContactLaw, DashpotIsTheCriticalFractionOfTheWholeContact)
             side.tester = &g.a;
             side.other = &g.b;
             side.contacts = flat;
-            const PairForces r = resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr);
+            const PairForces r =
+                resolveContact(&side, 1, adapted(0, 0, restitution), 0.0, nullptr);
             const double dashpot = 2 * beta * std::sqrt(m.effective * stiffness) * speed;
-            EXPECT_NEAR(r.forceOnFirst.z(), -(elastic + dashpot), 1e-13 * elastic)
+            EXPECT_NEAR(r.forceOnFirst.z(), -std::max(0.0, elastic + dashpot), 1e-12 * elastic)
                 << m.a << " " << m.b << " " << speed;
             EXPECT_NEAR(r.forceOnFirst.x(), 0.0, 1e-13 * elastic);  // tangential motion: no
             EXPECT_NEAR(r.forceOnFirst.y(), 0.0, 1e-13 * elastic);  // dashpot, no shear
+            EXPECT_NEAR(r.dashpot, 2 * beta * std::sqrt(m.effective * stiffness),
+                        1e-12 * r.dashpot);
         }
     }
     // Neither body can move: no dashpot.
@@ -233,25 +269,82 @@ TEST(ContactLaw, DashpotIsTheCriticalFractionOfTheWholeContact)
     side.tester = &g.a;
     side.other = &g.b;
     side.contacts = flat;
-    EXPECT_NEAR(resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr).forceOnFirst.z(),
+    EXPECT_NEAR(resolveContact(&side, 1, adapted(0, 0, restitution), 0.0, nullptr)
+                    .forceOnFirst.z(),
                 -elastic, 1e-13 * elastic);
 
-    // A spinning tester: each point force gets its own share c/k·k_f of its normal velocity.
+    // Spinning bodies: the dashpot damps their relative velocity at the contact's
+    // stiffness-weighted centre, along its normal, and acts there (one point force, listed
+    // after the side's own).
     g.a.mass = 2.0;
     g.b.mass = 3.0;
     g.a.velocity = g.b.velocity = Vec3::Zero();
     g.a.angularVelocity = Vec3(0.0, 5.0, 0.0);
     g.b.angularVelocity = Vec3(1.0, 0.0, 0.0);
-    const double perStiffness = 2 * beta * std::sqrt(1.2 / stiffness);
-    Vec3 expected = Vec3::Zero();
+    Vec3 centre = Vec3::Zero(), elasticForce = Vec3::Zero(), elasticTorque = Vec3::Zero();
     for (const NodeContact& c : flat) {
-        const Vec3 va = g.a.angularVelocity.cross(c.point - g.a.pose.position);
-        const Vec3 vb = g.b.angularVelocity.cross(c.point - g.b.pose.position);
         const double k = kKnStar * c.area;
-        expected += k * c.depth * c.normal - perStiffness * k * (va - vb).dot(c.normal) * c.normal;
+        centre += k * c.point / stiffness;
+        elasticForce += k * c.depth * c.normal;
+        elasticTorque += (c.point - g.a.pose.position).cross(k * c.depth * c.normal);
     }
-    expectVecNear(resolveContact(&side, 1, adapted(0, 0, beta), 0.0, nullptr).forceOnFirst,
-                  expected, 1e-13 * elastic);
+    const Vec3 relative = g.a.angularVelocity.cross(centre - g.a.pose.position) -
+                          g.b.angularVelocity.cross(centre - g.b.pose.position);
+    const Vec3 n = -Vec3::UnitZ();
+    const Vec3 damping = -2 * beta * std::sqrt(1.2 * stiffness) * relative.dot(n) * n;
+    std::vector<PointForce> all;
+    const PairForces r = resolveContact(&side, 1, adapted(0, 0, restitution), 0.0, &all);
+    expectVecNear(r.forceOnFirst, elasticForce + damping, 1e-13 * elastic);
+    expectVecNear(r.torqueOnFirst,
+                  elasticTorque + (centre - g.a.pose.position).cross(damping), 1e-13 * elastic);
+    ASSERT_EQ(all.size(), flat.size() + 1);
+    EXPECT_EQ(all.back().node, -1);
+    expectVecNear(all.back().point, centre, 1e-15);
+    expectVecNear(all.back().force, damping, 1e-13 * elastic);
+    EXPECT_EQ(r.pointForcesOnFirst, int(flat.size()) + 1);
+}
+
+// A ball rolling on a wall without slip turns about its contact point: its nodes ahead of that
+// point move into the wall and those behind move out, while the contact as a whole neither
+// approaches nor recedes. The dashpot must not turn that into a torque against the rolling
+// (a dashpot per node did, and a rolling ball slowed down): with a cap of nodes symmetric
+// about the contact point, the forces and torque are those of the springs alone.
+TEST(ContactLaw, RollingWithoutSlipIsNotDamped)
+{
+    const double radius = 5.0, depth = 0.05;
+    ContactGrain ball, wall;
+    ball.pose.position = Vec3(0, 0, radius - depth);
+    ball.mass = 4e-6;
+    ball.angularVelocity = Vec3(0.0, 20.0, 0.0);  // rolls along +x at v = ω·R: the point
+    ball.velocity = -ball.angularVelocity.cross(Vec3(0, 0, -radius));  // below it is at rest
+    // A ring of nodes of the ball's surface around its lowest point, below the wall (z < 0).
+    std::vector<NodeContact> cap;
+    int index = 0;
+    for (double rho : {0.0, 0.25, 0.5}) {
+        const int count = rho == 0.0 ? 1 : 8;
+        for (int k = 0; k < count; ++k) {
+            const double angle = 2 * kPi * k / count;
+            const Vec3 surface(rho * std::cos(angle), rho * std::sin(angle),
+                               radius - depth - std::sqrt(radius * radius - rho * rho));
+            if (surface.z() >= 0.0) continue;
+            cap.push_back(node(index++, -surface.z(), Vec3::UnitZ(),
+                               surface - 0.5 * surface.z() * Vec3::UnitZ(), 0.05));
+        }
+    }
+    ASSERT_GT(cap.size(), 9u);
+    ContactSide side;
+    side.tester = &ball;
+    side.other = &wall;
+    side.contacts = cap;
+    const PairForces damped = resolveContact(&side, 1, adapted(0, 0, 0.3), 0.0, nullptr);
+    const PairForces elastic = resolveContact(&side, 1, adapted(), 0.0, nullptr);
+    EXPECT_GT(damped.dashpot, 0.0);
+    const double scale = elastic.forceOnFirst.norm() * radius;
+    expectVecNear(damped.forceOnFirst, elastic.forceOnFirst, 1e-12 * elastic.forceOnFirst.norm());
+    expectVecNear(damped.torqueOnFirst, elastic.torqueOnFirst, 1e-12 * scale);
+    // (Each node's own normal velocity, ±ω·x, is far from zero: a per-node dashpot would act.)
+    const double nodeSpeed = std::abs(ball.pointVelocity(cap.back().point).z());
+    EXPECT_GT(nodeSpeed, 1.0);
 }
 
 // After a step the history holds exactly the nodes now in contact: a node that left loses its

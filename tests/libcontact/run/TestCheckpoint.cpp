@@ -67,7 +67,7 @@ Scene stackScene(int side)
     c.model.normalStiffness = 1e3;
     c.model.shearStiffness = 500.0;
     c.model.friction = 0.4;
-    c.restitution = 0.5;
+    c.model.damping = ViscousDamping(0.5);
     s.contacts.push_back(c);
     std::mt19937 rng(99);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -114,10 +114,10 @@ TEST(SceneFile, GoodSceneIsReadAsWritten)
     EXPECT_EQ(s.materials[0].density, 7.85e-9);
     ASSERT_EQ(s.contacts.size(), 2u);
     EXPECT_EQ(s.contacts[0].model.formulation, Formulation::Adapted);  // the default
-    EXPECT_EQ(s.contacts[0].restitution, 0.6);
+    EXPECT_EQ(s.contacts[0].model.damping.restitution(), 0.6);
     EXPECT_EQ(s.contacts[1].model.formulation, Formulation::Original);
     EXPECT_EQ(s.contacts[1].model.testing, NodeTesting::OneWay);
-    EXPECT_EQ(s.contacts[1].restitution, 1.0);
+    EXPECT_EQ(s.contacts[1].model.damping.restitution(), 1.0);
     ASSERT_EQ(s.grains.size(), 2u);
     EXPECT_EQ(s.grains[0].name, "a");
     // 90° about z takes x to y.

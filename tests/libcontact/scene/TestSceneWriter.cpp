@@ -69,7 +69,7 @@ void expectSameScene(const Scene& a, const Scene& b)
         EXPECT_EQ(x.model.normalStiffness, y.model.normalStiffness);
         EXPECT_EQ(x.model.shearStiffness, y.model.shearStiffness);
         EXPECT_EQ(x.model.friction, y.model.friction);
-        EXPECT_EQ(x.restitution, y.restitution);
+        EXPECT_EQ(x.model.damping.restitution(), y.model.damping.restitution());
     }
     ASSERT_EQ(a.grains.size(), b.grains.size());
     for (size_t i = 0; i < a.grains.size(); ++i) {
@@ -169,7 +169,7 @@ Scene everyFeature(const ScratchDir& dir)
     ContactSpec sandSand = contact(0, 0, Formulation::Adapted, 1e9);
     sandSand.model.shearStiffness = 4e8;
     sandSand.model.friction = 0.5;
-    sandSand.restitution = 0.3;
+    sandSand.model.damping = ViscousDamping(0.3);
     ContactSpec sandSteel = contact(0, 1, Formulation::Original, 1e6);
     sandSteel.model.testing = NodeTesting::OneWay;
     s.contacts = {sandSand, sandSteel, contact(0, 2, Formulation::Volume, 2e9),

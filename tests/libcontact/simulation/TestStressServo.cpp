@@ -130,7 +130,7 @@ Scene pressedSphereScene(double stress, double area, double maxSpeed, double res
     ContactSpec c;
     c.model.formulation = Formulation::Adapted;
     c.model.normalStiffness = kKnStar;
-    c.restitution = restitution;
+    c.model.damping = ViscousDamping(restitution);
     s.contacts.push_back(c);
     GrainSpec g;
     g.pose.position = Vec3(0, 0, kRadius);

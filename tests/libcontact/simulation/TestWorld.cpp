@@ -41,7 +41,7 @@ TEST(World, ModelOfAPairOfMaterialsIsTheSameInEitherOrder)
     c.materialB = 0;
     c.model.formulation = Formulation::Original;
     c.model.normalStiffness = 7.0;
-    c.restitution = 0.5;
+    c.model.damping = ViscousDamping(0.5);
     scene.contacts.push_back(c);
     std::vector<std::string> warnings;
     const World w = buildWorld(scene, warnings);
@@ -49,7 +49,7 @@ TEST(World, ModelOfAPairOfMaterialsIsTheSameInEitherOrder)
     for (const auto& [a, b] : {std::pair{0, 2}, std::pair{2, 0}}) {
         EXPECT_EQ(w.model(a, b).formulation, Formulation::Original);
         EXPECT_EQ(w.model(a, b).normalStiffness, 7.0);
-        EXPECT_EQ(w.model(a, b).dampingRatio, dampingRatioFromRestitution(0.5));
+        EXPECT_EQ(w.model(a, b).damping.restitution(), 0.5);
     }
     EXPECT_EQ(w.model(0, 1).normalStiffness, 0.0);  // no contact given: the default model
     EXPECT_EQ(w.model(1, 0).normalStiffness, 0.0);

@@ -344,11 +344,11 @@ TEST(Cube27Study, ProgramRefusesBadInput)
         {"--colour red", "--colour"},
         // Found by review: step counts beyond any integer ("give at least --steps
         // -9223372036854775808", a 1-step plan), and plans that would run for years.
-        {"--speed 1e-300 --steps 5", "needs at least 6.024e+306 time steps (the limit is 1e+09)"},
-        {"--safety 1e-300", "would take 6.18809e+302 time steps (the limit is 1e+09)"},
-        {"--periods 1e300", "needs at least 6.18809e+300 time steps"},
+        {"--speed 1e-300 --steps 5", "needs at least 8.08205e+306 time steps (the limit is 1e+09)"},
+        {"--safety 1e-300", "would take 8.30219e+302 time steps (the limit is 1e+09)"},
+        {"--periods 1e300", "needs at least 8.30219e+300 time steps"},
         {"--speed 1e-9", "time steps (the limit is 1e+09)"},
-        {"--speed 0.3", "the study would take 1.71804e+09 time steps in its 16 runs"},
+        {"--speed 0.3", "the study would take 2.30499e+09 time steps in its 16 runs"},
         // Found by review: a plan of fewer steps than points (the wall jumping δ_max).
         {"--periods 1e-300", "in 1 time step(s), fewer than the 30 points it records"},
         {"--speed 1e9", "fewer than the 30 points it records"},

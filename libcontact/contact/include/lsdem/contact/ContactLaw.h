@@ -1,8 +1,8 @@
 /// @file ContactLaw.h
 /// @brief From penetrating nodes to forces: the normal law of the formulation, the per-node
-///        shear springs with history, and viscous normal damping, applied to one contact seen
-///        from one or two sides (one-way or symmetric node testing). Used for grain–grain and
-///        grain–boundary contacts alike.
+///        shear springs with history, and a viscous dashpot on the contact's approach, applied
+///        to one contact seen from one or two sides (one-way or symmetric node testing). Used
+///        for grain–grain and grain–boundary contacts alike.
 #pragma once
 
 #include "lsdem/contact/ContactModel.h"
@@ -19,6 +19,8 @@ struct ContactGrain
 {
     const GrainAsset* asset = nullptr;
     RigidPose pose;
+    /// Velocities over the step (velocity Verlet's half-step velocities): the relative
+    /// displacement of the shear springs, the turn of their history, and the dashpot's rate.
     Vec3 velocity = Vec3::Zero();         ///< of the centroid (reference point), world
     Vec3 angularVelocity = Vec3::Zero();  ///< world
     int index = 0;                        ///< breaks one-way ties: the lower index tests
@@ -67,16 +69,30 @@ struct PairForces
     int contactNodes = 0;       ///< penetrating nodes, all sides
     int pointForcesOnFirst = 0; ///< of the point forces appended, how many (leading) act on first
     double elasticEnergy = 0.0; ///< Σ ½|F_n|²/k_n + ½|F_t|²/k_t over the point forces
-    /// Σ k·n nᵀ of the normal point forces: the translational contact stiffness that both
-    /// bodies feel (for the stability check of the time step).
-    Mat3 normalStiffness = Mat3::Zero();
+    /// How stiff the contact is for each body, for the stability check of the time step: in
+    /// translation, Σ k_n·n nᵀ + k_t·(I − n nᵀ) over its point forces (the same for both
+    /// bodies); in rotation about each body's centroid, Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ
+    /// with r the point's lever and w = r × n (zero for a body that cannot move).
+    Mat3 translationalStiffness = Mat3::Zero();
+    Mat3 rotationalStiffnessOfFirst = Mat3::Zero(), rotationalStiffnessOfSecond = Mat3::Zero();
+    /// The contact's dashpot c (force·time/length) along its mean normal; 0 without damping.
+    double dashpot = 0.0;
 };
 
 /// Turn the sides of one contact into forces. The sides' testers must be the same two bodies
 /// (side 0: first tests second; side 1, if any: second tests first). Each side's history is
 /// replaced by the shear of the nodes now in contact. @a dt is the step over which the
 /// relative motion slipped (0: no shear update).
-/// @param allForces if not null, receives each point force as it acts on its side's tester
+///
+/// The dashpot acts on the contact as a whole: on the two bodies' relative velocity at the
+/// contact's stiffness-weighted centre, along its mean normal, with c = 2β·sqrt(m·K) for its
+/// stiffness K along that normal and β calibrated for the contact's force–penetration
+/// exponent (DampingModel.h); it pushes but never pulls (the normal force stays repulsive). So
+/// it damps the approach of the bodies, and neither rolling nor sliding: a rolling sphere's
+/// leading nodes approach the partner and its trailing nodes recede, which a dashpot per node
+/// would turn into a resisting torque.
+/// @param allForces if not null, receives each point force as it acts on its side's tester,
+///                  the dashpot (node -1, at the contact's centre, on first) after side 0's
 /// @param scratch   working memory to reuse (null: a temporary one)
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
                           double dt, std::vector<PointForce>* allForces,

@@ -1,9 +1,10 @@
 /// @file ContactModel.h
 /// @brief The contact model between two grains, assembled from its sub-models (as LAMMPS
 ///        GRANULAR assembles its normal, damping and tangential sub-models): the formulation's
-///        normal law (NormalModel.h), a viscous normal dashpot (DampingModel.h) and per-node
-///        shear springs with friction (TangentialModel.h), plus which nodes are tested. Units
-///        are the user's (e.g. mm, N, s).
+///        normal law (NormalModel.h), a viscous dashpot on the contact's approach calibrated by
+///        a coefficient of restitution (DampingModel.h) and per-node shear springs with
+///        friction (TangentialModel.h), plus which nodes are tested. Units are the user's
+///        (e.g. mm, N, s).
 #pragma once
 
 #include "lsdem/contact/DampingModel.h"
@@ -27,12 +28,12 @@ struct ContactModel
     double normalStiffness = 0.0;  ///< kn or kn* (normal().stiffnessUnit())
     double shearStiffness = 0.0;   ///< ks (force/length) or ks* (force/length³), per node
     double friction = 0.0;         ///< Coulomb coefficient μ
-    /// Viscous normal damping as a fraction β of critical damping (0: none).
-    double dampingRatio = 0.0;
+    /// The dashpot, from the coefficient of restitution e of an impact (default 1: none):
+    /// ContactModel::damping = ViscousDamping(e).
+    ViscousDamping damping;
 
     const NormalModel& normal() const { return normalModel(formulation); }
     ShearSpringModel tangential() const { return {shearStiffness, friction}; }
-    ViscousDamping damping() const { return {dampingRatio}; }
 };
 
 std::string nodeTestingName(NodeTesting t);

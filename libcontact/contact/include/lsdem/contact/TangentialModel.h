@@ -1,6 +1,8 @@
 /// @file TangentialModel.h
 /// @brief The tangential sub-model: a linear shear spring per contact node, with history. The
-///        stored shear force is turned onto the current tangent plane (keeping its size),
+///        stored shear force is carried along with the contact (turned onto the current
+///        tangent plane, and about the normal by the pair's mean spin, keeping its size, so it
+///        is objective: a pair turning as one rigid body keeps its shear in its own frame),
 ///        incremented by -k_t·Δu_t and capped by Coulomb's μ·|F_n|. Its stiffness follows the
 ///        normal law's rule: ks per node (original) or ks*·A_a per area (adapted).
 #pragma once
@@ -13,21 +15,26 @@
 namespace lsdem {
 
 /// The spring's step. Inline: it runs for every node in contact at every step, and a call
-/// would pass its vectors through memory. At most one square root while the node sticks.
+/// would pass its vectors through memory. At most two square roots.
 /// @param stored   shear force from the last step (zero for a node just entering contact)
 /// @param normal   current unit contact normal
 /// @param slip     relative displacement of the contact point in the step (any direction;
 ///                 only its tangential part counts)
+/// @param twist    the angle the pair turned about @a normal in the step: (ω_A + ω_B)/2 · n·dt
 /// @param stiffness k_t of this node (force/length)
 /// @param limit    μ·|F_n|, the largest shear the node can carry
 /// @return the new shear force (tangent to @a normal, at most @a limit long; zero if
 ///         @a limit ≤ 0)
 inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
-                             double stiffness, double limit)
+                             double twist, double stiffness, double limit)
 {
-    // Turn the stored force onto the new tangent plane without changing its size: a turning
-    // normal must neither create nor destroy shear. (|stored| / |turned| as one root.)
+    // Carry the stored force with the contact without changing its size: onto the new tangent
+    // plane (the normal's own turn), then about the normal by the pair's mean spin (which a
+    // projection cannot see). A turning contact must neither create nor destroy shear. The
+    // small-angle turn s + θ·n×s is brought back to |stored| below, with the projection's
+    // rescaling (|stored| / |turned| as one root): exact in size, second order in angle.
     Vec3 shear = stored - stored.dot(normal) * normal;
+    shear += twist * normal.cross(shear);
     const double before2 = stored.squaredNorm(), after2 = shear.squaredNorm();
     if (after2 > 0.0) shear *= std::sqrt(before2 / after2);
     const Vec3 tangentialSlip = slip - slip.dot(normal) * normal;

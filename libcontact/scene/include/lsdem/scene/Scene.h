@@ -66,9 +66,7 @@ struct MaterialSpec
 struct ContactSpec
 {
     int materialA = 0, materialB = 0;  ///< indices into Scene::materials
-    ContactModel model;
-    /// Coefficient of restitution for viscous contact damping, in (0, 1]; 1 means none.
-    double restitution = 1.0;
+    ContactModel model;  ///< with its dashpot from the scene's restitution (model.damping)
     std::string where;
 };
 

@@ -7,6 +7,7 @@
 
 #include "lsdem/ls/ThreadPrivate.h"
 #include "lsdem/simulation/ContactList.h"
+#include "lsdem/simulation/StableStep.h"
 #include "lsdem/simulation/World.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -126,7 +127,8 @@ private:
     long long mContactNodes = 0;
     double mElastic = 0.0;
     double mStabilityLimit = 0.0;
-    std::vector<Mat3> mGrainStiffness;  ///< Σ k n nᵀ per grain at the last evaluation
+    double mLargestDampingRatio = 0.0;  ///< of the world's contact models: the step's margin
+    std::vector<GrainStiffness> mGrainStiffness;  ///< per grain at the last evaluation
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
     /// Of each slot, what the pass after the narrow phase sums, side by side: read in order
@@ -149,11 +151,5 @@ private:
     /// Each thread's working memory for the contact laws (no allocation in the hot loop).
     tbb::enumerable_thread_specific<ThreadPrivate<ContactScratch>> mScratch;
 };
-
-/// The automatic time step: safety · 2·sqrt(m / k) for the stiffest single node (original,
-/// single-node: kn; adapted, volume: kn*·A of the largest node area) and the lightest free
-/// grain, whose mass m also stands in for its rotational inertia I_min / r_max².
-/// @throw Error if no free grain touches anything stiff (nothing to base a step on).
-double automaticTimeStep(const World& world, double safety);
 
 } // namespace lsdem

@@ -1,0 +1,52 @@
+/// @file StableStep.h
+/// @brief How large a time step a grain's contacts allow, and the automatic time step.
+///
+/// Velocity Verlet on a spring of stiffness k and a body of mass m is stable for
+/// dt < 2/ω, ω² = k/m; a dashpot at ratio β of critical lowers it to 2/ω·(sqrt(1 + β²) − β).
+/// A grain in contact is a 6-degree-of-freedom body on many springs: with K_t the contacts'
+/// translational stiffness (3×3) and K_r their rotational stiffness about its centroid, the
+/// largest ω² of the grain is at most λ_max(K_t)/m + λ_max(I^-½ K_r I^-½) (I its inertia; the
+/// largest eigenvalue of a positive semidefinite block matrix is at most the sum of its
+/// diagonal blocks'), so that sum bounds the grain's fastest mode, the coupling of translation
+/// and rotation by off-centre contacts included. Shear springs add k_t in the tangent plane.
+#pragma once
+
+#include "lsdem/simulation/RigidBody.h"
+
+namespace lsdem {
+
+struct World;
+
+/// A grain's contact stiffness as the stability check sums it (PairForces, Simulation.cpp):
+/// each contact scaled by 1 + m/m_partner for a partner that moves too.
+struct GrainStiffness
+{
+    Mat3 translation = Mat3::Zero();  ///< force/length, world
+    Mat3 rotation = Mat3::Zero();     ///< moment/angle about the centroid, world
+};
+
+/// The largest stable step of @a body on springs @a stiffness with dashpots up to ratio
+/// @a dampingRatio of critical (infinite without stiffness).
+double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio);
+
+/// The largest damping ratio β any contact model of @a world can give (ViscousDamping).
+double largestDampingRatio(const World& world);
+
+/// The band of a grain's surface that `time_step = "auto"` takes to be in contact: the nodes
+/// within this fraction of its bounding radius of a flat wall (a sphere's cap at an overlap of
+/// 1 % of its radius; the whole of a flat face).
+constexpr double kAutomaticBandFraction = 0.01;
+
+/// The automatic time step: safety · the stable step of the stiffest contact any free grain
+/// can make. For each free grain, a flat wall is brought against its surface from many
+/// directions (its principal axes and the level-set normals at up to 256 of its nodes, so
+/// every flat face is met square): the nodes within kAutomaticBandFraction of its bounding
+/// radius of the wall count, each with its normal and shear stiffness under every contact model
+/// of the world, in translation and in rotation about the centroid, doubled for a partner
+/// that moves as much (two equal free grains), with the largest damping ratio of the world.
+/// Deeper contacts, or many at once, are what the stability check at every step is for; the
+/// safety factor (0.2 by default) leaves them 25 times the stiffness.
+/// @throw Error if no free grain touches anything stiff (nothing to base a step on).
+double automaticTimeStep(const World& world, double safety);
+
+} // namespace lsdem

@@ -1,0 +1,174 @@
+#include "lsdem/simulation/StableStep.h"
+
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/LevelSetSampler.h"
+#include "lsdem/simulation/World.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace lsdem {
+
+namespace {
+
+double largestEigenvalue(const Mat3& m)
+{
+    Eigen::SelfAdjointEigenSolver<Mat3> solver;
+    solver.computeDirect(m, Eigen::EigenvaluesOnly);
+    return std::max(0.0, solver.eigenvalues().maxCoeff());
+}
+
+/// The nodes of a grain that a flat wall square to @a direction (asset frame, outward) meets
+/// first: those within @a band of its support plane.
+std::vector<int> bandNodes(const SurfaceNodes& nodes, const Vec3& direction, double band)
+{
+    double support = -std::numeric_limits<double>::infinity();
+    for (const Vec3& p : nodes.positions) support = std::max(support, p.dot(direction));
+    std::vector<int> band_;
+    for (size_t k = 0; k < nodes.size(); ++k)
+        if (nodes.positions[k].dot(direction) >= support - band) band_.push_back(int(k));
+    return band_;
+}
+
+/// The walls of automaticTimeStep for @a asset: its principal axes, both ways, and the outward
+/// level-set normals at up to 256 of its nodes.
+std::vector<Vec3> wallDirections(const GrainAsset& asset)
+{
+    std::vector<Vec3> directions;
+    for (int axis = 0; axis < 3; ++axis)
+        for (double sign : {1.0, -1.0}) directions.push_back(sign * Vec3::Unit(axis));
+    const size_t n = asset.nodes.size();
+    if (!asset.levelSet || n == 0) return directions;
+    LevelSetSampler sampler(*asset.levelSet);
+    const size_t stride = std::max<size_t>(1, (n + 255) / 256);
+    for (size_t k = 0; k < n; k += stride) {
+        const Vec3 gradient = sampler.sample(asset.nodes.positions[k]).gradient;
+        if (gradient.norm() > 0.5) directions.push_back(gradient.normalized());
+    }
+    return directions;
+}
+
+/// The contact of a wall square to @a direction against the nodes @a band of @a asset, under
+/// @a model, as the stability check sums it (asset frame, about the centroid at the origin).
+GrainStiffness wallContactStiffness(const GrainAsset& asset, const std::vector<int>& band,
+                                    const Vec3& direction, const ContactModel& model)
+{
+    GrainStiffness k;
+    const NormalModel& law = model.normal();
+    const Mat3 identity = Mat3::Identity();
+    const Mat3 across = identity - direction * direction.transpose();
+    if (law.perNodeForces()) {
+        const bool shear = model.tangential().active(law);
+        for (int node : band) {
+            const double area = asset.nodes.areas[size_t(node)];
+            const double kn = law.nodeStiffness(model.normalStiffness, area);
+            const double kt = shear ? law.nodeStiffness(model.shearStiffness, area) : 0.0;
+            const Vec3& r = asset.nodes.positions[size_t(node)];
+            const Vec3 w = r.cross(direction);
+            Mat3 lever;
+            lever << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+            k.translation += kn * direction * direction.transpose() + kt * across;
+            k.rotation += kn * w * w.transpose() + kt * lever * across * lever.transpose();
+        }
+        return k;
+    }
+    // One force for the whole patch, at its area-weighted centre.
+    double area = 0.0;
+    Vec3 centre = Vec3::Zero();
+    for (int node : band) {
+        area += asset.nodes.areas[size_t(node)];
+        centre += asset.nodes.areas[size_t(node)] * asset.nodes.positions[size_t(node)];
+    }
+    if (!(area > 0.0)) return k;
+    centre /= area;
+    const double meanArea = asset.nodes.totalArea() / double(asset.nodes.size());
+    const double kn = law.patchStiffness(model.normalStiffness, area, meanArea);
+    const Vec3 w = centre.cross(direction);
+    k.translation = kn * direction * direction.transpose();
+    k.rotation = kn * w * w.transpose();
+    return k;
+}
+
+/// The distinct contact laws of @a world (the matrix of models repeats each pair twice).
+std::vector<ContactModel> distinctModels(const World& world)
+{
+    std::vector<ContactModel> models;
+    for (const ContactModel& m : world.models) {
+        if (!(m.normalStiffness > 0.0)) continue;
+        const bool seen = std::any_of(models.begin(), models.end(), [&](const ContactModel& o) {
+            return o.formulation == m.formulation && o.normalStiffness == m.normalStiffness &&
+                   o.shearStiffness == m.shearStiffness && o.friction == m.friction;
+        });
+        if (!seen) models.push_back(m);
+    }
+    return models;
+}
+
+} // namespace
+
+double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio)
+{
+    double omega2 = largestEigenvalue(stiffness.translation) / body.mass;
+    if (!stiffness.rotation.isZero()) {
+        // In the principal frame, scaled by 1/sqrt(I_k) on both sides.
+        const Mat3 rotation = body.pose.orientation.toRotationMatrix();
+        const Vec3 scale = body.principalInertia.cwiseSqrt().cwiseInverse();
+        const Mat3 bodyFrame = rotation.transpose() * stiffness.rotation * rotation;
+        omega2 += largestEigenvalue(scale.asDiagonal() * bodyFrame * scale.asDiagonal());
+    }
+    if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
+    const double beta = std::max(0.0, dampingRatio);
+    return 2.0 / std::sqrt(omega2) * (std::sqrt(1.0 + beta * beta) - beta);
+}
+
+double largestDampingRatio(const World& world)
+{
+    double largest = 0.0;
+    for (const ContactModel& m : world.models)
+        largest = std::max(largest, m.damping.largestRatio());
+    return largest;
+}
+
+double automaticTimeStep(const World& world, double safety)
+{
+    const std::vector<ContactModel> models = distinctModels(world);
+    const double beta = largestDampingRatio(world);
+    // Per asset, the stiffness of each wall under each model (in its principal frame).
+    std::map<const GrainAsset*, std::vector<GrainStiffness>> walls;
+    double step = std::numeric_limits<double>::infinity();
+    bool anyFree = false;
+    for (const Grain& g : world.grains) {
+        if (!g.isFree()) continue;
+        anyFree = true;
+        const GrainAsset& asset = *g.asset;
+        auto found = walls.find(&asset);
+        if (found == walls.end()) {
+            std::vector<GrainStiffness> stiffnesses;
+            const double band = kAutomaticBandFraction * asset.boundingRadius;
+            for (const Vec3& d : wallDirections(asset)) {
+                const std::vector<int> nodes = bandNodes(asset.nodes, d, band);
+                for (const ContactModel& m : models)
+                    stiffnesses.push_back(wallContactStiffness(asset, nodes, d, m));
+            }
+            found = walls.emplace(&asset, std::move(stiffnesses)).first;
+        }
+        RigidBody principal = g.body;  // the walls are in the asset's (principal) frame
+        principal.pose.orientation = Quat::Identity();
+        for (const GrainStiffness& k : found->second) {
+            // A partner that moves as much doubles the stiffness the grain feels.
+            const GrainStiffness doubled{2.0 * k.translation, 2.0 * k.rotation};
+            step = std::min(step, stableStep(doubled, principal, beta));
+        }
+    }
+    if (!anyFree || !std::isfinite(step))
+        throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
+                    "give [simulation] time_step explicitly");
+    return safety * step;
+}
+
+} // namespace lsdem

@@ -1,0 +1,29 @@
+/// @file VerifyCases.h
+/// @brief The cases of the verification suite (docs/verification.md), each adding its checks
+///        and figure data to a Report: Chung & Ooi's eight tests at the particle level, rolling,
+///        blocks on walls, free rotation, convergence with the node count, and a silo.
+#pragma once
+
+#include "studies/verify/VerifyReport.h"
+#include "studies/verify/VerifySetup.h"
+
+#include <vector>
+
+namespace lsdem::verify {
+
+struct Context
+{
+    Bodies& bodies;
+    std::vector<Formulation> formulations;  ///< those a case applies to are run
+    bool quick = false;                     ///< fewer points, shorter runs (ctest)
+    Report& report;
+};
+
+/// Chung & Ooi test 2: a ball's elastic normal impact on a wall; overlap, force, duration.
+void normalImpactOnWall(Context& c);
+/// Chung & Ooi test 1: two equal balls' elastic normal impact.
+void normalImpactOfTwoSpheres(Context& c);
+/// Chung & Ooi test 3: the rebound of a ball on a wall over restitutions 0.1 … 1.
+void restitutionSweep(Context& c);
+
+} // namespace lsdem::verify

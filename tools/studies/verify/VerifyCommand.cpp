@@ -1,0 +1,97 @@
+#include "studies/verify/VerifyCommand.h"
+
+#include "studies/RunDistributor.h"
+#include "studies/StudyCommandOptions.h"
+#include "studies/ThreadLimit.h"
+
+#include "common/CommandLine.h"
+#include "common/PlotScripts.h"
+#include "common/StudyOutput.h"
+
+#include "lsdem/ls/Stopwatch.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace lsdem {
+
+namespace {
+
+const cli::StudyFiles kOwnFiles = {"verify_checks.csv", "verify_*.csv", "verify_*.png"};
+
+std::string caseHelp()
+{
+    std::string text = "the cases to run (default: all):";
+    for (const verify::CaseEntry& e : verify::caseList()) text += "\n  " + e.name + ": " + e.title;
+    return text;
+}
+
+} // namespace
+
+VerifyCommand::VerifyCommand(CLI::App& study)
+    : mCommand(study.add_subcommand(
+          "verify",
+          "The verification suite: lsdem against published and exact references\n\n"
+          "Single contacts and single bodies against theory, as a reviewer checks a DEM code\n"
+          "before trusting it: the eight impact tests of Chung & Ooi (Granular Matter 13,\n"
+          "2011) with references derived for lsdem's laws, slide-to-roll and rolling, blocks\n"
+          "sliding and landing, free rotation, convergence with the node count. A table of\n"
+          "reference, lsdem, error, tolerance and pass; CSV and figures in --out."))
+{
+    verify::VerifyOptions& o = mOptions;
+    cli::addTexts(*mCommand, "--case", o.cases, caseHelp())->type_name("NAME");
+    addFormulationOption(*mCommand, o.formulations);
+    const std::string bodies = "Bodies and law (mm, t, s, N)";
+    cli::addInteger(*mCommand, "--nodes", o.setup.sphereNodes, "nodes of the ball (about)")
+        ->type_name("N")
+        ->group(bodies);
+    cli::addNumber(*mCommand, "--voxel", o.setup.sphereVoxel, "voxel of the ball's level set, mm")
+        ->type_name("V")
+        ->group(bodies);
+    mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
+    cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
+    addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the failures and the tally");
+    mCommand->footer("Exit codes as every study's, and 5: a check failed (the table says which).");
+}
+
+bool VerifyCommand::chosen() const
+{
+    return mCommand->parsed();
+}
+
+int VerifyCommand::run(RunDistributor& ranks) const
+{
+    const verify::VerifyOptions& o = mOptions;
+    verify::checkVerifyOptions(o);
+    cli::checkThreads(mThreads);
+    if (!ranks.isRoot()) return 0;  // the cases are short: rank 0 runs them all
+    const ThreadLimit threads(mThreads, ranks);
+    cli::checkOutputFolder(o.outDir);
+    const Stopwatch wall;
+    const verify::Report report = verify::runVerification(o, [&](const std::string& name) {
+        if (!o.quiet) std::printf("running %s ...\n", name.c_str()), std::fflush(stdout);
+    });
+    cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
+    const std::string checks = o.outDir + "/verify_checks.csv";
+    verify::writeChecksCsv(report, checks);
+    for (const verify::Series& s : report.series)
+        verify::writeSeriesCsv(s, o.outDir + "/verify_" + s.name + ".csv");
+
+    std::printf("%-26s %-12s %-24s %13s %13s %9s %8s %s\n", "case", "law", "quantity", "reference",
+                "lsdem", "error", "tol", "");
+    for (const verify::Check& c : report.checks) {
+        if (o.quiet && c.passes()) continue;
+        std::printf("%-26s %-12s %-24s %13.6g %13.6g %+8.3f%% %7.2f%% %s\n", c.caseName.c_str(),
+                    c.formulation.c_str(), c.quantity.c_str(), c.reference, c.value,
+                    100.0 * c.error(), 100.0 * c.tolerance, c.passes() ? "pass" : "FAIL");
+    }
+    std::printf("%zu checks, %d failed, in %.1f s; wrote %s\n", report.checks.size(),
+                report.failures(), wall.seconds(), checks.c_str());
+    const int plots = o.plots ? cli::drawPlots("verify.py", {o.outDir}) : 0;
+    if (!report.allPass()) return 5;
+    return plots;
+}
+
+} // namespace lsdem

@@ -1,0 +1,56 @@
+/// @file VerifyReport.h
+/// @brief What the verification suite finds: checks (a quantity lsdem computed against its
+///        reference, with the tolerance and why), and series (the curves of its figures).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace lsdem::verify {
+
+/// One quantity of one case against its reference. The error is (value − reference)/scale:
+/// relative when scale is the reference itself, otherwise against a stated scale (a rebound
+/// speed against the impact speed, say, where the reference may be zero).
+struct Check
+{
+    std::string caseName;     ///< "normal-wall", "oblique-wall 30°", ...
+    std::string formulation;  ///< "adapted", ..., or "-" for no contact law
+    std::string quantity;     ///< "max overlap", ...
+    std::string unit;         ///< "mm", "N", "s", "" (dimensionless)
+    double reference = 0.0;
+    double value = 0.0;
+    double scale = 1.0;       ///< the error's denominator (> 0)
+    double tolerance = 0.0;   ///< on |error|
+    std::string basis;        ///< where the tolerance comes from (docs/verification.md)
+
+    double error() const { return (value - reference) / scale; }
+    bool passes() const { return std::abs(error()) <= tolerance; }
+};
+
+/// The data of a figure: named columns, one row per point.
+struct Series
+{
+    std::string name;  ///< file stem: verify_<name>.csv
+    std::vector<std::string> columns;
+    std::vector<std::vector<double>> rows;
+};
+
+struct Report
+{
+    std::vector<Check> checks;
+    std::vector<Series> series;
+
+    void add(Check c) { checks.push_back(std::move(c)); }
+    bool allPass() const;
+    int failures() const;
+};
+
+/// The checks as CSV (case, formulation, quantity, unit, reference, value, error, tolerance,
+/// pass, basis), written atomically to @a path.
+void writeChecksCsv(const Report& report, const std::string& path);
+/// A series as CSV, written atomically to @a path.
+void writeSeriesCsv(const Series& series, const std::string& path);
+
+} // namespace lsdem::verify

@@ -1,0 +1,57 @@
+#include "studies/verify/VerifyStudy.h"
+
+#include "studies/verify/VerifyCases.h"
+
+#include "lsdem/ls/Error.h"
+#include "lsdem/ls/NumberText.h"
+
+#include <algorithm>
+
+namespace lsdem::verify {
+
+const std::vector<CaseEntry>& caseList()
+{
+    static const std::vector<CaseEntry> cases = {
+        {"normal-wall", "Chung & Ooi 2: a ball's normal impact on a wall", normalImpactOnWall},
+        {"normal-pair", "Chung & Ooi 1: two balls' normal impact", normalImpactOfTwoSpheres},
+        {"restitution", "Chung & Ooi 3: rebound over restitutions 0.1 … 1", restitutionSweep},
+    };
+    return cases;
+}
+
+void checkVerifyOptions(const VerifyOptions& o)
+{
+    for (const std::string& name : o.cases) {
+        const auto& list = caseList();
+        if (std::none_of(list.begin(), list.end(), [&](const CaseEntry& e) { return e.name == name; })) {
+            std::string known;
+            for (const CaseEntry& e : list) known += (known.empty() ? "" : ", ") + e.name;
+            throw Error("", "--case: no case '" + name + "'", "choose from: " + known);
+        }
+    }
+    if (o.formulations.empty())
+        throw Error("", "--formulation: no formulation given", "name at least one");
+    if (!(o.setup.sphereNodes >= 100))
+        throw Error("", "--nodes must be at least 100 (got " + std::to_string(o.setup.sphereNodes) + ")",
+                    "e.g. --nodes 4000");
+    if (!(o.setup.sphereVoxel > 0.0) || o.setup.sphereVoxel > 0.1 * o.setup.radius)
+        throw Error("", "--voxel must be in (0, R/10] (got " + numberText(o.setup.sphereVoxel) + ")",
+                    "e.g. --voxel 0.1");
+}
+
+Report runVerification(const VerifyOptions& o,
+                       const std::function<void(const std::string&)>& progress)
+{
+    Report report;
+    Bodies bodies(o.setup);
+    Context context{bodies, o.formulations, o.quick, report};
+    for (const CaseEntry& e : caseList()) {
+        if (!o.cases.empty() && std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())
+            continue;
+        if (progress) progress(e.name);
+        e.run(context);
+    }
+    return report;
+}
+
+} // namespace lsdem::verify

@@ -1,0 +1,46 @@
+/// @file VerifyStudy.h
+/// @brief `lsdem-study verify`: the verification suite (docs/verification.md) as a study:
+///        which cases to run, on which laws and bodies, and the report they make.
+#pragma once
+
+#include "studies/verify/VerifyReport.h"
+#include "studies/verify/VerifySetup.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lsdem::verify {
+
+struct Context;
+
+struct VerifyOptions
+{
+    Setup setup;
+    std::vector<Formulation> formulations = allFormulations();
+    std::vector<std::string> cases;  ///< names of caseList(); empty: all
+    bool quick = false;              ///< the fast version (ctest): fewer points, coarser
+    std::string outDir = "results/verify";
+    bool plots = true, quiet = false;
+};
+
+/// One case of the suite.
+struct CaseEntry
+{
+    std::string name;
+    std::string title;  ///< what it checks, for --help and the summary
+    std::function<void(Context&)> run;
+};
+
+/// Every case, in the order the suite runs them.
+const std::vector<CaseEntry>& caseList();
+
+/// Check @a o; throw Error naming the bad option and the fix.
+void checkVerifyOptions(const VerifyOptions& o);
+
+/// Run the cases of @a o (no files written). @a progress, if given, hears each case's name as
+/// it starts.
+Report runVerification(const VerifyOptions& o,
+                       const std::function<void(const std::string&)>& progress = {});
+
+} // namespace lsdem::verify

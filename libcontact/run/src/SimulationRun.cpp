@@ -296,7 +296,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     double dt = mScene.timeStep.fixed;
     if (mRestart) {
         dt = mCheckpoint.timeStep;
-        restoreWorldState(options.restartPath, world);
+        restoreWorldState(mCheckpoint, options.restartPath, world);
+        std::string().swap(mCheckpoint.fileBytes);  // the state is in the world now
     } else if (!(dt > 0.0)) {
         dt = automaticTimeStep(world, mScene.timeStep.safety);
         log << "time step (auto, safety " << mScene.timeStep.safety << "): " << dt << "\n";

@@ -468,8 +468,10 @@ void Run::writeCheckpoint()
     const World& whole = wholeWorld(gathered);
     if (!mWrites) return;
     if (mFrames) mCheckpoint.record.vtkFrameTimes = mFrames->series().frameTimes();
-    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
+    // The histories first: a kill between the two leaves files a little ahead of the
+    // checkpoint, never behind it (a restart rewrites them from the checkpoint's rows).
     writeFiles(whole);
+    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
 }
 
 bool Run::stepToEnd()

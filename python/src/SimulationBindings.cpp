@@ -113,7 +113,7 @@ public:
             mRecord = c.record;
             mArena->execute([&] {
                 World world = buildWorld(mScene, warnings);
-                restoreWorldState(checkpointPath, world);
+                restoreWorldState(c, checkpointPath, world);  // the same reading as c
                 mSim = std::make_unique<Simulation>(std::move(world), c.timeStep, false,
                                                     recordContacts);
             });

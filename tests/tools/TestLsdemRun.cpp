@@ -2,6 +2,8 @@
 // stopping on a signal, and bad input.
 #include "support/TestSupport.h"
 
+#include "lsdem/ls/FolderLock.h"
+
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -254,6 +256,39 @@ TEST(LsdemRun, DamagedCheckpointLeavesNoOutputFolder)
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find(checkpoint + ": "), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+}
+
+// One run writes a folder at a time. While another holds it (this test, standing for a run
+// still writing there), a run into it and a restart from its checkpoint, in place or elsewhere,
+// are refused, saying why and writing nothing; once it is free they go on.
+TEST(LsdemRun, AFolderAnotherRunWritesIsRefused)
+{
+    ScratchDir dir;
+    std::string text = smallScene(400);
+    text.replace(text.find("vtk_period = 1e-3"), 17, "");  // no frames: --out elsewhere is fine
+    const std::string scene = writeScene(dir, text);
+    ASSERT_EQ(runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b")).exitCode,
+              130);
+    const std::string checkpoint = dir.file("b/checkpoint.lsdem");
+    const std::string before = readFile(dir.file("b/energy.csv")) + readFile(checkpoint);
+    lsdem::FolderLock other;
+    ASSERT_TRUE(other.tryLock(dir.file("b"), lsdem::FolderLock::Mode::Exclusive));
+    const std::string restart = kRun + " -q --restart " + checkpoint;
+    for (const std::string& command :
+         {restart, restart + " --out " + dir.file("c"),
+          kRun + " " + scene + " -q --overwrite --out " + dir.file("b")}) {
+        const CommandResult r = runCommand(command);
+        EXPECT_EQ(r.exitCode, 1) << command << "\n" << r.output;
+        EXPECT_NE(r.output.find(dir.file("b") + ": another run is still writing this folder"),
+                  std::string::npos)
+            << command << "\n" << r.output;
+    }
+    EXPECT_EQ(readFile(dir.file("b/energy.csv")) + readFile(checkpoint), before);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+    other.unlock();
+    const CommandResult r = runCommand(restart);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(countLines(dir.file("b/energy.csv")), 42);  // the header, steps 0, 10, ..., 400
 }
 
 TEST(LsdemRun, InterruptWritesACheckpointToContinueFrom)

@@ -5,7 +5,8 @@
 // single process's, byte for byte, for 1 to 4 ranks, with a rank that owns no grain, across
 // a restart on another rank count and for the interlocked slab's loaded flat faces; each frame
 // is the single process's file, or a .pvtu whose pieces hold together exactly its points and
-// cells. Skipped when lsdem was built without MPI.
+// cells. A run killed with kill -9 at any moment, on 1, 2 or 3 processes, continues on any of
+// those counts to the uninterrupted run's bytes. Skipped when lsdem was built without MPI.
 // Open MPI refuses to start as root without OMPI_ALLOW_RUN_AS_ROOT*: ctest sets those for this
 // program (tests/CMakeLists.txt).
 #include "studies/SlabModel.h"
@@ -21,13 +22,21 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 using namespace lsdem::test;
 
@@ -282,6 +291,183 @@ std::pair<int, int> contactsWithShear(const std::string& scene, const std::strin
     return {pairs, boundaries};
 }
 
+/// Ellipsoids and boxes dropped into a box of walls, with friction, and a sphere pushed down
+/// and sideways into them; a checkpoint every 2e-4 s (117 steps, about 10 history rows), so a
+/// kill at a random moment falls anywhere between two checkpoints or inside the writing of one.
+std::string shapesUnderASphere()
+{
+    std::ostringstream s;
+    s << R"(
+[assets.egg]
+shape = "ellipsoid"
+size = [2.5, 1.8, 1.4]
+voxel = 0.2
+nodes = 200
+
+[assets.brick]
+shape = "box"
+size = [3.5, 2.5, 2]
+voxel = 0.2
+nodes = 200
+
+[materials.rock]
+density = 2.65e-9
+[materials.wall]
+density = 0.0
+
+[[contacts]]
+materials = ["rock", "rock"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.5
+restitution = 0.3
+
+[[contacts]]
+materials = ["rock", "wall"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.5
+restitution = 0.3
+)";
+    const char* layers[][3] = {{"egg", "3", "3"}, {"brick", "8.5", "4"}};
+    for (const auto& l : layers)
+        s << "\n[[lattices]]\nasset = \"" << l[0] << "\"\nmaterial = \"rock\"\n"
+          << "origin = [-5.5, -5.5, " << l[1] << "]\ncount = [3, 3, 1]\n"
+          << "spacing = [5.5, 5.5, 5.5]\njitter = 0.2\nrandom_orientation = true\nseed = " << l[2]
+          << "\n";
+    const char* walls[][3] = {{"floor", "[0, 0, 0]", "[0, 0, 1]"},
+                              {"west", "[-8.5, 0, 0]", "[1, 0, 0]"},
+                              {"east", "[8.5, 0, 0]", "[-1, 0, 0]"},
+                              {"south", "[0, -8.5, 0]", "[0, 1, 0]"},
+                              {"north", "[0, 8.5, 0]", "[0, -1, 0]"}};
+    for (const auto& w : walls)
+        s << "\n[[boundaries]]\nname = \"" << w[0] << "\"\ntype = \"plane\"\nmaterial = \"wall\"\n"
+          << "point = " << w[1] << "\nnormal = " << w[2] << "\n";
+    s << R"(
+[[boundaries]]
+name = "ball"
+type = "sphere"
+material = "wall"
+center = [0, 0, 16]
+radius = 4
+velocity = [-150, 0, -700]
+
+[simulation]
+gravity = [0, 0, -1e5]
+global_damping = 0.1
+time_step = "auto"
+end_time = 0.012
+
+[output]
+history_period = 2e-5
+checkpoint_period = 2e-4
+)";
+    return s.str();
+}
+
+/// lsdem-run with @a args on @a count processes: one as a user starts it, more under mpirun.
+std::vector<std::string> onProcesses(int count, const std::vector<std::string>& args)
+{
+    std::vector<std::string> command = {kRun};
+    if (count > 1)
+        command = {kMpiexec, "--oversubscribe", "-n", std::to_string(count), kRun};
+    command.insert(command.end(), args.begin(), args.end());
+    return command;
+}
+
+/// Starts @a command in a session of its own, its output into @a log. Returns its pid, which
+/// is also the session's id: mpirun's ranks stay in it even once mpirun is gone.
+pid_t startInOwnSession(const std::vector<std::string>& command, const std::string& log)
+{
+    std::fflush(nullptr);  // or the child would print this program's pending output again
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    setsid();
+    if (!std::freopen(log.c_str(), "w", stdout) || dup2(STDOUT_FILENO, STDERR_FILENO) < 0)
+        _exit(126);
+    std::vector<char*> argv;
+    for (const std::string& a : command) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+}
+
+/// The processes of session @a session still running (zombies do not count: they hold no
+/// file or lock any more).
+std::vector<pid_t> liveProcessesOf(pid_t session)
+{
+    std::vector<pid_t> found;
+    for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+        const std::string name = entry.path().filename().string();
+        if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+        // "pid (command) state ppid pgrp session ...": the command may hold spaces.
+        const std::string stat = readFile(entry.path().string() + "/stat");
+        const size_t end = stat.rfind(')');
+        if (end == std::string::npos) continue;
+        std::istringstream fields(stat.substr(end + 1));
+        char state = 0;
+        long long parent = 0, group = 0, itsSession = 0;
+        if (fields >> state >> parent >> group >> itsSession && itsSession == session &&
+            state != 'Z')
+            found.push_back(static_cast<pid_t>(std::stoll(name)));
+    }
+    return found;
+}
+
+/// kill -9 every process of session @a session and wait until none runs (up to 30 s).
+void killSession(pid_t session)
+{
+    for (int i = 0; i < 3000; ++i) {
+        const std::vector<pid_t> live = liveProcessesOf(session);
+        if (live.empty()) return;
+        for (pid_t pid : live) kill(pid, SIGKILL);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ADD_FAILURE() << "session " << session << " still runs after kill -9";
+}
+
+/// Runs @a command in a session of its own, up to @a seconds (then kills it: exit code -1).
+CommandResult runInOwnSession(const std::vector<std::string>& command, const std::string& log,
+                              double seconds)
+{
+    const pid_t pid = startInOwnSession(command, log);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    CommandResult result;
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() > until) {
+            killSession(pid);
+            waitpid(pid, &status, 0);
+            result.output = readFile(log) + "\n(killed after " + std::to_string(seconds) + " s)";
+            return result;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.output = readFile(log);
+    return result;
+}
+
+/// The files of a run's folder but the hidden ones: a write cut by kill -9 leaves its
+/// temporary (.NAME.tmp-PID-N, lsdem/ls/AtomicFile.h), never a half-written output.
+std::set<std::string> outputsIn(const std::string& dir)
+{
+    std::set<std::string> names;
+    for (const std::string& name : filesIn(dir))
+        if (name.front() != '.') names.insert(name);
+    return names;
+}
+
+/// With no process writing @a dir: its histories hold at least the rows of its checkpoint,
+/// which a restart continues from (the files are written first).
+void expectHistoriesNotBehindTheCheckpoint(const std::string& dir, const std::string& what)
+{
+    if (!std::filesystem::exists(dir + "/checkpoint.lsdem")) return;
+    const lsdem::Checkpoint checkpoint = lsdem::readCheckpoint(dir + "/checkpoint.lsdem");
+    const auto rows = lsdem::readCsvRecords(readFile(dir + "/energy.csv"), "energy.csv");
+    EXPECT_GE(rows.size(), checkpoint.record.energyRows.size() + 1) << what;  // + the header
+}
+
 #define SKIP_WITHOUT_MPI() \
     if (kMpiexec.empty()) GTEST_SKIP() << "built without MPI"
 
@@ -446,4 +632,68 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     EXPECT_EQ(count(one.output, "lsdem-run: error:"), 1u) << one.output;
     EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
+}
+
+// kill -9 at a random moment (seeded: LSDEM_KILL_SEED=N for other moments), for every pair of
+// process counts among 1, 2 and 3: the run started on the first, continued from its checkpoint
+// on the second, ends with the uninterrupted run's files, byte for byte. Under mpirun only
+// mpirun itself is killed, as a user or a scheduler does: its ranks run on for a while,
+// writing checkpoints, and a restart at once must refuse to continue beside them (it used to
+// continue, its history rows from one checkpoint and its state from a newer one: rows lost;
+// or on several ranks from different checkpoints: a job that never ended); once they are
+// killed too, it continues.
+TEST(LsdemRunOnMpi, AKilledRunContinuesOnAnyCountWithTheUninterruptedBytes)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, "shapes.toml", shapesUnderASphere());
+    const CommandResult straight =
+        runCommand(kRun + " -q " + scene + " --out " + dir.file("straight"));
+    ASSERT_EQ(straight.exitCode, 0) << straight.output;
+    const std::set<std::string> outputs = outputsIn(dir.file("straight"));
+
+    const char* seedText = std::getenv("LSDEM_KILL_SEED");
+    std::mt19937 random(seedText ? std::stoul(seedText) : 2026);
+    std::uniform_int_distribution<int> delayMs(0, 400);
+    for (int start = 1; start <= 3; ++start) {
+        for (int restart = 1; restart <= 3; ++restart) {
+            const std::string name = std::to_string(start) + "to" + std::to_string(restart);
+            const std::string out = dir.file(name);
+            const int delay = delayMs(random);
+            const std::string what = name + ", killed " + std::to_string(delay) +
+                                     " ms after its first checkpoint";
+            const pid_t job = startInOwnSession(onProcesses(start, {"-q", scene, "--out", out}),
+                                                dir.file(name + "-first.log"));
+            for (int i = 0; i < 3000 && !std::filesystem::exists(out + "/checkpoint.lsdem"); ++i)
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            std::this_thread::sleep_for(std::chrono::milliseconds(delay));
+            kill(job, SIGKILL);  // the program, or mpirun alone
+            waitpid(job, nullptr, 0);
+            if (liveProcessesOf(job).empty()) expectHistoriesNotBehindTheCheckpoint(out, what);
+
+            const std::vector<std::string> restartCommand =
+                onProcesses(restart, {"-q", "--restart", out + "/checkpoint.lsdem"});
+            const std::string log = dir.file(name + "-restart.log");
+            CommandResult r = runInOwnSession(restartCommand, log, 60.0);
+            const bool refused = r.exitCode == 1 &&
+                                 r.output.find("another run is still writing this folder") !=
+                                     std::string::npos;
+            if (refused) {
+                // The ranks of the killed mpirun were still writing: kill them too.
+                killSession(job);
+                expectHistoriesNotBehindTheCheckpoint(out, what);
+                r = runInOwnSession(restartCommand, log, 60.0);
+            }
+            killSession(job);  // none should be left, whatever happened
+            std::printf("%s: %s\n", what.c_str(),
+                        refused ? "refused beside the ranks still running, then continued"
+                                : "continued");
+            ASSERT_EQ(r.exitCode, 0) << what << "\n" << r.output << "\nthe killed run's log:\n"
+                                     << readFile(dir.file(name + "-first.log"));
+            EXPECT_EQ(outputsIn(out), outputs) << what;
+            for (const std::string& file : outputs)
+                EXPECT_TRUE(readFile(dir.file("straight/" + file)) == readFile(out + "/" + file))
+                    << what << ": " << file << " differs";
+        }
+    }
 }

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <sstream>
+#include <iterator>
 
 namespace lsdem {
 
@@ -59,21 +59,16 @@ private:
     std::ostream& mOut;
 };
 
+/// Reads a checkpoint's bytes in memory, in the order Writer wrote them; anything short or out
+/// of range is an Error naming the file.
 class Reader
 {
 public:
-    Reader(std::istream& in, std::string path) : mIn(in), mPath(std::move(path))
-    {
-        const std::streampos here = mIn.tellg();
-        mIn.seekg(0, std::ios::end);
-        mEnd = mIn.tellg();
-        mIn.seekg(here);
-    }
+    Reader(const std::string& bytes, std::string path) : mBytes(bytes), mPath(std::move(path)) {}
     template <typename T> T pod()
     {
         T v{};
-        mIn.read(reinterpret_cast<char*>(&v), sizeof v);
-        if (!mIn) fail();
+        take(&v, sizeof v);
         return v;
     }
     /// A count of items stored in at least @a itemBytes each. A damaged count could ask for
@@ -82,15 +77,13 @@ public:
     uint64_t count(uint64_t itemBytes)
     {
         const uint64_t n = pod<uint64_t>();
-        const std::streamoff left = mEnd - mIn.tellg();
-        if (left < 0 || n > static_cast<uint64_t>(left) / itemBytes) fail();
+        if (n > left() / itemBytes) fail();
         return n;
     }
     std::string text()
     {
         std::string s(count(1), '\0');
-        mIn.read(s.data(), static_cast<std::streamsize>(s.size()));
-        if (!mIn) fail();
+        take(s.data(), s.size());
         return s;
     }
     Vec3 vec()
@@ -128,6 +121,14 @@ public:
         for (uint64_t& x : v) x = pod<uint64_t>();
         return v;
     }
+    /// Whether the next bytes are the magic (consumed if they are).
+    bool magic()
+    {
+        if (left() < sizeof kMagic || std::memcmp(mBytes.data() + mAt, kMagic, sizeof kMagic) != 0)
+            return false;
+        mAt += sizeof kMagic;
+        return true;
+    }
     [[noreturn]] void fail() const
     {
         throw Error(mPath, "the checkpoint is truncated or corrupt",
@@ -135,9 +136,17 @@ public:
     }
 
 private:
-    std::istream& mIn;
+    uint64_t left() const { return mBytes.size() - mAt; }
+    void take(void* to, size_t n)
+    {
+        if (n > left()) fail();
+        std::memcpy(to, mBytes.data() + mAt, n);
+        mAt += n;
+    }
+
+    const std::string& mBytes;
     std::string mPath;
-    std::streampos mEnd = 0;
+    size_t mAt = 0;
 };
 
 void writeRecord(Writer& w, const RunRecord& r)
@@ -167,20 +176,26 @@ RunRecord readRecord(Reader& r)
     return rec;
 }
 
-/// Open @a path and read past the header into @a checkpoint; @a version receives the file's,
-/// @a fingerprint the world's (empty before version 3).
-std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
-                                uint32_t& version, WorldFingerprint& fingerprint)
+/// The whole file at @a path (one reading: see Checkpoint::fileBytes).
+std::string readFileBytes(const std::string& path)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw Error(path, "cannot open the checkpoint", "check the path (lsdem-run writes "
                                                         "<out>/checkpoint.lsdem)");
-    char magic[8] = {};
-    in.read(magic, sizeof magic);
-    if (!in || std::memcmp(magic, kMagic, sizeof magic) != 0)
+    std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in.bad())
+        throw Error(path, "cannot read the checkpoint", "check the file and its folder");
+    return bytes;
+}
+
+/// Read the header (everything before the world's state) with @a r into @a checkpoint;
+/// @a version receives the file's, @a fingerprint the world's (empty before version 3).
+void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint32_t& version,
+                WorldFingerprint& fingerprint)
+{
+    if (!r.magic())
         throw Error(path, "not an lsdem checkpoint", "give a file written by lsdem-run");
-    Reader r(in, path);
     version = r.pod<uint32_t>();
     if (version < kOldestVersion || version > kVersion)
         throw Error(path, "checkpoint version " + std::to_string(version) + " is not supported",
@@ -214,7 +229,6 @@ std::ifstream openAndReadHeader(const std::string& path, Checkpoint& checkpoint,
         if (!sane) r.fail();
         checkpoint.end = end;
     }
-    return in;
 }
 
 } // namespace
@@ -298,23 +312,36 @@ bool isCheckpointFile(const std::string& path)
 
 Checkpoint readCheckpoint(const std::string& path)
 {
+    return parseCheckpoint(readFileBytes(path), path);
+}
+
+Checkpoint parseCheckpoint(std::string bytes, const std::string& path)
+{
     Checkpoint c;
+    c.fileBytes = std::move(bytes);
+    Reader r(c.fileBytes, path);
     uint32_t version = 0;
     WorldFingerprint ignored;
-    openAndReadHeader(path, c, version, ignored);
+    readHeader(r, path, c, version, ignored);
     return c;
 }
 
 void restoreWorldState(const std::string& path, World& world)
 {
+    restoreWorldState(readCheckpoint(path), path, world);
+}
+
+void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, World& world)
+{
+    // The header again, from the same bytes, to reach the state and the fingerprint.
+    Reader r(checkpoint.fileBytes, path);
     Checkpoint header;
     uint32_t version = 0;
     WorldFingerprint fingerprint;
-    std::ifstream in = openAndReadHeader(path, header, version, fingerprint);
+    readHeader(r, path, header, version, fingerprint);
     // The scene's text comes from the checkpoint, but its assets and grain files are read as
     // they are now: they must still make the world the run was checkpointed with.
     if (version >= 3) checkSameInputs(fingerprint, world, path);
-    Reader r(in, path);
     World w = world;  // fill a copy: a failed read leaves @a world untouched
     w.time = r.pod<double>();
     w.step = r.pod<int64_t>();
@@ -360,9 +387,7 @@ void restoreWorldState(const std::string& path, World& world)
         if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
         w.boundaryHistory[{i, b}] = r.shear();
     }
-    char trailer[8] = {};
-    in.read(trailer, sizeof trailer);
-    if (!in || std::memcmp(trailer, kMagic, sizeof trailer) != 0) r.fail();
+    if (!r.magic()) r.fail();  // the trailer: a complete file ends with the magic
     world = std::move(w);
 }
 

@@ -8,6 +8,7 @@
 
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
+#include "lsdem/ls/FolderLock.h"
 #include "lsdem/ls/Stopwatch.h"
 #include "lsdem/run/Checkpoint.h"
 #include "lsdem/run/RunOutputs.h"
@@ -191,6 +192,26 @@ void refuseFramesAwayFromTheirSeries(const Scene& scene, const Checkpoint& check
                     kCheckpointFileName);
 }
 
+/// Refuses to go on in @a dir, which another run holds (FolderLock.h).
+[[noreturn]] void refuseBusyFolder(const std::string& dir)
+{
+    throw Error(dir,
+                "another run is still writing this folder (after a kill -9 of mpirun, its "
+                "ranks run on for a while)",
+                "wait for that run to end, or stop its lsdem-run processes, then try again");
+}
+
+/// Rank 0's @a bytes on every rank of @a ranks (collective).
+std::string fromRankZero(RankGroup& ranks, const std::string& bytes)
+{
+    std::vector<char> mine;
+    if (ranks.isRoot()) mine.assign(bytes.begin(), bytes.end());
+    std::vector<char> all;
+    std::vector<size_t> starts;
+    ranks.allGather(mine, all, starts);
+    return std::string(all.data() + starts[0], starts[1] - starts[0]);
+}
+
 /// A run in progress: the scene, the simulation and everything it writes.
 class Run
 {
@@ -222,6 +243,9 @@ private:
     /// Whether to rewrite the text outputs now (10 s after the last time; split over ranks,
     /// decided together at history steps, since it gathers the grains).
     bool flushDue(long long step);
+    /// The checkpoint to continue from, read once for the whole job (collective when split
+    /// over ranks); continuing in its own folder, that folder stays locked for this run.
+    Checkpoint readCheckpointToContinue(bool inPlace);
 
     const RunOptions& mOptions;
     std::ostream& mLog;
@@ -231,6 +255,8 @@ private:
     Scene mScene;
     Checkpoint mCheckpoint;
     std::string mOutDir, mCheckpointPath;
+    /// The output folder, locked by the process that writes it for as long as the run lasts.
+    FolderLock mOutLock;
     std::vector<Vec3> mInitialPositions;
     /// Split over ranks: this rank's part of the grains; only rank 0 writes.
     std::unique_ptr<GhostDecomposition> mDecomposition;
@@ -246,17 +272,7 @@ private:
 
 Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog(log)
 {
-    // The scene: from its file, or from the text kept in the checkpoint.
     mRestart = !options.restartPath.empty();
-    if (mRestart) {
-        mCheckpoint = readCheckpoint(options.restartPath);
-        mScene = parseScene(mCheckpoint.sceneText, mCheckpoint.scenePath);
-    } else {
-        mScene = readSceneFile(options.scenePath);
-        mCheckpoint.scenePath = fs::absolute(options.scenePath).string();
-        mCheckpoint.sceneText = mScene.text;
-    }
-    applyEnd(options);
     mOutDir = options.outDir;
     if (mOutDir.empty() && mRestart)
         mOutDir = fs::absolute(options.restartPath).parent_path().string();
@@ -271,6 +287,17 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
         throw Error("", "--overwrite with --restart in the checkpoint's own folder: a restart "
                         "continues the outputs there, it replaces none",
                     "drop --overwrite");
+    if (options.ranks) mWrites = options.ranks->isRoot();
+    // The scene: from its file, or from the text kept in the checkpoint.
+    if (mRestart) {
+        mCheckpoint = readCheckpointToContinue(restartInPlace);
+        mScene = parseScene(mCheckpoint.sceneText, mCheckpoint.scenePath);
+    } else {
+        mScene = readSceneFile(options.scenePath);
+        mCheckpoint.scenePath = fs::absolute(options.scenePath).string();
+        mCheckpoint.sceneText = mScene.text;
+    }
+    applyEnd(options);
     if (mRestart) refuseFramesAwayFromTheirSeries(mScene, mCheckpoint, options.restartPath, mOutDir);
     // Before any work, and before writing anything.
     refuseOutputsOverInputs(mScene, mOutDir, options.overwrite);
@@ -281,12 +308,9 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
         return found.earlierRun;
     }();
 
-    if (options.ranks) {
-        // One rank evaluates every contact: nothing to split, nothing to exchange.
-        if (options.ranks->ranks() > 1)
-            mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
-        mWrites = options.ranks->isRoot();
-    }
+    // One rank evaluates every contact: nothing to split, nothing to exchange.
+    if (options.ranks && options.ranks->ranks() > 1)
+        mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) log << "warning: " << w << "\n";
@@ -296,7 +320,8 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     double dt = mScene.timeStep.fixed;
     if (mRestart) {
         dt = mCheckpoint.timeStep;
-        restoreWorldState(options.restartPath, world);
+        restoreWorldState(mCheckpoint, options.restartPath, world);
+        std::string().swap(mCheckpoint.fileBytes);  // the state is in the world now
     } else if (!(dt > 0.0)) {
         dt = automaticTimeStep(world, mScene.timeStep.safety);
         log << "time step (auto, safety " << mScene.timeStep.safety << "): " << dt << "\n";
@@ -326,6 +351,9 @@ Run::Run(const RunOptions& options, std::ostream& log) : mOptions(options), mLog
     if (mWrites) {
         try {
             prepareOutputFolder(mOutDir, "choose a writable --out folder");
+            // A restart in place holds this lock since it read its checkpoint.
+            if (!restartInPlace && !mOutLock.tryLock(mOutDir, FolderLock::Mode::Exclusive))
+                refuseBusyFolder(mOutDir);
             removeEarlierRun(mOutDir, earlier);  // --overwrite: the folder holds this run only
         } catch (...) {
             notPrepared = std::current_exception();
@@ -377,6 +405,39 @@ void Run::applyEnd(const RunOptions& options)
     }
 }
 
+Checkpoint Run::readCheckpointToContinue(bool inPlace)
+{
+    // Rank 0 alone reads the file, once: the ranks must all continue the same checkpoint, and
+    // its history rows and its state must come from one version of the file. The lock keeps
+    // a run still writing that folder (its checkpoint replaced meanwhile) from being read.
+    const std::string& path = mOptions.restartPath;
+    Checkpoint checkpoint;
+    std::exception_ptr notRead;
+    if (mWrites) {
+        try {
+            const std::string folder = fs::absolute(path).parent_path().string();
+            FolderLock reading;
+            FolderLock& lock = inPlace ? mOutLock : reading;
+            if (!lock.tryLock(folder, inPlace ? FolderLock::Mode::Exclusive
+                                              : FolderLock::Mode::Shared))
+                refuseBusyFolder(folder);
+            checkpoint = readCheckpoint(path);
+        } catch (...) {
+            notRead = std::current_exception();
+        }
+    }
+    RankGroup* ranks = mOptions.ranks;
+    const bool anyFailed = ranks ? ranks->anyRank(bool(notRead)) : false;
+    if (notRead) std::rethrow_exception(notRead);
+    if (anyFailed)
+        throw Error(path, "rank 0 could not read the checkpoint", "see rank 0's message");
+    if (ranks && ranks->ranks() > 1) {
+        const std::string bytes = fromRankZero(*ranks, checkpoint.fileBytes);
+        if (!ranks->isRoot()) checkpoint = parseCheckpoint(bytes, path);
+    }
+    return checkpoint;
+}
+
 const World& Run::wholeWorld(World& gathered)
 {
     if (!mDecomposition) return mSim->world();
@@ -407,8 +468,10 @@ void Run::writeCheckpoint()
     const World& whole = wholeWorld(gathered);
     if (!mWrites) return;
     if (mFrames) mCheckpoint.record.vtkFrameTimes = mFrames->series().frameTimes();
-    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
+    // The histories first: a kill between the two leaves files a little ahead of the
+    // checkpoint, never behind it (a restart rewrites them from the checkpoint's rows).
     writeFiles(whole);
+    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
 }
 
 bool Run::stepToEnd()

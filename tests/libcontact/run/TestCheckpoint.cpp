@@ -277,6 +277,31 @@ TEST(Checkpoint, RestartContinuesBitIdentically)
     EXPECT_TRUE(sameBits(a.dissipated, b.dissipated));
 }
 
+// The rows and the state come from one reading of the file: replaced after readCheckpoint (by
+// a run still writing its folder), the state restored is still the one its rows go with.
+// Split over ranks, the others parse rank 0's bytes: the same checkpoint.
+TEST(Checkpoint, TheStateComesFromTheReadingOfTheRows)
+{
+    lsdem::test::ScratchDir dir;
+    const std::string path = dir.file("run.lsdem");
+    const World early = steppedWorld(10);
+    saveCheckpoint(path, early, sampleHeader());
+    const Checkpoint read = readCheckpoint(path);
+    Checkpoint laterHeader = sampleHeader();
+    laterHeader.record.energyRows.push_back({150.0, 3e-4, 1.0});
+    saveCheckpoint(path, steppedWorld(150), laterHeader);
+
+    World w = build(stackScene(2));
+    restoreWorldState(read, path, w);
+    expectSameState(w, early);
+    EXPECT_EQ(read.record.energyRows, sampleHeader().record.energyRows);
+    const Checkpoint parsed = parseCheckpoint(read.fileBytes, path);
+    EXPECT_EQ(parsed.record.energyRows, sampleHeader().record.energyRows);
+    World fromParsed = build(stackScene(2));
+    restoreWorldState(parsed, path, fromParsed);
+    expectSameState(fromParsed, early);
+}
+
 // A lid keeping a stress on the stack (a servo wall: its velocity follows from its force, its
 // contact stiffness and the walls' positions, so its stiffness is part of the checkpoint): cut,
 // restored and continued, it moves exactly as in the run that never stopped.

@@ -26,6 +26,11 @@ struct Checkpoint
     /// --end-time, Python's scene.end_time after loading); a restart continues to this one.
     /// None: the scene text's (checkpoints before version 4).
     std::optional<EndCondition> end;
+    /// The whole file, as readCheckpoint read it (empty in a checkpoint to be saved). The
+    /// world's state is restored from these bytes, not from a second reading of the file: a
+    /// run still writing the folder may replace the file meanwhile, and the history rows above
+    /// must come from the same checkpoint as the state that continues them.
+    std::string fileBytes;
 };
 
 /// Write @a world and @a checkpoint to @a path atomically.
@@ -34,17 +39,26 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
 /// Whether the file at @a path begins as a checkpoint does (whole or not).
 bool isCheckpointFile(const std::string& path);
 
-/// Read the checkpoint header (scene, time step, run record) of @a path.
+/// Read the checkpoint at @a path, once: its header (scene, time step, run record) and, in
+/// fileBytes, the whole file for restoreWorldState.
 /// @throw Error naming the file if it is missing, truncated or not an lsdem checkpoint.
 Checkpoint readCheckpoint(const std::string& path);
+
+/// As readCheckpoint, from the file's @a bytes read elsewhere (split over ranks, rank 0 reads
+/// the file and the others get its bytes); @a path names the file in errors.
+Checkpoint parseCheckpoint(std::string bytes, const std::string& path);
 
 /// Give @a scene (read from @a checkpoint's text) the end the run had, if the checkpoint kept
 /// one. @throw Error naming @a path if that end names a boundary the scene lacks (damaged).
 void applyCheckpointEnd(const Checkpoint& checkpoint, Scene& scene, const std::string& path);
 
 /// Overwrite the dynamic state of @a world (built from the checkpoint's scene) with the state
-/// stored in @a path.
+/// stored in @a checkpoint (read by readCheckpoint or parseCheckpoint from @a path, which
+/// errors name). On an Error @a world is left as it was.
 /// @throw Error if the file does not match the world (grain or boundary counts differ).
+void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, World& world);
+
+/// The same, reading the file at @a path (once).
 void restoreWorldState(const std::string& path, World& world);
 
 } // namespace lsdem

@@ -218,6 +218,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
 
     // The dashpot, on first at the contact's centre (second gets the opposite).
     Vec3 dashpotForce = Vec3::Zero();
+    double viscousPerStiffness = 0.0;  // its normal force shared by the point forces' stiffness
     ContactAxis axis;
     if (model.damping.active()) {
         axis = contactAxis(sides, sideCount, normal, perNodeForces,
@@ -232,6 +233,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             const double viscous =
                 std::max(-result.dashpot * relative.dot(axis.normal), -std::max(axis.force, 0.0));
             dashpotForce = viscous * axis.normal;
+            double total = 0.0;
+            for (int s = 0; s < sideCount; ++s)
+                for (const PointForce& f : normal[s]) total += f.stiffness;
+            viscousPerStiffness = viscous / total;
         }
     }
     // The turn of the shear history about the normal in this step: the pair's mean spin.
@@ -276,12 +281,15 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             if (perNodeShear && side.history) {
                 // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
                 // that left contact lose their history; nodes that entered start from zero.
+                // Coulomb's limit is μ times the node's normal force: its spring and its share
+                // of the dashpot (which the bodies feel as normal force too).
                 shearStiffness = shearSprings.nodeStiffness(shearPerArea, c->area, side.weight);
                 const Vec3 relativeVelocity =
                     side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
                 const Vec3 shear = updateShearForce(
                     storedShear(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
-                    shearStiffness, shearSprings.friction * size);
+                    shearStiffness,
+                    shearSprings.friction * std::max(0.0, size + viscousPerStiffness * f.stiffness));
                 nextHistory.push_back({c->node, shear});
                 f.force += shear;
                 elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;

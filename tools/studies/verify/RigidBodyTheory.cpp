@@ -1,5 +1,7 @@
 #include "studies/verify/RigidBodyTheory.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 
 namespace lsdem::verify {

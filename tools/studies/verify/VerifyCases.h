@@ -25,5 +25,11 @@ void normalImpactOnWall(Context& c);
 void normalImpactOfTwoSpheres(Context& c);
 /// Chung & Ooi test 3: the rebound of a ball on a wall over restitutions 0.1 … 1.
 void restitutionSweep(Context& c);
+/// Chung & Ooi test 4: a ball at 3.9 m/s on a wall at 5° … 85° from the normal, μ 0.092.
+void obliqueImpactOnWall(Context& c);
+/// Chung & Ooi test 6: a spinning ball's normal impact on a wall, μ 0.4, e 0.5.
+void spinImpactOnWall(Context& c);
+/// Chung & Ooi test 8: the same on a ball five times as large and 1000 times as dense.
+void spinImpactOnHeavyBall(Context& c);
 
 } // namespace lsdem::verify

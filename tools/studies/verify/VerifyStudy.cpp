@@ -15,6 +15,10 @@ const std::vector<CaseEntry>& caseList()
         {"normal-wall", "Chung & Ooi 2: a ball's normal impact on a wall", normalImpactOnWall},
         {"normal-pair", "Chung & Ooi 1: two balls' normal impact", normalImpactOfTwoSpheres},
         {"restitution", "Chung & Ooi 3: rebound over restitutions 0.1 … 1", restitutionSweep},
+        {"oblique-wall", "Chung & Ooi 4: oblique impact on a wall, 5° … 85°", obliqueImpactOnWall},
+        {"spin-wall", "Chung & Ooi 6: a spinning ball's impact on a wall", spinImpactOnWall},
+        {"spin-heavy-ball", "Chung & Ooi 8: a spinning ball's impact on a heavy ball",
+         spinImpactOnHeavyBall},
     };
     return cases;
 }

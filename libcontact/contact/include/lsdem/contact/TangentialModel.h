@@ -3,7 +3,8 @@
 ///        stored shear force is carried along with the contact (turned onto the current
 ///        tangent plane, and about the normal by the pair's mean spin, keeping its size, so it
 ///        is objective: a pair turning as one rigid body keeps its shear in its own frame),
-///        incremented by -k_t·Δu_t and capped by Coulomb's μ·|F_n|. Its stiffness follows the
+///        incremented by -k_t·Δu_t and capped by Coulomb's μ·|F_n| (the node's normal force:
+///        its spring and its share of the contact's dashpot). Its stiffness follows the
 ///        normal law's rule: ks per node (original) or ks*·A_a per area (adapted).
 #pragma once
 

@@ -288,6 +288,64 @@ void spinImpact(Context& c, const std::string& name, double partnerRadius)
 
 } // namespace
 
+void obliqueImpactAtNormalSpeed(Context& c)
+{
+    // Test 5: the normal speed fixed at 5 m/s, the tangential one swept; e 1, μ 0.3. Chung &
+    // Ooi plot the contact point's rebound Ψ₂ = V'_ct/(μ·V'_n) and the spin R·ω'/(μ·V_n)
+    // against Ψ₁ = V_t/(μ·V_n); gross sliding for Ψ₁ ≥ 7, where Ψ₂ = Ψ₁ − 7, R·ω'/(μV_n) = −5.
+    const Setup& s = c.bodies.setup();
+    const auto ball = c.bodies.sphere();
+    const double normalSpeed = 5000.0, friction = 0.3, restitution = 1.0, radius = s.radius;
+    const double mass = ballMass(c);
+    const std::vector<double> psis = c.quick ? std::vector<double>{1.0, 4.0, 14.0}
+                                             : std::vector<double>{0.2, 0.6, 1.0, 1.5, 2.0, 3.0, 4.0,
+                                                                   5.0, 6.0, 8.0, 10.0, 14.0};
+    for (const Formulation f : frictionalLaws(c)) {
+        const ContactModel law = lawFor(f, s, *ball, friction, restitution);
+        Series curve;
+        curve.name = "oblique_normal_speed_" + formulationName(f);
+        curve.columns = {"psi1", "psi2", "psi2_nodes", "psi2_continuum", "psi2_rigid",
+                         "spin", "spin_nodes", "spin_continuum", "spin_rigid"};
+        const double unit = friction * normalSpeed;
+        for (const double psi : psis) {
+            const Vec3 v(psi * unit, 0, -normalSpeed);
+            const Rebound r = ballOnWall(c, law, v, Vec3::Zero());
+            const WallReferences ref = wallReferences(c, law, mass, v, Vec3::Zero());
+            const ImpactOutcome rigid =
+                rigidImpact(ballBody(mass, radius, v, Vec3::Zero(), Vec3(0, 0, -radius)),
+                            wallBody(), Vec3::UnitZ(), restitution, friction);
+            const auto psi2 = [&](const Vec3& vel, const Vec3& spin) {
+                return (vel.x() - radius * spin.y()) / (friction * vel.z());
+            };
+            const auto spinOf = [&](const Vec3& spin) { return radius * spin.y() / unit; };
+            curve.rows.push_back({psi, psi2(r.velocity, r.angularVelocity),
+                                  psi2(ref.nodes.velocity, ref.nodes.angularVelocity),
+                                  psi2(ref.continuum.velocity, ref.continuum.angularVelocity),
+                                  psi2(rigid.first.velocity, rigid.first.angularVelocity),
+                                  spinOf(r.angularVelocity), spinOf(ref.nodes.angularVelocity),
+                                  spinOf(ref.continuum.angularVelocity),
+                                  spinOf(rigid.first.angularVelocity)});
+            char label[64];
+            std::snprintf(label, sizeof label, "oblique-normal-speed Ψ1=%g", psi);
+            // Errors against Ψ₁: relative to the incoming tangential speed.
+            addThreeWay(c, label, f, "Ψ2", "", psi2(r.velocity, r.angularVelocity),
+                        psi2(ref.nodes.velocity, ref.nodes.angularVelocity),
+                        psi2(ref.continuum.velocity, ref.continuum.angularVelocity),
+                        ref.hasContinuum, psi);
+            addThreeWay(c, label, f, "R·ω'/(μ·V_n)", "", spinOf(r.angularVelocity),
+                        spinOf(ref.nodes.angularVelocity), spinOf(ref.continuum.angularVelocity),
+                        ref.hasContinuum, psi);
+            if (psi >= 14.0 && law.normal().stiffnessPerArea())
+                c.report.add({label, formulationName(f), "Ψ2 (rigid body)", "",
+                              psi2(rigid.first.velocity, rigid.first.angularVelocity),
+                              psi2(r.velocity, r.angularVelocity), psi,
+                              kNodeTolerance + 5.0 / 7.0 * 2.0 / 3.0 * r.maxOverlap / radius * 7.0 / psi,
+                              "gross sliding: Ψ2 = Ψ1 − 7; lever R − 2δ/3"});
+        }
+        c.report.series.push_back(curve);
+    }
+}
+
 void spinImpactOnWall(Context& c)
 {
     spinImpact(c, "spin-wall", 0.0);
@@ -296,6 +354,83 @@ void spinImpactOnWall(Context& c)
 void spinImpactOnHeavyBall(Context& c)
 {
     spinImpact(c, "spin-heavy-ball", 5.0 * c.bodies.setup().radius);
+}
+
+void spinImpactOfTwoBalls(Context& c)
+{
+    // Test 7: two equal balls meet head on (3.9 m/s between them) spinning oppositely in a
+    // common frame, so their surfaces move together where they touch: no slip, no friction,
+    // and each keeps its spin and gets no tangential velocity, whatever μ. Then the same spins
+    // with the same sign, slipping by 2·R·ω: gross sliding (for the laws per area) by rigid
+    // theory, each ball's spin changing by 5/4·μ·(1+e)·V_n/R (a lever R − 2δ/3 each).
+    const Setup& s = c.bodies.setup();
+    const auto ball = c.bodies.sphere();
+    const double approach = 3900.0, friction = 0.4, restitution = 0.5, radius = s.radius;
+    const double mass = ballMass(c);
+    const double threshold = 3.5 * friction * (1.0 + restitution);
+    const std::vector<double> xs = c.quick ? std::vector<double>{0.5, 5.0}
+                                           : std::vector<double>{0.25, 0.5, 1.0, 2.0, 5.0, 10.0};
+    for (const Formulation f : frictionalLaws(c)) {
+        const ContactModel law = lawFor(f, s, *ball, friction, restitution);
+        for (const double sign : {-1.0, 1.0}) {
+            for (const double x : xs) {
+                // x = 3.5μ(1+e)V_n/V_ct with V_ct = 2Rω when the spins agree; the same ω when not.
+                const double omega = threshold * approach / (2.0 * radius * x);
+                Scene scene = caseScene(s, law);
+                const double gap = 1e-3 * radius;
+                addGrain(scene, "ball", ball, Vec3(0, 0, -radius - gap), Vec3(0, 0, 0.5 * approach),
+                         Vec3(0, omega, 0));
+                addGrain(scene, "ball", ball, Vec3(0, 0, radius + gap), Vec3(0, 0, -0.5 * approach),
+                         Vec3(0, sign * omega, 0));
+                World world = buildCase(scene);
+                const double dt = impactStep(s, 0.5 * mass, approach, c.quick);
+                Simulation sim(std::move(world), dt);
+                const ImpactTrace t = traceImpact(
+                    sim,
+                    [&](const World& wd) {
+                        return 2.0 * radius - (wd.grains[1].body.pose.position -
+                                               wd.grains[0].body.pose.position).norm();
+                    },
+                    [](const World&) { return 0.0; }, 100000);
+                const Grain& a = sim.world().grains[0];
+                const Grain& b = sim.world().grains[1];
+                char label[64];
+                std::snprintf(label, sizeof label, "spin-pair %s x=%g",
+                              sign < 0 ? "opposite" : "same", x);
+                const double scale = radius * omega;
+                if (sign < 0) {
+                    const std::string basis = "no slip: no friction (rigid body, exact); the "
+                                              "contact points within the overlap slip by O(δ·ω)";
+                    c.report.add({label, formulationName(f), "tangential velocity", "mm/s", 0.0,
+                                  a.body.velocity.x(), scale, kNodeTolerance, basis});
+                    c.report.add({label, formulationName(f), "spin / initial spin", "", 1.0,
+                                  a.angularVelocity().y() / omega, 1.0, kNodeTolerance, basis});
+                    c.report.add({label, formulationName(f), "the other's spin / initial", "",
+                                  -1.0, b.angularVelocity().y() / omega, 1.0, kNodeTolerance, basis});
+                    continue;
+                }
+                if (!(x <= 0.5) || !law.normal().stiffnessPerArea()) continue;
+                // Rigid theory for the pair, ball a below (normal +z pushes b up, a down).
+                ImpactBody lower = ballBody(mass, radius, Vec3(0, 0, 0.5 * approach),
+                                            Vec3(0, omega, 0), Vec3(0, 0, radius));
+                ImpactBody upper = ballBody(mass, radius, Vec3(0, 0, -0.5 * approach),
+                                            Vec3(0, omega, 0), Vec3(0, 0, -radius));
+                const ImpactOutcome rigid =
+                    rigidImpact(upper, lower, Vec3::UnitZ(), restitution, friction);
+                // Each ball's cap is half the overlap deep: its lever R − (2/3)·δ/2.
+                const double change = rigid.first.angularVelocity.y() - omega;
+                c.report.add({label, formulationName(f), "spin change·R (rigid body)", "mm/s",
+                              change * radius, (b.angularVelocity().y() - omega) * radius,
+                              std::abs(change) * radius,
+                              kNodeTolerance + t.maxOverlap / (3.0 * radius),
+                              "gross sliding: 5/4·μ·(1+e)·V_n; lever R − δ/3"});
+                c.report.add({label, formulationName(f), "tangential velocity (rigid body)",
+                              "mm/s", rigid.first.velocity.x(), b.body.velocity.x(),
+                              std::abs(rigid.first.velocity.x()), kNodeTolerance,
+                              "gross sliding: friction impulse μ·J_n whatever the springs"});
+            }
+        }
+    }
 }
 
 } // namespace lsdem::verify

@@ -27,6 +27,18 @@ void normalImpactOfTwoSpheres(Context& c);
 void restitutionSweep(Context& c);
 /// Chung & Ooi test 4: a ball at 3.9 m/s on a wall at 5° … 85° from the normal, μ 0.092.
 void obliqueImpactOnWall(Context& c);
+/// Chung & Ooi test 5: constant normal speed 5 m/s, tangential speeds swept; μ 0.3, e 1.
+void obliqueImpactAtNormalSpeed(Context& c);
+/// Chung & Ooi test 7: two equal balls spinning oppositely (no slip), and alike (slipping).
+void spinImpactOfTwoBalls(Context& c);
+/// A ball thrown flat on a floor slides, then rolls on at 5/7 of its speed: no resistance, no hops.
+void slideToRollOnAFloor(Context& c);
+/// A box sliding down an incline of 30° (and resting on one of 10°), μ 0.3.
+void boxOnAnIncline(Context& c);
+/// A box landing flat: the automatic step bears it, and it rebounds at the restitution given.
+void boxLandingFlat(Context& c);
+/// A box spinning about its intermediate axis turns over and back (the tennis racket).
+void freeRotation(Context& c);
 /// Chung & Ooi test 6: a spinning ball's normal impact on a wall, μ 0.4, e 0.5.
 void spinImpactOnWall(Context& c);
 /// Chung & Ooi test 8: the same on a ball five times as large and 1000 times as dense.

@@ -16,9 +16,17 @@ const std::vector<CaseEntry>& caseList()
         {"normal-pair", "Chung & Ooi 1: two balls' normal impact", normalImpactOfTwoSpheres},
         {"restitution", "Chung & Ooi 3: rebound over restitutions 0.1 … 1", restitutionSweep},
         {"oblique-wall", "Chung & Ooi 4: oblique impact on a wall, 5° … 85°", obliqueImpactOnWall},
+        {"oblique-normal-speed", "Chung & Ooi 5: normal speed fixed, tangential swept",
+         obliqueImpactAtNormalSpeed},
         {"spin-wall", "Chung & Ooi 6: a spinning ball's impact on a wall", spinImpactOnWall},
+        {"spin-pair", "Chung & Ooi 7: two balls spinning, oppositely and alike",
+         spinImpactOfTwoBalls},
         {"spin-heavy-ball", "Chung & Ooi 8: a spinning ball's impact on a heavy ball",
          spinImpactOnHeavyBall},
+        {"slide-to-roll", "a ball slides, then rolls on at 5/7 of its speed", slideToRollOnAFloor},
+        {"incline", "a box sliding down an incline", boxOnAnIncline},
+        {"box-landing", "a box landing flat: automatic step, restitution", boxLandingFlat},
+        {"free-rotation", "a box turning over about its intermediate axis", freeRotation},
     };
     return cases;
 }

@@ -94,12 +94,13 @@ void boxLandingFlat(Context& c)
             } catch (const Error& e) {
                 failure = e.what();
             }
-            // The automatic step leaves a factor 1/0.2 to the stiffest face it foresees.
+            // The automatic step is 0.2 of the stiffest face's limit with a partner as heavy
+            // (stiffness doubled); on a wall, which does not move, the limit is √2 longer.
             c.report.add({"box-landing auto", formulationName(f),
-                          "stability limit seen / automatic step", "", 5.0, failure.empty() ? margin : 0.0,
-                          5.0, 0.5,
-                          failure.empty() ? "safety 0.2 of the stiffest face: a limit 5 steps "
-                                            "long (±50 %: edges, rotation, the partner factor)"
+                          "stability limit seen / automatic step", "", 5.0 * std::sqrt(2.0),
+                          failure.empty() ? margin : 0.0, 5.0 * std::sqrt(2.0), 0.05,
+                          failure.empty() ? "safety 0.2 of the face's limit, the partner's factor "
+                                            "2 not used by a wall: 5·√2 (5 %: the edges)"
                                           : "the run stopped: " + failure});
         }
         // The rebound over restitutions, at a step that resolves the face's contact.

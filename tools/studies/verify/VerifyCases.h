@@ -29,7 +29,7 @@ void restitutionSweep(Context& c);
 void obliqueImpactOnWall(Context& c);
 /// Chung & Ooi test 5: constant normal speed 5 m/s, tangential speeds swept; μ 0.3, e 1.
 void obliqueImpactAtNormalSpeed(Context& c);
-/// Chung & Ooi test 7: two equal balls spinning oppositely (no slip), and alike (slipping).
+/// Chung & Ooi test 7: two equal balls spinning oppositely: no slip.
 void spinImpactOfTwoBalls(Context& c);
 /// A ball thrown flat on a floor slides, then rolls on at 5/7 of its speed: no resistance, no hops.
 void slideToRollOnAFloor(Context& c);

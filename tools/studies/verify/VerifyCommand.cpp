@@ -85,7 +85,8 @@ int VerifyCommand::run(RunDistributor& ranks) const
         if (o.quiet && c.passes()) continue;
         std::printf("%-26s %-12s %-24s %13.6g %13.6g %+8.3f%% %7.2f%% %s\n", c.caseName.c_str(),
                     c.formulation.c_str(), c.quantity.c_str(), c.reference, c.value,
-                    100.0 * c.error(), 100.0 * c.tolerance, c.passes() ? "pass" : "FAIL");
+                    100.0 * c.error(), 100.0 * c.tolerance,
+                    c.informative ? "info" : c.passes() ? "pass" : "FAIL");
     }
     std::printf("%zu checks, %d failed, in %.1f s; wrote %s\n", report.checks.size(),
                 report.failures(), wall.seconds(), checks.c_str());

@@ -29,7 +29,8 @@ void writeChecksCsv(const Report& report, const std::string& path)
         csv << csvField(c.caseName) << ',' << csvField(c.formulation) << ','
             << csvField(c.quantity) << ',' << csvField(c.unit) << ',' << numberText(c.reference)
             << ',' << numberText(c.value) << ',' << numberText(c.error()) << ','
-            << numberText(c.tolerance) << ',' << (c.passes() ? "yes" : "no") << ','
+            << numberText(c.tolerance) << ','
+            << (c.informative ? "info" : c.passes() ? "yes" : "no") << ','
             << csvField(c.basis) << '\n';
     writeTextFileAtomically(path, csv.str());
 }

@@ -19,7 +19,7 @@ const std::vector<CaseEntry>& caseList()
         {"oblique-normal-speed", "Chung & Ooi 5: normal speed fixed, tangential swept",
          obliqueImpactAtNormalSpeed},
         {"spin-wall", "Chung & Ooi 6: a spinning ball's impact on a wall", spinImpactOnWall},
-        {"spin-pair", "Chung & Ooi 7: two balls spinning, oppositely and alike",
+        {"spin-pair", "Chung & Ooi 7: two balls spinning oppositely meet: no slip",
          spinImpactOfTwoBalls},
         {"spin-heavy-ball", "Chung & Ooi 8: a spinning ball's impact on a heavy ball",
          spinImpactOnHeavyBall},

@@ -258,6 +258,31 @@ TEST(LsdemRun, DamagedCheckpointLeavesNoOutputFolder)
     EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
 }
 
+// A pile whose grains just touch (no node inside another yet: no contact stiffness at the start)
+// and a fixed time_step far too long for the contacts they will make: issue 33 saw such a run
+// stop at step 1 after writing three files. It is refused before the output folder exists,
+// naming the limit; with a step the contacts bear it runs.
+TEST(LsdemRun, AStepTheStartingContactsCannotBearIsRefusedBeforeAnyOutput)
+{
+    ScratchDir dir;
+    std::string text = smallScene(50);
+    // Both balls resting exactly on the floor, the second touching the first.
+    for (const char* from : {"position = [0, 0, 1.99]", "position = [4.05, 0.3, 1.99]"})
+        text.replace(text.find(from), std::string(from).size(),
+                     from[13] == '0' ? "position = [0, 0, 2.0]" : "position = [4.0, 0, 2.0]");
+    text.replace(text.find("time_step = 1e-5"), 16, "time_step = 1e-3");
+    const CommandResult refused = runCommand(kRun + " " + writeScene(dir, text) + " -q --out " +
+                                             dir.file("out"));
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(refused.output.find("exceeds the stability limit"), std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+    text.replace(text.find("time_step = 1e-3"), 16, "time_step = 1e-6");
+    const CommandResult ran = runCommand(kRun + " " + writeScene(dir, text) + " -q --out " +
+                                         dir.file("out"));
+    EXPECT_EQ(ran.exitCode, 0) << ran.output;
+}
+
 // One run writes a folder at a time. While another holds it (this test, standing for a run
 // still writing there), a run into it and a restart from its checkpoint, in place or elsewhere,
 // are refused, saying why and writing nothing; once it is free they go on.

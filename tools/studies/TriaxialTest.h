@@ -23,7 +23,8 @@ struct TriaxialProtocol
     /// size along its axis at the start, ...
     double consolidationRate = 10.0;
     /// ... and this one while the mean stress is below σ₃/2 (the walls closing in on a loose
-    /// cloud: how fast they come does not change where a frictionless consolidation ends).
+    /// cloud: how fast they come does not change where a frictionless consolidation ends). An
+    /// absolute rate (1/time), not a multiple of the strain rate: the studies keep 100 s⁻¹.
     double approachRate = 100.0;
     double maxAxialStrain = 0.2;
     double stressTolerance = 0.02; ///< consolidated: every |σ_i/σ₃ − 1| below it ...

@@ -4,6 +4,7 @@
 #include "lsdem/ls/GaussLegendre.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace lsdem {
@@ -16,8 +17,14 @@ double capIntegral(double radius, double overlap, double stiffness, bool alongAx
     if (overlap <= 0.0) return 0.0;
     const double r = radius, h = 2.0 * radius - overlap;
     const double lo = h / (2.0 * r), hi = 1.0;
-    std::vector<double> x, w;
-    gaussLegendre(64, x, w);
+    // The rule is worked out once (Newton's method on the recurrence: most of a call's time).
+    static const auto rule = [] {
+        std::pair<std::vector<double>, std::vector<double>> nodesAndWeights;
+        gaussLegendre(64, nodesAndWeights.first, nodesAndWeights.second);
+        return nodesAndWeights;
+    }();
+    const std::vector<double>& x = rule.first;
+    const std::vector<double>& w = rule.second;
     double sum = 0.0;
     for (size_t i = 0; i < x.size(); ++i) {
         const double u = 0.5 * (hi - lo) * x[i] + 0.5 * (hi + lo);

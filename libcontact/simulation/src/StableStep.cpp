@@ -134,17 +134,16 @@ double largestDampingRatio(const World& world)
     return largest;
 }
 
-double automaticTimeStep(const World& world, double safety)
+std::vector<double> stiffestContactSteps(const World& world)
 {
     const std::vector<ContactModel> models = distinctModels(world);
     const double beta = largestDampingRatio(world);
     // Per asset, the stiffness of each wall under each model (in its principal frame).
     std::map<const GrainAsset*, std::vector<GrainStiffness>> walls;
-    double step = std::numeric_limits<double>::infinity();
-    bool anyFree = false;
-    for (const Grain& g : world.grains) {
+    std::vector<double> steps(world.grains.size(), std::numeric_limits<double>::infinity());
+    for (size_t i = 0; i < world.grains.size(); ++i) {
+        const Grain& g = world.grains[i];
         if (!g.isFree()) continue;
-        anyFree = true;
         const GrainAsset& asset = *g.asset;
         auto found = walls.find(&asset);
         if (found == walls.end()) {
@@ -162,10 +161,17 @@ double automaticTimeStep(const World& world, double safety)
         for (const GrainStiffness& k : found->second) {
             // A partner that moves as much doubles the stiffness the grain feels.
             const GrainStiffness doubled{2.0 * k.translation, 2.0 * k.rotation};
-            step = std::min(step, stableStep(doubled, principal, beta));
+            steps[i] = std::min(steps[i], stableStep(doubled, principal, beta));
         }
     }
-    if (!anyFree || !std::isfinite(step))
+    return steps;
+}
+
+double automaticTimeStep(const World& world, double safety)
+{
+    double step = std::numeric_limits<double>::infinity();
+    for (const double s : stiffestContactSteps(world)) step = std::min(step, s);
+    if (!std::isfinite(step))
         throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
                     "give [simulation] time_step explicitly");
     return safety * step;

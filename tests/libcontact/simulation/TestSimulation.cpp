@@ -586,12 +586,14 @@ TEST(Simulation, AssetsHeldWithoutNormalsGiveTheSameBits)
 
 // A box landing flat has the contact stiffness K ≈ kn*·80 mm² = 8e4 N/mm; with m = 2.5e-6 t
 // explicit stepping is stable only for dt < 2·sqrt(m/K) ≈ 1.1e-5 s. At dt = 1e-4 s the step
-// must stop with an Error that names the stability limit, before anything becomes NaN.
+// must stop with an Error that names the stability limit, before anything becomes NaN. (The
+// box starts 8 mm up, beyond its bounding sphere's reach: a box touching or near the floor is
+// refused at the start, by the test that follows.)
 TEST(Simulation, TooLargeATimeStepStopsWithTheStabilityLimit)
 {
     Scene scene = oneMaterialScene("box", adapted(kKnStar));
-    GrainSpec g = grainAt(Vec3(0, 0, 2.0 + 1e-3));
-    g.velocity = Vec3(0, 0, -100.0);
+    GrainSpec g = grainAt(Vec3(0, 0, 2.0 + 8.0));
+    g.velocity = Vec3(0, 0, -1000.0);
     scene.grains.push_back(g);
     scene.boundaries.push_back(floorPlane());
     Simulation sim(build(scene), 1e-4);
@@ -604,7 +606,9 @@ TEST(Simulation, TooLargeATimeStepStopsWithTheStabilityLimit)
     }
     EXPECT_NE(message.find("stability limit"), std::string::npos) << message;
     EXPECT_NE(message.find("grain0"), std::string::npos) << message;
-    EXPECT_LT(steps, 3);  // caught at the first step in contact
+    // Caught at the first step in contact: the box was 8 mm up, 0.1 mm a step.
+    EXPECT_GE(steps, 79);
+    EXPECT_LE(steps, 81);
     EXPECT_TRUE(sim.world().grains[0].body.pose.position.allFinite());
     EXPECT_TRUE(sim.world().grains[0].body.velocity.allFinite());
     // The limit it saw is the flat contact's, in translation and in rotation about the box's
@@ -618,6 +622,25 @@ TEST(Simulation, TooLargeATimeStepStopsWithTheStabilityLimit)
                                            kKnStar * 80.0 * 100.0 / 12.0 / box.body.principalInertia.y());
     EXPECT_LE(sim.stabilityLimitSeen(), nominal);
     EXPECT_GT(sim.stabilityLimitSeen(), nominal / std::sqrt(1.5));
+}
+
+// A box just touching the floor has no contact stiffness at the start (no node inside it yet),
+// but the face it rests on will press the floor within a step: a time step that contact could
+// not bear is refused when the simulation is made, naming the stiffest contact it can make.
+TEST(Simulation, ATouchingGrainRefusesAStepItsContactCouldNotBear)
+{
+    Scene scene = oneMaterialScene("box", adapted(kKnStar));
+    scene.grains.push_back(grainAt(Vec3(0, 0, 2.0)));
+    scene.boundaries.push_back(floorPlane());
+    scene.gravity = Vec3(0, 0, -kG);
+    try {
+        Simulation sim(build(scene), 1e-4);
+        FAIL() << "a step far over the face's limit was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("stiffest contact grain 'grain0' can make"),
+                  std::string::npos) << e.what();
+    }
+    EXPECT_NO_THROW(Simulation(build(scene), 1e-6));
 }
 
 // Two free boxes face to face: their highest mode is the relative one, ω² = 2K/m (K the

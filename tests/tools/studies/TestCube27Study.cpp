@@ -300,7 +300,8 @@ TEST(Cube27Study, ProgramWritesTheCsvAndPlots)
     }
 }
 
-// Found by review: --delta-max 1e-300 printed P/P_exact as "-nan%" and exited 0.
+// Found by review: --delta-max 1e-300 printed P/P_exact as "-nan%" and exited 0. (Its time
+// step, 5e144 s, is now refused before the run: the spheres touch at the start.)
 TEST(Cube27Study, ARunGoneNonFiniteIsNotReported)
 {
     lsdem::test::ScratchDir dir;
@@ -308,11 +309,10 @@ TEST(Cube27Study, ARunGoneNonFiniteIsNotReported)
                                        "--k-factors 1 --points 5 --no-plots --delta-max 1e-300 "
                                        "--out " + dir.file("out"));
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find("the cube27 runs of adapted at N = 100, k = 1000 went non-finite "
-                            "(NaN or inf)"),
+    EXPECT_NE(r.output.find("cube27 run adapted N = 100 k = 1000 orientation 0: the time step "),
               std::string::npos)
         << r.output;
-    EXPECT_NE(r.output.find("check the scales and units"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("exceeds the stability limit"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("nan%"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out/cube27.csv")));
 }

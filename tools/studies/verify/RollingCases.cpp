@@ -7,6 +7,7 @@
 // polyhedron over its vertices, and loses energy at each (or, undamped, hops). So the case is
 // judged on a ball whose nodes resolve that cap, and the setup's ball is shown beside it.
 #include "studies/verify/RigidBodyTheory.h"
+#include "studies/verify/RollingRun.h"
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/ls/Constants.h"
@@ -20,17 +21,6 @@
 namespace lsdem::verify {
 
 namespace {
-
-struct RollingRun
-{
-    double slipEnd = -1.0;        ///< when the contact point's slip first reached zero
-    double speedAtSlipEnd = 0.0;  ///< the centre's speed then
-    double deceleration = 0.0;    ///< of the centre while rolling (least squares over the roll)
-    double finalSpeed = 0.0;      ///< at the end of the roll
-    double highestRise = 0.0;     ///< of the centre above R while rolling (a hop if > 0)
-    double timeStep = 0.0;
-    Series trace;                 ///< time, speed, slip, height − R
-};
 
 /// The contact cap's radius of the setup's ball resting under its own weight (adapted law's
 /// continuum: m·g = π·k*·R·δ², a = sqrt(2R·δ)).
@@ -48,8 +38,8 @@ int resolvingNodeCount(const Setup& s)
     return int(std::ceil(4.0 * kPi * s.radius * s.radius / (spacing * spacing)));
 }
 
-/// @a ball set on a floor at speed @a speed without spin, under gravity, with friction
-/// @a friction and restitution @a restitution; slides, then rolls for @a rollTime.
+} // namespace
+
 RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& ball, Formulation f,
                         double speed, double friction, double restitution, double rollTime)
 {
@@ -106,8 +96,6 @@ RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& bal
     if (n > 2) run.deceleration = -(n * stv - st * sv) / (n * stt - st * st);
     return run;
 }
-
-} // namespace
 
 void slideToRollOnAFloor(Context& c)
 {

@@ -39,6 +39,8 @@ void boxOnAnIncline(Context& c);
 void boxLandingFlat(Context& c);
 /// A box spinning about its intermediate axis turns over and back (the tennis racket).
 void freeRotation(Context& c);
+/// The adapted law's errors against its continuum limits shrink as the ball's nodes refine.
+void convergence(Context& c);
 /// Chung & Ooi test 6: a spinning ball's normal impact on a wall, μ 0.4, e 0.5.
 void spinImpactOnWall(Context& c);
 /// Chung & Ooi test 8: the same on a ball five times as large and 1000 times as dense.

@@ -27,6 +27,8 @@ const std::vector<CaseEntry>& caseList()
         {"incline", "a box sliding down an incline", boxOnAnIncline},
         {"box-landing", "a box landing flat: automatic step, restitution", boxLandingFlat},
         {"free-rotation", "a box turning over about its intermediate axis", freeRotation},
+        {"convergence", "the adapted law's errors as the ball's nodes refine, 1000 … 16,000",
+         convergence},
     };
     return cases;
 }

@@ -97,14 +97,15 @@ public:
 
 private:
     void evaluateForces(double slipStep);
-    /// Throws if a grain's state is no longer finite or the step exceeds its stable limit.
-    void checkStability();
+    /// Throws if a grain's state is no longer finite or the step exceeds its stable limit;
+    /// @a atStart, also the limit of the stiffest contact a grain near another body can make.
+    void checkStability(bool atStart = false);
     /// Grain @a i's stable step limit: infinite for a grain that is not free, integrated here
     /// and in contact; NaN if its state is no longer finite.
     double stepLimitOf(size_t i) const;
-    /// The verdict on mStepLimits (one per grain), in grain order, so the message is the
-    /// same on any thread count.
-    void judgeStepLimits();
+    /// The verdict on @a limits (one per grain), in grain order, so the message is the same on
+    /// any thread count. @a forecast: they are the stiffest contacts' (not recorded as seen).
+    void judgeStepLimits(const std::vector<double>& limits, bool forecast);
     /// Split by space: this rank's part of the boundaries' reactions, summed over the ranks
     /// in the one-process order.
     void sumBoundaryReactions();
@@ -113,7 +114,7 @@ private:
     void subtractPrescribedPower(double& work);
     /// Split by space: the first grain (global order) whose state or stability fails on any
     /// rank throws, on every rank.
-    void checkStabilityOverRanks(const std::vector<double>& limits);
+    void checkStabilityOverRanks(const std::vector<double>& limits, bool forecast);
     /// Split by space: the time spent so far exchanging with the other ranks (kept out of the
     /// broad phase and integration times).
     double exchangedSeconds() const;

@@ -13,6 +13,8 @@
 
 #include "lsdem/simulation/RigidBody.h"
 
+#include <vector>
+
 namespace lsdem {
 
 struct World;
@@ -48,5 +50,10 @@ constexpr double kAutomaticBandFraction = 0.01;
 /// safety factor (0.2 by default) leaves them 25 times the stiffness.
 /// @throw Error if no free grain touches anything stiff (nothing to base a step on).
 double automaticTimeStep(const World& world, double safety);
+
+/// For each grain of @a world, the stable step of the stiffest contact it can make (what
+/// automaticTimeStep takes the least of, at safety 1); infinite for a grain that is not free
+/// or that no contact model gives any stiffness.
+std::vector<double> stiffestContactSteps(const World& world);
 
 } // namespace lsdem

@@ -1,0 +1,164 @@
+// The verification suite (lsdem-study verify): its references against forms worked out
+// independently here (closed forms, a direct integration of Euler's equations, impulse
+// balances), and the fast version of every case, which must pass every check it makes.
+#include "studies/verify/FreeRotationReference.h"
+#include "studies/verify/NormalImpactReference.h"
+#include "studies/verify/RigidBodyTheory.h"
+#include "studies/verify/VerifyStudy.h"
+
+#include "lsdem/ls/Constants.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace lsdem;
+using namespace lsdem::verify;
+
+// A linear spring (p = 1): δmax = v·sqrt(m/k), P = v·sqrt(m·k), t_c = π·sqrt(m/k), exactly;
+// the same law given as a general force law (quadrature) and shifted by an onset (piecewise,
+// the node sum's form) must agree.
+TEST(VerifyReferences, LinearSpringImpactIsTheHarmonicHalfPeriod)
+{
+    const double m = 4e-6, k = 2e3, v = 1500.0;
+    const NormalImpact closed = powerLawImpact(k, 1.0, m, v);
+    EXPECT_NEAR(closed.maxOverlap, v * std::sqrt(m / k), 1e-12 * closed.maxOverlap);
+    EXPECT_NEAR(closed.peakForce, v * std::sqrt(m * k), 1e-12 * closed.peakForce);
+    EXPECT_NEAR(closed.contactTime, kPi * std::sqrt(m / k), 1e-12 * closed.contactTime);
+    const NormalImpact quadrature =
+        forceLawImpact([&](double d) { return k * d; }, m, v, 0.01);
+    EXPECT_NEAR(quadrature.maxOverlap / closed.maxOverlap, 1.0, 1e-9);
+    EXPECT_NEAR(quadrature.contactTime / closed.contactTime, 1.0, 1e-6);
+    const double onset = 0.003;
+    const NormalImpact shifted = piecewiseLawImpact(
+        [&](double d) { return k * std::max(0.0, d - onset); },
+        [&](double d) { return 0.5 * k * std::pow(std::max(0.0, d - onset), 2); }, onset, m, v,
+        0.01);
+    EXPECT_NEAR(shifted.maxOverlap, onset + closed.maxOverlap, 1e-9 * closed.maxOverlap);
+    EXPECT_NEAR(shifted.contactTime / closed.contactTime, 1.0, 1e-6);
+}
+
+// The Winkler sphere's law P = κ·δ² (the adapted law on a wall): energy gives
+// δmax = (3mv²/(2κ))^(1/3), and the contact lasts 2·(δmax/v)·∫₀¹ dx/sqrt(1 − x³), whose integral
+// is B(1/3, 1/2)/3 = 1.4021821053254... (a value from the Beta function, not from the code).
+TEST(VerifyReferences, WinklerSphereImpactMatchesItsEnergyAndBetaIntegral)
+{
+    const double m = 4.11e-6, kappa = kPi * 1e3 * 5.0, v = 3900.0;
+    const NormalImpact r = powerLawImpact(kappa, 2.0, m, v);
+    EXPECT_NEAR(r.maxOverlap, std::cbrt(1.5 * m * v * v / kappa), 1e-12 * r.maxOverlap);
+    EXPECT_NEAR(r.contactTime, 2.0 * r.maxOverlap / v * 1.4021821053254, 1e-11 * r.contactTime);
+    const NormalImpact q = forceLawImpact([&](double d) { return kappa * d * d; }, m, v, 0.01);
+    EXPECT_NEAR(q.contactTime / r.contactTime, 1.0, 1e-6);
+    EXPECT_NEAR(q.peakForce / r.peakForce, 1.0, 1e-9);
+}
+
+// K(0) = π/2; K(1/√2) = Γ(1/4)²/(4·sqrt(π)) = 1.8540746773013719 (the lemniscate case).
+TEST(VerifyReferences, CompleteEllipticIntegralAtKnownPoints)
+{
+    EXPECT_NEAR(completeEllipticK(0.0), 0.5 * kPi, 1e-15);
+    EXPECT_NEAR(completeEllipticK(1.0 / std::sqrt(2.0)), 1.8540746773013719, 1e-14);
+}
+
+// The flip time against Euler's equations integrated directly (classical Runge–Kutta, small
+// steps): the time between two changes of sign of ω₂, on both sides of the separatrix.
+TEST(VerifyReferences, FlipTimeMatchesEulersEquationsIntegrated)
+{
+    const Vec3 moments(4.3, 9.7, 11.3);
+    for (const Vec3& omega : {Vec3(1.0, 100.0, 1.0), Vec3(30.0, 100.0, 0.5)}) {
+        const auto rate = [&](const Vec3& w) {
+            return Vec3((moments.y() - moments.z()) * w.y() * w.z() / moments.x(),
+                        (moments.z() - moments.x()) * w.z() * w.x() / moments.y(),
+                        (moments.x() - moments.y()) * w.x() * w.y() / moments.z());
+        };
+        const double h = 1e-6;
+        Vec3 w = omega;
+        double t = 0.0, previous = w.y();
+        std::vector<double> crossings;
+        while (crossings.size() < 3 && t < 10.0) {
+            const Vec3 k1 = rate(w), k2 = rate(w + 0.5 * h * k1), k3 = rate(w + 0.5 * h * k2),
+                       k4 = rate(w + h * k3);
+            w += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+            t += h;
+            if ((previous > 0.0) != (w.y() > 0.0))
+                crossings.push_back(t - h + previous / (previous - w.y()) * h);
+            previous = w.y();
+        }
+        ASSERT_EQ(crossings.size(), 3u);
+        const double measured = 0.5 * (crossings[2] - crossings[0]);
+        EXPECT_NEAR(intermediateAxisFlipTime(moments, omega) / measured, 1.0, 1e-6);
+    }
+}
+
+// A solid ball on a wall: gross sliding takes μ·(1+e)·m·V_n of tangential momentum and gives
+// 5/2 of it over R in spin; below the threshold tan θ = 3.5·μ·(1+e) the slip stops (5/7·v_t).
+TEST(VerifyReferences, RigidImpactSlidesOrStopsTheSlip)
+{
+    const double m = 2.0, radius = 0.5, mu = 0.2, e = 0.8;
+    ImpactBody ball;
+    ball.mass = m;
+    ball.inertia = 0.4 * m * radius * radius;
+    ball.lever = Vec3(0, 0, -radius);
+    ImpactBody wall;
+    wall.movable = false;
+    ball.velocity = Vec3(3.0, 0, -1.0);  // tan θ = 3 > 3.5·0.2·1.8 = 1.26: slides
+    ImpactOutcome out = rigidImpact(ball, wall, Vec3::UnitZ(), e, mu);
+    EXPECT_TRUE(out.slides);
+    EXPECT_NEAR(out.first.velocity.x(), 3.0 - mu * (1 + e) * 1.0, 1e-14);
+    EXPECT_NEAR(out.first.velocity.z(), e * 1.0, 1e-14);
+    EXPECT_NEAR(out.first.angularVelocity.y(), 2.5 * mu * (1 + e) * 1.0 / radius, 1e-13);
+    ball.velocity = Vec3(1.0, 0, -1.0);  // tan θ = 1 < 1.26: the slip stops
+    out = rigidImpact(ball, wall, Vec3::UnitZ(), e, mu);
+    EXPECT_FALSE(out.slides);
+    EXPECT_NEAR(out.first.velocity.x(), 5.0 / 7.0, 1e-14);
+    EXPECT_NEAR(out.slipAfter.norm(), 0.0, 1e-14);
+    const SlideToRoll roll = slideToRoll(700.0, 0.25, 9810.0);
+    EXPECT_NEAR(roll.slipTime, 2.0 * 700.0 / (7.0 * 0.25 * 9810.0), 1e-15);
+    EXPECT_NEAR(roll.rollingSpeed, 500.0, 1e-12);
+    EXPECT_EQ(inclineAcceleration(0.1, 0.3, 9810.0), 0.0);
+    EXPECT_NEAR(inclineAcceleration(kPi / 6, 0.3, 9810.0),
+                9810.0 * (0.5 - 0.3 * std::sqrt(3.0) / 2.0), 1e-11);
+}
+
+// The fast version of every case: each must make checks, and pass them all.
+class VerifyCase : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(VerifyCase, PassesEveryCheckInItsFastVersion)
+{
+    VerifyOptions o;
+    o.quick = true;
+    o.cases = {GetParam()};
+    const Report report = runVerification(o);
+    ASSERT_FALSE(report.checks.empty());
+    for (const Check& c : report.checks)
+        EXPECT_TRUE(c.passes()) << c.caseName << " / " << c.formulation << " / " << c.quantity
+                                << ": " << c.value << " against " << c.reference << " (error "
+                                << c.error() << ", tolerance " << c.tolerance << "; " << c.basis
+                                << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(Suite, VerifyCase, ::testing::ValuesIn([] {
+                             std::vector<std::string> names;
+                             for (const CaseEntry& e : caseList()) names.push_back(e.name);
+                             return names;
+                         }()),
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             std::string name = param.param;
+                             for (char& ch : name) ch = ch == '-' ? '_' : ch;
+                             return name;
+                         });
+
+// A bad case name or option is refused with the fix.
+TEST(VerifyOptions, BadOptionsAreRefusedNamingTheFix)
+{
+    VerifyOptions o;
+    o.cases = {"no-such-case"};
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.cases.clear();
+    o.setup.sphereNodes = 10;
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.setup.sphereNodes = 4000;
+    o.setup.sphereVoxel = 0.0;
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+}

@@ -114,9 +114,10 @@ ContactAxis contactAxis(const ContactSide* sides, int sideCount,
     return axis;
 }
 
-/// The contact's stiffness for the stability check (PairForces), summed point force by point
-/// force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ − k_t·r rᵀ
-/// (k' = k_n − k_t), with Σ k_t and Σ k_t·|r|² for the diagonal terms added at the end.
+/// The contact's stiffness for the stability check (PairForces, Simulation.cpp), summed point
+/// force by point force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ and
+/// −k_t·r rᵀ (k' = k_n − k_t, w = r × n), with Σ k_t and Σ k_t·|r|² for the diagonal terms
+/// added at the end. Written out in plain numbers: it runs for every node in contact.
 class StiffnessSum
 {
 public:
@@ -129,10 +130,11 @@ public:
     void add(double normalStiffness, double shearStiffness, const Vec3& n, const Vec3& point)
     {
         const double k = normalStiffness - shearStiffness;
-        addLower(mTranslation, k, n, n);
+        const double nx = n.x(), ny = n.y(), nz = n.z();
+        addLower(mTranslation, k * nx, k * ny, k * nz, nx, ny, nz);
         mShear += shearStiffness;
-        if (mFirstMoves) addLever(mFirst, k, shearStiffness, n, point - mFirstCentre);
-        if (mSecondMoves) addLever(mSecond, k, shearStiffness, n, point - mSecondCentre);
+        if (mFirstMoves) addLever(mFirst, k, shearStiffness, nx, ny, nz, point, mFirstCentre);
+        if (mSecondMoves) addLever(mSecond, k, shearStiffness, nx, ny, nz, point, mSecondCentre);
     }
 
     void store(PairForces& result) const
@@ -152,21 +154,27 @@ private:
         double diagonal = 0.0;
     };
 
-    static void addLower(Lower& m, double k, const Vec3& a, const Vec3& b)
+    /// m += (ax, ay, az)·(bx, by, bz)ᵀ, the lower triangle.
+    static void addLower(Lower& m, double ax, double ay, double az, double bx, double by,
+                         double bz)
     {
-        m[0] += k * a.x() * b.x();
-        m[1] += k * a.y() * b.x();
-        m[2] += k * a.z() * b.x();
-        m[3] += k * a.y() * b.y();
-        m[4] += k * a.z() * b.y();
-        m[5] += k * a.z() * b.z();
+        m[0] += ax * bx;
+        m[1] += ay * bx;
+        m[2] += az * bx;
+        m[3] += ay * by;
+        m[4] += az * by;
+        m[5] += az * bz;
     }
-    static void addLever(Rotation& m, double k, double shear, const Vec3& n, const Vec3& r)
+    static void addLever(Rotation& m, double k, double shear, double nx, double ny, double nz,
+                         const Vec3& point, const Vec3& centre)
     {
-        addLower(m.lower, k, r.cross(n), r.cross(n));
+        const double rx = point.x() - centre.x(), ry = point.y() - centre.y(),
+                     rz = point.z() - centre.z();
+        const double wx = ry * nz - rz * ny, wy = rz * nx - rx * nz, wz = rx * ny - ry * nx;
+        addLower(m.lower, k * wx, k * wy, k * wz, wx, wy, wz);
         if (shear > 0.0) {
-            addLower(m.lower, -shear, r, r);
-            m.diagonal += shear * r.squaredNorm();
+            addLower(m.lower, -shear * rx, -shear * ry, -shear * rz, rx, ry, rz);
+            m.diagonal += shear * (rx * rx + ry * ry + rz * rz);
         }
     }
     static Mat3 full(const Lower& m, double diagonal)

@@ -126,6 +126,17 @@ double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double
     return 2.0 / std::sqrt(omega2) * (std::sqrt(1.0 + beta * beta) - beta);
 }
 
+double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
+                            double dampingRatio)
+{
+    // lambda_max(K) <= |K|_F, and lambda_max(I^-1/2 R^T K R I^-1/2) <= lambda_max(K) / I_min.
+    const double omega2 = stiffness.translation.norm() / body.mass +
+                          stiffness.rotation.norm() / body.principalInertia.minCoeff();
+    if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
+    const double beta = std::max(0.0, dampingRatio);
+    return 2.0 / std::sqrt(omega2) * (std::sqrt(1.0 + beta * beta) - beta);
+}
+
 double largestDampingRatio(const World& world)
 {
     double largest = 0.0;

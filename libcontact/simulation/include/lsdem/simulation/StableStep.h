@@ -31,6 +31,14 @@ struct GrainStiffness
 /// @a dampingRatio of critical (infinite without stiffness).
 double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio);
 
+/// A cheap lower bound on stableStep (no eigenvalues: the Frobenius norm bounds the largest
+/// eigenvalue, and the smallest principal moment the rotation's scaling), within a factor
+/// 3^(1/4)·sqrt(I_max/I_min) of it and exact for one frictionless contact on a sphere. The simulation checks
+/// every grain at every step; where this bound already clears the step and the least limit
+/// seen, the exact one cannot change the outcome and is not computed.
+double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
+                            double dampingRatio);
+
 /// The largest damping ratio β any contact model of @a world can give (ViscousDamping).
 double largestDampingRatio(const World& world);
 

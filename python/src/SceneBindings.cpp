@@ -485,6 +485,38 @@ void bindScenes(py::module_& m)
              py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
              "The side wall of an infinitely long cylinder through `center` along `axis`; "
              "grains live inside it (a container: add planes for its floor and lid).")
+        .def("add_orifice_boundary",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const py::object& center, double radius, double thickness,
+                const py::object& axis, const py::object& velocity) {
+                 checkNewName(s.boundaries, name, "boundary");
+                 if (!(radius > 0.0) || !std::isfinite(radius))
+                     throw Error("", "boundary '" + name + "': radius must be > 0");
+                 if (!(thickness > 0.0) || !std::isfinite(thickness))
+                     throw Error("", "boundary '" + name + "': thickness must be > 0");
+                 BoundarySpec b;
+                 b.name = name;
+                 b.shape = BoundaryShape::Orifice;
+                 b.material = indexOf(s.materials, material, "material");
+                 b.center = toVec3(center, "center");
+                 b.axis = toVec3(axis, "axis");
+                 if (!(b.axis.norm() > 0.0))
+                     throw Error("", "boundary '" + name + "': the axis must not be zero");
+                 b.axis.normalize();
+                 b.radius = radius;
+                 b.thickness = thickness;
+                 b.velocity = toVec3(velocity, "velocity");
+                 b.where = "boundary '" + name + "'";
+                 markChanged(s);
+                 s.boundaries.push_back(b);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
+             py::arg("radius"), py::arg("thickness"),
+             py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0),
+             py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "A flat plate of `thickness` with a circular hole of `radius` (a silo's floor "
+             "and its orifice): `center` is the hole's centre in the plate's mid-plane, `axis` "
+             "the plate's normal; grains live outside the plate, on either side.")
         .def("add_asset_set",
              [](Scene& s, const std::string& name, const std::string& catalog) {
                  if (name.empty() || name.find('/') != std::string::npos)

@@ -281,6 +281,7 @@ const char* shapeName(BoundaryShape s)
     case BoundaryShape::Sphere: return "sphere";
     case BoundaryShape::LevelSet: return "level-set";
     case BoundaryShape::Cylinder: return "cylinder";
+    case BoundaryShape::Orifice: return "orifice";
     }
     return "?";
 }

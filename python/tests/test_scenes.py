@@ -1,5 +1,7 @@
 """Scenes from Python: TOML round trips, building a scene, errors with file and line."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -33,6 +35,7 @@ def test_scene_properties():
 
 
 def test_build_a_scene_and_write_it(sphere, tmp_path):
+    sphere.save(str(tmp_path / "ball.vdb"))
     sphere.save(str(tmp_path / "ball.vdb"))
     scene = lsdem.Scene()
     scene.add_asset("ball", sphere)
@@ -122,6 +125,42 @@ def test_build_servo_walls_a_cylinder_asset_sets_and_grain_files(sphere, tmp_pat
     assert sim.boundaries["drum"].shape == "cylinder"
     # Not touching yet, the lid comes down at its limit speed: 20 steps of 100·1e-6.
     assert sim.boundaries["lid"].velocity[2] == pytest.approx(-100.0)
+
+
+def test_orifice_plate_lets_a_ball_through_its_hole_and_holds_one_beside_it(sphere, tmp_path):
+    """A ball (R 5) over the middle of a hole of radius 6 falls through it; one over the plate
+    comes to rest on it, its weight on the plate. The scene writes and reads back the same."""
+    sphere.save(str(tmp_path / "ball.vdb"))
+    scene = lsdem.Scene()
+    scene.add_asset("ball", sphere)
+    scene.add_material("steel", density=7.85e-9)
+    scene.add_material("wall")
+    scene.add_contact("steel", "steel", normal_stiffness=1e3, restitution=0.2)
+    scene.add_contact("steel", "wall", normal_stiffness=1e3, restitution=0.2)
+    scene.add_grain("ball", "steel", [0, 0, 6], name="falls")
+    scene.add_grain("ball", "steel", [30, 0, 6], name="rests")
+    scene.add_orifice_boundary("floor", "wall", center=[0, 0, 0], radius=6.0, thickness=2.0)
+    scene.gravity = [0, 0, -9810]
+    scene.time_step = 2e-6
+    scene.end_time = 0.05
+    path = tmp_path / "orifice.toml"
+    scene.save(str(path))
+    assert "type = 'orifice'" in path.read_text() and "thickness = 2.0" in path.read_text()
+    read = lsdem.Scene.from_toml(str(path))
+    assert read.to_toml() == scene.to_toml(str(tmp_path))
+    with pytest.raises(lsdem.Error, match="thickness must be > 0"):
+        scene.add_orifice_boundary("bad", "wall", center=[0, 0, 0], radius=6.0, thickness=0.0)
+    sim = lsdem.Simulation(read, threads=1)
+    sim.run()
+    assert sim.boundaries["floor"].shape == "orifice"
+    z = sim.grains.positions[:, 2]
+    # Free fall for 0.05 s from rest: 12.3 mm down, so well below the plate (R 5 at z 6).
+    assert z[0] == pytest.approx(6.0 - 0.5 * 9810 * 0.05 ** 2, abs=1e-6)
+    # The other rests on the upper face (z = 1): its centre R above it, less the sag until its
+    # lowest nodes touch (500 nodes on R 5 are ~0.8 apart: up to ~0.02 below the pole).
+    assert 5.95 < z[1] < 6.0 and abs(sim.grains.velocities[1][2]) < 1.0
+    mass = 7.85e-9 * 4.0 / 3.0 * math.pi * 5.0 ** 3
+    assert sim.boundaries["floor"].reaction[2] == pytest.approx(-mass * 9810, rel=0.05)
 
 
 def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):

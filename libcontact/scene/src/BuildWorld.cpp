@@ -140,6 +140,7 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
     if (spec.extentU > 0.0) b.plane.halfU = 0.5 * spec.extentU;
     if (spec.extentV > 0.0) b.plane.halfV = 0.5 * spec.extentV;
     if (spec.thickness > 0.0) b.plane.thickness = spec.thickness;
+    b.thickness = spec.thickness;
     b.center = spec.center;
     b.radius = spec.radius;
     b.axis = spec.axis.normalized();

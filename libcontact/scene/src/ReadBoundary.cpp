@@ -1,5 +1,5 @@
 // [[boundaries]]: planes (fixed, moving, or keeping a stress), spheres, level-set obstacles and
-// cylinders (containers).
+// cylinders (containers), orifice plates (a silo's floor).
 #include "SceneSections.h"
 
 #include "lsdem/scene/SceneFile.h"
@@ -82,10 +82,12 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
     if (!isFileNameSafe(b.name))
         t.fail("name", "'" + b.name + "' cannot name a file (boundary_<name>.csv)",
                "use letters, digits, '_' and '-' only");
-    const std::string type = t.choice("type", {"plane", "sphere", "level-set", "cylinder"}, "");
+    const std::string type =
+        t.choice("type", {"plane", "sphere", "level-set", "cylinder", "orifice"}, "");
     if (type.empty())
         t.fail("", "missing key 'type'",
-               "add type = \"plane\" | \"sphere\" | \"level-set\" | \"cylinder\"");
+               "add type = \"plane\" | \"sphere\" | \"level-set\" | \"cylinder\" | "
+               "\"orifice\"");
     b.material = lookUpMaterial(t, scene);
     b.velocity = t.vec3("velocity", Vec3::Zero());
     if (type != "plane")
@@ -123,6 +125,12 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
         b.center = t.vec3("center");
         b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
         b.radius = t.positive("radius");
+    } else if (type == "orifice") {
+        b.shape = BoundaryShape::Orifice;
+        b.center = t.vec3("center");
+        b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
+        b.radius = t.positive("radius");
+        b.thickness = t.positive("thickness");
     } else {
         b.shape = BoundaryShape::LevelSet;
         b.asset = lookUpAsset(t, scene);

@@ -259,6 +259,14 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
         t.vec3("axis", b.axis);
         t.number("radius", b.radius);
         break;
+    case BoundaryShape::Orifice:
+        t.string("type", "orifice");
+        t.string("material", scene.materials[b.material].name);
+        t.vec3("center", b.center);
+        t.vec3("axis", b.axis);
+        t.number("radius", b.radius);
+        t.number("thickness", b.thickness);
+        break;
     case BoundaryShape::LevelSet:
         t.string("type", "level-set");
         t.string("asset", scene.assets[b.asset].name);

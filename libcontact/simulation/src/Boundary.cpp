@@ -2,6 +2,8 @@
 
 #include "lsdem/contact/NodeBlockWalk.h"
 
+#include <cmath>
+
 namespace lsdem {
 
 namespace {
@@ -98,6 +100,61 @@ void findCylinderContacts(const GrainAsset& a, const RigidPose& pose, const Vec3
     forEachBlockNotClear(a, isClear, visit, stats);
 }
 
+/// Nodes of @a a inside an orifice plate: the slab |h| ≤ t/2 (h = (x − c)·axis, @a c the
+/// hole's centre in the plate's mid-plane) outside the hole, radius @a r about the axis. The
+/// plate in (ρ, h), ρ the distance from the axis, is the half-strip ρ ≥ r, |h| ≤ t/2: a node
+/// inside leaves it by the nearer of its faces, through the plate's face (along ±axis, depth
+/// t/2 − |h|) or the hole's wall (towards the axis, depth ρ − r). That is its exact signed
+/// distance, the rim's corners included (outside nodes do not touch).
+void findOrificeContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& c,
+                         const Vec3& axis, double r, double thickness,
+                         std::vector<NodeContact>& out, NodeCheckStats& stats)
+{
+    const long long count = static_cast<long long>(a.nodes.size());
+    stats.nodesConsidered += count;
+    const double half = 0.5 * thickness;
+    // Clear of the plate: beyond either face, or within the hole.
+    auto isClearOfPlate = [&](const Vec3& x, double reach) {
+        const Vec3 offset = x - c;
+        const double h = offset.dot(axis);
+        return std::abs(h) > half + reach || (offset - h * axis).norm() + reach < r;
+    };
+    if (isClearOfPlate(pose.position, a.boundingRadius)) {
+        stats.nodesCulled += count;
+        return;
+    }
+    const Eigen::Matrix3d rotation = pose.orientation.toRotationMatrix();
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 x = rotation * a.nodes.positions[i] + pose.position;
+            ++stats.nodesSampled;
+            const Vec3 offset = x - c;
+            const double h = offset.dot(axis);
+            const Vec3 radial = offset - h * axis;
+            const double rho = radial.norm();
+            const double throughFace = half - std::abs(h), throughHole = rho - r;
+            if (!(throughFace > 0.0 && throughHole > 0.0)) continue;
+            ++stats.nodesInContact;
+            NodeContact nc;
+            nc.node = i;
+            if (throughFace <= throughHole) {
+                nc.depth = throughFace;
+                nc.normal = h >= 0.0 ? axis : Vec3(-axis);
+            } else {
+                nc.depth = throughHole;
+                nc.normal = -radial / rho;
+            }
+            nc.point = x + 0.5 * nc.depth * nc.normal;
+            nc.area = a.nodes.areas[i];
+            out.push_back(nc);
+        }
+    };
+    auto isClear = [&](const NodeBlock& run) {
+        return isClearOfPlate(rotation * run.center + pose.position, run.radius);
+    };
+    forEachBlockNotClear(a, isClear, visit, stats);
+}
+
 } // namespace
 
 Vec3 Boundary::referencePoint() const
@@ -105,7 +162,8 @@ Vec3 Boundary::referencePoint() const
     switch (shape) {
     case BoundaryShape::Plane: return plane.point + displacement;
     case BoundaryShape::Sphere:
-    case BoundaryShape::Cylinder: return center + displacement;
+    case BoundaryShape::Cylinder:
+    case BoundaryShape::Orifice: return center + displacement;
     case BoundaryShape::LevelSet: return pose.position + displacement;
     }
     return displacement;
@@ -132,6 +190,12 @@ bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
         const Vec3 offset = grainCenter - (center + displacement);
         return (offset - offset.dot(axis) * axis).norm() + grainRadius >= radius;
     }
+    case BoundaryShape::Orifice: {
+        const Vec3 offset = grainCenter - (center + displacement);
+        const double h = offset.dot(axis);
+        return std::abs(h) <= 0.5 * thickness + grainRadius &&
+               (offset - h * axis).norm() + grainRadius >= radius;
+    }
     }
     return false;
 }
@@ -150,6 +214,10 @@ void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boun
         return;
     case BoundaryShape::Cylinder:
         findCylinderContacts(a, pose, b.center + b.displacement, b.axis, b.radius, out, stats);
+        return;
+    case BoundaryShape::Orifice:
+        findOrificeContacts(a, pose, b.center + b.displacement, b.axis, b.radius, b.thickness,
+                            out, stats);
         return;
     }
 }

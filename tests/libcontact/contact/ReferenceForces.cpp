@@ -285,7 +285,8 @@ void writeBoundary(std::ostream& out, const Case& c)
             << "obstacle_orientation " << quat(b.pose.orientation) << "\n";
         return;
     case BoundaryShape::Cylinder:  // no reference case uses one
-        throw std::logic_error("reference forces: no file format for a cylinder boundary");
+    case BoundaryShape::Orifice:
+        throw std::logic_error("reference forces: no file format for a cylinder or orifice boundary");
     }
 }
 

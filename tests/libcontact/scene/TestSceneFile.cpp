@@ -319,6 +319,9 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"cylinder of zero radius", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 0"), "radius = 0", "must be > 0"},
         {"cylinder of zero axis", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\naxis = [0, 0, 0]"), "axis = [0, 0, 0]", "zero vector"},
         {"cylinder with a plane's key", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\nnormal = [0, 0, 1]"), "normal = [0, 0, 1]", "unknown key 'normal'"},
+        {"orifice without thickness", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"orifice\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 2"), "[[boundaries]]", "missing key 'thickness'"},
+        {"orifice of negative thickness", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"orifice\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 2\nthickness = -1"), "thickness = -1", "must be > 0"},
+        {"orifice of zero radius", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"orifice\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 0\nthickness = 1"), "radius = 0", "must be > 0"},
         {"servo cylinder", edited("type = \"plane\"\nmaterial = \"wall\"\npoint = [0, 0, 0]\nnormal = [0, 0, 2]", "type = \"cylinder\"\nmaterial = \"wall\"\ncenter = [0, 0, 0]\nradius = 5\nstress = 1.0"), "stress = 1.0", "only a plane can keep a stress"},
         {"non-unit quaternion", edited("axis_angle = [0, 0, 1, 90]", "orientation = [1, 1, 0, 0]"), "orientation", "not a unit quaternion"},
     };

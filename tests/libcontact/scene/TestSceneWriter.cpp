@@ -99,7 +99,8 @@ void expectSameScene(const Scene& a, const Scene& b)
         EXPECT_EQ(x.thickness, y.thickness);
         EXPECT_EQ(x.center, y.center);
         EXPECT_EQ(x.radius, y.radius);
-        if (x.shape == BoundaryShape::Cylinder) expectSameDirection(x.axis, y.axis, "axis of " + x.name);
+        if (x.shape == BoundaryShape::Cylinder || x.shape == BoundaryShape::Orifice)
+            expectSameDirection(x.axis, y.axis, "axis of " + x.name);
         EXPECT_EQ(x.asset, y.asset);
         EXPECT_EQ(x.pose.position, y.pose.position);
         expectSameDirection<Eigen::Vector4d>(x.pose.orientation.coeffs(), y.pose.orientation.coeffs(),
@@ -252,7 +253,15 @@ Scene everyFeature(const ScratchDir& dir)
     drum.center = Vec3(0.5, -0.25, 0);
     drum.axis = Vec3(0, 0.6, 0.8);
     drum.radius = 4.5;
-    s.boundaries = {floor, patch, indenter, obstacle, x0, x1, w0, w1, lid, press, drum};
+    BoundarySpec orifice;
+    orifice.name = "orifice";
+    orifice.shape = BoundaryShape::Orifice;
+    orifice.material = 2;
+    orifice.center = Vec3(0.25, 0, -1);
+    orifice.axis = Vec3(0, 0.6, 0.8);
+    orifice.radius = 1.75;
+    orifice.thickness = 0.5;
+    s.boundaries = {floor, patch, indenter, obstacle, x0, x1, w0, w1, lid, press, drum, orifice};
     s.gravity = Vec3(0, 0, -9.81);
     s.globalDamping = 0.2;
     s.timeStep.safety = 0.15;

@@ -366,3 +366,142 @@ TEST(Boundary, CylinderBlockCullingKeepsEveryContact)
     }
     EXPECT_GT(blockedStats.nodesCulled, scannedStats.nodesCulled);
 }
+
+namespace {
+
+/// An orifice plate of tilted axis: hole radius 1.5, thickness 0.4, centre (0.3, −0.2, 0.1).
+Boundary tiltedOrifice()
+{
+    Boundary o;
+    o.shape = BoundaryShape::Orifice;
+    o.center = Vec3(0.3, -0.2, 0.1);
+    o.axis = Vec3(0.6, 0, 0.8);
+    o.radius = 1.5;
+    o.thickness = 0.4;
+    return o;
+}
+
+/// The distance from @a x to the nearest of many points on the plate's surface near it (its
+/// two faces out to 1.2 beyond the hole, and the hole's wall), sampled every ≤ 0.0021: an
+/// estimate independent of the contact's formula, at most 0.0015 too long.
+double sampledDistanceToPlate(const Boundary& o, const Vec3& x)
+{
+    const Vec3 u = o.axis.unitOrthogonal(), v = o.axis.cross(u);
+    const double half = 0.5 * o.thickness;
+    double best = std::numeric_limits<double>::infinity();
+    const int turns = 8000;
+    for (int k = 0; k < turns; ++k) {
+        const double angle = 2.0 * kPi * k / turns;
+        const Vec3 radial = std::cos(angle) * u + std::sin(angle) * v;
+        for (double rho = o.radius; rho <= o.radius + 1.2; rho += 0.002)
+            for (double h : {-half, half})
+                best = std::min(best, (o.center + rho * radial + h * o.axis - x).norm());
+        for (double h = -half; h <= half; h += 0.002)
+            best = std::min(best, (o.center + o.radius * radial + h * o.axis - x).norm());
+    }
+    return best;
+}
+
+} // namespace
+
+// Nodes inside the plate leave it by its nearer face or the hole's wall: the depth is the
+// distance to the plate's surface (checked against points sampled on it), the normal leads
+// there, and nodes in the hole or beyond the faces touch nothing.
+TEST(Boundary, OrificeContactsAreTheDistanceToThePlatesSurface)
+{
+    const Boundary o = tiltedOrifice();
+    const Vec3 u = o.axis.unitOrthogonal(), v = o.axis.cross(u);
+    // Nodes in the plate's frame: (radial distance, angle, height), a grain of one node each.
+    struct Probe { double rho, angle, h; bool inside; };
+    const std::vector<Probe> probes = {
+        {1.9, 0.3, 0.15, true},    // near the upper face
+        {2.4, 2.0, -0.12, true},   // near the lower face
+        {1.6, 4.0, 0.02, true},    // near the hole's wall
+        {1.62, 1.1, 0.17, true},   // near the rim's corner, face side
+        {1.53, 5.5, -0.1, true},   // near the rim's corner, hole side
+        {1.4, 0.7, 0.0, false},    // in the hole
+        {3.0, 2.2, 0.25, false},   // above the plate
+        {1.45, 3.3, -0.25, false}, // below and inside the rim
+    };
+    for (const Probe& p : probes) {
+        GrainAsset one;
+        one.nodes.positions.push_back(Vec3::Zero());
+        one.nodes.normals.push_back(Vec3::UnitZ());
+        one.nodes.areas.push_back(0.25);
+        one.boundingRadius = 0.0;
+        RigidPose pose;
+        const Vec3 radial = std::cos(p.angle) * u + std::sin(p.angle) * v;
+        pose.position = o.center + p.rho * radial + p.h * o.axis;
+        std::vector<NodeContact> contacts;
+        NodeCheckStats stats;
+        findBoundaryContacts(one, pose, o, contacts, stats);
+        ASSERT_EQ(contacts.size(), p.inside ? 1u : 0u) << "rho " << p.rho << " h " << p.h;
+        if (!p.inside) continue;
+        const NodeContact& c = contacts[0];
+        EXPECT_NEAR(c.depth, sampledDistanceToPlate(o, pose.position), 2e-3) << "rho " << p.rho;
+        // Pushed by its depth along the normal, the node is on the surface.
+        EXPECT_LT(sampledDistanceToPlate(o, pose.position + c.depth * c.normal), 2e-3);
+        EXPECT_NEAR(c.normal.norm(), 1.0, 1e-12);
+        EXPECT_LT((c.point - (pose.position + 0.5 * c.depth * c.normal)).norm(), 1e-15);
+        EXPECT_EQ(c.area, 0.25);
+    }
+}
+
+// A grain in the hole clear of the rim, or above the plate, is culled whole; one may touch the
+// plate when its sphere reaches either face outside the hole.
+TEST(Boundary, MayTouchAnOrificeOnlyNearThePlateOutsideTheHole)
+{
+    Boundary o;
+    o.shape = BoundaryShape::Orifice;
+    o.center = Vec3(0, 0, 1);
+    o.radius = 3.0;
+    o.thickness = 0.5;
+    EXPECT_FALSE(o.mayTouch(Vec3(0, 0, 1), 1.0));       // falling through the middle
+    EXPECT_FALSE(o.mayTouch(Vec3(1.9, 0, 1), 1.0));     // 0.1 clear of the hole's wall
+    EXPECT_TRUE(o.mayTouch(Vec3(2.1, 0, 1), 1.0));
+    EXPECT_FALSE(o.mayTouch(Vec3(10, 0, 2.3), 1.0));    // 0.05 above the upper face
+    EXPECT_TRUE(o.mayTouch(Vec3(10, 0, 2.2), 1.0));
+    EXPECT_TRUE(o.mayTouch(Vec3(10, 0, -0.2), 1.0));    // under the lower face
+    o.displacement = Vec3(0, 0, -1);
+    EXPECT_FALSE(o.mayTouch(Vec3(10, 0, 2.2), 1.0));
+    EXPECT_EQ(o.referencePoint(), Vec3(0, 0, 0));
+
+    const GrainAsset a = sixNodes();
+    RigidPose pose;
+    pose.position = Vec3(0.5, 0, 0);
+    std::vector<NodeContact> contacts;
+    NodeCheckStats stats;
+    findBoundaryContacts(a, pose, o, contacts, stats);
+    EXPECT_TRUE(contacts.empty());
+    EXPECT_EQ(stats.nodesCulled, 6);
+}
+
+// On a baked grain pressed into the rim, the block culling keeps exactly the contacts of a
+// full scan.
+TEST(Boundary, OrificeBlockCullingKeepsEveryContact)
+{
+    const GrainAsset& withBlocks = boxAsset();
+    GrainAsset plain = withBlocks;
+    plain.nodeBlocks.clear();
+    Boundary o = tiltedOrifice();
+    o.radius = 1.0;
+    RigidPose pose;
+    pose.orientation = Quat(Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()));
+    pose.position = o.center + 0.6 * o.axis + 0.5 * o.axis.unitOrthogonal();
+    std::vector<NodeContact> blocked, scanned;
+    NodeCheckStats blockedStats, scannedStats;
+    findBoundaryContacts(withBlocks, pose, o, blocked, blockedStats);
+    findBoundaryContacts(plain, pose, o, scanned, scannedStats);
+    ASSERT_GT(scanned.size(), 3u);
+    ASSERT_EQ(blocked.size(), scanned.size());
+    bool face = false, wall = false;
+    for (size_t k = 0; k < scanned.size(); ++k) {
+        EXPECT_EQ(blocked[k].node, scanned[k].node);
+        EXPECT_EQ(blocked[k].depth, scanned[k].depth);
+        EXPECT_EQ(blocked[k].normal, scanned[k].normal);
+        face = face || std::abs(scanned[k].normal.dot(o.axis)) == 1.0;
+        wall = wall || std::abs(scanned[k].normal.dot(o.axis)) < 1e-12;
+    }
+    EXPECT_TRUE(face && wall);  // the box straddles the rim
+    EXPECT_GT(blockedStats.nodesCulled, scannedStats.nodesCulled);
+}

@@ -115,9 +115,10 @@ struct BoundarySpec
     Vec3 normal = Vec3::UnitZ();
     double extentU = 0.0, extentV = 0.0;  ///< 0: unbounded
     Vec3 axisU = Vec3::UnitX();
-    double thickness = 0.0;               ///< 0: unbounded
+    double thickness = 0.0;               ///< 0: unbounded; Orifice: the plate's, > 0
     // Sphere: centre and radius. Cylinder (grains inside): a point of its axis, the axis and
-    // the radius.
+    // the radius. Orifice (a plate with a hole; grains outside the plate): the hole's centre in
+    // the plate's mid-plane, its axis (the plate's normal), its radius and the thickness above.
     Vec3 center = Vec3::Zero();
     double radius = 0.0;
     Vec3 axis = Vec3::UnitZ();

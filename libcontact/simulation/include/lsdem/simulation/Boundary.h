@@ -1,7 +1,8 @@
 /// @file Boundary.h
 /// @brief Rigid boundaries of a simulation: planes (walls, optionally finite patches), a sphere
-///        (an indenter), level-set obstacles (an asset used as a rigid body) and the side wall
-///        of a cylinder (a container: grains inside). Each moves at a
+///        (an indenter), level-set obstacles (an asset used as a rigid body), the side wall
+///        of a cylinder (a container: grains inside) and a plate with a circular hole (a
+///        silo's floor and its orifice). Each moves at a
 ///        prescribed velocity (zero: fixed) or, for a servo plane, at the velocity that keeps
 ///        a target stress (StressServo.h); grains touch it with their nodes, through the same
 ///        contact laws as grain–grain contacts.
@@ -25,9 +26,11 @@ struct Boundary
     int material = 0;
     Plane plane;                                  ///< Plane: where it started
     Vec3 center = Vec3::Zero();                   ///< Sphere: where its centre started;
-                                                  ///< Cylinder: a point of its axis
-    double radius = 0.0;                          ///< Sphere, Cylinder
-    Vec3 axis = Vec3::UnitZ();                    ///< Cylinder: unit direction of its axis
+                                                  ///< Cylinder: a point of its axis;
+                                                  ///< Orifice: the hole's centre, mid-plate
+    double radius = 0.0;                          ///< Sphere, Cylinder; Orifice: the hole's
+    Vec3 axis = Vec3::UnitZ();                    ///< Cylinder, Orifice: unit axis
+    double thickness = 0.0;                       ///< Orifice: the plate's, > 0
     std::shared_ptr<const GrainAsset> asset;      ///< LevelSet
     RigidPose pose;                               ///< LevelSet: where it started
     Vec3 velocity = Vec3::Zero();                 ///< prescribed, world
@@ -40,8 +43,8 @@ struct Boundary
     double normalDashpot = 0.0;
     StressServo servo;                            ///< Plane: keeps a target stress if active
 
-    /// Its reference point now (plane point, sphere centre, obstacle centroid or the point of
-    /// a cylinder's axis).
+    /// Its reference point now (plane point, sphere centre, obstacle centroid, the point of
+    /// a cylinder's axis or an orifice's centre).
     Vec3 referencePoint() const;
     /// Whether a grain whose surface lies within @a radius of @a center may touch it.
     bool mayTouch(const Vec3& center, double radius) const;

@@ -9,6 +9,7 @@ enum class BoundaryShape {
     Sphere,    ///< rigid sphere (an indenter); grains live outside it
     LevelSet,  ///< a baked asset used as a rigid obstacle; grains live outside it
     Cylinder,  ///< the side wall of an infinitely long circular cylinder; grains live inside it
+    Orifice,   ///< a flat plate with a circular hole (a silo's floor); grains live outside it
 };
 
 } // namespace lsdem

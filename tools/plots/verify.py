@@ -2,7 +2,8 @@
 """Figures of lsdem-study verify, in the style of the papers their cases come from (Chung & Ooi,
 Granular Matter 13, 2011): force against time and overlap, rebound against restitution,
 tangential restitution and spin against the incident angle, beta against x, slide to roll,
-free rotation, and the errors against the node count.
+free rotation, the errors against the node count, and the silo's discharge against Beverloo's
+law (Beverloo, Leniger & van de Velde 1961: W^(2/5) against D).
 
 usage: verify.py OUT_DIR   (reads OUT_DIR/verify_*.csv, writes OUT_DIR/verify_*.png)
 Each PNG is written to a temporary name and renamed, so a failed run leaves no half image.
@@ -242,6 +243,46 @@ def convergence(out_dir):
     save(fig, out_dir, "verify_convergence.png")
 
 
+def silo(out_dir):
+    kinds = [k for k in ("spheres", "sand") if series(out_dir, "silo_" + k)]
+    if not kinds:
+        return
+    fig, (flow, mass) = plt.subplots(1, 2, figsize=(11, 4.5))
+    for n, kind in enumerate(kinds):
+        rows = series(out_dir, "silo_" + kind)
+        d = [r["orifice"] for r in rows]
+        w = [r["mass_flow"] ** 0.4 for r in rows]
+        flow.plot(d, w, "o", color="C%d" % n, label=kind)
+        if len(rows) >= 2:
+            # The least-squares line of W^(2/5) on D (the fit the study judges), to its root k·d.
+            mean_d, mean_w = sum(d) / len(d), sum(w) / len(w)
+            slope = sum((a - mean_d) * (b - mean_w) for a, b in zip(d, w)) / \
+                sum((a - mean_d) ** 2 for a in d)
+            root = mean_d - mean_w / slope
+            rho, size = rows[0]["bulk_density"], rows[0]["grain_size"]
+            c = slope ** 2.5 / (rho * 9810.0 ** 0.5)
+            xs = [root, max(d)]
+            flow.plot(xs, [slope * (x - root) for x in xs], "-", lw=1, color="C%d" % n,
+                      label="Beverloo: C = %.2f, k = %.2f" % (c, root / size))
+        curves = series(out_dir, "silo_%s_discharge" % kind) or []
+        for m, orifice in enumerate(sorted({r["orifice"] for r in curves})):
+            pts = [r for r in curves if r["orifice"] == orifice]
+            mass.plot([r["time"] for r in pts], [1e9 * r["mass"] for r in pts],
+                      ("-" if n == 0 else "--"), lw=1, color="C%d" % m,
+                      label="%s, D = %g mm" % (kind, orifice))
+    flow.set_xlabel("orifice diameter D [mm]")
+    flow.set_ylabel("W^(2/5)  [(t/s)^(2/5)]")
+    flow.set_xlim(left=0)
+    flow.set_ylim(bottom=0)
+    flow.set_title("Mass flow against Beverloo's law")
+    flow.legend(fontsize=8)
+    mass.set_xlabel("time since the orifice opened [s]")
+    mass.set_ylabel("mass out [mg]")
+    mass.set_title("Discharge")
+    mass.legend(fontsize=7)
+    save(fig, out_dir, "verify_silo.png")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -258,6 +299,7 @@ def main():
     slide_to_roll(out_dir)
     free_rotation(out_dir)
     convergence(out_dir)
+    silo(out_dir)
 
 
 if __name__ == "__main__":

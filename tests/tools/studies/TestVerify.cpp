@@ -1,6 +1,7 @@
 // The verification suite (lsdem-study verify): its references against forms worked out
 // independently here (closed forms, a direct integration of Euler's equations, impulse
 // balances), and the fast version of every case, which must pass every check it makes.
+#include "studies/verify/BeverlooFit.h"
 #include "studies/verify/FreeRotationReference.h"
 #include "studies/verify/NormalImpactReference.h"
 #include "studies/verify/RigidBodyTheory.h"
@@ -117,6 +118,32 @@ TEST(VerifyReferences, RigidImpactSlidesOrStopsTheSlip)
     EXPECT_EQ(inclineAcceleration(0.1, 0.3, 9810.0), 0.0);
     EXPECT_NEAR(inclineAcceleration(kPi / 6, 0.3, 9810.0),
                 9810.0 * (0.5 - 0.3 * std::sqrt(3.0) / 2.0), 1e-11);
+}
+
+// Flows made by Beverloo's law itself (C 0.58, k 1.4, d 1.2, ρ_b 1.6e-9, g 9810) give back its
+// C and k, a perfect line, and the exponent 5/2; a flow off the law shows in R².
+TEST(VerifyReferences, BeverlooFitRecoversTheLawsConstants)
+{
+    const double c = 0.58, k = 1.4, d = 1.2, rho = 1.6e-9, g = 9810.0;
+    std::vector<Discharge> flows;
+    for (double diameter : {5.0, 6.5, 8.0, 9.5})
+        flows.push_back({diameter, c * rho * std::sqrt(g) * std::pow(diameter - k * d, 2.5)});
+    const BeverlooFit fit = fitBeverloo(flows, rho, g, d);
+    EXPECT_NEAR(fit.c, c, 1e-12);
+    EXPECT_NEAR(fit.k, k, 1e-10);
+    EXPECT_NEAR(fit.rSquared, 1.0, 1e-12);
+    EXPECT_NEAR(fittedExponent(flows, k * d), 2.5, 1e-12);
+    // W ∝ D³ instead: W^(2/5) bends, and its own exponent is not 5/2.
+    for (Discharge& f : flows) f.massFlow = 1e-9 * std::pow(f.diameter, 3.0);
+    EXPECT_LT(fitBeverloo(flows, rho, g, d).rSquared, 0.9999);
+    EXPECT_NEAR(fittedExponent(flows, 0.0), 3.0, 1e-12);
+    // The line fit itself: y = 2x + 1 exactly, then one point off.
+    const LineFit line = fitLine({0, 1, 2, 3}, {1, 3, 5, 7});
+    EXPECT_NEAR(line.slope, 2.0, 1e-15);
+    EXPECT_NEAR(line.intercept, 1.0, 1e-15);
+    EXPECT_EQ(line.rSquared, 1.0);
+    EXPECT_LT(fitLine({0, 1, 2, 3}, {1, 3, 6, 7}).rSquared, 0.99);
+    EXPECT_THROW(fitLine({1, 1}, {2, 3}), std::exception);
 }
 
 // The fast version of every case: each must make checks, and pass them all.

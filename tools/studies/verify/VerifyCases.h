@@ -7,6 +7,8 @@
 #include "studies/verify/VerifyReport.h"
 #include "studies/verify/VerifySetup.h"
 
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace lsdem::verify {
@@ -17,6 +19,14 @@ struct Context
     std::vector<Formulation> formulations;  ///< those a case applies to are run
     bool quick = false;                     ///< fewer points, shorter runs (ctest)
     Report& report;
+    std::string sandMeshes;                 ///< the sand grains' meshes (the silo)
+    /// Where a long case says how far it has got (may be empty).
+    std::function<void(const std::string&)> progress;
+
+    void note(const std::string& line) const
+    {
+        if (progress) progress(line);
+    }
 };
 
 /// Chung & Ooi test 2: a ball's elastic normal impact on a wall; overlap, force, duration.
@@ -45,5 +55,9 @@ void convergence(Context& c);
 void spinImpactOnWall(Context& c);
 /// Chung & Ooi test 8: the same on a ball five times as large and 1000 times as dense.
 void spinImpactOnHeavyBall(Context& c);
+
+/// A flat-bottomed silo emptied through orifices of several sizes: Beverloo's law, with
+/// spheres and with the sand grains.
+void siloDischarge(Context& c);
 
 } // namespace lsdem::verify

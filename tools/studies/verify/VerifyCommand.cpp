@@ -8,18 +8,46 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
+#include "lsdem/ls/Inspection.h"
 #include "lsdem/ls/Stopwatch.h"
+#include "lsdem/run/VtkSeries.h"
 
 #include <CLI/CLI.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <map>
 
 namespace lsdem {
 
 namespace {
 
-const cli::StudyFiles kOwnFiles = {"verify_checks.csv", "verify_*.csv", "verify_*.png"};
+const cli::StudyFiles kOwnFiles = {"verify_checks.csv", "verify_*.csv", "verify_*.png",
+                                   "silo_spheres_frames/frames*", "silo_sand_frames/frames*"};
+
+/// The frames of @a series as a ParaView series in `<dir>/<name>_frames`: each asset's surface
+/// at its node spacing, posed.
+void writeFrames(const verify::FrameSeries& series, const std::string& dir)
+{
+    const std::string folder = dir + "/" + series.name + "_frames";
+    std::filesystem::create_directories(folder);
+    VtkSeries vtk(folder, "frames");
+    std::map<const GrainAsset*, TriangleMesh> surfaces;
+    for (size_t k = 0; k < series.frames.size(); ++k) {
+        const verify::VerifyFrame& frame = series.frames[k];
+        std::vector<VtkGrain> grains;
+        for (size_t i = 0; i < frame.grains.size(); ++i) {
+            const GrainAsset* asset = frame.grains[i].asset.get();
+            auto found = surfaces.find(asset);
+            if (found == surfaces.end())
+                found = surfaces.emplace(asset, zeroIsosurface(*asset->levelSet, asset->spacing.mean))
+                            .first;
+            grains.push_back({&found->second, frame.grains[i].pose, int(i), Vec3::Zero(), Vec3::Zero()});
+        }
+        vtk.writeFrame(int(k), frame.time, grains, {});
+    }
+}
 
 std::string caseHelp()
 {
@@ -37,8 +65,10 @@ VerifyCommand::VerifyCommand(CLI::App& study)
           "Single contacts and single bodies against theory, as a reviewer checks a DEM code\n"
           "before trusting it: the eight impact tests of Chung & Ooi (Granular Matter 13,\n"
           "2011) with references derived for lsdem's laws, slide-to-roll and rolling, blocks\n"
-          "sliding and landing, free rotation, convergence with the node count. A table of\n"
-          "reference, lsdem, error, tolerance and pass; CSV and figures in --out."))
+          "sliding and landing, free rotation, convergence with the node count, and a silo\n"
+          "emptied through four orifices against Beverloo's law. A table of reference,\n"
+          "lsdem, error, tolerance and pass; CSV, figures and the silo's ParaView frames in\n"
+          "--out."))
 {
     verify::VerifyOptions& o = mOptions;
     cli::addTexts(*mCommand, "--case", o.cases, caseHelp())->type_name("NAME");
@@ -49,6 +79,10 @@ VerifyCommand::VerifyCommand(CLI::App& study)
         ->group(bodies);
     cli::addNumber(*mCommand, "--voxel", o.setup.sphereVoxel, "voxel of the ball's level set, mm")
         ->type_name("V")
+        ->group(bodies);
+    mCommand->add_option("--sand-meshes", o.sandMeshes, "the folder of the silo's sand grain meshes (.obj)")
+        ->capture_default_str()
+        ->type_name("DIR")
         ->group(bodies);
     mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
     cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
@@ -70,14 +104,15 @@ int VerifyCommand::run(RunDistributor& ranks) const
     const ThreadLimit threads(mThreads, ranks);
     cli::checkOutputFolder(o.outDir);
     const Stopwatch wall;
-    const verify::Report report = verify::runVerification(o, [&](const std::string& name) {
-        if (!o.quiet) std::printf("running %s ...\n", name.c_str()), std::fflush(stdout);
+    const verify::Report report = verify::runVerification(o, [&](const std::string& line) {
+        if (!o.quiet) std::printf("%s\n", line.c_str()), std::fflush(stdout);
     });
     cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     const std::string checks = o.outDir + "/verify_checks.csv";
     verify::writeChecksCsv(report, checks);
     for (const verify::Series& s : report.series)
         verify::writeSeriesCsv(s, o.outDir + "/verify_" + s.name + ".csv");
+    for (const verify::FrameSeries& f : report.frames) writeFrames(f, o.outDir);
 
     std::printf("%-26s %-12s %-24s %13s %13s %9s %8s %s\n", "case", "law", "quantity", "reference",
                 "lsdem", "error", "tol", "");

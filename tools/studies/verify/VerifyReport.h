@@ -1,12 +1,20 @@
 /// @file VerifyReport.h
 /// @brief What the verification suite finds: checks (a quantity lsdem computed against its
-///        reference, with the tolerance and why), and series (the curves of its figures).
+///        reference, with the tolerance and why), series (the curves of its figures) and
+///        frames (grains to see in ParaView).
 #pragma once
 
+#include "lsdem/contact/RigidPose.h"
+
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace lsdem {
+struct GrainAsset;
+}
 
 namespace lsdem::verify {
 
@@ -40,10 +48,30 @@ struct Series
     std::vector<std::vector<double>> rows;
 };
 
+/// One frame of a case for ParaView: the grains' shapes and poses at one time.
+struct VerifyFrame
+{
+    struct Grain
+    {
+        std::shared_ptr<const GrainAsset> asset;
+        RigidPose pose;
+    };
+    double time = 0.0;  ///< since the case's start, s
+    std::vector<Grain> grains;
+};
+
+/// A case's frames: written by the command as `<name>_frames/frames.pvd` and its files.
+struct FrameSeries
+{
+    std::string name;
+    std::vector<VerifyFrame> frames;
+};
+
 struct Report
 {
     std::vector<Check> checks;
     std::vector<Series> series;
+    std::vector<FrameSeries> frames;
 
     void add(Check c) { checks.push_back(std::move(c)); }
     bool allPass() const;

@@ -29,6 +29,8 @@ const std::vector<CaseEntry>& caseList()
         {"free-rotation", "a box turning over about its intermediate axis", freeRotation},
         {"convergence", "the adapted law's errors as the ball's nodes refine, 1000 … 16,000",
          convergence},
+        {"silo", "a silo emptied through 4 orifices: Beverloo's law, spheres and sand",
+         siloDischarge},
     };
     return cases;
 }
@@ -58,11 +60,11 @@ Report runVerification(const VerifyOptions& o,
 {
     Report report;
     Bodies bodies(o.setup);
-    Context context{bodies, o.formulations, o.quick, report};
+    Context context{bodies, o.formulations, o.quick, report, o.sandMeshes, progress};
     for (const CaseEntry& e : caseList()) {
         if (!o.cases.empty() && std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())
             continue;
-        if (progress) progress(e.name);
+        context.note("running " + e.name + " ...");
         e.run(context);
     }
     return report;

@@ -20,6 +20,7 @@ struct VerifyOptions
     std::vector<Formulation> formulations = allFormulations();
     std::vector<std::string> cases;  ///< names of caseList(); empty: all
     bool quick = false;              ///< the fast version (ctest): fewer points, coarser
+    std::string sandMeshes = "assets/meshes/sand";  ///< the silo's sand grains
     std::string outDir = "results/verify";
     bool plots = true, quiet = false;
 };
@@ -38,8 +39,8 @@ const std::vector<CaseEntry>& caseList();
 /// Check @a o; throw Error naming the bad option and the fix.
 void checkVerifyOptions(const VerifyOptions& o);
 
-/// Run the cases of @a o (no files written). @a progress, if given, hears each case's name as
-/// it starts.
+/// Run the cases of @a o (no files written). @a progress, if given, hears a line as each case
+/// starts, and the long cases' milestones.
 Report runVerification(const VerifyOptions& o,
                        const std::function<void(const std::string&)>& progress = {});
 

@@ -25,14 +25,14 @@ echo "== the generated sand grains of assets/meshes/sand: one batch, one catalog
 "$bake" assets/meshes/sand/*.obj --out-dir "$out/sand" --voxel-per-size 0.03 --nodes 600
 echo "== two-sphere study (Feldfogel et al. 2024, Fig. 1 and 3)"
 build/tools/lsdem-study two-spheres --out results/two-spheres
-echo "== 27-sphere stack study (Fig. 4; about 15 s)"
+echo "== 27-sphere stack study (Fig. 4; about 10 s)"
 build/tools/lsdem-study cube27 --out results/cube27-study
 echo "== simulation: the 27-sphere stack compressed by a wall (assets/scenes/cube27.toml)"
 # --overwrite: a second run of this script replaces the first one's outputs (refused without it).
 build/tools/lsdem-run assets/scenes/cube27.toml --out results/cube27 --overwrite
-echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; about 6 s)"
+echo "== simulation: the 16 generated sand grains settling in a box (assets/scenes/sand.toml; a few seconds)"
 build/tools/lsdem-run assets/scenes/sand.toml --out results/sand --overwrite
-echo "== triaxial test: a first look with 27 sand grains, adapted and original (about 30 s; docs/triaxial.md)"
+echo "== triaxial test: a first look with 27 sand grains, adapted and original (a few seconds; docs/triaxial.md)"
 build/tools/lsdem-study triaxial --grains 27 --sdps 0.1 --axial-strain 0.05 --out results/triaxial-look
 echo "== interlocked slab study (Fig. 5 and 6; about 2 minutes on 2 cores)"
 build/tools/lsdem-study slab --out results/slab

@@ -357,12 +357,13 @@ void bindScenes(py::module_& m)
                  const std::string name = formulationName(c.model.formulation);
                  if (shearStiffness > 0.0 && !shearSprings)
                      throw Error("", "shear_stiffness has no effect with formulation '" + name + "'",
-                                 "use 'original' or 'adapted' for tangential forces, or leave "
-                                 "it out");
+                                 "use " + formulationNamesWhere(&NormalModel::perNodeForces, "'") +
+                                     " for tangential forces, or leave it out");
                  if (friction > 0.0 && !(shearStiffness > 0.0 && shearSprings))
                      throw Error("", "friction has no effect without shear springs",
-                                 "give shear_stiffness > 0 with formulation 'original' or "
-                                 "'adapted' (see docs/contact.md), or leave friction out");
+                                 "give shear_stiffness > 0 with formulation " +
+                                     formulationNamesWhere(&NormalModel::perNodeForces, "'") +
+                                     " (see docs/contact.md), or leave friction out");
                  markChanged(s);
                  c.model.normalStiffness = normalStiffness;
                  c.model.shearStiffness = shearStiffness;

@@ -1,6 +1,5 @@
 #include "studies/Cube27ClosedForm.h"
 
-#include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/Constants.h"
 
 #include <cmath>
@@ -32,8 +31,10 @@ double cube27ExactForce(double radius, double delta, double knStar, Formulation 
         }
         return x1;
     };
-    const auto sphereForce =
-        law == Formulation::Volume ? exactSphereVolumeForce : exactSphereContactForce;
+    const NormalModel& model = normalModel(law);
+    auto sphereForce = [&](double r, double overlap, double k) {
+        return model.continuumSphereForce(r, overlap, k);
+    };
     auto travel = [&](double dWall) {
         const double force = kPi * radius * dWall * dWall;  // sphere–plane, exact
         const double dSphere = secant(
@@ -44,11 +45,6 @@ double cube27ExactForce(double radius, double delta, double knStar, Formulation 
     const double dWall =
         secant([&](double d) { return travel(d) - delta; }, delta / kCube27Column, 0.99 * delta / kCube27Column);
     return 9.0 * kPi * knStar * radius * dWall * dWall;
-}
-
-double originalEffectiveStiffness(double kn, double nodes, double area)
-{
-    return kn * nodes / area;
 }
 
 } // namespace lsdem

@@ -21,14 +21,11 @@ inline const double kCube27Column = 2.0 + 2.0 * std::sqrt(2.0);
 double cube27ClosedForm(double radius, double delta, double knStar);
 
 /// The same continuum limit without the parabolic approximation of the sphere–sphere caps:
-/// the sphere–sphere force is exactSphereContactForce (1-D quadrature), or
-/// exactSphereVolumeForce for @a law Volume (whose sphere–plane force is the same π·k·R·d_w²),
-/// and d_w is found so that 2·d_w + 2·d_s = δ with equal forces in every contact of a column.
+/// the sphere–sphere force is @a law's NormalModel::continuumSphereForce (a 1-D quadrature;
+/// every law's sphere–plane force is π·k·R·d_w²), and d_w is found so that
+/// 2·d_w + 2·d_s = δ with equal forces in every contact of a column. @a knStar is the law's
+/// traction stiffness (NormalModel::tractionStiffness); not for a law without one.
 double cube27ExactForce(double radius, double delta, double knStar,
                         Formulation law = Formulation::Adapted);
-
-/// The continuum kn* that the original law with stiffness @a kn behaves like with @a nodes
-/// nodes spread uniformly over @a area: kn·N / area.
-double originalEffectiveStiffness(double kn, double nodes, double area);
 
 } // namespace lsdem

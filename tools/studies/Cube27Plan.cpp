@@ -26,16 +26,15 @@ ColumnStiffness columnStiffness(Formulation f, double radius, double delta, doub
                                 int nodes)
 {
     ColumnStiffness c;
-    const NormalModel& law = normalModel(f);
-    if (f == Formulation::SingleNode) {
-        // One linear spring per contact (symmetric testing: two half-weight deepest nodes).
-        // (The volume law's force is the continuum integral: it stiffens as below.)
+    const std::optional<double> traction =
+        normalModel(f).tractionStiffness(stiffness, 4 * kPi * radius * radius / nodes);
+    if (!traction) {
+        // A law without a traction (single-node): one linear spring per contact (symmetric
+        // testing: two half-weight deepest nodes).
         c.kWall = c.kSphere = stiffness;
         return c;
     }
-    const double kStar = law.stiffnessPerArea()
-                             ? stiffness
-                             : originalEffectiveStiffness(stiffness, nodes, 4 * kPi * radius * radius);
+    const double kStar = *traction;
     const double dWall = delta / kCube27Column, dSphere = std::sqrt(2.0) * dWall;
     c.kWall = 2 * kPi * kStar * radius * dWall;     // d/dd of π k R d²
     c.kSphere = kPi * kStar * radius * dSphere;     // d/dδ of (π/2) k R δ²

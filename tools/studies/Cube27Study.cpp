@@ -108,7 +108,7 @@ Samples simulateRun(const Cube27Options& o, Cube27Run& run,
 /// Runs that differ only in orientation: (formulation, N, k).
 using Key = std::tuple<int, int, double>;
 
-/// The column forces at unit stiffness, by continuum law (adapted or volume) and δ.
+/// The column forces at unit traction stiffness, by law and δ.
 using UnitForces = std::map<std::pair<Formulation, double>, double>;
 
 /// The exact column force of @a law at @a delta for stiffness @a k: k times the force at unit
@@ -176,22 +176,17 @@ void appendRows(const Cube27Options& o, const Key& key, const std::vector<Sample
         row.forceStd = std::sqrt(std::max(0.0, sum2 / n - row.forceMean * row.forceMean));
         row.floorForce = floor / n;
         row.sideForce = side / n;
-        const NormalModel& law = normalModel(row.formulation);
-        const double kStar =
-            law.stiffnessPerArea()
-                ? stiffness
-                : originalEffectiveStiffness(stiffness, row.nodesActual,
-                                             4 * kPi * o.radius * o.radius);
-        if (row.formulation == Formulation::SingleNode) {
-            // Linear springs kn in every contact: d_s = d_w = δ/4, 9 columns. (The volume law
-            // has no per-node forces either, but its force is the continuum integral.)
+        // The law's traction on nodes spread evenly over the sphere (kn·N/(4πR²) for original).
+        const std::optional<double> kStar = normalModel(row.formulation)
+                                                .tractionStiffness(stiffness, 4 * kPi * o.radius * o.radius /
+                                                                                  row.nodesActual);
+        if (!kStar) {
+            // A law without a traction (single-node): linear springs kn in every contact,
+            // d_s = d_w = δ/4, 9 columns.
             row.forceClosed = row.forceExact = 9.0 * stiffness * row.delta / 4.0;
         } else {
-            row.forceClosed = cube27ClosedForm(o.radius, row.delta, kStar);
-            // The original law behaves like the adapted one with kStar (nodes spread evenly).
-            const Formulation continuum =
-                row.formulation == Formulation::Volume ? Formulation::Volume : Formulation::Adapted;
-            row.forceExact = exactColumnForce(o, continuum, row.delta, kStar, unitForce);
+            row.forceClosed = cube27ClosedForm(o.radius, row.delta, *kStar);
+            row.forceExact = exactColumnForce(o, row.formulation, row.delta, *kStar, unitForce);
         }
         refuseNonFiniteRow(row, i + 1 == count);
         rows.push_back(row);

@@ -71,11 +71,22 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                                 cli::numberText(o.sdps[i]),
                         "e.g. --sdps 0.1 0.07 0.05");
     checkFormulationList(o.formulations);
+    // The study needs shear springs at every node and a traction that kn* sets.
+    auto runnable = [](Formulation f) {
+        return normalModel(f).perNodeForces() && normalModel(f).tractionStiffness(1.0, 1.0);
+    };
     for (Formulation f : o.formulations)
-        if (f != Formulation::Adapted && f != Formulation::Original)
-            throw Error("", "the triaxial study runs adapted and original, not " +
-                                formulationName(f),
-                        "--formulation adapted original");
+        if (!runnable(f)) {
+            std::string names, list;
+            for (Formulation g : allFormulations())
+                if (runnable(g)) {
+                    names += (names.empty() ? "" : " and ") + formulationName(g);
+                    list += " " + formulationName(g);
+                }
+            throw Error("", "the triaxial study runs " + names +
+                                " (a shear spring at every node), not " + formulationName(f),
+                        "--formulation" + list);
+        }
     requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
     requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
     if (!(o.latticeSpacing >= 0.0 && std::isfinite(o.latticeSpacing)))

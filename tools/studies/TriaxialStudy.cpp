@@ -124,7 +124,7 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
 double triaxialTimeStep(const World& world, const TriaxialOptions& o, Formulation f,
                         const TriaxialAssets& a, double kn)
 {
-    const double kStar = f == Formulation::Adapted ? kn : kn / a.meanNodeArea;
+    const double kStar = *normalModel(f).tractionStiffness(kn, a.meanNodeArea);
     const double d = a.meanDiameter;
     const double force = o.confiningStress * d * d;
     const double contact = 2.0 * std::sqrt(kPi * kStar * 0.25 * d * force);
@@ -272,7 +272,14 @@ TriaxialStudyResult runTriaxialStudy(
     result.grains = o.grains;
     result.spacing = o.latticeSpacing > 0.0 ? o.latticeSpacing : triaxialCloudSpacing(*coarsest);
     result.meanDiameter = coarsest->meanDiameter;
-    const double knOriginal = o.knOriginal > 0.0 ? o.knOriginal : o.knStar * coarsest->meanNodeArea;
+    // Each law's stiffness: kn* for the laws per area; the others' acts like kn* on the
+    // coarsest nodes unless --kn-original gives it.
+    auto stiffnessOf = [&](Formulation f) {
+        const NormalModel& law = normalModel(f);
+        if (law.stiffnessPerArea()) return o.knStar;
+        return o.knOriginal > 0.0 ? o.knOriginal
+                                  : *law.stiffnessForTraction(o.knStar, coarsest->meanNodeArea);
+    };
 
     std::vector<std::string> descriptions;
     std::vector<double> costs;
@@ -283,11 +290,12 @@ TriaxialStudyResult runTriaxialStudy(
             for (long long seed : o.seeds) {
                 RecordWriter w;
                 w.text(formulationName(f)).number(sdp).integer(seed).number(result.spacing);
-                w.number(f == Formulation::Adapted ? o.knStar : knOriginal);
+                w.number(stiffnessOf(f));
                 descriptions.push_back(w.bytes());
-                // Nodes grow as 1/SDP²; original's step also shrinks with the SDP.
+                // Nodes grow as 1/SDP²; a law per node also stiffens, and its step shrinks,
+                // with the SDP.
                 costs.push_back(
-                    std::pow(o.sdps.front() / sdp, f == Formulation::Adapted ? 2.0 : 3.0));
+                    std::pow(o.sdps.front() / sdp, normalModel(f).stiffnessPerArea() ? 2.0 : 3.0));
             }
     result.runs.resize(descriptions.size());
     ranks.runAll(descriptions, costs, job, [&](size_t index, int, const std::string& bytes) {

@@ -87,7 +87,7 @@ int TwoSpheresCommand::run(RunDistributor& ranks) const
         std::printf("%-12s %8.0f %10.3g %14.6g %12.3g", formulationName(r.formulation).c_str(),
                     r.nodesActual, r.stiffness, r.forceMean, r.forceMax - r.forceMin);
         // The continuum laws against their own limits (P_exact); the others diverge.
-        if (r.formulation == Formulation::Adapted || r.formulation == Formulation::Volume)
+        if (normalModel(r.formulation).convergesWithNodes())
             std::printf(" %+13.3f %%", 100.0 * (r.forceMean / r.forceExact - 1.0));
         std::printf("\n");
     }

@@ -5,7 +5,6 @@
 
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/scene/RandomRotation.h"
-#include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AtomicFile.h"
 #include "lsdem/ls/Error.h"
 #include "lsdem/ls/Stopwatch.h"
@@ -111,10 +110,11 @@ void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresRe
             }
             row.forceMean = sum / p.size();
             row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
-            // The volume law converges to its own integral (no projection on the centre line).
-            row.forceExact = row.formulation == Formulation::Volume
-                                 ? exactSphereVolumeForce(o.radius, row.delta, row.stiffness)
-                                 : exactSphereContactForce(o.radius, row.delta, row.stiffness);
+            // Each law's continuum limit at its stiffness taken as a traction: the limit of
+            // the laws per area (SCIENCE.md §3); for the others, what the adapted law would
+            // give at the same number (they diverge from it as the nodes refine).
+            row.forceExact = normalModel(row.formulation)
+                                 .continuumSphereForce(o.radius, row.delta, row.stiffness);
             part.rows.push_back(row);
         }
     part.contactSeconds += contact.seconds();

@@ -36,7 +36,9 @@ struct TwoSpheresRow
     double stiffness = 0;
     double delta = 0;
     double forceMean = 0, forceStd = 0, forceMin = 0, forceMax = 0;  ///< over orientations
-    double forceExact = 0;      ///< continuum limit of the adapted formulation (SCIENCE.md §3)
+    /// NormalModel::continuumSphereForce at this stiffness: the limit of a law per area
+    /// (SCIENCE.md §3); the others' forces diverge from it as the nodes refine
+    double forceExact = 0;
 };
 
 struct TwoSpheresResult

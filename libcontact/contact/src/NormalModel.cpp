@@ -2,6 +2,7 @@
 
 #include "NormalModels.h"
 
+#include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/Error.h"
 
 namespace lsdem {
@@ -14,6 +15,11 @@ double NormalModel::elasticEnergy(const std::vector<NodeContact>& contacts, doub
     for (const NodeContact& c : contacts)
         sum += nodeStiffness(perArea, stiffness, c.area) * c.depth * c.depth;
     return 0.5 * weight * sum;
+}
+
+double NormalModel::continuumSphereForce(double radius, double overlap, double traction) const
+{
+    return exactSphereContactForce(radius, overlap, traction);
 }
 
 const NormalModel& normalModel(Formulation formulation)
@@ -32,6 +38,17 @@ const std::vector<Formulation>& allFormulations()
     static const std::vector<Formulation> all = {Formulation::Original, Formulation::Adapted,
                                                  Formulation::SingleNode, Formulation::Volume};
     return all;
+}
+
+std::string formulationNamesWhere(bool (NormalModel::*property)() const, const std::string& quote)
+{
+    std::vector<std::string> names;
+    for (Formulation f : allFormulations())
+        if ((normalModel(f).*property)()) names.push_back(quote + formulationName(f) + quote);
+    std::string text;
+    for (size_t i = 0; i < names.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return text;
 }
 
 std::string formulationName(Formulation f) { return normalModel(f).name(); }

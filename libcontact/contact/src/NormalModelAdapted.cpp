@@ -22,6 +22,14 @@ public:
     {
         return knStar * area;
     }
+    std::optional<double> tractionStiffness(double knStar, double) const override
+    {
+        return knStar;
+    }
+    std::optional<double> stiffnessForTraction(double traction, double) const override
+    {
+        return traction;
+    }
 
     void forces(const std::vector<NodeContact>& contacts, double knStar, double weight,
                 std::vector<PointForce>& out) const override

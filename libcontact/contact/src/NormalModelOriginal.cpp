@@ -19,6 +19,14 @@ public:
     {
         return kn * area / nodeArea;
     }
+    std::optional<double> tractionStiffness(double kn, double nodeArea) const override
+    {
+        return kn / nodeArea;
+    }
+    std::optional<double> stiffnessForTraction(double traction, double nodeArea) const override
+    {
+        return traction * nodeArea;
+    }
 
     void forces(const std::vector<NodeContact>& contacts, double kn, double weight,
                 std::vector<PointForce>& out) const override

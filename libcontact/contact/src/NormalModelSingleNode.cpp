@@ -18,6 +18,9 @@ public:
     bool perNodeForces() const override { return false; }
     double paperStiffness() const override { return 1e9; }
     double patchStiffness(double kn, double, double) const override { return kn; }
+    // One spring, however large the contact: no traction it acts like.
+    std::optional<double> tractionStiffness(double, double) const override { return {}; }
+    std::optional<double> stiffnessForTraction(double, double) const override { return {}; }
 
     void forces(const std::vector<NodeContact>& contacts, double kn, double weight,
                 std::vector<PointForce>& out) const override

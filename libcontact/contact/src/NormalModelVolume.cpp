@@ -3,6 +3,8 @@
 // nodes.
 #include "NormalModels.h"
 
+#include "lsdem/contact/SphereContactReference.h"
+
 namespace lsdem::normal_models {
 
 namespace {
@@ -20,6 +22,16 @@ public:
     bool perNodeForces() const override { return false; }
     double paperStiffness() const override { return 1e3; }
     double patchStiffness(double kv, double area, double) const override { return kv * area; }
+    // kv·V with V = ∫ d dA: a traction kv·d along the mean normal.
+    std::optional<double> tractionStiffness(double kv, double) const override { return kv; }
+    std::optional<double> stiffnessForTraction(double traction, double) const override
+    {
+        return traction;
+    }
+    double continuumSphereForce(double radius, double overlap, double kv) const override
+    {
+        return exactSphereVolumeForce(radius, overlap, kv);
+    }
 
     void forces(const std::vector<NodeContact>& contacts, double kv, double weight,
                 std::vector<PointForce>& out) const override

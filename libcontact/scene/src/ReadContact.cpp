@@ -34,12 +34,13 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
     if (model.shearStiffness > 0.0 && !shearSprings)
         t.fail("shear_stiffness", "has no effect with formulation " +
                                       formulationName(model.formulation),
-               "use original or adapted for tangential forces, or remove it");
+               "use " + formulationNamesWhere(&NormalModel::perNodeForces) +
+                   " for tangential forces, or remove it");
     // Friction bounds the shear springs' force: without them the contact is frictionless.
     if (model.friction > 0.0 && !shearSprings)
         t.fail("friction", "has no effect with formulation " + formulationName(model.formulation),
-               "use original or adapted with a shear_stiffness for tangential forces, or "
-               "remove it");
+               "use " + formulationNamesWhere(&NormalModel::perNodeForces) +
+                   " with a shear_stiffness for tangential forces, or remove it");
     if (model.friction > 0.0 && !(model.shearStiffness > 0.0))
         t.fail("friction", "has no effect without shear springs (shear_stiffness is 0)",
                "give shear_stiffness > 0 (ks* or ks, see docs/contact.md), or remove friction");

@@ -235,3 +235,71 @@ TEST(NormalModel, FormulationNamesRoundTripAndUnknownNamesAreRefused)
     }
     EXPECT_THROW(parseFormulation(""), Error);
 }
+
+// The traction a law acts like: a flat patch of n nodes of area A each, all pressed to depth d
+// along one normal, is pushed by traction·(n·A)·d — the law's own forces() summed. A law
+// without a traction (single-node) pushes the same however many nodes touch.
+TEST(NormalModel, TractionStiffnessIsWhatAFlatPatchOfNodesPressesWith)
+{
+    const double k = 7.0, area = 0.3, depth = 0.02;
+    auto patchForce = [&](const NormalModel& law, int n) {
+        std::vector<NodeContact> patch;
+        for (int i = 0; i < n; ++i)
+            patch.push_back(node(i, depth, Vec3(0, 0, 1), Vec3(0.1 * i, 0, 0), area));
+        std::vector<PointForce> forces;
+        law.forces(patch, k, 1.0, forces);
+        Vec3 sum = Vec3::Zero();
+        for (const PointForce& f : forces) sum += f.force;
+        return sum.z();
+    };
+    for (Formulation f : allFormulations()) {
+        const NormalModel& law = normalModel(f);
+        const std::optional<double> traction = law.tractionStiffness(k, area);
+        if (!traction) {
+            EXPECT_FALSE(law.stiffnessPerArea()) << law.name();
+            EXPECT_DOUBLE_EQ(patchForce(law, 12), patchForce(law, 1)) << law.name();
+            EXPECT_FALSE(law.stiffnessForTraction(1.0, area)) << law.name();
+            continue;
+        }
+        for (int n : {1, 12})
+            EXPECT_NEAR(patchForce(law, n), *traction * n * area * depth, 1e-12) << law.name();
+        // The inverse, and a law per area's traction is its stiffness whatever the nodes.
+        EXPECT_NEAR(*law.stiffnessForTraction(*traction, area), k, 1e-12 * k) << law.name();
+        if (law.stiffnessPerArea()) {
+            EXPECT_EQ(*law.tractionStiffness(k, 5.0 * area), k);
+        }
+        EXPECT_EQ(law.convergesWithNodes(), law.stiffnessPerArea()) << law.name();
+    }
+}
+
+// Each law's continuum limit for two spheres tends to the leading order (π/2)·k·R·δ² as
+// δ/R → 0; the volume law's own integral (no projection on the centre line) exceeds the
+// traction integral by about δ/(6R) (SphereContactReference.h).
+TEST(NormalModel, ContinuumSphereForceIsEachLawsOwnLimit)
+{
+    const double radius = 5.0, k = 1e3;
+    for (Formulation f : allFormulations()) {
+        const NormalModel& law = normalModel(f);
+        if (!law.tractionStiffness(k, 1.0)) continue;
+        const double small = 1e-3;
+        EXPECT_NEAR(law.continuumSphereForce(radius, small, k) /
+                        (0.5 * 3.141592653589793 * k * radius * small * small),
+                    1.0, 1e-3)
+            << law.name();
+    }
+    const double delta = 0.1;  // δ/R = 0.02: the volume law 0.33 % above
+    const double ratio = normalModel(Formulation::Volume).continuumSphereForce(radius, delta, k) /
+                         normalModel(Formulation::Adapted).continuumSphereForce(radius, delta, k);
+    EXPECT_NEAR(ratio - 1.0, delta / (6.0 * radius), 0.1 * delta / (6.0 * radius));
+    EXPECT_EQ(normalModel(Formulation::Original).continuumSphereForce(radius, delta, k),
+              normalModel(Formulation::Adapted).continuumSphereForce(radius, delta, k));
+}
+
+// Messages name the formulations that have a property from the registry, not from a list
+// written beside them.
+TEST(NormalModel, FormulationNamesWhereListsThoseWithTheProperty)
+{
+    EXPECT_EQ(formulationNamesWhere(&NormalModel::perNodeForces), "original or adapted");
+    EXPECT_EQ(formulationNamesWhere(&NormalModel::stiffnessPerArea, "'"), "'adapted' or 'volume'");
+    EXPECT_EQ(formulationNamesWhere(&NormalModel::convergesWithNodes), "adapted or volume");
+}

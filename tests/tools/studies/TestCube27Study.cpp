@@ -179,7 +179,8 @@ TEST(Cube27Study, PlanScalesTheLoadingWithTheStiffness)
     EXPECT_EQ(a.steps, b.steps);
     EXPECT_EQ(a.steps, c.steps);
     EXPECT_NEAR(a.timeStep / b.timeStep, 2.0, 1e-9);
-    const double kEffective = lsdem::originalEffectiveStiffness(1e9, 1000, 4 * kPi * 25.0);
+    // The original law's kn spread over the 1000 nodes' share of the sphere: kn·N/(4πR²).
+    const double kEffective = 1e9 * 1000 / (4 * kPi * 25.0);
     EXPECT_NEAR(a.timeStep / c.timeStep, std::sqrt(kEffective / 1e3), 1e-6 * a.timeStep / c.timeStep);
     EXPECT_NEAR(a.timeStep, o.safety * a.stabilityLimit, 1e-3 * a.timeStep);
     EXPECT_NEAR(a.speed * a.timeStep * a.steps, o.deltaMax, 1e-12);

@@ -224,7 +224,7 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     EXPECT_NE(message(few).find("--grains"), std::string::npos);
     TriaxialOptions single = o;
     single.formulations = {Formulation::SingleNode};
-    EXPECT_NE(message(single).find("adapted and original"), std::string::npos);
+    EXPECT_NE(message(single).find("original and adapted"), std::string::npos);
     TriaxialOptions missing = o;
     missing.meshes = {"/nonexistent/sand"};
     EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);

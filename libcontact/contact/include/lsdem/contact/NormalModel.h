@@ -10,6 +10,7 @@
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/contact/PointForce.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,24 @@ public:
     /// single-node law.
     virtual double patchStiffness(double stiffness, double area, double nodeArea) const = 0;
 
+    /// Whether, at a fixed stiffness, the law's forces converge as the nodes refine (to the
+    /// traction integral of continuumSphereForce and its kin): the laws per area do; the
+    /// original law grows with the node count, the single-node law samples one node.
+    bool convergesWithNodes() const { return stiffnessPerArea(); }
+    /// The traction per penetration (force/length³) the law acts like when its nodes have the
+    /// mean tributary area @a nodeArea: the stiffness itself for the laws per area, kn/A for
+    /// the original law (each node's spring spread over its area). None for a law whose
+    /// force does not grow with the contact's area (single-node: one spring).
+    virtual std::optional<double> tractionStiffness(double stiffness, double nodeArea) const = 0;
+    /// The inverse: the stiffness of this law that acts like the traction stiffness
+    /// @a traction with nodes of mean area @a nodeArea (none where tractionStiffness has none).
+    virtual std::optional<double> stiffnessForTraction(double traction, double nodeArea) const = 0;
+    /// The force between two equal spheres of radius @a radius overlapping by @a overlap in
+    /// the law's continuum limit, at traction stiffness @a traction (SphereContactReference.h):
+    /// the traction integral projected on the centre line; the volume law's own integral (no
+    /// projection). For a sphere on a plane both are exactly π·k·R·d².
+    virtual double continuumSphereForce(double radius, double overlap, double traction) const;
+
     /// Append the point forces of the penetrating nodes @a contacts of A in B, for stiffness
     /// @a stiffness scaled by @a weight (1/2 per side in symmetric testing). A per-node law
     /// must keep the contract of perNodeForces().
@@ -84,6 +103,12 @@ const NormalModel& normalModel(Formulation formulation);
 
 /// Every formulation, in a fixed order (original, adapted, single-node, volume).
 const std::vector<Formulation>& allFormulations();
+
+/// The names of the formulations whose sub-model answers yes to @a property, in the order of
+/// allFormulations(), each between @a quote marks, for messages: "original or adapted" for
+/// &NormalModel::perNodeForces.
+std::string formulationNamesWhere(bool (NormalModel::*property)() const,
+                                  const std::string& quote = "");
 
 /// normalModel(f).name().
 std::string formulationName(Formulation f);

@@ -5,7 +5,7 @@
 #include "FuzzSupport.h"
 
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/MeshIO.h"
+#include "lsdem/mesh/MeshIO.h"
 
 #include <tbb/global_control.h>
 

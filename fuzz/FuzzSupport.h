@@ -3,7 +3,7 @@
 ///        loaders that only take a path, and the check that a refusal is a clear lsdem::Error.
 #pragma once
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -4,11 +4,11 @@
 #include "common/CommandLine.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/core/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/BatchBake.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 
@@ -278,7 +278,7 @@ int runBatch(const BakeCommandLine& c)
     batch.voxelPerSize = c.voxelPerSize;
     batch.nodeSpacingPerSize = c.nodeSpacingPerSize;
     batch.outDir = c.outDir;
-    batch.threads = static_cast<int>(c.threads);  // at most cli::kMaxThreads
+    batch.threads = static_cast<int>(c.threads);  // at most kMaxThreads
     batch.rebake = c.rebake;
     const Stopwatch clock;
     ProgressLine progress(!c.quiet);

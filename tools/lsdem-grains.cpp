@@ -3,8 +3,8 @@
 
 #include "common/CommandLine.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/GrainGenerator.h"
 
 #include <CLI/CLI.hpp>

@@ -2,10 +2,10 @@
 
 #include "common/CommandLine.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/Inspection.h"
 #include "lsdem/ls/LevelSetSampler.h"
-#include "lsdem/ls/MeshIO.h"
+#include "lsdem/mesh/MeshIO.h"
 #include "lsdem/ls/SlicePlot.h"
 
 #include <CLI/CLI.hpp>

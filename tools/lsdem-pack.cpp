@@ -5,9 +5,9 @@
 #include "common/CommandLine.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/RunInParallel.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/RunInParallel.h"
 #include "lsdem/scene/CatalogMixture.h"
 #include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/scene/Packing.h"

@@ -5,7 +5,7 @@
 #include "run/RunRanks.h"
 
 #include "lsdem/run/SimulationRun.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>

@@ -8,7 +8,7 @@
 #include "studies/TwoSpheresCommand.h"
 #include "studies/verify/VerifyCommand.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <CLI/CLI.hpp>
 

@@ -4,7 +4,7 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <pybind11/stl.h>
 

@@ -4,6 +4,7 @@
 ///        the conversions between lsdem's Eigen vectors and numpy arrays.
 #pragma once
 
+#include "lsdem/core/ThreadLimit.h"
 #include "lsdem/ls/GrainAsset.h"
 
 #include <pybind11/numpy.h>
@@ -59,8 +60,6 @@ py::array_t<double> vectorCopy(const std::vector<Vec3>& vectors);
 /// A fresh (3,) float64 array; a fresh (3, 3) one.
 py::array_t<double> toArray(const Vec3& v);
 py::array_t<double> toArray(const Mat3& m);
-/// The most threads a call may ask for.
-constexpr int kMaxThreads = 1024;
 /// @throw lsdem::Error unless @a threads is none or from 1 to kMaxThreads.
 void checkThreads(std::optional<int> threads);
 /// A TBB arena of @a threads threads (all cores if none). @throw lsdem::Error as checkThreads.

@@ -1,7 +1,7 @@
 // lsdem::Error as the Python exception lsdem.Error, with its parts as attributes.
 #include "Bindings.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 namespace lsdem::python {
 

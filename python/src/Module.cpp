@@ -1,7 +1,7 @@
 // The entry point of the compiled module lsdem._lsdem; the package lsdem re-exports it.
 #include "Bindings.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cstring>
 

@@ -5,7 +5,7 @@
 
 #include "lsdem/contact/ContactModel.h"
 #include "lsdem/contact/NormalModel.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/run/SimulationRun.h"
 #include "studies/TwoSpheresStudy.h"
 

@@ -1,7 +1,7 @@
 // Asset.sample: φ and ∇φ at many points, threaded with TBB, the GIL released.
 #include "Bindings.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <pybind11/stl.h>

@@ -2,7 +2,7 @@
 // step by step from assets made in Python.
 #include "Bindings.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
 #include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/scene/SceneFile.h"

@@ -3,8 +3,8 @@
 // while C++ steps. Grain state comes out as numpy views into the running world.
 #include "Bindings.h"
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/run/Checkpoint.h"
 #include "lsdem/run/RunEnd.h"
 #include "lsdem/scene/BuildWorld.h"

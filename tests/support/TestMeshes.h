@@ -3,7 +3,7 @@
 ///        mesh tests: an axis-aligned box, a subdivided icosahedron, and the signed volume.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/mesh/TriangleMesh.h"
 
 #include <Eigen/Geometry>
 

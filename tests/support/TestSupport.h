@@ -3,7 +3,7 @@
 ///        programs, and reference values computed independently of the code under test.
 #pragma once
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <array>
 #include <cstdio>

@@ -3,8 +3,8 @@
 // others, lists the failure and exits 4; the catalogue's values are lsdem-inspect's; bad
 // options exit 1 with the option named and nothing written.
 #include "lsdem/ls/GrainCatalog.h"
-#include "lsdem/ls/MeshIO.h"
-#include "lsdem/ls/MeshValidation.h"
+#include "lsdem/mesh/MeshIO.h"
+#include "lsdem/mesh/MeshValidation.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>

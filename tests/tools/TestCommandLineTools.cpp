@@ -1,7 +1,7 @@
 // The real programs, lsdem-bake and lsdem-inspect, on good and bad input: every bad input
 // gets a message naming the file or option, a non-zero exit, and no output file.
 #include "lsdem/ls/AnalyticShape.h"
-#include "lsdem/ls/MeshIO.h"
+#include "lsdem/mesh/MeshIO.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>

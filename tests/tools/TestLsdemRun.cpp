@@ -2,7 +2,7 @@
 // stopping on a signal, and bad input.
 #include "support/TestSupport.h"
 
-#include "lsdem/ls/FolderLock.h"
+#include "lsdem/core/FolderLock.h"
 
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@
 #include "support/TestSupport.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/CsvText.h"
+#include "lsdem/core/CsvText.h"
 #include "lsdem/run/Checkpoint.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
@@ -449,7 +449,7 @@ CommandResult runInOwnSession(const std::vector<std::string>& command, const std
 }
 
 /// The files of a run's folder but the hidden ones: a write cut by kill -9 leaves its
-/// temporary (.NAME.tmp-PID-N, lsdem/ls/AtomicFile.h), never a half-written output.
+/// temporary (.NAME.tmp-PID-N, lsdem/core/AtomicFile.h), never a half-written output.
 std::set<std::string> outputsIn(const std::string& dir)
 {
     std::set<std::string> names;

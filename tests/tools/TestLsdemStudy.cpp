@@ -1,7 +1,7 @@
 // lsdem-study two-spheres as a user runs it: a small study end to end, and bad input refused
 // with a clear message, a non-zero exit and no results written.
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/ls/CsvText.h"
+#include "lsdem/core/CsvText.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>

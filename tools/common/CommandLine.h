@@ -5,7 +5,8 @@
 ///        codes (0 done or --help, 1 bad input, 3 internal error).
 #pragma once
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/ThreadLimit.h"
 
 #include <cstdio>
 #include <exception>
@@ -46,10 +47,6 @@ CLI::Option* addInteger(CLI::App& app, const std::string& name, int& value,
                         const std::string& help);
 CLI::Option* addInteger(CLI::App& app, const std::string& name, long long& value,
                         const std::string& help);
-
-/// The most worker threads a tool takes (as the Python module's kMaxThreads): more is a typo,
-/// and TBB would try to allocate for all of them (std::bad_alloc for 99999999999).
-constexpr long long kMaxThreads = 1024;
 
 /// Option `--threads N` into @a threads: 0 for all cores (as when it is left out: @a threads
 /// keeps its value, 0) or a whole number up to kMaxThreads; an Error naming --threads otherwise.

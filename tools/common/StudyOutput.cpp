@@ -1,7 +1,7 @@
 #include "common/StudyOutput.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
 
 #include <fnmatch.h>
 #include <unistd.h>

@@ -4,7 +4,7 @@
 // includes mpi.h; MPI is called from the main thread only (MPI_THREAD_FUNNELED).
 #include "run/RunRanks.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <mpi.h>
 

@@ -2,7 +2,7 @@
 
 #include "common/MpiLauncher.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,6 +1,6 @@
 #include "studies/Cube27ClosedForm.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <cmath>
 

@@ -8,9 +8,9 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 

@@ -1,6 +1,6 @@
 #include "studies/Cube27Options.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cmath>
 #include <string>

@@ -3,9 +3,9 @@
 #include "studies/Cube27ClosedForm.h"
 #include "studies/StudyLimits.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,11 +3,11 @@
 #include "studies/RunRecord.h"
 #include "studies/RunSchedule.h"
 
-#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/core/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 

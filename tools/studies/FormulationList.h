@@ -3,7 +3,7 @@
 #pragma once
 
 #include "lsdem/contact/ContactModel.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <vector>

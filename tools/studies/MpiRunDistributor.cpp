@@ -7,7 +7,7 @@
 #include "studies/RunRecord.h"
 #include "studies/RunSchedule.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <mpi.h>
 

@@ -1,6 +1,6 @@
 #include "studies/SlabFailure.h"
 
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,7 +32,7 @@ BlockMotion blockMotion(const SlabPanel& panel, const SlabRunResult& run)
         ring = std::max(ring, d);
         if (d > panel.options().thickness / 3) {
             ++m.farMoved;
-            m.farNames += " " + blocks[k].name + " (" + cli::numberText(std::round(d * 100) / 100) + " mm)";
+            m.farNames += " " + blocks[k].name + " (" + roundedText(std::round(d * 100) / 100) + " mm)";
         }
     }
     return m;

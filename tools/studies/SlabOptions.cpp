@@ -3,9 +3,9 @@
 #include "studies/FormulationList.h"
 #include "studies/SlabCost.h"
 
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,24 +24,24 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     checkSlabPanelOptions(o.panel);
     auto positive = [](double v, const std::string& option, const std::string& example) {
         if (!(v > 0.0) || !std::isfinite(v))
-            throw Error("", option + " must be positive and finite, got " + cli::numberText(v),
+            throw Error("", option + " must be positive and finite, got " + roundedText(v),
                         "e.g. " + option + " " + example);
     };
     auto nonNegative = [](double v, const std::string& option) {
         if (!(v >= 0.0) || !std::isfinite(v))
-            throw Error("", option + " must be zero (default) or positive, got " + cli::numberText(v));
+            throw Error("", option + " must be zero (default) or positive, got " + roundedText(v));
     };
     const SlabMaterial& m = o.material;
     positive(m.youngModulus, "--young", "7e4");
     if (!(m.poisson >= 0.0 && m.poisson < 0.5))
-        throw Error("", "--poisson must be in [0, 0.5), got " + cli::numberText(m.poisson), "e.g. --poisson 0.22");
+        throw Error("", "--poisson must be in [0, 0.5), got " + roundedText(m.poisson), "e.g. --poisson 0.22");
     positive(m.density, "--density", "2.5e-9");
     nonNegative(m.friction, "--friction");
     if (!(m.restitution > 0.0 && m.restitution <= 1.0))
-        throw Error("", "--restitution must be in (0, 1], got " + cli::numberText(m.restitution),
+        throw Error("", "--restitution must be in (0, 1], got " + roundedText(m.restitution),
                     "1 means no contact damping");
     if (!(m.globalDamping >= 0.0 && m.globalDamping < 1.0))
-        throw Error("", "--damping must be in [0, 1), got " + cli::numberText(m.globalDamping));
+        throw Error("", "--damping must be in [0, 1), got " + roundedText(m.globalDamping));
     nonNegative(m.gravity, "--gravity");
     nonNegative(o.knStar, "--kn-star");
     nonNegative(o.ksStar, "--ks-star");
@@ -51,12 +51,12 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     positive(o.speed, "--speed", "200");
     nonNegative(o.deltaMax, "--delta-max");
     if (slabDeltaMax(o) > 3.0 * o.panel.thickness)
-        throw Error("", "--delta-max " + cli::numberText(slabDeltaMax(o)) + " is more than three block thicknesses",
-                    "the central block is out long before; e.g. --delta-max " + cli::numberText(o.panel.thickness));
+        throw Error("", "--delta-max " + roundedText(slabDeltaMax(o)) + " is more than three block thicknesses",
+                    "the central block is out long before; e.g. --delta-max " + roundedText(o.panel.thickness));
     // The step is set from the normal stiffness of a face; shear and rocking make a block
     // stiffer than that by up to about 1.4x (ks*/kn* = 0.41 by default), hence the cap.
     if (!(o.timeStepSafety > 0.0 && o.timeStepSafety <= 0.5))
-        throw Error("", "--safety must be in (0, 0.5], got " + cli::numberText(o.timeStepSafety), "0.3 is the default");
+        throw Error("", "--safety must be in (0, 0.5], got " + roundedText(o.timeStepSafety), "0.3 is the default");
     checkFormulationList(o.formulations);
     if (o.twoWay && std::find(o.formulations.begin(), o.formulations.end(), Formulation::Adapted) ==
                         o.formulations.end())
@@ -67,23 +67,23 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     for (double s : o.sdps) {
         positive(s, "--sdp", "0.5");
         if (s > 0.5 * thinnest)
-            throw Error("", "--sdp " + cli::numberText(s) + " mm leaves fewer than two node spacings across the " +
-                                cli::numberText(thinnest) + " mm thickness",
-                        "use node spacings below " + cli::numberText(0.5 * thinnest) + " mm");
+            throw Error("", "--sdp " + roundedText(s) + " mm leaves fewer than two node spacings across the " +
+                                roundedText(thinnest) + " mm thickness",
+                        "use node spacings below " + roundedText(0.5 * thinnest) + " mm");
     }
     for (double s : o.originalSdps) {
         positive(s, "--sdp-original", "0.5");
         if (std::none_of(o.sdps.begin(), o.sdps.end(),
                          [&](double t) { return std::abs(t - s) <= 1e-12 * s; }))
-            throw Error("", "--sdp-original " + cli::numberText(s) + " is not one of the --sdp values",
+            throw Error("", "--sdp-original " + roundedText(s) + " is not one of the --sdp values",
                         "the original formulation runs at a subset of --sdp; list it there too");
     }
     auto checkVoxel = [&](double v, const std::string& option) {
         positive(v, option, "0.15");
         if (v * 4.0 > thinnest)
-            throw Error("", option + " " + cli::numberText(v) + " mm leaves fewer than 4 voxels across the " +
-                                cli::numberText(thinnest) + " mm thickness",
-                        "use voxels of at most " + cli::numberText(thinnest / 4.0) + " mm");
+            throw Error("", option + " " + roundedText(v) + " mm leaves fewer than 4 voxels across the " +
+                                roundedText(thinnest) + " mm thickness",
+                        "use voxels of at most " + roundedText(thinnest / 4.0) + " mm");
     };
     checkVoxel(o.fixedVdp, "--vdp-fixed");
     if (o.twoWay) {
@@ -93,7 +93,7 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     positive(o.tolerance, "--tolerance", "0.05");
     for (double d : o.snapshotDeltas)
         if (!(d >= 0.0 && d <= slabDeltaMax(o)))
-            throw Error("", "--snapshots " + cli::numberText(d) + " is outside [0, δ_max = " + cli::numberText(slabDeltaMax(o)) + "]",
+            throw Error("", "--snapshots " + roundedText(d) + " is outside [0, δ_max = " + roundedText(slabDeltaMax(o)) + "]",
                         "give snapshot displacements between 0 and --delta-max");
     if (o.samples < 10 || o.samples > 100000) throw Error("", "--samples must be 10 to 100000");
 
@@ -101,11 +101,11 @@ void checkSlabStudyOptions(const SlabStudyOptions& o)
     // would run for years or exhaust memory: refuse them with the estimate.
     const SlabCostEstimate cost = estimateSlabCost(o);
     if (cost.steps > kMaxSlabSteps)
-        throw Error("", "the study would take " + cli::numberText(double(cost.steps)) + " time steps",
+        throw Error("", "the study would take " + roundedText(double(cost.steps)) + " time steps",
                     "check --speed, --density, --safety and the stiffnesses (the default is 1.6e5 steps)");
     if (cost.memoryBytes > kMaxSlabMemoryBytes)
-        throw Error("", "the study would need about " + cli::numberText(cost.memoryBytes / 1073741824.0) +
-                            " GiB of memory (the budget is " + cli::numberText(kMaxSlabMemoryBytes / 1073741824.0) +
+        throw Error("", "the study would need about " + roundedText(cost.memoryBytes / 1073741824.0) +
+                            " GiB of memory (the budget is " + roundedText(kMaxSlabMemoryBytes / 1073741824.0) +
                             " GiB)",
                     "use coarser --vdp / --vdp-fixed or --sdp");
 }

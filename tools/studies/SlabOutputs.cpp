@@ -2,11 +2,11 @@
 // summary and the converged case as a scene for lsdem-run.
 #include "studies/SlabStudy.h"
 
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/MeshIO.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/mesh/MeshIO.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -53,7 +53,7 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
             "others_max,diff_sdp_series,diff_vdp_series,diff_whole_curve,failure_mode,stopped\n";
     auto seriesDifference = [&](const std::vector<int>& series, int i, bool whole) {
         if (std::find(series.begin(), series.end(), i) == series.end()) return std::string();
-        return cli::numberText(slabCurveDifference(result.runs[i].curve, result.runs[series.back()].curve, whole));
+        return roundedText(slabCurveDifference(result.runs[i].curve, result.runs[series.back()].curve, whole));
     };
     for (size_t i = 0; i < result.runs.size(); ++i) {
         const SlabRunResult& r = result.runs[i];

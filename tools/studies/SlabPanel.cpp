@@ -1,9 +1,9 @@
 #include "studies/SlabPanel.h"
 
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Constants.h"
 
 #include <cmath>
 #include <sstream>
@@ -41,18 +41,18 @@ void checkSlabPanelOptions(const SlabPanelOptions& o)
                     "e.g. --blocks 5");
     auto positive = [](double v, const std::string& option, const std::string& example) {
         if (!(v > 0.0) || !std::isfinite(v))
-            throw Error("", option + " must be a positive length in mm, got " + cli::numberText(v),
+            throw Error("", option + " must be a positive length in mm, got " + roundedText(v),
                         "e.g. " + option + " " + example);
     };
     positive(o.blockSize, "--block-size", "8");
     positive(o.thickness, "--thickness", "3");
     if (!(o.angleDeg >= 0.0 && o.angleDeg < 90.0))
-        throw Error("", "--angle must be in [0, 90) degrees, got " + cli::numberText(o.angleDeg),
+        throw Error("", "--angle must be in [0, 90) degrees, got " + roundedText(o.angleDeg),
                     "e.g. --angle 15");
     const double h = std::tan(o.angleDeg * kPi / 180.0) * 0.5 * o.thickness;
     if (!(h < 0.5 * o.blockSize * 0.95))
-        throw Error("", "the faces lean out by tan(angle)·t/2 = " + cli::numberText(h) +
-                            " mm, too close to half the block size " + cli::numberText(0.5 * o.blockSize) +
+        throw Error("", "the faces lean out by tan(angle)·t/2 = " + roundedText(h) +
+                            " mm, too close to half the block size " + roundedText(0.5 * o.blockSize) +
                             " (the narrow ends of the blocks vanish)",
                     "use a smaller --angle or --thickness, or a larger --block-size");
 }

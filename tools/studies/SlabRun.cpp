@@ -3,8 +3,8 @@
 #include "studies/SlabModel.h"
 #include "studies/SlabScene.h"
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 

@@ -3,8 +3,8 @@
 #include "studies/SlabRunRecord.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <unistd.h>
 

@@ -3,7 +3,7 @@
 #include "studies/FormulationList.h"
 
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "studies/TriaxialCell.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,9 +4,9 @@
 #include "studies/StudyLimits.h"
 
 #include "common/CommandLine.h"
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,14 +20,14 @@ namespace {
 void requirePositive(double v, const std::string& option, const std::string& fix = "")
 {
     if (!(v > 0.0 && std::isfinite(v)))
-        throw Error("", option + " must be positive and finite, got " + cli::numberText(v), fix);
+        throw Error("", option + " must be positive and finite, got " + roundedText(v), fix);
 }
 
 void requireFraction(double v, const std::string& option, double upper)
 {
     if (!(v >= 0.0 && v < upper))
-        throw Error("", option + " must be in [0, " + cli::numberText(upper) + "), got " +
-                            cli::numberText(v));
+        throw Error("", option + " must be in [0, " + roundedText(upper) + "), got " +
+                            roundedText(v));
 }
 
 bool isMeshFile(const std::filesystem::path& p)
@@ -67,8 +67,8 @@ void checkTriaxialOptions(const TriaxialOptions& o)
     for (size_t i = 1; i < o.sdps.size(); ++i)
         if (!(o.sdps[i] < o.sdps[i - 1]))
             throw Error("", "--sdps must be decreasing (coarsest first), got " +
-                                cli::numberText(o.sdps[i - 1]) + " then " +
-                                cli::numberText(o.sdps[i]),
+                                roundedText(o.sdps[i - 1]) + " then " +
+                                roundedText(o.sdps[i]),
                         "e.g. --sdps 0.1 0.07 0.05");
     checkFormulationList(o.formulations);
     // The study needs shear springs at every node and a traction that kn* sets.
@@ -91,27 +91,27 @@ void checkTriaxialOptions(const TriaxialOptions& o)
     requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
     if (!(o.latticeSpacing >= 0.0 && std::isfinite(o.latticeSpacing)))
         throw Error("", "--lattice-spacing must be zero (derived) or positive, got " +
-                            cli::numberText(o.latticeSpacing));
+                            roundedText(o.latticeSpacing));
     if (!(o.knOriginal >= 0.0 && std::isfinite(o.knOriginal)))
         throw Error("", "--kn-original must be zero (derived) or positive, got " +
-                            cli::numberText(o.knOriginal));
+                            roundedText(o.knOriginal));
     requirePositive(o.shearRatio, "--shear-ratio", "0.5 is the default");
     for (const auto& [value, option] : {std::pair{o.friction, "--friction"},
                                         std::pair{o.consolidationFriction, "--consolidation-friction"},
                                         std::pair{o.wallFriction, "--wall-friction"}})
         if (!(value >= 0.0 && std::isfinite(value)))
             throw Error("", std::string(option) + " must be zero or positive, got " +
-                                cli::numberText(value));
+                                roundedText(value));
     requireFraction(o.globalDamping, "--damping", 1.0);
     requirePositive(o.confiningStress, "--confining-stress",
                     "a compressive stress in MPa, e.g. 0.1 for 100 kPa");
     requirePositive(o.inertialNumber, "--inertial-number", "1e-3 is quasi-static");
     if (!(o.maxAxialStrain > 0.0 && o.maxAxialStrain < 0.5))
         throw Error("", "--axial-strain must be in (0, 0.5), got " +
-                            cli::numberText(o.maxAxialStrain), "0.2 is the default");
+                            roundedText(o.maxAxialStrain), "0.2 is the default");
     if (!(o.stressTolerance > 0.0 && o.stressTolerance < 0.5))
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
-                            cli::numberText(o.stressTolerance));
+                            roundedText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
     cli::checkThreads(o.threads);
     triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made

@@ -1,6 +1,6 @@
 #include "studies/TriaxialOutputs.h"
 
-#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/core/AtomicFile.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
 #include "studies/TriaxialSample.h"
 
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/RandomRotation.h"
 
 #include <tbb/parallel_for.h>

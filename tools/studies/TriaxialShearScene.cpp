@@ -3,7 +3,7 @@
 #include "studies/TriaxialSample.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/scene/SceneWriter.h"
 

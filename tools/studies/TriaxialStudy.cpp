@@ -1,13 +1,13 @@
 #include "studies/TriaxialStudy.h"
 
-#include "common/NumberText.h"
+#include "lsdem/core/NumberText.h"
 #include "studies/RunDistributor.h"
 #include "studies/RunRecord.h"
 #include "studies/TriaxialSample.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 
@@ -151,8 +151,8 @@ void refuseNonPhysicalRun(const TriaxialRun& run)
             wrong = std::string("went non-finite (NaN or inf) ") + when;
         else if (!(s.size.minCoeff() > 0.0 && s.voidRatio >= 0.0))
             wrong = std::string("became impossible ") + when + ": cell " +
-                    cli::numberText(s.size.x()) + " x " + cli::numberText(s.size.y()) + " x " +
-                    cli::numberText(s.size.z()) + " mm, void ratio " + cli::numberText(s.voidRatio);
+                    roundedText(s.size.x()) + " x " + roundedText(s.size.y()) + " x " +
+                    roundedText(s.size.z()) + " mm, void ratio " + roundedText(s.voidRatio);
     };
     check(t.consolidated, "when consolidated", true);
     for (const TriaxialRow& r : t.rows)
@@ -164,7 +164,7 @@ void refuseNonPhysicalRun(const TriaxialRun& run)
         wrong = "went non-finite (NaN or inf) in its summary";
     if (wrong.empty()) return;
     throw Error("", "the triaxial run of " + formulationName(run.formulation) + " at SDP " +
-                        cli::numberText(run.sdp) + " mm " + wrong,
+                        roundedText(run.sdp) + " mm " + wrong,
                 "check the scales and units of the options (mm, tonne, s, N, MPa): "
                 "--confining-stress, --density, --kn-star, --lattice-spacing, --inertial-number");
 }
@@ -199,10 +199,10 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     p.records = o.records;
 
     if (!(spacing > 2.0 * assets->largestBoundingRadius))
-        throw Error("", "the lattice spacing " + cli::numberText(spacing) + " mm is not more than "
+        throw Error("", "the lattice spacing " + roundedText(spacing) + " mm is not more than "
                             "the largest bounding diameter " +
-                            cli::numberText(2.0 * assets->largestBoundingRadius) +
-                            " mm of the grains at SDP " + cli::numberText(sdp) + ": they would overlap",
+                            roundedText(2.0 * assets->largestBoundingRadius) +
+                            " mm of the grains at SDP " + roundedText(sdp) + ": they would overlap",
                     "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,

@@ -2,7 +2,7 @@
 
 #include "studies/StudyLimits.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <algorithm>

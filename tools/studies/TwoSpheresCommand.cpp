@@ -8,7 +8,7 @@
 #include "common/PlotScripts.h"
 #include "common/StudyOutput.h"
 
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <CLI/CLI.hpp>
 

@@ -5,9 +5,9 @@
 
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/scene/RandomRotation.h"
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <cmath>
 #include <cstdio>

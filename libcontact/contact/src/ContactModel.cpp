@@ -1,6 +1,6 @@
 #include "lsdem/contact/ContactModel.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 namespace lsdem {
 

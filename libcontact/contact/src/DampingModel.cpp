@@ -1,6 +1,6 @@
 #include "lsdem/contact/DampingModel.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 #include "NormalModels.h"
 
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 namespace lsdem {
 

@@ -1,6 +1,6 @@
 #include "lsdem/contact/SphereContactReference.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/ls/GaussLegendre.h"
 
 #include <cmath>

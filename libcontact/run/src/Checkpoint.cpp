@@ -2,8 +2,8 @@
 
 #include "WorldFingerprint.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #include "lsdem/run/RunOutputs.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/CsvText.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/CsvText.h"
 
 #include <cctype>
 #include <cstdio>

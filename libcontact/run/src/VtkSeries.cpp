@@ -3,8 +3,8 @@
 ///        appended binary block, and the `.pvd` collection listing them with their times.
 #include "lsdem/run/VtkSeries.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
 
 #include <cstdint>
 #include <cstdio>

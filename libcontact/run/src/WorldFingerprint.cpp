@@ -1,6 +1,6 @@
 #include "WorldFingerprint.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cstring>
 #include <map>

@@ -3,8 +3,8 @@
 #include "SceneChecks.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/RunInParallel.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/RunInParallel.h"
 #include "lsdem/simulation/GrainOverlaps.h"
 
 #include <algorithm>

@@ -1,9 +1,9 @@
 #include "lsdem/scene/CatalogMixture.h"
 
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
-#include "lsdem/ls/RunInParallel.h"
+#include "lsdem/core/RunInParallel.h"
 
 #include <filesystem>
 

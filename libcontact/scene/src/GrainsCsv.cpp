@@ -2,10 +2,10 @@
 
 #include "SceneSections.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/CsvText.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/CsvText.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 
 #include <charconv>
 #include <cmath>

@@ -3,10 +3,10 @@
 // Packing.h for the numerical set-up).
 #include "lsdem/scene/Packing.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/RandomRotation.h"
 #include "lsdem/simulation/GrainOverlaps.h"

@@ -2,7 +2,7 @@
 // motion.
 #include "SceneSections.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/scene/RandomRotation.h"
 
 #include <random>

@@ -2,7 +2,7 @@
 // meet, and distinct names.
 #include "SceneChecks.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <map>

@@ -4,9 +4,9 @@
 // (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
 #include "lsdem/scene/SceneWriter.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 
 #include <toml++/toml.h>
 

@@ -4,8 +4,8 @@
 ///        key is never silently ignored. Messages name the file and line of the offending key.
 #pragma once
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/Vec3.h"
 
 #include <toml++/toml.h>
 

@@ -1,6 +1,6 @@
 #include "lsdem/simulation/BroadPhase.h"
 
-#include "lsdem/ls/OrderedCollect.h"
+#include "lsdem/core/OrderedCollect.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>

@@ -2,7 +2,7 @@
 
 #include "GrainPacking.h"
 
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <algorithm>
 #include <cstring>

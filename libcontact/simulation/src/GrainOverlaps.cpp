@@ -1,6 +1,6 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
-#include "lsdem/ls/ThreadPrivate.h"
+#include "lsdem/core/ThreadPrivate.h"
 #include "lsdem/simulation/BroadPhase.h"
 
 #include <tbb/enumerable_thread_specific.h>

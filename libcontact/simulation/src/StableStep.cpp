@@ -1,6 +1,6 @@
 #include "lsdem/simulation/StableStep.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
 #include "lsdem/simulation/World.h"
 

@@ -3,7 +3,7 @@
 // the plausibility checks run when the files are regenerated (see ReferenceForces.h).
 #include "libcontact/contact/ReferenceForces.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

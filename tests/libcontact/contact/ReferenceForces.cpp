@@ -3,7 +3,7 @@
 // ReferenceForceCases.cpp.
 #include "libcontact/contact/ReferenceForces.h"
 
-#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/core/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/LevelSetSampler.h"
 

@@ -5,7 +5,7 @@
 // stiffness (translation and rotation) it reports. Every expected value is summed here by
 // hand from the documented laws (docs/contact.md, docs/dynamics.md).
 #include "lsdem/contact/ContactLaw.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

@@ -3,8 +3,8 @@
 // coefficient (against the damped oscillator for a linear spring, and against the energy a
 // weak dashpot takes from an elastic impact for a stiffening one), and when shear springs act.
 #include "lsdem/contact/ContactModel.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

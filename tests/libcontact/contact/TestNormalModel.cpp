@@ -2,7 +2,7 @@
 // itself, and the point forces it makes from a hand-made list of penetrating nodes, against
 // sums worked out here; weight scaling; and formulation names.
 #include "lsdem/contact/NormalModel.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

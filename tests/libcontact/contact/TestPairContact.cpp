@@ -3,7 +3,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/ls/LevelSetGrid.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // A grain against a rigid plane: the static force law and an elastic bounce.
 #include "lsdem/contact/NormalModel.h"
 #include "lsdem/contact/PlaneContact.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/simulation/RigidBody.h"
 #include "lsdem/ls/Bake.h"
 

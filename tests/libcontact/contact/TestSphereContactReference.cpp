@@ -1,6 +1,6 @@
 // The exact two-sphere reference against an independent quadrature and the small-δ limit.
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

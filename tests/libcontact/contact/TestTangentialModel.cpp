@@ -4,7 +4,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/TangentialModel.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include "support/TestSupport.h"
 

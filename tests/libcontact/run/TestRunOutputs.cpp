@@ -3,7 +3,7 @@
 // exactly (17 significant digits read back to the same double), and boundary file names.
 #include "lsdem/run/RunOutputs.h"
 
-#include "lsdem/ls/CsvText.h"
+#include "lsdem/core/CsvText.h"
 
 #include "support/TestSupport.h"
 

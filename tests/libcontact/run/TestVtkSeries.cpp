@@ -4,7 +4,7 @@
 // the .pvd lists each frame's time and files, drops frames a restart rewrites, and a failed
 // write throws an Error and leaves nothing half-written.
 #include "lsdem/run/VtkSeries.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include "support/TestSupport.h"
 

@@ -4,7 +4,7 @@
 // the level sets) are refused naming both grains and the depth.
 #include "lsdem/scene/GrainsCsv.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneWriter.h"

@@ -7,11 +7,11 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/scene/CatalogMixture.h"
 #include "lsdem/scene/SceneFile.h"
 #include "support/TestSupport.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/GrainsCsv.h"
 #include "lsdem/simulation/GrainOverlaps.h"

@@ -3,14 +3,14 @@
 // scene writer writes the set back so that the file reads to the same scene; bad sets are
 // refused with the file, line and a fix.
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/AtomicFile.h"
+#include "lsdem/core/AtomicFile.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
 #include "lsdem/ls/GrainGenerator.h"
 #include "lsdem/ls/MassProperties.h"
-#include "lsdem/ls/MeshIO.h"
+#include "lsdem/mesh/MeshIO.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneWriter.h"

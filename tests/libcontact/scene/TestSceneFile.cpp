@@ -1,7 +1,7 @@
 // Scene files: the bundled examples parse to what they say, units and lattices are read right,
 // and a table of bad scenes is each refused with a message naming the line, the key and a fix.
 #include "lsdem/scene/SceneFile.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "support/TestSupport.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // need escaping); assets held only in memory and non-finite numbers are refused.
 #include "lsdem/scene/SceneWriter.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/SceneFile.h"
 #include "support/TestSupport.h"
 

@@ -4,7 +4,7 @@
 #include "lsdem/simulation/Boundary.h"
 #include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include "support/TestSupport.h"
 

@@ -7,7 +7,7 @@
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

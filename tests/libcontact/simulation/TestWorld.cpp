@@ -1,7 +1,7 @@
 // The World's small amount of behaviour: the contact model of a pair of materials (whichever
 // order they come in), a grain's angular velocity and freedom per kind of motion, and the
 // assets loaded in parallel as one by one.
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/World.h"
 

@@ -5,7 +5,7 @@
 #include "studies/RunDistributor.h"
 #include "studies/RunRecord.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -11,7 +11,7 @@
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/simulation/World.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 
 #include "support/TestSupport.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

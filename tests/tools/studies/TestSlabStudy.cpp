@@ -10,7 +10,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/ls/AssetIO.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

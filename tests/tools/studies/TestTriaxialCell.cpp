@@ -3,8 +3,8 @@
 // ratio, coordination and the mobilised friction angle, against values worked out by hand.
 #include "studies/TriaxialCell.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 

@@ -12,8 +12,8 @@
 
 #include "support/TestSupport.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/simulation/Simulation.h"

@@ -7,7 +7,7 @@
 #include "studies/verify/RigidBodyTheory.h"
 #include "studies/verify/VerifyStudy.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
 

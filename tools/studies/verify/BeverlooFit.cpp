@@ -1,6 +1,6 @@
 #include "studies/verify/BeverlooFit.h"
 
-#include "lsdem/ls/Error.h"
+#include "lsdem/core/Error.h"
 
 #include <cmath>
 

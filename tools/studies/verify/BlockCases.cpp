@@ -5,9 +5,9 @@
 #include "studies/verify/RigidBodyTheory.h"
 #include "studies/verify/VerifyCases.h"
 
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 
 #include <cmath>
 

@@ -10,7 +10,7 @@
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <algorithm>
 #include <cmath>

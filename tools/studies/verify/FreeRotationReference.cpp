@@ -1,6 +1,6 @@
 #include "studies/verify/FreeRotationReference.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <cmath>
 #include <stdexcept>

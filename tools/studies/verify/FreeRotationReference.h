@@ -7,7 +7,7 @@
 ///        rotation case.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 namespace lsdem::verify {
 

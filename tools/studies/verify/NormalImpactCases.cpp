@@ -7,8 +7,8 @@
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/contact/SphereContactReference.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/NumberText.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,7 +6,7 @@
 ///        of a ball thrown onto a floor, and a block sliding down an incline.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 namespace lsdem::verify {
 

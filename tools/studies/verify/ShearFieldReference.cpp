@@ -1,6 +1,6 @@
 #include "studies/verify/ShearFieldReference.h"
 
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <Eigen/Geometry>
 

@@ -6,29 +6,20 @@
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/ls/Bake.h"
-#include "lsdem/ls/Constants.h"
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/scene/Packing.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 namespace lsdem::verify {
 
 namespace {
-
-/// @a v to @a digits significant digits, for progress lines.
-std::string significant(double v, int digits)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%.*g", digits, v);
-    return text;
-}
 
 /// The silo, its grains' law and what is measured; lengths in grain sizes d ≈ 1 mm.
 struct SiloPlan
@@ -308,8 +299,8 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     while (settling.world().time < p.settleTime) settling.step();
     const double rho = bulkDensity(settling.world(), p, kind.size);
     c.note("  silo " + kind.name + ": " + std::to_string(p.grains) + " grains, dt " +
-           numberText(dt) + " s, settled in " + significant(settleClock.seconds(), 3) +
-           " s wall; bulk density " + significant(rho, 4) + " t/mm³");
+           numberText(dt) + " s, settled in " + roundedText(settleClock.seconds(), 3) +
+           " s wall; bulk density " + roundedText(rho, 4) + " t/mm³");
 
     const std::string name = "silo " + kind.name;
     std::vector<Discharge> flows;
@@ -320,9 +311,10 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
         DischargeRun run = discharge(settling.world(), p, orifice, dt, kind.size, frames);
         c.note("  silo " + kind.name + " D=" + numberText(orifice) + ": " +
                std::to_string(run.times.size()) + " grains out in " +
-               significant(run.times.empty() ? 0.0 : run.times.back(), 3) + " s" +
-               (run.clogged ? " (clogged)" : "") + ", " + significant(runClock.seconds(), 3) +
-               " s wall");
+               roundedText(run.times.empty() ? 0.0 : run.times.back(), 3) + " s" +
+               (run.clogged ? " (clogged)" : ", steady flow " +
+                                                  roundedText(run.steady.slope, 4) + " t/s") +
+               ", " + roundedText(runClock.seconds(), 3) + " s wall");
         const std::string where = name + " D=" + numberText(orifice);
         c.report.add({where, "adapted", "grains out through the hole", "", 1.0,
                       run.times.empty() ? 0.0

@@ -9,7 +9,7 @@
 #include "common/StudyOutput.h"
 
 #include "lsdem/ls/Inspection.h"
-#include "lsdem/ls/Stopwatch.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/run/VtkSeries.h"
 
 #include <CLI/CLI.hpp>

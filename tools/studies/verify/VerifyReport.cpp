@@ -1,8 +1,8 @@
 #include "studies/verify/VerifyReport.h"
 
-#include "lsdem/ls/AtomicFile.h"
-#include "lsdem/ls/CsvText.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/CsvText.h"
+#include "lsdem/core/NumberText.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 
 #include "studies/verify/VerifyCases.h"
 
-#include "lsdem/ls/Error.h"
-#include "lsdem/ls/NumberText.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 
 #include <algorithm>
 

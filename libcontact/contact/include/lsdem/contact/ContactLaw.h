@@ -53,7 +53,7 @@ struct ContactSide
 
 /// Working memory of the contact laws, kept by each thread and reused from contact to
 /// contact, so that computing a contact allocates nothing once the buffers have grown. Keep
-/// one per thread in a ThreadPrivate (lsdem/ls/ThreadPrivate.h).
+/// one per thread in a ThreadPrivate (lsdem/core/ThreadPrivate.h).
 struct ContactScratch
 {
     std::vector<NodeContact> contacts[2];

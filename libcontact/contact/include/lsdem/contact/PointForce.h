@@ -3,7 +3,7 @@
 ///        torques (and the contact forces written for ParaView) follow from one list.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 namespace lsdem {
 

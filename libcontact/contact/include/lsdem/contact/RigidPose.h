@@ -3,7 +3,7 @@
 ///        (principal) frame to the world, as a unit quaternion.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 #include <Eigen/Geometry>
 

@@ -5,7 +5,7 @@
 ///        step allocates nothing once the arrays have grown.
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 #include <initializer_list>
 #include <vector>

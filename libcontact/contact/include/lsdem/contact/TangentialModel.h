@@ -9,7 +9,7 @@
 #pragma once
 
 #include "lsdem/contact/NormalModel.h"
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 #include <cmath>
 

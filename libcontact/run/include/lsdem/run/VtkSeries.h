@@ -12,6 +12,7 @@
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
+#include "lsdem/mesh/TriangleMesh.h"
 
 #include <string>
 #include <vector>

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
-#include "lsdem/ls/Constants.h"
+#include "lsdem/core/Constants.h"
 
 #include <cmath>
 #include <random>

@@ -3,7 +3,7 @@
 ///        grid so the cost grows with the number of grains and near pairs, not grains².
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 #include <utility>
 #include <vector>

@@ -5,7 +5,7 @@
 ///        contact and summed in a fixed order, so results are identical for any thread count.
 #pragma once
 
-#include "lsdem/ls/ThreadPrivate.h"
+#include "lsdem/core/ThreadPrivate.h"
 #include "lsdem/simulation/ContactList.h"
 #include "lsdem/simulation/StableStep.h"
 #include "lsdem/simulation/World.h"
@@ -96,7 +96,22 @@ public:
     const GhostDecomposition* ghosts() const { return mGhosts; }
 
 private:
+    /// Forces, torques and the contacts' stiffnesses on every grain, in phases:
     void evaluateForces(double slipStep);
+    /// Split by space: ghosts follow their owners; grains change rank when the list is rebuilt.
+    void followGhosts();
+    /// The contact list (rebuilt when something moved more than half the skin) and each body
+    /// as the contact laws see it.
+    void updateContactList();
+    /// The narrow phase and the contact law of every slot, in parallel.
+    void computeContacts(double slipStep);
+    /// Each grain's force, torque and stiffness from its slots in list order, plus gravity and
+    /// global damping.
+    void sumGrainForces();
+    /// Node-check statistics, nodes in contact and elastic energy over the slots.
+    void sumContactCounts();
+    /// The boundaries' reactions and, when recorded, the point forces, in slot order.
+    void collectReactionsAndPointForces();
     /// Throws if a grain's state is no longer finite or the step exceeds its stable limit;
     /// @a atStart, also the limit of the stiffest contact a grain near another body can make.
     void checkStability(bool atStart = false);

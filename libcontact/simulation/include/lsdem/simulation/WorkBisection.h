@@ -9,7 +9,7 @@
 /// process (no threads, ties broken by point index).
 #pragma once
 
-#include "lsdem/ls/TriangleMesh.h"
+#include "lsdem/core/Vec3.h"
 
 #include <vector>
 

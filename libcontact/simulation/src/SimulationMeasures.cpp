@@ -1,0 +1,108 @@
+// What a run reads from a Simulation besides its state: energies, nodes and contacts counted,
+// and the power of prescribed grains — summed, split by space, in the one-process order.
+#include "lsdem/simulation/Simulation.h"
+
+#include "lsdem/simulation/GhostDecomposition.h"
+
+namespace lsdem {
+
+void Simulation::subtractPrescribedPower(double& work)
+{
+    if (!mGhosts) {
+        for (const Grain& g : mWorld.grains)
+            if (g.motion == GrainMotion::Prescribed)
+                work -= g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+        return;
+    }
+    if (!mHasPrescribed) return;  // the same on every rank: decided from the whole world
+    const std::vector<int>& ids = mGhosts->globalIds();
+    std::vector<OrderedTerm> terms;
+    for (size_t i = 0; i < mWorld.grains.size(); ++i) {
+        const Grain& g = mWorld.grains[i];
+        if (g.motion != GrainMotion::Prescribed || !integratesGrain(i)) continue;
+        OrderedTerm t;
+        t.key[0] = ids[i];
+        t.value[0] = g.force.dot(g.body.velocity) + g.torque.dot(g.prescribedAngularVelocity);
+        terms.push_back(t);
+    }
+    for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) work -= t.value[0];
+}
+
+long long Simulation::contactNodes() const
+{
+    if (!mGhosts) return mContactNodes;
+    OrderedTerm mine;
+    mine.key[0] = mGhosts->ranks().rank();
+    mine.value[0] = static_cast<double>(mContactNodes);
+    long long total = 0;
+    for (const OrderedTerm& t : mGhosts->gatherSorted({mine}))
+        total += static_cast<long long>(t.value[0]);
+    return total;
+}
+
+std::vector<int> Simulation::grainContactCounts() const
+{
+    std::vector<int> counts(mWorld.grains.size(), 0);
+    const std::vector<ContactSlot>& slots = mContacts.slots();
+    for (size_t k = 0; k < mContacts.pairSlotCount(); ++k)
+        if (slots[k].result.contactNodes > 0) {
+            ++counts[size_t(slots[k].first)];
+            ++counts[size_t(slots[k].second)];
+        }
+    return counts;
+}
+
+Energies Simulation::energies() const
+{
+    Energies e;
+    if (mGhosts) {
+        // Each sum in the one-process order: grains, then the list's pairs and boundary
+        // contacts (each counted by the owner of its first grain).
+        const std::vector<int>& ids = mGhosts->globalIds();
+        std::vector<OrderedTerm> terms;
+        for (size_t i = 0; i < mWorld.grains.size(); ++i) {
+            const Grain& g = mWorld.grains[i];
+            if (!g.isFree() || !integratesGrain(i)) continue;
+            OrderedTerm t;
+            t.key[1] = ids[i];
+            t.value[0] = g.body.kineticEnergy();
+            t.value[1] = g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            terms.push_back(t);
+        }
+        const std::vector<ContactSlot>& slots = mContacts.slots();
+        for (size_t k = 0; k < slots.size(); ++k) {
+            const ContactSlot& s = slots[k];
+            const bool pair = s.boundary < 0;
+            if (s.result.elasticEnergy == 0.0 || !integratesGrain(size_t(s.first))) continue;
+            OrderedTerm t;
+            t.key[0] = pair ? 1 : 2;
+            t.key[1] = ids[size_t(s.first)];
+            t.key[2] = pair ? ids[size_t(s.second)] : s.boundary;
+            t.value[0] = s.result.elasticEnergy;
+            terms.push_back(t);
+        }
+        double elastic = 0.0;
+        for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
+            if (t.key[0] == 0) {
+                e.kinetic += t.value[0];
+                e.potential -= t.value[1];
+            } else {
+                elastic += t.value[0];
+            }
+        }
+        e.elastic = elastic;
+    } else {
+        for (const Grain& g : mWorld.grains) {
+            if (!g.isFree()) continue;
+            e.kinetic += g.body.kineticEnergy();
+            e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+        }
+        e.elastic = mElastic;
+    }
+    e.boundaryWork = mWorld.energy.boundaryWork;
+    e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
+                                     mWorld.energy.initialTotal);
+    return e;
+}
+
+} // namespace lsdem

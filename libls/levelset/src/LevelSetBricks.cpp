@@ -1,0 +1,354 @@
+#include "lsdem/ls/LevelSetBricks.h"
+
+#include "lsdem/core/Error.h"
+
+#include <algorithm>
+#include <bitset>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include <tbb/parallel_for.h>
+
+namespace lsdem {
+
+namespace {
+
+uint32_t floatBits(float v)
+{
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof(bits));
+    return bits;
+}
+
+/// Read the brick whose first voxel is @a origin, voxel by voxel (the accessor keeps the last
+/// leaf). Returns false when the brick is one value in one state (then @a raw holds it in [0]).
+bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord& origin,
+               LevelSetBricks::RawBrick& raw)
+{
+    using Leaf = openvdb::FloatTree::LeafNodeType;
+    constexpr int kDim = LevelSetBricks::kDim;
+    std::memset(raw.active, 0, sizeof(raw.active));
+    for (int x = 0; x < kDim; ++x)
+        for (int y = 0; y < kDim; ++y)
+            for (int z = 0; z < kDim; ++z) {
+                const openvdb::Coord c = origin.offsetBy(x, y, z);
+                const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
+                bool on = false;
+                if (const Leaf* leaf = accessor.probeConstLeaf(c)) {
+                    const openvdb::Index n = Leaf::coordToOffset(c);
+                    raw.value[k] = leaf->getValue(n);
+                    on = leaf->isValueOn(n);
+                } else {
+                    raw.value[k] = accessor.getValue(c);
+                    on = accessor.isValueOn(c);
+                }
+                if (on) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
+            }
+    for (int k = 1; k < LevelSetBricks::kVoxels; ++k)
+        if (raw.value[k] != raw.value[0]) return true;
+    const bool on = (raw.active[0] & 1u) != 0;
+    for (int k = 0; k < LevelSetBricks::kVoxels; ++k)
+        if ((((raw.active[k >> 6] >> (k & 63)) & 1u) != 0) != on) return true;
+    raw.active[0] = on ? 1u : 0u;
+    return false;
+}
+
+/// The box of index space holding every voxel of @a grid that is active or differs from the
+/// background: such voxels of its leaves, and such tiles.
+openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
+{
+    const float background = grid.background();
+    openvdb::CoordBBox box;
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
+        for (auto it = leaf->cbeginValueAll(); it; ++it)
+            if (it.isValueOn() || *it != background) box.expand(it.getCoord());
+    auto it = grid.tree().cbeginValueAll();
+    it.setMaxDepth(openvdb::FloatTree::RootNodeType::LEVEL - 1);  // tiles only, no voxels
+    for (; it; ++it)
+        if (it.isValueOn() || *it != background) box.expand(it.getBoundingBox());
+    return box;
+}
+
+} // namespace
+
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
+    : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
+{
+    // The deep bricks' step: the power of two in (2^-13, 2^-12] voxel (cubic voxels only).
+    const openvdb::Vec3d voxel = grid.voxelSize();
+    if (voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2]) {
+        int e = 0;
+        std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
+        mDeepStep = float(std::ldexp(1.0, e - 1));
+        // The float at or below −kDeepVoxels voxels: a deep value is at least that deep.
+        const double below = -kDeepVoxels * voxel[0];
+        mDeepBelow = float(below);
+        if (double(mDeepBelow) > below)
+            mDeepBelow = std::nextafter(mDeepBelow, -std::numeric_limits<float>::infinity());
+    }
+    const openvdb::CoordBBox box = valueBox(grid);
+    if (!box.empty()) {
+        mOrigin = box.min();
+        double places = 1.0;
+        for (int k = 0; k < 3; ++k) {
+            mBricks[k] = uint32_t((int64_t(box.max()[k]) - box.min()[k]) / kDim + 1);
+            places *= mBricks[k];
+        }
+        // The table is dense: a grid whose values spread over a huge box (a fog volume's
+        // tiles, say) would need more than its voxels are worth.
+        if (places > double(1u << 28))
+            throw Error("level set",
+                        "the grid's values span " + std::to_string(box.dim().x()) + " x " +
+                            std::to_string(box.dim().y()) + " x " +
+                            std::to_string(box.dim().z()) +
+                            " voxels, too large a box for lsdem's level-set table",
+                        "lsdem samples grain-sized level sets; crop or rebuild the grid");
+        mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
+    }
+
+    // Pass 1, in parallel: what each place of the table holds (varying values, or one value
+    // and state), and whether its values are all finite.
+    using Uniform = std::pair<uint32_t, uint8_t>;  // (value bits, active) of one value
+    struct Place
+    {
+        bool varies = false;
+        bool deep = false;
+        bool finite = true;
+        Uniform uniform{0, 0};
+    };
+    std::vector<Place> places(mTable.size());
+    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+        Place& p = places[slot];
+        p.varies = varies;
+        int32_t unused[kVoxels];
+        p.deep = varies && deepCodes(b, unused);
+        for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
+        if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
+    });
+
+    // In place order, one thread: each place's brick. Brick 0 is the inactive background,
+    // shared by every such place and by all outside; the bricks of varying values and each
+    // new value of one come next in the order of their first place, then the deep bricks in
+    // the order of their places, so the layout does not depend on the thread count.
+    std::map<Uniform, uint32_t> shared;  // → its brick
+    shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
+    uint32_t bricks = 1;
+    for (size_t slot = 0; slot < places.size(); ++slot) {
+        const Place& p = places[slot];
+        if (!p.finite) {
+            const openvdb::Coord origin = placeOrigin(slot);
+            throw Error("level set",
+                        "the grid holds a value that is not a finite number near index (" +
+                            std::to_string(origin.x()) + ", " + std::to_string(origin.y()) +
+                            ", " + std::to_string(origin.z()) + ")",
+                        "rebuild the level set; lsdem samples finite distances only");
+        }
+        if (p.deep) continue;
+        if (p.varies) {
+            mTable[slot] = bricks++;
+            continue;
+        }
+        auto it = shared.find(p.uniform);
+        if (it == shared.end()) it = shared.emplace(p.uniform, bricks++).first;
+        mTable[slot] = kShared | it->second;
+    }
+    mWideBricks = bricks;
+    for (size_t slot = 0; slot < places.size(); ++slot)
+        if (places[slot].deep) mTable[slot] = bricks++;
+
+    // Sized once (grown by doubling they would hold up to twice their size), plus the
+    // padding byte that decode() may read after the last 24-bit code when no deep brick
+    // follows.
+    const size_t deep = bricks - mWideBricks;
+    mCode.assign(size_t(mWideBricks) * 3 * kVoxels + deep * 2 * kVoxels + 1, 0);
+    mBrickStep.assign(bricks, 0.0f);
+    mDeepBase.assign(deep, 0);
+    mActive.assign(size_t(bricks) * kMaskWords, 0);
+    for (const auto& [uniform, brick] : shared) {
+        float value = 0.0f;
+        std::memcpy(&value, &uniform.first, sizeof value);
+        writeUniformBrick(brick, value, uniform.second != 0);
+    }
+    // Pass 2, in parallel: the bricks of varying values, each into its own place.
+    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+        if (!varies) return;
+        const uint32_t brick = mTable[slot] & kIndexMask;
+        if (isDeep(brick))
+            writeDeepBrick(brick, b);
+        else
+            writeVaryingBrick(brick, b);
+    });
+}
+
+openvdb::Coord LevelSetBricks::placeOrigin(size_t slot) const
+{
+    const size_t yz = size_t(mBricks[1]) * mBricks[2];
+    const auto ix = int(slot / yz), iy = int((slot % yz) / mBricks[2]), iz = int(slot % mBricks[2]);
+    return mOrigin.offsetBy(ix * kDim, iy * kDim, iz * kDim);
+}
+
+template <typename Visit>
+void LevelSetBricks::forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const
+{
+    // Slabs of constant x in parallel, each with its own accessor; every place once.
+    tbb::parallel_for(uint32_t(0), mBricks[0], [&](uint32_t ix) {
+        auto accessor = grid.getConstAccessor();
+        RawBrick raw;
+        size_t slot = size_t(ix) * mBricks[1] * mBricks[2];
+        for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
+            for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
+                const openvdb::Coord origin =
+                    mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
+                const bool varies = readBrick(accessor, origin, raw);
+                visit(slot, origin, varies, raw);
+            }
+    });
+}
+
+void LevelSetBricks::writeUniformBrick(uint32_t brick, float value, bool active)
+{
+    // One value v: q = 1 and step = v decode to v exactly.
+    mBrickStep[brick] = value;
+    uint8_t* code = writableCodes(brick);
+    for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
+    std::fill_n(mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords), kMaskWords,
+                active ? ~uint64_t(0) : uint64_t(0));
+}
+
+namespace {
+
+/// The step of a brick's 24-bit codes: 2^(c − 22) with 2^c ≥ its largest |value|, so every
+/// |q| ≤ 2^22.
+double wideStep(const LevelSetBricks::RawBrick& raw)
+{
+    float largest = 0.0f;
+    for (float v : raw.value) largest = std::max(largest, std::abs(v));
+    int c = 0;
+    const double mantissa = std::frexp(double(largest), &c);  // largest = mantissa · 2^c
+    if (mantissa == 0.5) --c;                                  // already a power of two
+    return largest > 0.0f ? std::ldexp(1.0, c - 22) : 1.0;
+}
+
+/// The 24-bit code of @a v: to the nearest step, but never across zero (the sign decides
+/// contact).
+int32_t wideCode(double v, double step)
+{
+    auto q = static_cast<int32_t>(std::llround(v / step));
+    if (v < 0.0 && q >= 0) q = -1;
+    if (v > 0.0 && q <= 0) q = 1;
+    return q;
+}
+
+/// Deep codes: below this in size a deep value is a multiple of the 24-bit step its brick
+/// would have (so encoding it again gives it back), and converts to float exactly.
+constexpr double kDeepCodeLimit = double(1 << 22);
+
+} // namespace
+
+void LevelSetBricks::writeVaryingBrick(uint32_t brick, const RawBrick& raw)
+{
+    const double step = wideStep(raw);
+    mBrickStep[brick] = float(step);
+    std::copy(raw.active, raw.active + kMaskWords,
+              mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
+    uint8_t* code = writableCodes(brick);
+    for (int k = 0; k < kVoxels; ++k) {
+        const auto bits = static_cast<uint32_t>(wideCode(raw.value[k], step));
+        code[3 * k] = uint8_t(bits);
+        code[3 * k + 1] = uint8_t(bits >> 8);
+        code[3 * k + 2] = uint8_t(bits >> 16);
+    }
+}
+
+bool LevelSetBricks::deepCodes(const RawBrick& raw, int32_t code[kVoxels]) const
+{
+    if (!(mDeepStep > 0.0f)) return false;
+    for (float v : raw.value)
+        if (!std::isfinite(v)) return false;  // refused by the constructor
+    // Decided on the values as 24 bits would hold them, so the values a deep or other brick
+    // decodes to are decided the same way when encoded again (a saved and loaded asset).
+    const double step = wideStep(raw), deepBelow = mDeepBelow;
+    for (int k = 0; k < kVoxels; ++k) {
+        const double stored = double(wideCode(raw.value[k], step)) * step;
+        if (!(stored <= deepBelow)) return false;
+        // Rounded down, so the stored value stays at least as deep.
+        const double deep = std::floor(stored / mDeepStep);
+        if (!(deep > -kDeepCodeLimit)) return false;
+        code[k] = static_cast<int32_t>(deep);
+    }
+    const auto [lowest, highest] = std::minmax_element(code, code + kVoxels);
+    return *highest - *lowest <= int32_t(std::numeric_limits<uint16_t>::max());
+}
+
+void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
+{
+    int32_t code[kVoxels];
+    deepCodes(raw, code);  // true: the brick was numbered deep for it
+    const int32_t base = *std::min_element(code, code + kVoxels);
+    mDeepBase[brick - mWideBricks] = base;
+    mBrickStep[brick] = mDeepStep;
+    std::copy(raw.active, raw.active + kMaskWords,
+              mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
+    uint8_t* out = writableCodes(brick);
+    for (int k = 0; k < kVoxels; ++k) {
+        const auto q = static_cast<uint16_t>(code[k] - base);
+        std::memcpy(out + 2 * k, &q, sizeof q);
+    }
+}
+
+openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
+{
+    auto result = openvdb::FloatGrid::create(background());
+    static_cast<openvdb::MetaMap&>(*result) = *mMetadata;
+    result->setTransform(mTransform->copy());
+    auto accessor = result->getAccessor();
+    const float bg = background();
+    forEachBrick(
+        [&](const openvdb::Coord& c, float value, bool active) {
+            if (active)
+                accessor.setValueOn(c, value);
+            else if (value != bg)
+                accessor.setValueOff(c, value);
+        },
+        [&](const openvdb::CoordBBox& brick, float value, bool active) {
+            result->tree().fill(brick, value, active);
+        });
+    return result;
+}
+
+openvdb::Index64 LevelSetBricks::activeVoxelCount() const
+{
+    std::vector<openvdb::Index64> perBrick(mBrickStep.size(), 0);
+    for (size_t b = 0; b < perBrick.size(); ++b)
+        for (int w = 0; w < kMaskWords; ++w)
+            perBrick[b] += std::bitset<64>(mActive[b * kMaskWords + size_t(w)]).count();
+    openvdb::Index64 count = 0;
+    for (uint32_t e : mTable) count += perBrick[e & kIndexMask];
+    return count;
+}
+
+openvdb::CoordBBox LevelSetBricks::evalActiveVoxelBoundingBox() const
+{
+    openvdb::CoordBBox box;
+    forEachBrick(
+        [&](const openvdb::Coord& c, float, bool active) {
+            if (active) box.expand(c);
+        },
+        [&](const openvdb::CoordBBox& brick, float, bool active) {
+            if (active) box.expand(brick);
+        });
+    return box;
+}
+
+size_t LevelSetBricks::memUsage() const
+{
+    return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
+           mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
+           mDeepBase.capacity() * sizeof(int32_t) +
+           mActive.capacity() * sizeof(uint64_t);
+}
+
+} // namespace lsdem

@@ -1,0 +1,56 @@
+/// @file ClosestPointGrid.h
+/// @brief The closest point of a triangle mesh to a query point, through a uniform grid of
+///        cells that lists the triangles whose bounding box meets each cell.
+///
+/// Made for points near the surface (a remesher putting its vertices back onto its input):
+/// the query reads the point's own cell, then only the cells within the distance found so
+/// far; a point far from the surface reads many cells. A few megabytes for a 100k-triangle
+/// mesh, where a bounding-volume tree with its distance accelerator holds tens. Triangles may
+/// carry labels (the patches between a surface's sharp edges) and a query may keep to one.
+#pragma once
+
+#include "lsdem/core/Vec3.h"
+
+#include <array>
+#include <vector>
+
+namespace lsdem {
+
+class ClosestPointGrid
+{
+public:
+    /// @a vertices and @a triangles are copied; @a labels, if not empty, has one per triangle.
+    /// Cells are about @a cellSize wide, wider when the box of the mesh would need more than a
+    /// few cells per triangle. Triangles of zero area are left out: on a closed surface their
+    /// edges belong to neighbours with area, which hold every point they would add.
+    ClosestPointGrid(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> triangles,
+                     double cellSize, std::vector<int> labels = {});
+
+    /// The point closest to @a p of the triangles labelled @a label (of every triangle if
+    /// @a label is negative); of several at the same distance, the first triangle's. Exact up
+    /// to round-off. @a p itself if no triangle has the label.
+    Vec3 closestPoint(const Vec3& p, int label = -1) const;
+
+    double cellSize() const { return mCell; }
+
+private:
+    std::array<int, 3> cellOf(const Vec3& p) const;  // clamped into the grid
+    size_t indexOf(int i, int j, int k) const
+    {
+        return (size_t(k) * size_t(mDims[1]) + size_t(j)) * size_t(mDims[0]) + size_t(i);
+    }
+    /// Tests the triangles of cell (i, j, k) against @a p, keeping the nearest in @a best.
+    void testCell(int i, int j, int k, const Vec3& p, int label, double& best2,
+                  Vec3& bestOffset, int& bestTriangle) const;
+
+    std::vector<Vec3> mVertices;
+    std::vector<std::array<int, 3>> mTriangles;
+    std::vector<int> mLabels;  ///< per triangle (all 0 without labels)
+    Vec3 mOrigin = Vec3::Zero();
+    double mCell = 1.0;
+    std::array<int, 3> mDims{1, 1, 1};
+    std::vector<int> mCellStart;   ///< per cell, where its triangles begin in mCellTriangles
+    std::vector<int> mCellTriangles;
+};
+
+} // namespace lsdem

@@ -20,6 +20,7 @@ struct Context
     bool quick = false;                     ///< fewer points, shorter runs (ctest)
     Report& report;
     std::string sandMeshes;                 ///< the sand grains' meshes (the silo)
+    std::vector<std::string> siloGrains;    ///< "spheres", "sand": the silo's grain kinds
     /// Where a long case says how far it has got (may be empty).
     std::function<void(const std::string&)> progress;
 

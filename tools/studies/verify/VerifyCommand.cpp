@@ -84,6 +84,11 @@ VerifyCommand::VerifyCommand(CLI::App& study)
         ->capture_default_str()
         ->type_name("DIR")
         ->group(bodies);
+    mCommand->add_option("--silo-grains", o.siloGrains, "the silo's grains: spheres, sand")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"spheres", "sand"}))
+        ->type_name("KIND")
+        ->group(bodies);
     mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
     cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the failures and the tally");

@@ -60,7 +60,8 @@ Report runVerification(const VerifyOptions& o,
 {
     Report report;
     Bodies bodies(o.setup);
-    Context context{bodies, o.formulations, o.quick, report, o.sandMeshes, progress};
+    Context context{bodies,       o.formulations, o.quick, report,
+                    o.sandMeshes, o.siloGrains,    progress};
     for (const CaseEntry& e : caseList()) {
         if (!o.cases.empty() && std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())
             continue;

@@ -21,6 +21,8 @@ struct VerifyOptions
     std::vector<std::string> cases;  ///< names of caseList(); empty: all
     bool quick = false;              ///< the fast version (ctest): fewer points, coarser
     std::string sandMeshes = "assets/meshes/sand";  ///< the silo's sand grains
+    /// The silo's grain kinds: "spheres", "sand" (the quick version runs spheres only).
+    std::vector<std::string> siloGrains = {"spheres", "sand"};
     std::string outDir = "results/verify";
     bool plots = true, quiet = false;
 };

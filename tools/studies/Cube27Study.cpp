@@ -1,6 +1,6 @@
 #include "studies/Cube27Study.h"
 
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/core/AtomicFile.h"

@@ -4,7 +4,7 @@
 // (MPI_THREAD_FUNNELED).
 #include "studies/RunDistributor.h"
 
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/core/Error.h"

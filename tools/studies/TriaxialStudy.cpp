@@ -2,7 +2,7 @@
 
 #include "lsdem/core/NumberText.h"
 #include "studies/RunDistributor.h"
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 #include "studies/TriaxialSample.h"
 
 #include "lsdem/core/Constants.h"

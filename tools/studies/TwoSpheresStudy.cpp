@@ -1,6 +1,6 @@
 #include "studies/TwoSpheresStudy.h"
 
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/contact/PairContact.h"

@@ -3,7 +3,7 @@
 // lsdem::Error. Rank 0 prints each result as it arrives, "result <i> <i*i> <rank>", then
 // "done"; the other ranks print nothing.
 #include "studies/RunDistributor.h"
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 
 #include "lsdem/core/Error.h"
 

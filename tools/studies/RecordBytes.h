@@ -1,4 +1,4 @@
-/// @file RunRecord.h
+/// @file RecordBytes.h
 /// @brief A study run's description or result as bytes, to send it from one MPI rank to
 ///        another: numbers (bit for bit, so a result is the same wherever it was computed) and
 ///        strings, written in order and read back in the same order. No MPI here.

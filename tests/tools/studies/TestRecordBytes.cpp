@@ -1,7 +1,7 @@
-// A run's result travelling between MPI ranks as bytes (tools/studies/RunRecord.h,
+// A run's result travelling between MPI ranks as bytes (tools/studies/RecordBytes.h,
 // SlabRunRecord.h): every number comes back bit for bit, every string byte for byte, and a
 // record read with the wrong layout is refused rather than misread.
-#include "studies/RunRecord.h"
+#include "studies/RecordBytes.h"
 #include "studies/SlabRunRecord.h"
 #include "studies/SlabStudy.h"
 

@@ -192,6 +192,101 @@ private:
     Rotation mFirst, mSecond;
 };
 
+/// The contact's dashpot (DampingModel.h): one force on first at the contact's centre along its
+/// normal, against the approach (second gets the opposite), and its share per unit of point
+/// force stiffness, which counts as normal force in Coulomb's limit.
+struct Dashpot
+{
+    double coefficient = 0.0;          ///< c (0: none)
+    ContactAxis axis;
+    Vec3 force = Vec3::Zero();         ///< on first
+    double viscousPerStiffness = 0.0;  ///< its normal force over Σ k of the point forces
+};
+
+Dashpot contactDashpot(const ContactSide* sides, int sideCount, const ContactModel& model,
+                       const std::vector<PointForce>* normal, bool perNodeForces)
+{
+    Dashpot d;
+    if (!model.damping.active()) return d;
+    const ContactGrain& first = *sides[0].tester;
+    const ContactGrain& second = *sides[0].other;
+    d.axis = contactAxis(sides, sideCount, normal, perNodeForces,
+                         perNodeForces || model.normal().stiffnessPerArea());
+    d.coefficient =
+        model.damping.dashpot(effectiveMass(first, second), d.axis.stiffness, d.axis.exponent);
+    if (!(d.coefficient > 0.0)) return d;
+    const Vec3 relative = first.pointVelocity(d.axis.centre) - second.pointVelocity(d.axis.centre);
+    // It may push but not pull: at most the elastic force, against it, as the bodies part
+    // (DampingModel.h).
+    const double viscous =
+        std::max(-d.coefficient * relative.dot(d.axis.normal), -std::max(d.axis.force, 0.0));
+    d.force = viscous * d.axis.normal;
+    double total = 0.0;
+    for (int s = 0; s < sideCount; ++s)
+        for (const PointForce& f : normal[s]) total += f.stiffness;
+    d.viscousPerStiffness = viscous / total;
+    return d;
+}
+
+/// The stored shear of each node of a side, found by walking the sorted history alongside the
+/// nodes (in node order; from the start again if a caller gave them otherwise).
+class StoredShear
+{
+public:
+    explicit StoredShear(const ShearHistory* history)
+        : mStored(history ? &history->entries() : nullptr)
+    {
+    }
+    Vec3 of(int node)
+    {
+        if (node < mLastNode) {
+            mInOrder = false;
+            mCursor = 0;
+        }
+        mLastNode = node;
+        while (mCursor < mStored->size() && (*mStored)[mCursor].node < node) ++mCursor;
+        return mCursor < mStored->size() && (*mStored)[mCursor].node == node
+                   ? (*mStored)[mCursor].force
+                   : Vec3::Zero();
+    }
+    /// Whether the nodes came in order (else the new history needs sorting).
+    bool inOrder() const { return mInOrder; }
+
+private:
+    const std::vector<ShearHistory::Entry>* mStored;
+    size_t mCursor = 0;
+    int mLastNode = -1;
+    bool mInOrder = true;
+};
+
+/// Side @a side's point forces @a forces (on its tester) added to the pair's forces and
+/// torques: on the tester, and the opposite on the other body.
+void addSideForces(const ContactSide& side, const ContactGrain& first,
+                   const std::vector<PointForce>& forces, PairForces& result)
+{
+    const bool testerIsFirst = side.tester == &first;
+    Vec3& forceOnTester = testerIsFirst ? result.forceOnFirst : result.forceOnSecond;
+    Vec3& torqueOnTester = testerIsFirst ? result.torqueOnFirst : result.torqueOnSecond;
+    Vec3& forceOnOther = testerIsFirst ? result.forceOnSecond : result.forceOnFirst;
+    Vec3& torqueOnOther = testerIsFirst ? result.torqueOnSecond : result.torqueOnFirst;
+    // Sums in locals (registers), not in `result`, which the compiler must assume the stores
+    // to the point forces may alias; the additions happen in the same order.
+    Vec3 testerForce = forceOnTester, testerTorque = torqueOnTester;
+    Vec3 otherForce = forceOnOther, otherTorque = torqueOnOther;
+    const Point3 testerCentre(side.tester->pose.position), otherCentre(side.other->pose.position);
+    for (const PointForce& f : forces) {
+        testerForce += f.force;
+        accumulateMoment(testerTorque, f.point, testerCentre, f.force, false);
+        otherForce -= f.force;
+        accumulateMoment(otherTorque, f.point, otherCentre, f.force, true);
+    }
+    forceOnTester = testerForce;
+    torqueOnTester = testerTorque;
+    forceOnOther = otherForce;
+    torqueOnOther = otherTorque;
+    if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
+}
+
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
@@ -224,34 +319,13 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                                    std::to_string(normal[s].size()) + " forces for " +
                                    std::to_string(sides[s].contacts.size()) + " contacts");
 
-    // The dashpot, on first at the contact's centre (second gets the opposite).
-    Vec3 dashpotForce = Vec3::Zero();
-    double viscousPerStiffness = 0.0;  // its normal force shared by the point forces' stiffness
-    ContactAxis axis;
-    if (model.damping.active()) {
-        axis = contactAxis(sides, sideCount, normal, perNodeForces,
-                           perNodeForces || normalLaw.stiffnessPerArea());
-        result.dashpot = model.damping.dashpot(effectiveMass(first, second), axis.stiffness,
-                                               axis.exponent);
-        if (result.dashpot > 0.0) {
-            const Vec3 relative =
-                first.pointVelocity(axis.centre) - second.pointVelocity(axis.centre);
-            // It may push but not pull: at most the elastic force, against it, as the bodies
-            // part (DampingModel.h).
-            const double viscous =
-                std::max(-result.dashpot * relative.dot(axis.normal), -std::max(axis.force, 0.0));
-            dashpotForce = viscous * axis.normal;
-            double total = 0.0;
-            for (int s = 0; s < sideCount; ++s)
-                for (const PointForce& f : normal[s]) total += f.stiffness;
-            viscousPerStiffness = viscous / total;
-        }
-    }
+    const Dashpot dashpot = contactDashpot(sides, sideCount, model, normal, perNodeForces);
+    result.dashpot = dashpot.coefficient;
     // The turn of the shear history about the normal in this step: the pair's mean spin.
     const Vec3 meanTurn = (0.5 * dt) * (first.angularVelocity + second.angularVelocity);
 
-    // Sums kept in locals (registers), not in `result`, which the compiler must assume the
-    // stores to the point forces may alias; the additions happen in the same order.
+    // Shear springs, elastic energy and stiffness, point force by point force; sums in locals
+    // (registers), as in addSideForces.
     double elasticEnergy = 0.0;
     StiffnessSum stiffness(first, second);
     for (int s = 0; s < sideCount; ++s) {
@@ -259,24 +333,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
         std::vector<PointForce>& forces = normal[s];
         std::vector<ShearHistory::Entry>& nextHistory = work.nextHistory;
         nextHistory.clear();
-        // The stored shear of each node, found by walking the sorted history alongside the
-        // nodes (in node order; a binary search if a caller gave them otherwise).
-        const std::vector<ShearHistory::Entry>* stored =
-            side.history ? &side.history->entries() : nullptr;
-        size_t cursor = 0;
-        int lastNode = -1;
-        bool inOrder = true;
-        auto storedShear = [&](int node) -> Vec3 {
-            if (node < lastNode) {
-                inOrder = false;
-                cursor = 0;
-            }
-            lastNode = node;
-            while (cursor < stored->size() && (*stored)[cursor].node < node) ++cursor;
-            return cursor < stored->size() && (*stored)[cursor].node == node
-                       ? (*stored)[cursor].force
-                       : Vec3::Zero();
-        };
+        StoredShear stored(side.history);
         for (size_t k = 0; k < forces.size(); ++k) {
             PointForce& f = forces[k];
             const NodeContact* c = perNodeForces ? &side.contacts[k] : nullptr;
@@ -295,9 +352,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                 const Vec3 relativeVelocity =
                     side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
                 const Vec3 shear = updateShearForce(
-                    storedShear(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
+                    stored.of(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
                     shearStiffness,
-                    shearSprings.friction * std::max(0.0, size + viscousPerStiffness * f.stiffness));
+                    shearSprings.friction *
+                        std::max(0.0, size + dashpot.viscousPerStiffness * f.stiffness));
                 nextHistory.push_back({c->node, shear});
                 f.force += shear;
                 elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
@@ -308,44 +366,26 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             elasticEnergy += normalLaw.elasticEnergy(side.contacts, model.normalStiffness,
                                                      side.weight);
         if (side.history) {
-            if (!inOrder)
+            if (!stored.inOrder())
                 std::sort(nextHistory.begin(), nextHistory.end(),
                           [](const auto& a, const auto& b) { return a.node < b.node; });
             side.history->replaceWith(nextHistory);
         }
 
-        const bool testerIsFirst = side.tester == &first;
-        Vec3& forceOnTester = testerIsFirst ? result.forceOnFirst : result.forceOnSecond;
-        Vec3& torqueOnTester = testerIsFirst ? result.torqueOnFirst : result.torqueOnSecond;
-        Vec3& forceOnOther = testerIsFirst ? result.forceOnSecond : result.forceOnFirst;
-        Vec3& torqueOnOther = testerIsFirst ? result.torqueOnSecond : result.torqueOnFirst;
-        Vec3 testerForce = forceOnTester, testerTorque = torqueOnTester;
-        Vec3 otherForce = forceOnOther, otherTorque = torqueOnOther;
-        const Point3 testerCentre(side.tester->pose.position), otherCentre(side.other->pose.position);
-        for (const PointForce& f : forces) {
-            testerForce += f.force;
-            accumulateMoment(testerTorque, f.point, testerCentre, f.force, false);
-            otherForce -= f.force;
-            accumulateMoment(otherTorque, f.point, otherCentre, f.force, true);
-        }
-        forceOnTester = testerForce;
-        torqueOnTester = testerTorque;
-        forceOnOther = otherForce;
-        torqueOnOther = otherTorque;
-        if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
+        addSideForces(side, first, forces, result);
         if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
         if (s == 0 && result.dashpot > 0.0) {
-            if (allForces) allForces->push_back({-1, dashpotForce, axis.centre, 0.0});
+            if (allForces) allForces->push_back({-1, dashpot.force, dashpot.axis.centre, 0.0});
             ++result.pointForcesOnFirst;
         }
     }
     if (result.dashpot > 0.0) {
-        result.forceOnFirst += dashpotForce;
-        accumulateMoment(result.torqueOnFirst, axis.centre, Point3(first.pose.position),
-                         dashpotForce, false);
-        result.forceOnSecond -= dashpotForce;
-        accumulateMoment(result.torqueOnSecond, axis.centre, Point3(second.pose.position),
-                         dashpotForce, true);
+        result.forceOnFirst += dashpot.force;
+        accumulateMoment(result.torqueOnFirst, dashpot.axis.centre, Point3(first.pose.position),
+                         dashpot.force, false);
+        result.forceOnSecond -= dashpot.force;
+        accumulateMoment(result.torqueOnSecond, dashpot.axis.centre, Point3(second.pose.position),
+                         dashpot.force, true);
     }
     result.elasticEnergy = elasticEnergy;
     stiffness.store(result);

@@ -292,6 +292,14 @@ void writeBoundary(std::ostream& out, const Case& c)
 
 } // namespace
 
+std::string uncommittedChanges()
+{
+    const CommandResult r = runCommand("git -C '" + std::string(LSDEM_SOURCE_DIR) +
+                                       "' status --porcelain --untracked-files=no");
+    if (r.exitCode != 0) return "(git status failed: not a git checkout?)";
+    return r.output;
+}
+
 void writeReferenceFile(const std::string& path, Formulation f, const std::vector<Case>& cases,
                         const std::vector<std::string>& checks)
 {

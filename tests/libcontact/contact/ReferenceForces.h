@@ -80,6 +80,10 @@ std::string referenceFilePath(Formulation f);
 std::vector<Case> readReferenceFile(const std::string& path, Formulation& formulation);
 
 /// Write @a cases (with their expected outcomes) and a header holding @a checks.
+/// `git status` of the source tree's tracked files: empty when every change is committed (a
+/// reference file is generated only from such a tree, so its header's commit reproduces it).
+std::string uncommittedChanges();
+
 void writeReferenceFile(const std::string& path, Formulation f, const std::vector<Case>& cases,
                         const std::vector<std::string>& checks);
 

@@ -7,8 +7,10 @@
 // scale: the computation is deterministic (fixed assets, fixed order of sums), so the tolerance
 // only absorbs rounding differences between compilers (FMA contraction, vectorisation).
 //
-// To regenerate after an intended change of a law (review the diff and the checks in the
-// header):
+// Every run also checks the file's numbers against closed forms and conservation laws
+// (plausibilityChecks: Newton's third law, moment balance, k·π·R·δ² and the like, the shear
+// history's effect). To regenerate after an intended change of a law, from a clean commit (it
+// refuses otherwise; review the diff and the checks in the header):
 //   LSDEM_REGENERATE_REFERENCE=1 build/tests/test_contact --gtest_filter='*ReferenceForces*'
 #include "libcontact/contact/ReferenceForces.h"
 
@@ -53,6 +55,11 @@ TEST_P(ReferenceForces, RecomputedForcesMatchTheFile)
     const Formulation f = GetParam();
     const std::string path = referenceFilePath(f);
     if (regenerating()) {
+        // From a clean commit only: the header names the commit that reproduces the file.
+        const std::string changes = uncommittedChanges();
+        ASSERT_TRUE(changes.empty()) << "commit (or stash) these changes before regenerating "
+                                     << path << ":\n"
+                                     << changes;
         const std::vector<Case> generated = generateCases(f);
         writeReferenceFile(path, f, generated, plausibilityChecks(f, generated));
         std::cout << "regenerated " << path << "\n";
@@ -102,6 +109,9 @@ TEST_P(ReferenceForces, RecomputedForcesMatchTheFile)
             EXPECT_LE((want.forceFirst + want.forceSecond).norm(), kTolerance * forceScale);
         }
     }
+    // The file's numbers against closed forms and conservation laws, on every run (not only
+    // when it was generated): the fixture cannot drift into confirming a wrong law.
+    plausibilityChecks(f, cases);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formulation, ReferenceForces, ::testing::ValuesIn(allFormulations()),

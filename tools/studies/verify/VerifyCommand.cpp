@@ -51,7 +51,7 @@ void writeFrames(const verify::FrameSeries& series, const std::string& dir)
 
 std::string caseHelp()
 {
-    std::string text = "the cases to run (default: all):";
+    std::string text = "the cases to run (default: all but those run only when named):";
     for (const verify::CaseEntry& e : verify::caseList()) text += "\n  " + e.name + ": " + e.title;
     return text;
 }

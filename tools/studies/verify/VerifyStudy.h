@@ -33,6 +33,9 @@ struct CaseEntry
     std::string name;
     std::string title;  ///< what it checks, for --help and the summary
     std::function<void(Context&)> run;
+    /// Run only when named (--case), or in the quick version: a bulk case that costs an hour,
+    /// not minutes.
+    bool onlyWhenNamed = false;
 };
 
 /// Every case, in the order the suite runs them.

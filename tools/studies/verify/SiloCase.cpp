@@ -34,8 +34,8 @@ struct SiloPlan
     int countFrom = 200, countTo = 900;
     double settleTime = 0.05;      ///< s under the real law before the orifice opens
     double clogTime = 0.1;         ///< s without a grain out: the orifice has clogged
-    double framePeriod = 0.01;     ///< s between frames (of the largest orifice)
-    int frames = 40;
+    double framePeriod = 0.02;     ///< s between frames (of the largest orifice)
+    int frames = 20;
     // The law: soft enough that a step resolves collisions at a few m/s with overlaps of ~1 %
     // of d, stiff enough that the weight of the column presses contacts by ~1 % of d.
     double knStar = 10.0;          ///< N/mm³

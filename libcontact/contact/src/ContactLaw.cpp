@@ -114,7 +114,7 @@ ContactAxis contactAxis(const ContactSide* sides, int sideCount,
     return axis;
 }
 
-/// The contact's stiffness for the stability check (PairForces, Simulation.cpp), summed point
+/// The contact's stiffness for the stability check (PairForces, SimulationForces.cpp), summed point
 /// force by point force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ and
 /// −k_t·r rᵀ (k' = k_n − k_t, w = r × n), with Σ k_t and Σ k_t·|r|² for the diagonal terms
 /// added at the end. Written out in plain numbers: it runs for every node in contact.

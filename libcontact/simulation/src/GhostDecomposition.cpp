@@ -219,15 +219,38 @@ void GhostDecomposition::route(const World& world, std::vector<int>& newOwner,
     }
 }
 
+struct GhostDecomposition::Inbox
+{
+    std::vector<Incoming> grains;
+    std::vector<IncomingPair> pairs;
+    std::vector<IncomingBoundary> boundaries;
+};
+
 void GhostDecomposition::redistribute(World& world)
 {
     maybeRebalance(world);
     const Stopwatch packing;
-    const int ranks = mRanks.ranks(), me = mRanks.rank();
     std::vector<int> newOwner;
     std::vector<std::vector<int>> ghostRanks;
     route(world, newOwner, ghostRanks);
+    packMoves(world, newOwner, ghostRanks);
+    double packSeconds = packing.seconds();
 
+    exchange(mToEach, mReceived, mStarts);
+
+    const Stopwatch unpacking;
+    Inbox inbox;
+    unpackMoves(world, inbox);
+    rebuildWorld(world, inbox);
+    packSeconds += unpacking.seconds();
+    mCounters.packSeconds += packSeconds;
+    ++mCounters.redistributions;
+}
+
+void GhostDecomposition::packMoves(const World& world, const std::vector<int>& newOwner,
+                                   const std::vector<std::vector<int>>& ghostRanks)
+{
+    const int ranks = mRanks.ranks(), me = mRanks.rank();
     // Each owned grain to its new owner (with the ranks that will hold it as a ghost) and to
     // those ranks (with its owner); the histories of its contacts wherever the grain goes
     // (a pair's from the owner of its first grain, which holds them all).
@@ -279,21 +302,18 @@ void GhostDecomposition::redistribute(World& world)
         w.put(key.second);
         grainpacking::putHistory(w, h);
     }
-    double packSeconds = packing.seconds();
+}
 
-    exchange(mToEach, mReceived, mStarts);
-
-    const Stopwatch unpacking;
-    std::vector<Incoming> grains;
-    std::vector<IncomingPair> pairs;
-    std::vector<IncomingBoundary> boundaries;
+void GhostDecomposition::unpackMoves(const World& world, Inbox& inbox)
+{
+    const int ranks = mRanks.ranks(), me = mRanks.rank();
     std::vector<ShearHistory::Entry> buffer;
     for (int r = 0; r < ranks; ++r) {
         Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
         while (!in.done()) {
             const char tag = in.get<char>();
             if (tag == kOwnedGrain || tag == kGhostGrain) {
-                Incoming& g = grains.emplace_back();
+                Incoming& g = inbox.grains.emplace_back();
                 g.id = in.get<int>();
                 g.owned = tag == kOwnedGrain;
                 if (g.owned) {
@@ -306,14 +326,14 @@ void GhostDecomposition::redistribute(World& world)
                 g.grain = grainpacking::getGrain(in, world);
                 g.work = in.get<double>();
             } else if (tag == kPairHistory) {
-                IncomingPair& p = pairs.emplace_back();
+                IncomingPair& p = inbox.pairs.emplace_back();
                 p.first = in.get<int>();
                 p.second = in.get<int>();
                 grainpacking::getHistory(in, p.history.shearOnFirstNodes, buffer);
                 grainpacking::getHistory(in, p.history.shearOnSecondNodes, buffer);
                 mCounters.historiesMigrated += r != me;
             } else if (tag == kBoundaryHistory) {
-                IncomingBoundary& b = boundaries.emplace_back();
+                IncomingBoundary& b = inbox.boundaries.emplace_back();
                 b.grain = in.get<int>();
                 b.boundary = in.get<int>();
                 grainpacking::getHistory(in, b.history, buffer);
@@ -324,11 +344,16 @@ void GhostDecomposition::redistribute(World& world)
             }
         }
     }
+}
 
+void GhostDecomposition::rebuildWorld(World& world, Inbox& inbox)
+{
     // This rank's world anew, in global order: its contact list is then the one-process
     // list's part, in the same order.
+    std::vector<Incoming>& grains = inbox.grains;
     std::sort(grains.begin(), grains.end(),
               [](const Incoming& a, const Incoming& b) { return a.id < b.id; });
+    const int ranks = mRanks.ranks();
     const std::vector<int> previous = mGlobal;
     const size_t n = grains.size();
     world.grains.clear();
@@ -358,22 +383,19 @@ void GhostDecomposition::redistribute(World& world)
     mRenumbering.resize(previous.size());
     for (size_t i = 0; i < previous.size(); ++i) mRenumbering[i] = localOf(previous[i]);
     world.pairHistory.clear();
-    for (IncomingPair& p : pairs) {
+    for (IncomingPair& p : inbox.pairs) {
         const int a = localOf(p.first), b = localOf(p.second);
         if (a < 0 || b < 0 || (!mOwned[size_t(a)] && !mOwned[size_t(b)])) continue;
         world.pairHistory.emplace(std::make_pair(a, b), std::move(p.history));
     }
     world.boundaryHistory.clear();
-    for (IncomingBoundary& b : boundaries) {
+    for (IncomingBoundary& b : inbox.boundaries) {
         const int a = localOf(b.grain);
         if (a < 0 || !mOwned[size_t(a)]) continue;
         world.boundaryHistory.emplace(std::make_pair(a, b.boundary), std::move(b.history));
     }
-    packSeconds += unpacking.seconds();
-    mCounters.packSeconds += packSeconds;
     mCounters.owned = owned;
     mCounters.ghosts = static_cast<int>(n) - owned;
-    ++mCounters.redistributions;
 }
 
 bool GhostDecomposition::updateGhosts(World& world, bool rebuildHere)

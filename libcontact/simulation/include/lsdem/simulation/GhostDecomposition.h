@@ -118,6 +118,15 @@ private:
     void route(const World& world, std::vector<int>& newOwner,
                std::vector<std::vector<int>>& ghostRanks) const;
     void maybeRebalance(const World& world);
+    /// What a redistribution received: grains, pair and boundary histories (defined in
+    /// GhostDecomposition.cpp).
+    struct Inbox;
+    /// A redistribution's phases: each owned grain (and its histories) packed for its new
+    /// owner and ghost holders; what arrived, read; this rank's world rebuilt from it.
+    void packMoves(const World& world, const std::vector<int>& newOwner,
+                   const std::vector<std::vector<int>>& ghostRanks);
+    void unpackMoves(const World& world, Inbox& inbox);
+    void rebuildWorld(World& world, Inbox& inbox);
     void exchange(const std::vector<std::vector<char>>& toEach, std::vector<char>& received,
                   std::vector<size_t>& starts);
     int assetIndex(const World& world, const GrainAsset* asset) const;

@@ -19,7 +19,7 @@ namespace lsdem {
 
 struct World;
 
-/// A grain's contact stiffness as the stability check sums it (PairForces, Simulation.cpp):
+/// A grain's contact stiffness as the stability check sums it (PairForces, SimulationForces.cpp):
 /// each contact scaled by 1 + m/m_partner for a partner that moves too.
 struct GrainStiffness
 {

@@ -170,16 +170,12 @@ std::vector<std::string> namesOf(const Items& items)
 
 } // namespace
 
-void bindScenes(py::module_& m)
+namespace {
+
+/// Making, reading and writing a scene; its names and size.
+void bindSceneFiles(py::class_<Scene>& scene)
 {
-    py::class_<Scene>(
-        m, "Scene",
-        "A simulation scene: assets, materials, contact laws, grains, boundaries, time "
-        "stepping and the end condition (docs/scenes.md is the reference).\n\n"
-        "Read one with Scene.from_toml(path) or Scene.from_text(text); build one with Scene() "
-        "and the add_* methods; write it with to_toml() or save(path). Relative paths in a "
-        "scene are resolved from its folder (the file's, or the current one for a scene built "
-        "in Python). Changing a scene does not change simulations made from it.")
+    scene
         .def(py::init([] {
                  Scene s;
                  s.directory = fs::current_path().string();
@@ -241,7 +237,19 @@ void bindScenes(py::module_& m)
                                "Grain names, '' for grains named by their index.")
         .def_property_readonly("boundary_names",
                                [](const Scene& s) { return namesOf(s.boundaries); })
-        .def("__len__", [](const Scene& s) { return s.grains.size(); }, "The number of grains.")
+        .def("__len__", [](const Scene& s) { return s.grains.size(); }, "The number of grains.");
+    scene
+        .def("__repr__", [](const Scene& s) {
+            return "<lsdem.Scene '" + s.path + "': " + std::to_string(s.assets.size()) +
+                   " assets, " + std::to_string(s.grains.size()) + " grains, " +
+                   std::to_string(s.boundaries.size()) + " boundaries>";
+        });
+}
+
+/// Gravity, damping, the time step and the end condition.
+void bindSceneSettings(py::class_<Scene>& scene)
+{
+    scene
         .def_property(
             "gravity", [](const Scene& s) { return toArray(s.gravity); },
             [](Scene& s, const py::object& g) {
@@ -304,7 +312,13 @@ void bindScenes(py::module_& m)
                  s.end.displacement = value;
              },
              py::arg("boundary"), py::arg("value"),
-             "Stop when the named (moving) boundary has moved this far (length).")
+             "Stop when the named (moving) boundary has moved this far (length).");
+}
+
+/// Assets, materials, contact laws and grains, one by one.
+void bindSceneContents(py::class_<Scene>& scene)
+{
+    scene
         .def("add_asset",
              [](Scene& s, const std::string& name, const AssetHandle& asset) {
                  checkNewName(s.assets, name, "asset");
@@ -416,7 +430,13 @@ void bindScenes(py::module_& m)
              "Place a grain of a named asset and material: position of its centroid, "
              "orientation as a unit quaternion [w, x, y, z] (asset frame to world), initial "
              "velocity and angular velocity (world), mass (> 0 overrides density × volume), "
-             "motion ('free', 'fixed', 'prescribed'). Returns its index.")
+             "motion ('free', 'fixed', 'prescribed'). Returns its index.");
+}
+
+/// Walls, containers, an orifice plate and an indenter.
+void bindSceneBoundaries(py::class_<Scene>& scene)
+{
+    scene
         .def("add_plane",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& point, const py::object& normal, const py::object& velocity,
@@ -517,7 +537,34 @@ void bindScenes(py::module_& m)
              py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
              "A flat plate of `thickness` with a circular hole of `radius` (a silo's floor "
              "and its orifice): `center` is the hole's centre in the plate's mid-plane, `axis` "
-             "the plate's normal; grains live outside the plate, on either side.")
+             "the plate's normal; grains live outside the plate, on either side.");
+    scene
+        .def("add_sphere_boundary",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const py::object& center, double radius, const py::object& velocity) {
+                 checkNewName(s.boundaries, name, "boundary");
+                 if (!(radius > 0.0) || !std::isfinite(radius))
+                     throw Error("", "boundary '" + name + "': radius must be > 0");
+                 BoundarySpec b;
+                 b.name = name;
+                 b.shape = BoundaryShape::Sphere;
+                 b.material = indexOf(s.materials, material, "material");
+                 b.center = toVec3(center, "center");
+                 b.radius = radius;
+                 b.velocity = toVec3(velocity, "velocity");
+                 b.where = "boundary '" + name + "'";
+                 markChanged(s);
+                 s.boundaries.push_back(b);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
+             py::arg("radius"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "A rigid sphere (an indenter); grains live outside it.");
+}
+
+/// Assets and grains from files: a catalogue's asset set and a grains CSV.
+void bindSceneFileSources(py::class_<Scene>& scene)
+{
+    scene
         .def("add_asset_set",
              [](Scene& s, const std::string& name, const std::string& catalog) {
                  if (name.empty() || name.find('/') != std::string::npos)
@@ -609,32 +656,26 @@ void bindScenes(py::module_& m)
              "beyond max_overlap (a length; default 5 % of the smaller bounding radius) are "
              "refused when the scene is simulated. Returns the number of grains. (The TOML "
              "reader puts file grains after [[grains]]: add files last for to_toml to read back "
-             "in the same order.)")
-        .def("add_sphere_boundary",
-             [](Scene& s, const std::string& name, const std::string& material,
-                const py::object& center, double radius, const py::object& velocity) {
-                 checkNewName(s.boundaries, name, "boundary");
-                 if (!(radius > 0.0) || !std::isfinite(radius))
-                     throw Error("", "boundary '" + name + "': radius must be > 0");
-                 BoundarySpec b;
-                 b.name = name;
-                 b.shape = BoundaryShape::Sphere;
-                 b.material = indexOf(s.materials, material, "material");
-                 b.center = toVec3(center, "center");
-                 b.radius = radius;
-                 b.velocity = toVec3(velocity, "velocity");
-                 b.where = "boundary '" + name + "'";
-                 markChanged(s);
-                 s.boundaries.push_back(b);
-             },
-             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
-             py::arg("radius"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
-             "A rigid sphere (an indenter); grains live outside it.")
-        .def("__repr__", [](const Scene& s) {
-            return "<lsdem.Scene '" + s.path + "': " + std::to_string(s.assets.size()) +
-                   " assets, " + std::to_string(s.grains.size()) + " grains, " +
-                   std::to_string(s.boundaries.size()) + " boundaries>";
-        });
+             "in the same order.)");
+}
+
+} // namespace
+
+void bindScenes(py::module_& m)
+{
+    py::class_<Scene> scene(
+        m, "Scene",
+        "A simulation scene: assets, materials, contact laws, grains, boundaries, time "
+        "stepping and the end condition (docs/scenes.md is the reference).\n\n"
+        "Read one with Scene.from_toml(path) or Scene.from_text(text); build one with Scene() "
+        "and the add_* methods; write it with to_toml() or save(path). Relative paths in a "
+        "scene are resolved from its folder (the file's, or the current one for a scene built "
+        "in Python). Changing a scene does not change simulations made from it.");
+    bindSceneFiles(scene);
+    bindSceneSettings(scene);
+    bindSceneContents(scene);
+    bindSceneBoundaries(scene);
+    bindSceneFileSources(scene);
 }
 
 } // namespace lsdem::python

@@ -50,10 +50,12 @@ TEST(LsdemStudy, VolumeRowsAreComparedWithTheVolumeLawsLimit)
     std::string line, last;
     while (std::getline(in, line))
         if (!line.empty() && line[0] != '#') last = line;
-    // formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact
+    // formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact,kn_unit,converges
     std::vector<std::string> f;
     ASSERT_TRUE(lsdem::splitCsvRecord(last, f)) << last;
-    ASSERT_EQ(f.size(), 11u) << last;
+    ASSERT_EQ(f.size(), 13u) << last;
+    EXPECT_EQ(f[11], "N/mm³");  // kv: a force per overlap volume
+    EXPECT_EQ(f[12], "1");
     EXPECT_EQ(f[0], "volume");
     const double kv = std::stod(f[3]), delta = std::stod(f[5]), exact = std::stod(f[10]);
     EXPECT_EQ(delta, 0.1);

@@ -24,8 +24,14 @@ def curve(rows, formulation, nodes, kn):
                    and r["kn"] == kn), key=lambda r: r["delta"])
 
 
-def unit(formulation):
-    return "N/mm" if formulation in ("original", "single-node") else "N/mm³"
+def unit(rows, formulation):
+    """The unit of the formulation's stiffness, as the study wrote it (its sub-model's)."""
+    return next(r["kn_unit"] for r in rows if r["formulation"] == formulation)
+
+
+def converges(rows, formulation):
+    """Whether the formulation converges to P_exact as the nodes refine (the study's column)."""
+    return any(r["converges"] for r in rows if r["formulation"] == formulation)
 
 
 def finish(ax, title):
@@ -51,10 +57,10 @@ def plot_by_nodes(rows, formulation, out_dir, name):
             ax.fill_between(d, [r["P_min"] for r in c], [r["P_max"] for r in c],
                             color=line.get_color(), alpha=0.15)
     c = curve(rows, formulation, counts[-1], base)
-    if formulation in ("adapted", "volume"):
+    if converges(rows, formulation):
         ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], "k--",
                 label="continuum closed form")
-    finish(ax, "%s, k = %.3g %s: P–δ per node count" % (formulation, base, unit(formulation)))
+    finish(ax, "%s, k = %.3g %s: P–δ per node count" % (formulation, base, unit(rows, formulation)))
     save(fig, out_dir, name)
 
 
@@ -73,12 +79,12 @@ def plot_by_stiffness(rows, formulation, out_dir, name):
         c = curve(rows, formulation, n, k)
         ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=2.5,
                 label="k = %.3g" % k)
-        if formulation in ("adapted", "volume"):
+        if converges(rows, formulation):
             ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], "k--", lw=0.8,
                     label="continuum closed form" if i == 0 else None)
     title = "%s, N = %d: P–δ per stiffness (%s)" % (formulation, round(c[0]["nodes_actual"]),
-                                                   unit(formulation))
-    if formulation in ("adapted", "volume"):
+                                                   unit(rows, formulation))
+    if converges(rows, formulation):
         title += "; dashed: closed form"
     finish(ax, title)
     save(fig, out_dir, name)
@@ -100,7 +106,7 @@ def plot_convergence(rows, out_dir):
         left.errorbar(n, [r["P"] for r in sel],
                       yerr=[[r["P"] - r["P_min"] for r in sel], [r["P_max"] - r["P"] for r in sel]],
                       marker="o", capsize=3, label="%s (k = %.3g %s)" % (formulation, base,
-                                                                        unit(formulation)))
+                                                                        unit(rows, formulation)))
         if formulation == "original":
             left.plot(n, [r["P_exact"] for r in sel], "k:", lw=1,
                       label="original, uniform nodes: kn* = kn·N/(4πR²)")
@@ -135,7 +141,7 @@ def main():
     if len(sys.argv) != 3:
         print(__doc__, file=sys.stderr)
         return 2
-    rows = read_numbers(sys.argv[1])
+    rows = read_numbers(sys.argv[1], text=("formulation", "kn_unit"), whole=("nodes", "converges"))
     if not rows:
         print("cube27.py: no rows in", sys.argv[1], file=sys.stderr)
         return 1

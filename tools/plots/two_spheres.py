@@ -38,7 +38,7 @@ def plot_family(rows, formulation, by, out_dir, name, title):
             ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=3, label=label)
             ax.fill_between([r["delta"] for r in c], [r["P_min"] for r in c],
                             [r["P_max"] for r in c], alpha=0.15)
-        if formulation in ("adapted", "volume"):  # each its own continuum limit
+        if sel[0]["converges"]:  # the law's own continuum limit
             c = sorted((r for r in sel if r["nodes"] == keys[-1]), key=lambda r: r["delta"])
             ax.plot([r["delta"] for r in c], [r["P_exact"] for r in c], "k--", label="exact (continuum)")
     else:
@@ -55,7 +55,7 @@ def plot_family(rows, formulation, by, out_dir, name, title):
             ax.plot([r["delta"] for r in c], [r["P"] for r in c], marker="o", ms=3,
                     label="k = %.3g" % k)
         title += " (N = %d)" % round(c[0]["nodes_actual"])
-    unit = "N/mm" if formulation in ("original", "single-node") else "N/mm³"
+    unit = next(r["kn_unit"] for r in rows if r["formulation"] == formulation)
     ax.set_xlabel("δ [mm]")
     ax.set_ylabel("P [N]")
     ax.set_title("%s: %s, k in %s" % (formulation, title, unit), fontsize=9)
@@ -110,7 +110,7 @@ def main():
     if len(sys.argv) != 3:
         print(__doc__, file=sys.stderr)
         return 2
-    rows = read_numbers(sys.argv[1])
+    rows = read_numbers(sys.argv[1], text=("formulation", "kn_unit"), whole=("nodes", "converges"))
     out_dir = sys.argv[2]
     for formulation, tag in (("original", "fig1"), ("adapted", "fig3"),
                              ("single-node", "single_node"), ("volume", "volume")):

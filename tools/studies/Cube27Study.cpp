@@ -323,13 +323,19 @@ void writeCube27Csv(const Cube27Result& result, const Cube27Options& o, const st
            "the same with exact sphere-sphere caps (for volume: kv times the caps' integral of d); "
            "k is kn* for adapted/volume and "
            "kn*N/(4 pi R^2) for original; single-node: 9 kn delta/4\n";
+    csv << "# kn_unit: the unit of kn; converges: 1 if the law converges to P_exact as the nodes "
+           "refine at a fixed kn\n";
     csv << "formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_floor,P_side,"
-           "P_closed,P_exact\n";
-    for (const Cube27Row& r : result.rows)
+           "P_closed,P_exact,kn_unit,converges\n";
+    for (const Cube27Row& r : result.rows) {
+        const NormalModel& law = normalModel(r.formulation);
         csv << formulationName(r.formulation) << ',' << r.nodesRequested << ',' << r.nodesActual
             << ',' << r.stiffness << ',' << o.voxel << ',' << r.delta << ',' << r.forceMean << ','
             << r.forceStd << ',' << r.forceMin << ',' << r.forceMax << ',' << r.floorForce << ','
-            << r.sideForce << ',' << r.forceClosed << ',' << r.forceExact << '\n';
+            << r.sideForce << ',' << r.forceClosed << ',' << r.forceExact << ','
+            << law.stiffnessUnitIn("N", "mm") << ',' << (law.convergesWithNodes() ? 1 : 0)
+            << '\n';
+    }
     writeTextFileAtomically(path, csv.str());
 }
 

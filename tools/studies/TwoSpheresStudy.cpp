@@ -229,12 +229,18 @@ void writeTwoSpheresCsv(const TwoSpheresResult& result, const TwoSpheresOptions&
         << " mm, testing=" << nodeTestingName(o.testing) << ", orientations=" << o.orientations
         << "; force in N, lengths in mm; P_exact is the adapted formulation's continuum limit "
            "for the row's stiffness (for volume rows the volume law's, kv times the cap's "
-           "integral of d)\n";
-    csv << "formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact\n";
-    for (const TwoSpheresRow& r : result.rows)
+           "integral of d); kn_unit: the unit of kn; converges: 1 if the law converges to "
+           "P_exact as the nodes refine\n";
+    csv << "formulation,nodes,nodes_actual,kn,voxel,delta,P,P_std,P_min,P_max,P_exact,kn_unit,"
+           "converges\n";
+    for (const TwoSpheresRow& r : result.rows) {
+        const NormalModel& law = normalModel(r.formulation);
         csv << formulationName(r.formulation) << ',' << r.nodesRequested << ',' << r.nodesActual
             << ',' << r.stiffness << ',' << o.voxel << ',' << r.delta << ',' << r.forceMean << ','
-            << r.forceStd << ',' << r.forceMin << ',' << r.forceMax << ',' << r.forceExact << '\n';
+            << r.forceStd << ',' << r.forceMin << ',' << r.forceMax << ',' << r.forceExact << ','
+            << law.stiffnessUnitIn("N", "mm") << ',' << (law.convergesWithNodes() ? 1 : 0)
+            << '\n';
+    }
     writeTextFileAtomically(path, csv.str());
 }
 

@@ -34,6 +34,12 @@ public:
     virtual std::string name() const = 0;
     /// The unit of its stiffness, in words ("force/length", ...).
     virtual std::string stiffnessUnit() const = 0;
+    /// The unit of its stiffness in @a force and @a length units: "N/mm" for a spring per
+    /// node, "N/mm³" per unit area (or overlap volume).
+    std::string stiffnessUnitIn(const std::string& force, const std::string& length) const
+    {
+        return force + "/" + length + (stiffnessPerArea() ? "³" : "");
+    }
     /// Whether the stiffness is per unit area (a traction per penetration, or a force per
     /// overlap volume): a node of tributary area A then stands for k·A.
     virtual bool stiffnessPerArea() const = 0;

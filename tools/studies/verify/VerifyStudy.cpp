@@ -31,7 +31,7 @@ const std::vector<CaseEntry>& caseList()
          convergence},
         {"silo",
          "a silo emptied through 4 orifices: Beverloo's law, spheres and sand (run when named: "
-         "about an hour on 2 cores; in --quick, a small silo of spheres)",
+         "spheres about 35 min, sand about 3 h on 2 cores; in --quick, a small silo of spheres)",
          siloDischarge, true},
     };
     return cases;

@@ -33,7 +33,7 @@ struct CaseEntry
     std::string name;
     std::string title;  ///< what it checks, for --help and the summary
     std::function<void(Context&)> run;
-    /// Run only when named (--case), or in the quick version: a bulk case that costs an hour,
+    /// Run only when named (--case), or in the quick version: a bulk case that costs hours,
     /// not minutes.
     bool onlyWhenNamed = false;
 };

@@ -160,6 +160,30 @@ void setServo(BoundarySpec& b, const std::optional<double>& stress,
     }
 }
 
+/// A boundary about an axis (a cylinder's side wall, an orifice plate), checked as the scene
+/// reader checks it: a new name, a positive radius, a non-zero axis (made unit).
+BoundarySpec axialBoundary(const Scene& s, const std::string& name, const std::string& material,
+                           BoundaryShape shape, const py::object& center, double radius,
+                           const py::object& axis, const py::object& velocity)
+{
+    checkNewName(s.boundaries, name, "boundary");
+    if (!(radius > 0.0) || !std::isfinite(radius))
+        throw Error("", "boundary '" + name + "': radius must be > 0");
+    BoundarySpec b;
+    b.name = name;
+    b.shape = shape;
+    b.material = indexOf(s.materials, material, "material");
+    b.center = toVec3(center, "center");
+    b.axis = toVec3(axis, "axis");
+    if (!(b.axis.norm() > 0.0))
+        throw Error("", "boundary '" + name + "': the axis must not be zero");
+    b.axis.normalize();
+    b.radius = radius;
+    b.velocity = toVec3(velocity, "velocity");
+    b.where = "boundary '" + name + "'";
+    return b;
+}
+
 template <typename Items>
 std::vector<std::string> namesOf(const Items& items)
 {
@@ -483,21 +507,8 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& axis,
                 const py::object& velocity) {
-                 checkNewName(s.boundaries, name, "boundary");
-                 if (!(radius > 0.0) || !std::isfinite(radius))
-                     throw Error("", "boundary '" + name + "': radius must be > 0");
-                 BoundarySpec b;
-                 b.name = name;
-                 b.shape = BoundaryShape::Cylinder;
-                 b.material = indexOf(s.materials, material, "material");
-                 b.center = toVec3(center, "center");
-                 b.axis = toVec3(axis, "axis");
-                 if (!(b.axis.norm() > 0.0))
-                     throw Error("", "boundary '" + name + "': the axis must not be zero");
-                 b.axis.normalize();
-                 b.radius = radius;
-                 b.velocity = toVec3(velocity, "velocity");
-                 b.where = "boundary '" + name + "'";
+                 BoundarySpec b = axialBoundary(s, name, material, BoundaryShape::Cylinder,
+                                                center, radius, axis, velocity);
                  markChanged(s);
                  s.boundaries.push_back(b);
              },
@@ -510,24 +521,11 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, double thickness,
                 const py::object& axis, const py::object& velocity) {
-                 checkNewName(s.boundaries, name, "boundary");
-                 if (!(radius > 0.0) || !std::isfinite(radius))
-                     throw Error("", "boundary '" + name + "': radius must be > 0");
+                 BoundarySpec b = axialBoundary(s, name, material, BoundaryShape::Orifice,
+                                                center, radius, axis, velocity);
                  if (!(thickness > 0.0) || !std::isfinite(thickness))
                      throw Error("", "boundary '" + name + "': thickness must be > 0");
-                 BoundarySpec b;
-                 b.name = name;
-                 b.shape = BoundaryShape::Orifice;
-                 b.material = indexOf(s.materials, material, "material");
-                 b.center = toVec3(center, "center");
-                 b.axis = toVec3(axis, "axis");
-                 if (!(b.axis.norm() > 0.0))
-                     throw Error("", "boundary '" + name + "': the axis must not be zero");
-                 b.axis.normalize();
-                 b.radius = radius;
                  b.thickness = thickness;
-                 b.velocity = toVec3(velocity, "velocity");
-                 b.where = "boundary '" + name + "'";
                  markChanged(s);
                  s.boundaries.push_back(b);
              },

@@ -1,6 +1,7 @@
 #include "studies/Cube27Study.h"
 
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/core/AtomicFile.h"
@@ -207,8 +208,8 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
     // needs one sphere at a time.
     std::map<int, std::shared_ptr<const GrainAsset>> spheres;
     const RunDistributor::Job job = [&](const std::string& description) {
-        Cube27Run run = result.runs.at(size_t(RecordReader(description).integer()));
-        RecordWriter out;
+        Cube27Run run = result.runs.at(size_t(ByteReader(description).integer()));
+        ByteWriter<> out;
         std::string log;
         double bakeSeconds = 0.0;
         if (live && !spheres.count(run.nodes)) spheres.clear();
@@ -249,7 +250,7 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
         const Cube27Run& run = result.runs[i];
         costs.push_back(27.0 * run.nodes * double(run.steps));
         totalNodeSteps += costs.back();
-        descriptions.push_back(RecordWriter().integer(static_cast<long long>(i)).bytes());
+        descriptions.push_back(ByteWriter<>().integer(static_cast<long long>(i)).bytes());
     }
     if (!o.quiet) printPlan(result.runs, totalNodeSteps, ranks.ranks(), costs);
 
@@ -260,7 +261,7 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
     RunShares shares(ranks.ranks());
     ranks.runAll(descriptions, costs, job, [&](size_t index, int rank, const std::string& record) {
         Cube27Run& run = result.runs[index];
-        RecordReader in(record);
+        ByteReader in(record);
         run.seconds = in.number();
         run.stabilityLimitSeen = in.number();
         run.contactNodes = in.integer();

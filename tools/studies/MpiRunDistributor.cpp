@@ -4,7 +4,8 @@
 // (MPI_THREAD_FUNNELED).
 #include "studies/RunDistributor.h"
 
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/core/Error.h"
@@ -154,7 +155,7 @@ public:
         try {
             auto handOut = [&](int worker) {
                 if (const std::optional<size_t> i = take())
-                    send(RecordWriter().integer(static_cast<long long>(*i)).text(descriptions[*i]).bytes(),
+                    send(ByteWriter<>().integer(static_cast<long long>(*i)).text(descriptions[*i]).bytes(),
                          worker, kTagRun);
             };
             for (int worker = 1; worker < mRanks; ++worker) handOut(worker);
@@ -171,7 +172,7 @@ public:
                     if (const std::optional<MPI_Status> s = waiting(MPI_ANY_SOURCE, kTagResult)) {
                         const std::string message = receive(*s);
                         handOut(s->MPI_SOURCE);  // keep it busy while this result is used
-                        RecordReader in(message);
+                        ByteReader in(message);
                         outcome = Outcome{size_t(in.integer()), s->MPI_SOURCE, Status(in.integer()), {}};
                         outcome->bytes = in.text();
                     }
@@ -204,7 +205,7 @@ public:
             while (!(s = waiting(0, MPI_ANY_TAG))) std::this_thread::sleep_for(kPollInterval);
             const std::string message = receive(*s);
             if (s->MPI_TAG == kTagStop) return;
-            RecordReader in(message);
+            ByteReader in(message);
             const size_t index = size_t(in.integer());
             Outcome o = runOne(job, index, in.text(), mRank);
             if (o.bytes.size() > size_t(INT_MAX) - 64) {
@@ -213,7 +214,7 @@ public:
                 o.bytes = "its result of " + std::to_string(o.bytes.size()) +
                           " bytes is too large for one MPI message";
             }
-            send(RecordWriter()
+            send(ByteWriter<>()
                      .integer(static_cast<long long>(o.index))
                      .integer(static_cast<long long>(o.status))
                      .text(o.bytes)

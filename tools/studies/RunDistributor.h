@@ -1,7 +1,7 @@
 /// @file RunDistributor.h
 /// @brief Where a study's independent runs are done: one after the other in this process, or
 ///        spread over the ranks of an MPI job (`mpirun -n N lsdem-study ...`). The one place
-///        that knows about MPI: a study describes each run as bytes (RecordBytes.h), gets each
+///        that knows about MPI: a study describes each run as bytes (lsdem/core/ByteWriter.h), gets each
 ///        result back as bytes on rank 0, and writes its files there; the other ranks only do
 ///        the runs rank 0 hands them.
 ///

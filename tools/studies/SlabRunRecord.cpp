@@ -18,7 +18,7 @@ Vec3 vectorAt(const std::vector<double>& v, size_t& i)
 
 } // namespace
 
-void writeSlabRunRecord(RecordWriter& out, const SlabRunResult& r)
+void writeSlabRunRecord(ByteWriter<>& out, const SlabRunResult& r)
 {
     out.integer(static_cast<long long>(r.formulation)).number(r.sdp).number(r.vdp).integer(r.nodes);
     out.number(r.meanSpacing).number(r.stiffness).number(r.dt).number(r.stabilityLimit);
@@ -44,7 +44,7 @@ void writeSlabRunRecord(RecordWriter& out, const SlabRunResult& r)
     out.numbers(ends).integer(r.stopped ? 1 : 0).text(r.error);
 }
 
-SlabRunResult readSlabRunRecord(RecordReader& in)
+SlabRunResult readSlabRunRecord(ByteReader& in)
 {
     SlabRunResult r;
     r.formulation = Formulation(in.integer());

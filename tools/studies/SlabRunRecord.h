@@ -1,14 +1,15 @@
 /// @file SlabRunRecord.h
-/// @brief One slab run's result (SlabRunResult) as a run record (RecordBytes.h), bit for bit, so
+/// @brief One slab run's result (SlabRunResult) as a run record (lsdem/core/ByteWriter.h), bit for bit, so
 ///        that a run done on another MPI rank writes the same files as one done here.
 #pragma once
 
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "studies/SlabRun.h"
 
 namespace lsdem {
 
-void writeSlabRunRecord(RecordWriter& out, const SlabRunResult& r);
-SlabRunResult readSlabRunRecord(RecordReader& in);
+void writeSlabRunRecord(ByteWriter<>& out, const SlabRunResult& r);
+SlabRunResult readSlabRunRecord(ByteReader& in);
 
 } // namespace lsdem

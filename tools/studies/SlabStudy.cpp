@@ -70,7 +70,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
     SlabCase bakedFor{Formulation::Adapted, -1.0, -1.0};
     std::shared_ptr<const GrainAsset> block;
     const RunDistributor::Job job = [&](const std::string& description) {
-        RecordReader in(description);
+        ByteReader in(description);
         const Formulation f = Formulation(in.integer());
         const double sdp = in.number(), vdp = in.number();
         std::ostringstream buffer;
@@ -106,7 +106,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
                  << (live ? "" : " (rank " + std::to_string(ranks.rank()) + ")") << "\n"
                  << std::flush;
         }
-        RecordWriter record;
+        ByteWriter<> record;
         writeSlabRunRecord(record, r);
         record.text(blockBytes).text(buffer.str());
         return record.bytes();
@@ -150,7 +150,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
             if (indexOf.count(l.run) || std::find(todo.begin(), todo.end(), l.run) != todo.end())
                 continue;
             todo.push_back(l.run);
-            descriptions.push_back(RecordWriter()
+            descriptions.push_back(ByteWriter<>()
                                        .integer(static_cast<long long>(l.run.formulation))
                                        .number(l.run.sdp)
                                        .number(l.run.vdp)
@@ -158,7 +158,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
             costs.push_back(slabRunCost(o, l.run).seconds);
         }
         ranks.runAll(descriptions, costs, job, [&](size_t i, int, const std::string& bytes) {
-            RecordReader in(bytes);
+            ByteReader in(bytes);
             SlabRunResult r = readSlabRunRecord(in);
             const std::string blockBytes = in.text(), lines = in.text();
             const std::string name = blockFileName(assetDir, r.sdp, r.vdp);

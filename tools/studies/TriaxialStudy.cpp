@@ -2,7 +2,8 @@
 
 #include "lsdem/core/NumberText.h"
 #include "studies/RunDistributor.h"
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "studies/TriaxialSample.h"
 
 #include "lsdem/core/Constants.h"
@@ -54,7 +55,7 @@ TriaxialRow unpackRow(const double* f)
 
 std::string encodeRun(const TriaxialRun& r)
 {
-    RecordWriter w;
+    ByteWriter<> w;
     w.text(formulationName(r.formulation));
     w.integer(r.seed);
     w.number(r.sdp).number(r.vdp).number(r.nodesPerGrain).number(r.stiffness).number(r.dt);
@@ -81,7 +82,7 @@ std::string encodeRun(const TriaxialRun& r)
 
 TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
 {
-    RecordReader in(bytes);
+    ByteReader in(bytes);
     TriaxialRun r;
     r.formulation = parseFormulation(in.text());
     r.seed = in.integer();
@@ -249,7 +250,7 @@ TriaxialStudyResult runTriaxialStudy(
     // A run is described by its formulation, SDP, seed, the lattice spacing and the
     // stiffness: the rest is in the options every rank has.
     const RunDistributor::Job job = [&](const std::string& description) {
-        RecordReader in(description);
+        ByteReader in(description);
         const Formulation f = parseFormulation(in.text());
         const double sdp = in.number();
         const long long seed = in.integer();
@@ -288,7 +289,7 @@ TriaxialStudyResult runTriaxialStudy(
     for (Formulation f : o.formulations)
         for (double sdp : o.sdps)
             for (long long seed : o.seeds) {
-                RecordWriter w;
+                ByteWriter<> w;
                 w.text(formulationName(f)).number(sdp).integer(seed).number(result.spacing);
                 w.number(stiffnessOf(f));
                 descriptions.push_back(w.bytes());

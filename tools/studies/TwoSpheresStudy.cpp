@@ -1,6 +1,7 @@
 #include "studies/TwoSpheresStudy.h"
 
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "studies/RunSchedule.h"
 
 #include "lsdem/contact/PairContact.h"
@@ -123,7 +124,7 @@ void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresRe
 /// A node count's part of the result as a run record, and back.
 std::string partRecord(const TwoSpheresResult& part, const std::string& log)
 {
-    RecordWriter out;
+    ByteWriter<> out;
     out.integer(static_cast<long long>(part.rows.size()));
     for (const TwoSpheresRow& r : part.rows)
         out.integer(static_cast<long long>(r.formulation))
@@ -145,7 +146,7 @@ std::string partRecord(const TwoSpheresResult& part, const std::string& log)
 /// The part in @a record into @a part; returns its progress text.
 std::string readPartRecord(const std::string& record, TwoSpheresResult& part)
 {
-    RecordReader in(record);
+    ByteReader in(record);
     for (long long n = in.integer(); n > 0; --n) {
         TwoSpheresRow r;
         r.formulation = Formulation(in.integer());
@@ -178,7 +179,7 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o, RunDistributor& ranks
     const bool live = ranks.ranks() == 1;
     // One run per node count: its bake, every series and orientation.
     const RunDistributor::Job job = [&](const std::string& description) {
-        const int nodes = o.nodeCounts.at(size_t(RecordReader(description).integer()));
+        const int nodes = o.nodeCounts.at(size_t(ByteReader(description).integer()));
         TwoSpheresResult part;
         std::string log;
         runNodeCount(o, nodes, live, part, log);
@@ -193,7 +194,7 @@ TwoSpheresResult runTwoSpheres(const TwoSpheresOptions& o, RunDistributor& ranks
     std::vector<double> costs;
     const int kSeriesCount = stiffnessSeriesNodes(o);
     for (size_t i = 0; i < o.nodeCounts.size(); ++i) {
-        descriptions.push_back(RecordWriter().integer(static_cast<long long>(i)).bytes());
+        descriptions.push_back(ByteWriter<>().integer(static_cast<long long>(i)).bytes());
         const int nodes = o.nodeCounts[i];
         const size_t series = !o.stiffness.empty()   ? o.stiffness.size()
                               : nodes == kSeriesCount ? o.stiffnessFactors.size()

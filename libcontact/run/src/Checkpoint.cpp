@@ -3,6 +3,8 @@
 #include "WorldFingerprint.h"
 
 #include "lsdem/core/AtomicFile.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 #include "lsdem/core/Error.h"
 
 #include <cmath>
@@ -26,109 +28,57 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 const uint32_t kVersion = 5;
 const uint32_t kOldestVersion = 1;
 
-/// Raw little-endian-as-the-machine binary writer; doubles are copied bit for bit.
-class Writer
+using Writer = ByteWriter<std::string>;
+
+void putVec(Writer& w, const Vec3& v)
+{
+    w.values(v.data(), 3);
+}
+
+void putQuat(Writer& w, const Quat& q)
+{
+    w.number(q.w()).number(q.x()).number(q.y()).number(q.z());
+}
+
+/// Shear entries as (node, force), in the history's (sorted) order.
+void putShear(Writer& w, const ShearHistory& h)
+{
+    w.count(h.size());
+    for (const ShearHistory::Entry& e : h.entries()) w.value<int32_t>(e.node), putVec(w, e.force);
+}
+
+/// Reads a checkpoint's bytes in memory, in the order saveCheckpoint wrote them. Anything short,
+/// out of range or out of order is an Error naming the file: ByteReader's DamagedBytes, and
+/// fail() for what only the checkpoint knows to be wrong.
+class Reader : public ByteReader
 {
 public:
-    explicit Writer(std::ostream& out) : mOut(out) {}
-    template <typename T> void pod(const T& v) { mOut.write(reinterpret_cast<const char*>(&v), sizeof v); }
-    void text(const std::string& s)
-    {
-        pod<uint64_t>(s.size());
-        mOut.write(s.data(), static_cast<std::streamsize>(s.size()));
-    }
-    void vec(const Vec3& v) { pod(v.x()), pod(v.y()), pod(v.z()); }
-    void quat(const Quat& q) { pod(q.w()), pod(q.x()), pod(q.y()), pod(q.z()); }
-    void doubles(const std::vector<double>& v)
-    {
-        pod<uint64_t>(v.size());
-        for (double d : v) pod(d);
-    }
-    void words(const std::vector<uint64_t>& v)
-    {
-        pod<uint64_t>(v.size());
-        for (uint64_t x : v) pod(x);
-    }
-    void shear(const ShearHistory& h)
-    {
-        pod<uint64_t>(h.size());
-        for (const ShearHistory::Entry& e : h.entries()) pod<int32_t>(e.node), vec(e.force);
-    }
+    Reader(const std::string& bytes, std::string path) : ByteReader(bytes), mPath(std::move(path)) {}
 
-private:
-    std::ostream& mOut;
-};
-
-/// Reads a checkpoint's bytes in memory, in the order Writer wrote them; anything short or out
-/// of range is an Error naming the file.
-class Reader
-{
-public:
-    Reader(const std::string& bytes, std::string path) : mBytes(bytes), mPath(std::move(path)) {}
-    template <typename T> T pod()
-    {
-        T v{};
-        take(&v, sizeof v);
-        return v;
-    }
-    /// A count of items stored in at least @a itemBytes each. A damaged count could ask for
-    /// terabytes (std::bad_alloc instead of an Error): it may not exceed what the rest of the
-    /// file can hold, checked before anything is allocated for it.
-    uint64_t count(uint64_t itemBytes)
-    {
-        const uint64_t n = pod<uint64_t>();
-        if (n > left() / itemBytes) fail();
-        return n;
-    }
-    std::string text()
-    {
-        std::string s(count(1), '\0');
-        take(s.data(), s.size());
-        return s;
-    }
     Vec3 vec()
     {
         Vec3 v;
-        for (int k = 0; k < 3; ++k) v[k] = pod<double>();
+        values(v.data(), 3);
         return v;
     }
     Quat quat()
     {
-        const double w = pod<double>(), x = pod<double>(), y = pod<double>(), z = pod<double>();
+        const double w = number(), x = number(), y = number(), z = number();
         return Quat(w, x, y, z);
-    }
-    std::vector<double> doubles()
-    {
-        std::vector<double> v(count(sizeof(double)));
-        for (double& d : v) d = pod<double>();
-        return v;
     }
     ShearHistory shear()
     {
         ShearHistory h;
         const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
         for (uint64_t k = 0; k < n; ++k) {
-            const int node = pod<int32_t>();
+            const int node = value<int32_t>();
             const Vec3 force = vec();
             if (!h.empty() && node <= h.entries().back().node) fail();  // written sorted
             h.append(node, force);
         }
         return h;
     }
-    std::vector<uint64_t> words()
-    {
-        std::vector<uint64_t> v(count(sizeof(uint64_t)));
-        for (uint64_t& x : v) x = pod<uint64_t>();
-        return v;
-    }
-    /// Whether the next bytes are the magic (consumed if they are).
-    bool magic()
-    {
-        if (left() < sizeof kMagic || std::memcmp(mBytes.data() + mAt, kMagic, sizeof kMagic) != 0)
-            return false;
-        mAt += sizeof kMagic;
-        return true;
-    }
+    bool magic() { return skipIfNext(kMagic, sizeof kMagic); }
     [[noreturn]] void fail() const
     {
         throw Error(mPath, "the checkpoint is truncated or corrupt",
@@ -136,29 +86,19 @@ public:
     }
 
 private:
-    uint64_t left() const { return mBytes.size() - mAt; }
-    void take(void* to, size_t n)
-    {
-        if (n > left()) fail();
-        std::memcpy(to, mBytes.data() + mAt, n);
-        mAt += n;
-    }
-
-    const std::string& mBytes;
     std::string mPath;
-    size_t mAt = 0;
 };
 
 void writeRecord(Writer& w, const RunRecord& r)
 {
-    w.pod<uint64_t>(r.energyRows.size());
-    for (const auto& row : r.energyRows) w.doubles(row);
-    w.pod<uint64_t>(r.boundaryRows.size());
+    w.value<uint64_t>(r.energyRows.size());
+    for (const auto& row : r.energyRows) w.numbers(row);
+    w.value<uint64_t>(r.boundaryRows.size());
     for (const auto& rows : r.boundaryRows) {
-        w.pod<uint64_t>(rows.size());
-        for (const auto& row : rows) w.doubles(row);
+        w.value<uint64_t>(rows.size());
+        for (const auto& row : rows) w.numbers(row);
     }
-    w.doubles(r.vtkFrameTimes);
+    w.numbers(r.vtkFrameTimes);
 }
 
 RunRecord readRecord(Reader& r)
@@ -166,13 +106,13 @@ RunRecord readRecord(Reader& r)
     RunRecord rec;
     const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
     rec.energyRows.resize(r.count(rowBytes));
-    for (auto& row : rec.energyRows) row = r.doubles();
+    for (auto& row : rec.energyRows) row = r.numbers();
     rec.boundaryRows.resize(r.count(rowBytes));
     for (auto& rows : rec.boundaryRows) {
         rows.resize(r.count(rowBytes));
-        for (auto& row : rows) row = r.doubles();
+        for (auto& row : rows) row = r.numbers();
     }
-    rec.vtkFrameTimes = r.doubles();
+    rec.vtkFrameTimes = r.numbers();
     return rec;
 }
 
@@ -196,32 +136,32 @@ void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint
 {
     if (!r.magic())
         throw Error(path, "not an lsdem checkpoint", "give a file written by lsdem-run");
-    version = r.pod<uint32_t>();
+    version = r.value<uint32_t>();
     if (version < kOldestVersion || version > kVersion)
         throw Error(path, "checkpoint version " + std::to_string(version) + " is not supported",
                     "restart it with the lsdem version that wrote it");
     checkpoint.scenePath = r.text();
     checkpoint.sceneText = r.text();
-    checkpoint.timeStep = r.pod<double>();
+    checkpoint.timeStep = r.value<double>();
     checkpoint.record = readRecord(r);
     if (version >= 3) {
-        fingerprint.grains = r.words();
-        fingerprint.grainAssets = r.words();
-        fingerprint.boundaryAssets = r.words();
+        fingerprint.grains = r.list<uint64_t>();
+        fingerprint.grainAssets = r.list<uint64_t>();
+        fingerprint.boundaryAssets = r.list<uint64_t>();
         if (fingerprint.grainAssets.size() != fingerprint.grains.size()) r.fail();
         if (version < 5) {  // fingerprints of the earlier slope bound: not comparable
             fingerprint.grainAssets.clear();
             fingerprint.boundaryAssets.clear();
         }
     }
-    const uint8_t hasEnd = version >= 4 ? r.pod<uint8_t>() : 0;
+    const uint8_t hasEnd = version >= 4 ? r.value<uint8_t>() : 0;
     if (hasEnd > 1) r.fail();
     if (hasEnd == 1) {
         EndCondition end;
-        end.time = r.pod<double>();
-        end.steps = r.pod<int64_t>();
-        end.boundary = r.pod<int32_t>();
-        end.displacement = r.pod<double>();
+        end.time = r.value<double>();
+        end.steps = r.value<int64_t>();
+        end.boundary = r.value<int32_t>();
+        end.displacement = r.value<double>();
         const bool sane = std::isfinite(end.time) && end.time >= 0.0 && end.steps >= 0 &&
                           end.boundary >= -1 && std::isfinite(end.displacement) &&
                           end.displacement >= 0.0 && (end.boundary < 0 || end.displacement > 0.0) &&
@@ -235,61 +175,65 @@ void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint
 
 void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint)
 {
-    writeStreamAtomically(path, [&](std::ostream& out) {
-        Writer w(out);
-        out.write(kMagic, sizeof kMagic);
-        w.pod(kVersion);
+    std::string bytes;
+    Writer w(bytes);
+    w.raw(kMagic, sizeof kMagic);
+    {
+        w.value(kVersion);
         w.text(checkpoint.scenePath);
         w.text(checkpoint.sceneText);
-        w.pod(checkpoint.timeStep);
+        w.value(checkpoint.timeStep);
         writeRecord(w, checkpoint.record);
         const WorldFingerprint fingerprint = fingerprintOf(world);
-        w.words(fingerprint.grains);
-        w.words(fingerprint.grainAssets);
-        w.words(fingerprint.boundaryAssets);
-        w.pod<uint8_t>(checkpoint.end ? 1 : 0);
+        w.list(fingerprint.grains);
+        w.list(fingerprint.grainAssets);
+        w.list(fingerprint.boundaryAssets);
+        w.value<uint8_t>(checkpoint.end ? 1 : 0);
         if (checkpoint.end) {
-            w.pod(checkpoint.end->time);
-            w.pod<int64_t>(checkpoint.end->steps);
-            w.pod<int32_t>(checkpoint.end->boundary);
-            w.pod(checkpoint.end->displacement);
+            w.value(checkpoint.end->time);
+            w.value<int64_t>(checkpoint.end->steps);
+            w.value<int32_t>(checkpoint.end->boundary);
+            w.value(checkpoint.end->displacement);
         }
 
-        w.pod(world.time);
-        w.pod<int64_t>(world.step);
-        w.pod(world.energy.boundaryWork);
-        w.pod(world.energy.initialTotal);
-        w.pod<uint64_t>(world.grains.size());
+        w.value(world.time);
+        w.value<int64_t>(world.step);
+        w.value(world.energy.boundaryWork);
+        w.value(world.energy.initialTotal);
+        w.value<uint64_t>(world.grains.size());
         for (const Grain& g : world.grains) {
-            w.vec(g.body.pose.position);
-            w.quat(g.body.pose.orientation);
-            w.vec(g.body.velocity);
-            w.vec(g.body.angularMomentum);
-            w.vec(g.force);
-            w.vec(g.torque);
+            putVec(w, g.body.pose.position);
+            putQuat(w, g.body.pose.orientation);
+            putVec(w, g.body.velocity);
+            putVec(w, g.body.angularMomentum);
+            putVec(w, g.force);
+            putVec(w, g.torque);
         }
-        w.pod<uint64_t>(world.boundaries.size());
+        w.value<uint64_t>(world.boundaries.size());
         for (const Boundary& b : world.boundaries)
-            w.vec(b.displacement), w.vec(b.force), w.pod(b.normalStiffness), w.pod(b.normalDashpot);
+            putVec(w, b.displacement), putVec(w, b.force), w.value(b.normalStiffness), w.value(b.normalDashpot);
         // Only histories that hold shear are state: the empty ones are bookkeeping of the
         // contact list, which a restarted run rebuilds.
         uint64_t pairs = 0, boundaryContacts = 0;
         for (const auto& [pair, h] : world.pairHistory) pairs += h.empty() ? 0 : 1;
         for (const auto& [key, h] : world.boundaryHistory) boundaryContacts += h.empty() ? 0 : 1;
-        w.pod<uint64_t>(pairs);
+        w.value<uint64_t>(pairs);
         for (const auto& [pair, h] : world.pairHistory) {
             if (h.empty()) continue;
-            w.pod<int32_t>(pair.first), w.pod<int32_t>(pair.second);
-            w.shear(h.shearOnFirstNodes);
-            w.shear(h.shearOnSecondNodes);
+            w.value<int32_t>(pair.first), w.value<int32_t>(pair.second);
+            putShear(w, h.shearOnFirstNodes);
+            putShear(w, h.shearOnSecondNodes);
         }
-        w.pod<uint64_t>(boundaryContacts);
+        w.value<uint64_t>(boundaryContacts);
         for (const auto& [key, h] : world.boundaryHistory) {
             if (h.empty()) continue;
-            w.pod<int32_t>(key.first), w.pod<int32_t>(key.second);
-            w.shear(h);
+            w.value<int32_t>(key.first), w.value<int32_t>(key.second);
+            putShear(w, h);
         }
-        out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic
+        w.raw(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic
+    }
+    writeStreamAtomically(path, [&](std::ostream& out) {
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     });
 }
 
@@ -322,7 +266,11 @@ Checkpoint parseCheckpoint(std::string bytes, const std::string& path)
     Reader r(c.fileBytes, path);
     uint32_t version = 0;
     WorldFingerprint ignored;
-    readHeader(r, path, c, version, ignored);
+    try {
+        readHeader(r, path, c, version, ignored);
+    } catch (const DamagedBytes&) {
+        r.fail();
+    }
     return c;
 }
 
@@ -331,10 +279,12 @@ void restoreWorldState(const std::string& path, World& world)
     restoreWorldState(readCheckpoint(path), path, world);
 }
 
-void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, World& world)
+namespace {
+
+/// @a world with the state that @a r (at the start of the checkpoint's bytes) holds.
+World stateFrom(Reader& r, const std::string& path, const World& world)
 {
     // The header again, from the same bytes, to reach the state and the fingerprint.
-    Reader r(checkpoint.fileBytes, path);
     Checkpoint header;
     uint32_t version = 0;
     WorldFingerprint fingerprint;
@@ -342,11 +292,11 @@ void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, Wo
     // The scene's text comes from the checkpoint, but its assets and grain files are read as
     // they are now: they must still make the world the run was checkpointed with.
     if (version >= 3) checkSameInputs(fingerprint, world, path);
-    World w = world;  // fill a copy: a failed read leaves @a world untouched
-    w.time = r.pod<double>();
-    w.step = r.pod<int64_t>();
-    w.energy.boundaryWork = r.pod<double>();
-    w.energy.initialTotal = r.pod<double>();
+    World w = world;
+    w.time = r.value<double>();
+    w.step = r.value<int64_t>();
+    w.energy.boundaryWork = r.value<double>();
+    w.energy.initialTotal = r.value<double>();
     const uint64_t grainBytes = 19 * sizeof(double);  // position, orientation, 4 vectors
     if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
@@ -365,8 +315,8 @@ void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, Wo
                     "start the run again");
     for (Boundary& b : w.boundaries) {
         b.displacement = r.vec(), b.force = r.vec();
-        b.normalStiffness = hasStiffness ? r.pod<double>() : 0.0;
-        b.normalDashpot = hasStiffness ? r.pod<double>() : 0.0;
+        b.normalStiffness = hasStiffness ? r.value<double>() : 0.0;
+        b.normalDashpot = hasStiffness ? r.value<double>() : 0.0;
     }
     // Grain and boundary indices are checked here: a damaged one would index past the world.
     const auto grains = static_cast<int64_t>(w.grains.size());
@@ -374,7 +324,7 @@ void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, Wo
     w.pairHistory.clear();
     const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
     for (uint64_t k = 0; k < pairs; ++k) {
-        const int i = r.pod<int32_t>(), j = r.pod<int32_t>();
+        const int i = r.value<int32_t>(), j = r.value<int32_t>();
         if (i < 0 || j <= i || j >= grains) r.fail();  // pairs are kept as (lower, higher)
         PairHistory& h = w.pairHistory[{i, j}];
         h.shearOnFirstNodes = r.shear();
@@ -383,12 +333,24 @@ void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, Wo
     w.boundaryHistory.clear();
     const uint64_t boundaryContacts = r.count(2 * sizeof(int32_t) + sizeof(uint64_t));
     for (uint64_t k = 0; k < boundaryContacts; ++k) {
-        const int i = r.pod<int32_t>(), b = r.pod<int32_t>();
+        const int i = r.value<int32_t>(), b = r.value<int32_t>();
         if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
         w.boundaryHistory[{i, b}] = r.shear();
     }
     if (!r.magic()) r.fail();  // the trailer: a complete file ends with the magic
-    world = std::move(w);
+    return w;
+}
+
+} // namespace
+
+void restoreWorldState(const Checkpoint& checkpoint, const std::string& path, World& world)
+{
+    Reader r(checkpoint.fileBytes, path);
+    try {
+        world = stateFrom(r, path, world);  // a failed read leaves @a world untouched
+    } catch (const DamagedBytes&) {
+        r.fail();
+    }
 }
 
 } // namespace lsdem

@@ -68,23 +68,23 @@ World GhostDecomposition::gatherWorld(const World& local)
     Writer w(mine);
     for (size_t i = 0; i < local.grains.size(); ++i) {
         if (!mOwned[i]) continue;
-        w.put(kOwnedGrain);
-        w.put(mGlobal[i]);
+        w.value(kOwnedGrain);
+        w.value(mGlobal[i]);
         grainpacking::putGrain(w, local.grains[i], assetIndex(local, local.grains[i].asset.get()));
     }
     // Every history of the list, empty ones too: a pair's from the owner of its first grain.
     for (const auto& [key, h] : local.pairHistory) {
         if (!mOwned[size_t(key.first)]) continue;
-        w.put(kPairHistory);
-        w.put(mGlobal[size_t(key.first)]);
-        w.put(mGlobal[size_t(key.second)]);
+        w.value(kPairHistory);
+        w.value(mGlobal[size_t(key.first)]);
+        w.value(mGlobal[size_t(key.second)]);
         grainpacking::putHistory(w, h.shearOnFirstNodes);
         grainpacking::putHistory(w, h.shearOnSecondNodes);
     }
     for (const auto& [key, h] : local.boundaryHistory) {
-        w.put(kBoundaryHistory);
-        w.put(mGlobal[size_t(key.first)]);
-        w.put(key.second);
+        w.value(kBoundaryHistory);
+        w.value(mGlobal[size_t(key.first)]);
+        w.value(key.second);
         grainpacking::putHistory(w, h);
     }
     // To rank 0 only: the others send, and hold no more than their part.
@@ -104,19 +104,19 @@ World GhostDecomposition::gatherWorld(const World& local)
     std::vector<std::pair<int, Grain>> grains;
     std::vector<ShearHistory::Entry> buffer;
     Reader in(all.data(), all.data() + all.size());
-    while (!in.done()) {
-        const char tag = in.get<char>();
+    while (!in.atEnd()) {
+        const char tag = in.value<char>();
         if (tag == kOwnedGrain) {
-            const int id = in.get<int>();
+            const int id = in.value<int>();
             grains.emplace_back(id, grainpacking::getGrain(in, local));
         } else if (tag == kPairHistory) {
-            const int a = in.get<int>(), b = in.get<int>();
+            const int a = in.value<int>(), b = in.value<int>();
             PairHistory h;
             grainpacking::getHistory(in, h.shearOnFirstNodes, buffer);
             grainpacking::getHistory(in, h.shearOnSecondNodes, buffer);
             out.pairHistory.emplace(std::make_pair(a, b), std::move(h));
         } else if (tag == kBoundaryHistory) {
-            const int a = in.get<int>(), b = in.get<int>();
+            const int a = in.value<int>(), b = in.value<int>();
             ShearHistory h;
             grainpacking::getHistory(in, h, buffer);
             out.boundaryHistory.emplace(std::make_pair(a, b), std::move(h));

@@ -221,19 +221,19 @@ void GhostDecomposition::packMoves(const World& world, const std::vector<int>& n
         const int asset = assetIndex(world, g.asset.get());
         mCounters.grainsEmigrated += newOwner[i] != me;
         Writer& owner = to[size_t(newOwner[i])];
-        owner.put(kOwnedGrain);
-        owner.put(mGlobal[i]);
-        owner.put(static_cast<int>(ghostRanks[i].size()));
-        for (int r : ghostRanks[i]) owner.put(r);
+        owner.value(kOwnedGrain);
+        owner.value(mGlobal[i]);
+        owner.value(static_cast<int>(ghostRanks[i].size()));
+        for (int r : ghostRanks[i]) owner.value(r);
         grainpacking::putGrain(owner, g, asset);
-        owner.put(mWork[i]);
+        owner.value(mWork[i]);
         for (int r : ghostRanks[i]) {
             Writer& w = to[size_t(r)];
-            w.put(kGhostGrain);
-            w.put(mGlobal[i]);
-            w.put(newOwner[i]);
+            w.value(kGhostGrain);
+            w.value(mGlobal[i]);
+            w.value(newOwner[i]);
             grainpacking::putGrain(w, g, asset);
-            w.put(mWork[i]);
+            w.value(mWork[i]);
         }
     }
     for (const auto& [key, h] : world.pairHistory) {
@@ -241,9 +241,9 @@ void GhostDecomposition::packMoves(const World& world, const std::vector<int>& n
         if (!mOwned[a] || h.empty()) continue;  // an empty history is the list's bookkeeping
         const auto send = [&](int r) {
             Writer& w = to[size_t(r)];
-            w.put(kPairHistory);
-            w.put(mGlobal[a]);
-            w.put(mGlobal[size_t(key.second)]);
+            w.value(kPairHistory);
+            w.value(mGlobal[a]);
+            w.value(mGlobal[size_t(key.second)]);
             grainpacking::putHistory(w, h.shearOnFirstNodes);
             grainpacking::putHistory(w, h.shearOnSecondNodes);
         };
@@ -254,9 +254,9 @@ void GhostDecomposition::packMoves(const World& world, const std::vector<int>& n
         const size_t a = size_t(key.first);
         if (!mOwned[a] || h.empty() ) continue;
         Writer& w = to[size_t(newOwner[a])];
-        w.put(kBoundaryHistory);
-        w.put(mGlobal[a]);
-        w.put(key.second);
+        w.value(kBoundaryHistory);
+        w.value(mGlobal[a]);
+        w.value(key.second);
         grainpacking::putHistory(w, h);
     }
 }
@@ -267,32 +267,32 @@ void GhostDecomposition::unpackMoves(const World& world, Inbox& inbox)
     std::vector<ShearHistory::Entry> buffer;
     for (int r = 0; r < ranks; ++r) {
         Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
-        while (!in.done()) {
-            const char tag = in.get<char>();
+        while (!in.atEnd()) {
+            const char tag = in.value<char>();
             if (tag == kOwnedGrain || tag == kGhostGrain) {
                 Incoming& g = inbox.grains.emplace_back();
-                g.id = in.get<int>();
+                g.id = in.value<int>();
                 g.owned = tag == kOwnedGrain;
                 if (g.owned) {
-                    g.ghostRanks.resize(size_t(in.get<int>()));
-                    for (int& k : g.ghostRanks) k = in.get<int>();
+                    g.ghostRanks.resize(size_t(in.value<int>()));
+                    for (int& k : g.ghostRanks) k = in.value<int>();
                     mCounters.grainsMigrated += r != me;
                 } else {
-                    g.owner = in.get<int>();
+                    g.owner = in.value<int>();
                 }
                 g.grain = grainpacking::getGrain(in, world);
-                g.work = in.get<double>();
+                g.work = in.value<double>();
             } else if (tag == kPairHistory) {
                 IncomingPair& p = inbox.pairs.emplace_back();
-                p.first = in.get<int>();
-                p.second = in.get<int>();
+                p.first = in.value<int>();
+                p.second = in.value<int>();
                 grainpacking::getHistory(in, p.history.shearOnFirstNodes, buffer);
                 grainpacking::getHistory(in, p.history.shearOnSecondNodes, buffer);
                 mCounters.historiesMigrated += r != me;
             } else if (tag == kBoundaryHistory) {
                 IncomingBoundary& b = inbox.boundaries.emplace_back();
-                b.grain = in.get<int>();
-                b.boundary = in.get<int>();
+                b.grain = in.value<int>();
+                b.boundary = in.value<int>();
                 grainpacking::getHistory(in, b.history, buffer);
                 mCounters.historiesMigrated += r != me;
             } else {
@@ -364,7 +364,7 @@ bool GhostDecomposition::updateGhosts(World& world, bool rebuildHere)
         mToEach[size_t(r)].clear();
         Writer w(mToEach[size_t(r)]);
         for (int i : mSendGhosts[size_t(r)]) grainpacking::putState(w, world.grains[size_t(i)]);
-        w.put(static_cast<char>(rebuildHere));  // the vote, last
+        w.value(static_cast<char>(rebuildHere));  // the vote, last
     }
     double packSeconds = packing.seconds();
     exchange(mToEach, mReceived, mStarts);
@@ -373,8 +373,8 @@ bool GhostDecomposition::updateGhosts(World& world, bool rebuildHere)
     for (int r = 0; r < ranks; ++r) {
         Reader in(mReceived.data() + mStarts[size_t(r)], mReceived.data() + mStarts[size_t(r) + 1]);
         for (int i : mReceiveGhosts[size_t(r)]) grainpacking::getState(in, world.grains[size_t(i)]);
-        rebuild |= in.get<char>() != 0;
-        if (!in.done())
+        rebuild |= in.value<char>() != 0;
+        if (!in.atEnd())
             throw std::runtime_error("GhostDecomposition: rank " + std::to_string(r) +
                                      " sent more ghost states than expected");
     }

@@ -3,7 +3,8 @@
 // lsdem::Error. Rank 0 prints each result as it arrives, "result <i> <i*i> <rank>", then
 // "done"; the other ranks print nothing.
 #include "studies/RunDistributor.h"
-#include "studies/RecordBytes.h"
+#include "lsdem/core/ByteReader.h"
+#include "lsdem/core/ByteWriter.h"
 
 #include "lsdem/core/Error.h"
 
@@ -19,10 +20,10 @@ int main(int argc, char** argv)
     const int runs = argc > 1 ? std::atoi(argv[1]) : 6;
     const int failing = argc > 2 ? std::atoi(argv[2]) : -1;
     const RunDistributor::Job job = [&](const std::string& description) {
-        const long long i = RecordReader(description).integer();
+        const long long i = ByteReader(description).integer();
         if (i == failing) throw Error("", "run " + std::to_string(i) + " cannot be done", "none");
         std::this_thread::sleep_for(std::chrono::milliseconds(20));  // let every rank ask
-        return RecordWriter().integer(i * i).integer(ranks->rank()).bytes();
+        return ByteWriter<>().integer(i * i).integer(ranks->rank()).bytes();
     };
     if (!ranks->isRoot()) {
         ranks->serve(job);
@@ -31,11 +32,11 @@ int main(int argc, char** argv)
     std::vector<std::string> descriptions;
     std::vector<double> costs;
     for (int i = 0; i < runs; ++i) {
-        descriptions.push_back(RecordWriter().integer(i).bytes());
+        descriptions.push_back(ByteWriter<>().integer(i).bytes());
         costs.push_back(double(i));
     }
     ranks->runAll(descriptions, costs, job, [](size_t i, int rank, const std::string& result) {
-        RecordReader in(result);
+        ByteReader in(result);
         const long long square = in.integer(), by = in.integer();
         std::printf("result %zu %lld %lld %d\n", i, square, by, rank);
         std::fflush(stdout);

@@ -8,12 +8,13 @@
 #   scripts/fuzz.sh merge [TARGET|all]       minimise fuzz/corpus/TARGET together with the new
 #                                            inputs found, in place (regression-* files are kept)
 #
-# Targets: scene, asset, mesh_obj, mesh_stl, mesh_ply. The build goes to build-fuzz/; new
-# inputs and crash, timeout, leak and out-of-memory reproducers to build-fuzz/findings/TARGET/.
+# Targets: scene, asset, mesh_obj, mesh_stl, mesh_ply, checkpoint, grains_csv. The build goes
+# to build-fuzz/; new inputs and crash, timeout, leak and out-of-memory reproducers to
+# build-fuzz/findings/TARGET/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all_targets=(scene asset mesh_obj mesh_stl mesh_ply)
+all_targets=(scene asset mesh_obj mesh_stl mesh_ply checkpoint grains_csv)
 mode=fuzz
 if [ "${1:-}" = merge ]; then mode=merge; shift; fi
 target=${1:-all}

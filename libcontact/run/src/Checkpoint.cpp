@@ -30,6 +30,11 @@ const uint32_t kOldestVersion = 1;
 
 using Writer = ByteWriter<std::string>;
 
+bool allFinite(const Vec3& v)
+{
+    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
+
 void putVec(Writer& w, const Vec3& v)
 {
     w.values(v.data(), 3);
@@ -74,6 +79,7 @@ public:
             const int node = value<int32_t>();
             const Vec3 force = vec();
             if (!h.empty() && node <= h.entries().back().node) fail();  // written sorted
+            if (!allFinite(force)) fail();
             h.append(node, force);
         }
         return h;
@@ -297,6 +303,9 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     w.step = r.value<int64_t>();
     w.energy.boundaryWork = r.value<double>();
     w.energy.initialTotal = r.value<double>();
+    if (!std::isfinite(w.time) || w.step < 0 || !std::isfinite(w.energy.boundaryWork) ||
+        !std::isfinite(w.energy.initialTotal))
+        r.fail();
     const uint64_t grainBytes = 19 * sizeof(double);  // position, orientation, 4 vectors
     if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
@@ -308,6 +317,12 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         g.body.angularMomentum = r.vec();
         g.force = r.vec();
         g.torque = r.vec();
+        // A damaged state must not start a run: every number finite, the rotation a rotation.
+        const bool sane = allFinite(g.body.pose.position) && allFinite(g.body.velocity) &&
+                          allFinite(g.body.angularMomentum) && allFinite(g.force) &&
+                          allFinite(g.torque) &&
+                          std::abs(g.body.pose.orientation.norm() - 1.0) < 1e-6;
+        if (!sane) r.fail();
     }
     const bool hasStiffness = version >= 2;
     if (r.count((hasStiffness ? 8 : 6) * sizeof(double)) != w.boundaries.size())
@@ -317,6 +332,9 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         b.displacement = r.vec(), b.force = r.vec();
         b.normalStiffness = hasStiffness ? r.value<double>() : 0.0;
         b.normalDashpot = hasStiffness ? r.value<double>() : 0.0;
+        if (!allFinite(b.displacement) || !allFinite(b.force) ||
+            !std::isfinite(b.normalStiffness) || !std::isfinite(b.normalDashpot))
+            r.fail();
     }
     // Grain and boundary indices are checked here: a damaged one would index past the world.
     const auto grains = static_cast<int64_t>(w.grains.size());

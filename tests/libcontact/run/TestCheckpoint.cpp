@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <type_traits>
 
 #include <cstring>
@@ -483,6 +485,47 @@ TEST(Checkpoint, HistoriesOfGrainsOrBoundariesNotInTheSceneAreRefused)
     World w = steppedWorld(0);
     restoreWorldState(good, w);
     EXPECT_TRUE(sameBits(w.pairHistory.at({0, grains - 1}).shearOnFirstNodes, shear));
+}
+
+// A state that no run could have saved (a NaN or an infinity in a grain's or boundary's
+// numbers or in a shear force, a rotation that is not one, a negative step) is refused as
+// damaged, the world unchanged: a restart must not start from it.
+TEST(Checkpoint, NonFiniteOrImpossibleStateIsRefused)
+{
+    lsdem::test::ScratchDir dir;
+    const World stepped = steppedWorld(10);
+    ASSERT_FALSE(stepped.boundaries.empty());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    std::vector<World> bad(7, stepped);
+    bad[0].grains[0].body.pose.position.y() = nan;
+    bad[1].grains[1].body.velocity.z() = inf;
+    bad[2].grains[0].torque.x() = -inf;
+    bad[3].grains[0].body.pose.orientation = Quat(2.0, 0.0, 0.0, 0.0);  // not a rotation
+    bad[4].boundaries[0].force.x() = nan;
+    bad[5].step = -1;
+    ShearHistory shear;
+    shear.append(0, Vec3(nan, 0.0, 0.0));
+    bad[6].boundaryHistory[{0, 0}] = shear;
+    for (size_t k = 0; k < bad.size(); ++k) {
+        const std::string path = dir.file("impossible" + std::to_string(k) + ".lsdem");
+        saveCheckpoint(path, bad[k], sampleHeader());
+        World w = steppedWorld(0);
+        const World before = w;
+        try {
+            restoreWorldState(path, w);
+            ADD_FAILURE() << "case " << k << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("truncated or corrupt"), std::string::npos) << k;
+        }
+        expectSameState(w, before);
+    }
+    // The state it was made from restores.
+    const std::string good = dir.file("possible.lsdem");
+    saveCheckpoint(good, stepped, sampleHeader());
+    World w = steppedWorld(0);
+    restoreWorldState(good, w);
+    expectSameState(w, stepped);
 }
 
 // A restart reads the scene from the checkpoint but its asset and grain files as they are

@@ -2,6 +2,7 @@
 // step by step from assets made in Python.
 #include "Bindings.h"
 
+#include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/ls/GrainCatalog.h"
 #include "lsdem/scene/GrainsCsv.h"
@@ -10,7 +11,9 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -382,38 +385,31 @@ void bindSceneContents(py::class_<Scene>& scene)
                                      "give each pair of materials one law");
                  c.model.formulation = parseFormulation(formulation);
                  c.model.testing = parseNodeTesting(testing);
-                 if (!(normalStiffness > 0.0) || !std::isfinite(normalStiffness))
-                     throw Error("", "normal_stiffness must be > 0");
-                 if (!(shearStiffness >= 0.0) || !std::isfinite(shearStiffness) ||
-                     !(friction >= 0.0) || !std::isfinite(friction))
-                     throw Error("", "shear_stiffness and friction must be finite and >= 0");
-                 if (!(restitution > 0.0 && restitution <= 1.0))
-                     throw Error("", "restitution must be in (0, 1]", "1 for no damping");
-                 // As the scene reader: tangential forces need per-node shear springs, and
-                 // friction only caps them.
-                 const bool shearSprings = c.model.normal().perNodeForces();
-                 const std::string name = formulationName(c.model.formulation);
-                 if (shearStiffness > 0.0 && !shearSprings)
-                     throw Error("", "shear_stiffness has no effect with formulation '" + name + "'",
-                                 "use " + formulationNamesWhere(&NormalModel::perNodeForces, "'") +
-                                     " for tangential forces, or leave it out");
-                 if (friction > 0.0 && !(shearStiffness > 0.0 && shearSprings))
-                     throw Error("", "friction has no effect without shear springs",
-                                 "give shear_stiffness > 0 with formulation " +
-                                     formulationNamesWhere(&NormalModel::perNodeForces, "'") +
-                                     " (see docs/contact.md), or leave friction out");
+                 // The contact library's schema checks the numbers, as the scene reader does.
+                 const std::pair<const char*, double> given[] = {
+                     {"normal_stiffness", normalStiffness}, {"shear_stiffness", shearStiffness},
+                     {"friction", friction}, {"restitution", restitution}};
+                 for (const ContactCoefficient& k : contactCoefficients()) {
+                     const auto value = std::find_if(std::begin(given), std::end(given),
+                                                     [&](const auto& g) { return k.key == g.first; });
+                     if (value == std::end(given))  // a coefficient added to the schema only
+                         throw std::logic_error("add_contact does not take " + k.key);
+                     if (std::optional<ContactProblem> p = k.rangeProblem(value->second))
+                         throw Error("", p->key + " " + p->problem, p->fix);
+                     k.set(c.model, value->second);
+                 }
+                 if (std::optional<ContactProblem> p = checkContactModel(c.model, "'"))
+                     throw Error("", p->key + " " + p->problem, p->fix);
                  markChanged(s);
-                 c.model.normalStiffness = normalStiffness;
-                 c.model.shearStiffness = shearStiffness;
-                 c.model.friction = friction;
-                 c.model.damping = ViscousDamping(restitution);
                  c.where = "contact " + a + "-" + b;
                  s.contacts.push_back(c);
              },
              py::arg("material_a"), py::arg("material_b"), py::kw_only(),
              py::arg("formulation") = "adapted", py::arg("normal_stiffness"),
-             py::arg("shear_stiffness") = 0.0, py::arg("friction") = 0.0,
-             py::arg("restitution") = 1.0, py::arg("testing") = "symmetric",
+             py::arg("shear_stiffness") = contactCoefficientDefault("shear_stiffness"),
+             py::arg("friction") = contactCoefficientDefault("friction"),
+             py::arg("restitution") = contactCoefficientDefault("restitution"),
+             py::arg("testing") = "symmetric",
              "The contact law between two materials: formulation ('adapted', 'original', "
              "'single-node', 'volume'), normal_stiffness (kn or kn*, see docs/contact.md), "
              "shear springs, friction, restitution in (0, 1] (1: no damping) and node testing "

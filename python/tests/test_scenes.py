@@ -86,6 +86,32 @@ def test_builder_errors():
         scene.to_toml()
 
 
+@pytest.mark.parametrize("key, value, problem", [
+    ("normal_stiffness", 0.0, "must be > 0"),
+    ("shear_stiffness", -1.0, "must be >= 0"),
+    ("friction", float("inf"), "must be >= 0|is not finite"),
+    ("restitution", 1.5, r"must be in \(0, 1\]"),
+    ("friction", 0.3, "has no effect without shear springs"),
+])
+def test_contact_numbers_obey_one_schema_in_python_and_in_files(tmp_path, key, value, problem):
+    """add_contact and a scene file's [[contacts]] refuse the same numbers with the same words
+    (both ask the contact library's schema), naming the key. (A file's inf is refused earlier,
+    as any number in a scene: "is not finite".)"""
+    given = {"normal_stiffness": 1e3, key: value}
+    scene = lsdem.Scene()
+    scene.add_material("steel", density=1e-9)
+    with pytest.raises(lsdem.Error, match=key + " .*(" + problem + ")"):
+        scene.add_contact("steel", "steel", **given)
+    value_text = "inf" if value == float("inf") else repr(value)
+    text = "\n".join(["[materials.steel]", "density = 1e-9", "", "[[contacts]]",
+                      'materials = ["steel", "steel"]']
+                     + [f"{k} = {value_text if k == key else repr(v)}" for k, v in given.items()])
+    path = tmp_path / "contact.toml"
+    path.write_text(text + "\n")
+    with pytest.raises(lsdem.Error, match=key + ": (" + problem + ")"):
+        lsdem.Scene.from_toml(str(path))
+
+
 def test_build_servo_walls_a_cylinder_asset_sets_and_grain_files(sphere, tmp_path):
     """The builder makes what a scene file says with [asset_sets], [[grain_files]], servo
     walls and a cylinder: the TOML it writes reads back to the same text, and it simulates."""

@@ -1,6 +1,8 @@
 // [[contacts]]: the contact law between two materials.
 #include "SceneSections.h"
 
+#include "lsdem/contact/ContactCoefficients.h"
+
 namespace lsdem::scenefile {
 
 ContactSpec readContact(TableReader& t, const Scene& scene)
@@ -27,28 +29,14 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
         parseFormulation(t.choice("formulation", formulations, formulationName(model.formulation)));
     model.testing = parseNodeTesting(
         t.choice("testing", {"one-way", "symmetric"}, nodeTestingName(model.testing)));
-    model.normalStiffness = t.positive("normal_stiffness");
-    model.shearStiffness = t.nonNegative("shear_stiffness", 0.0);
-    model.friction = t.nonNegative("friction", 0.0);
-    const bool shearSprings = model.normal().perNodeForces();
-    if (model.shearStiffness > 0.0 && !shearSprings)
-        t.fail("shear_stiffness", "has no effect with formulation " +
-                                      formulationName(model.formulation),
-               "use " + formulationNamesWhere(&NormalModel::perNodeForces) +
-                   " for tangential forces, or remove it");
-    // Friction bounds the shear springs' force: without them the contact is frictionless.
-    if (model.friction > 0.0 && !shearSprings)
-        t.fail("friction", "has no effect with formulation " + formulationName(model.formulation),
-               "use " + formulationNamesWhere(&NormalModel::perNodeForces) +
-                   " with a shear_stiffness for tangential forces, or remove it");
-    if (model.friction > 0.0 && !(model.shearStiffness > 0.0))
-        t.fail("friction", "has no effect without shear springs (shear_stiffness is 0)",
-               "give shear_stiffness > 0 (ks* or ks, see docs/contact.md), or remove friction");
-    const double restitution = t.number("restitution", 1.0);
-    if (!(restitution > 0.0 && restitution <= 1.0))
-        t.fail("restitution", "must be in (0, 1] (got " + TableReader::show(restitution) + ")",
-               "1 means no contact damping");
-    model.damping = ViscousDamping(restitution);
+    // The numbers, as the contact library's schema lists them (ContactCoefficients.h).
+    for (const ContactCoefficient& k : contactCoefficients()) {
+        const double v = k.defaultValue ? t.number(k.key, *k.defaultValue) : t.number(k.key);
+        if (std::optional<ContactProblem> p = k.rangeProblem(v)) t.fail(p->key, p->problem, p->fix);
+        k.set(model, v);
+    }
+    if (std::optional<ContactProblem> p = checkContactModel(model))
+        t.fail(p->key, p->problem, p->fix);
     t.rejectUnknownKeys();
     return c;
 }

@@ -4,6 +4,7 @@
 // (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
 #include "lsdem/scene/SceneWriter.h"
 
+#include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/core/NumberText.h"
@@ -188,10 +189,10 @@ void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
     t.strings("materials", scene.materials[c.materialA].name, scene.materials[c.materialB].name);
     t.string("formulation", formulationName(m.formulation));
     t.string("testing", nodeTestingName(m.testing));
-    t.number("normal_stiffness", m.normalStiffness, m.normal().stiffnessUnit());
-    if (m.shearStiffness > 0.0) t.number("shear_stiffness", m.shearStiffness);
-    if (m.friction > 0.0) t.number("friction", m.friction);
-    if (m.damping.active()) t.number("restitution", m.damping.restitution());
+    // The contact library's schema (ContactCoefficients.h): what is required or not at its
+    // default, with its unit where the formulation decides it.
+    for (const ContactCoefficient& k : contactCoefficients())
+        if (k.written(m)) t.number(k.key, k.get(m), k.unit ? k.unit(m) : "");
 }
 
 void writeOrientation(TomlText& t, const Quat& q)

@@ -1,0 +1,123 @@
+#include "lsdem/contact/ContactCoefficients.h"
+
+#include "lsdem/core/NumberText.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lsdem {
+
+namespace {
+
+/// The normal law's coefficient: its stiffness, in the unit the formulation gives it.
+ContactCoefficient normalStiffness()
+{
+    return {"normal_stiffness", "normal", CoefficientRange::Positive, std::nullopt,
+            [](const ContactModel& m) { return m.normalStiffness; },
+            [](ContactModel& m, double v) { m.normalStiffness = v; },
+            [](const ContactModel& m) { return m.normal().stiffnessUnit(); }};
+}
+
+/// The shear springs' coefficients (TangentialModel.h): their stiffness, by the normal law's
+/// rule, and Coulomb's μ that caps them.
+std::vector<ContactCoefficient> tangential()
+{
+    return {{"shear_stiffness", "tangential", CoefficientRange::NonNegative, 0.0,
+             [](const ContactModel& m) { return m.shearStiffness; },
+             [](ContactModel& m, double v) { m.shearStiffness = v; }},
+            {"friction", "tangential", CoefficientRange::NonNegative, 0.0,
+             [](const ContactModel& m) { return m.friction; },
+             [](ContactModel& m, double v) { m.friction = v; }}};
+}
+
+/// The dashpot's coefficient (DampingModel.h): the restitution it is calibrated for.
+ContactCoefficient restitution()
+{
+    return {"restitution", "damping", CoefficientRange::Restitution, 1.0,
+            [](const ContactModel& m) { return m.damping.restitution(); },
+            [](ContactModel& m, double v) { m.damping = ViscousDamping(v); }};
+}
+
+/// The shear springs' rules beside the normal law of @a m.
+std::optional<ContactProblem> tangentialProblem(const ContactModel& m, const std::string& quote)
+{
+    const bool perNode = m.normal().perNodeForces();
+    const std::string perNodeLaws = formulationNamesWhere(&NormalModel::perNodeForces, quote);
+    const std::string law = quote + formulationName(m.formulation) + quote;
+    if (m.shearStiffness > 0.0 && !perNode)
+        return ContactProblem{"shear_stiffness", "has no effect with formulation " + law,
+                              "use " + perNodeLaws + " for tangential forces, or remove it"};
+    // Friction bounds the shear springs' force: without them the contact is frictionless.
+    if (m.friction > 0.0 && !perNode)
+        return ContactProblem{"friction", "has no effect with formulation " + law,
+                              "use " + perNodeLaws +
+                                  " with a shear_stiffness for tangential forces, or remove it"};
+    if (m.friction > 0.0 && !(m.shearStiffness > 0.0))
+        return ContactProblem{"friction", "has no effect without shear springs (shear_stiffness is 0)",
+                              "give shear_stiffness > 0 (ks* or ks, see docs/contact.md), or "
+                              "remove friction"};
+    return std::nullopt;
+}
+
+} // namespace
+
+std::string ContactCoefficient::rangeText() const
+{
+    switch (range) {
+    case CoefficientRange::Positive: return "> 0";
+    case CoefficientRange::NonNegative: return ">= 0";
+    case CoefficientRange::Restitution: return "in (0, 1]";
+    }
+    return "";
+}
+
+std::optional<ContactProblem> ContactCoefficient::rangeProblem(double value) const
+{
+    bool in = std::isfinite(value);
+    if (range == CoefficientRange::Positive) in = in && value > 0.0;
+    if (range == CoefficientRange::NonNegative) in = in && value >= 0.0;
+    if (range == CoefficientRange::Restitution) in = in && value > 0.0 && value <= 1.0;
+    if (in) return std::nullopt;
+    return ContactProblem{key, "must be " + rangeText() + " (got " + numberText(value) + ")",
+                          range == CoefficientRange::Restitution ? "1 means no contact damping"
+                                                                 : "give a value " + rangeText()};
+}
+
+bool ContactCoefficient::written(const ContactModel& model) const
+{
+    return !defaultValue || get(model) != *defaultValue;
+}
+
+const std::vector<ContactCoefficient>& contactCoefficients()
+{
+    static const std::vector<ContactCoefficient> all = [] {
+        std::vector<ContactCoefficient> v = {normalStiffness()};
+        for (const ContactCoefficient& c : tangential()) v.push_back(c);
+        v.push_back(restitution());
+        return v;
+    }();
+    return all;
+}
+
+const ContactCoefficient& contactCoefficient(const std::string& key)
+{
+    for (const ContactCoefficient& c : contactCoefficients())
+        if (c.key == key) return c;
+    throw std::out_of_range("no contact coefficient named " + key);
+}
+
+double contactCoefficientDefault(const std::string& key)
+{
+    const ContactCoefficient& c = contactCoefficient(key);
+    if (!c.defaultValue) throw std::out_of_range("contact coefficient " + key + " has no default");
+    return *c.defaultValue;
+}
+
+std::optional<ContactProblem> checkContactModel(const ContactModel& model, const std::string& quote)
+{
+    for (const ContactCoefficient& c : contactCoefficients())
+        if (std::optional<ContactProblem> p = c.rangeProblem(c.get(model))) return p;
+    return tangentialProblem(model, quote);
+}
+
+} // namespace lsdem

@@ -236,14 +236,17 @@ void GhostDecomposition::packMoves(const World& world, const std::vector<int>& n
             w.value(mWork[i]);
         }
     }
-    for (const auto& [key, h] : world.pairHistory) {
-        const size_t a = size_t(key.first);
+    for (const auto& pairAndHistory : world.pairHistory) {
+        // Not a structured binding: a lambda may not capture one before C++20 (clang refuses).
+        const size_t a = size_t(pairAndHistory.first.first);
+        const size_t b = size_t(pairAndHistory.first.second);
+        const PairHistory& h = pairAndHistory.second;
         if (!mOwned[a] || h.empty()) continue;  // an empty history is the list's bookkeeping
         const auto send = [&](int r) {
             Writer& w = to[size_t(r)];
             w.value(kPairHistory);
             w.value(mGlobal[a]);
-            w.value(mGlobal[size_t(key.second)]);
+            w.value(mGlobal[b]);
             grainpacking::putHistory(w, h.shearOnFirstNodes);
             grainpacking::putHistory(w, h.shearOnSecondNodes);
         };
@@ -252,7 +255,7 @@ void GhostDecomposition::packMoves(const World& world, const std::vector<int>& n
     }
     for (const auto& [key, h] : world.boundaryHistory) {
         const size_t a = size_t(key.first);
-        if (!mOwned[a] || h.empty() ) continue;
+        if (!mOwned[a] || h.empty()) continue;
         Writer& w = to[size_t(newOwner[a])];
         w.value(kBoundaryHistory);
         w.value(mGlobal[a]);

@@ -34,7 +34,7 @@ Quat toQuat(const py::handle& value)
     const Quat q(a.at(0), a.at(1), a.at(2), a.at(3));
     if (!(std::abs(q.norm() - 1.0) < 1e-6))
         throw Error("", "orientation must be a unit quaternion", "normalize [w, x, y, z]");
-    return q.normalized();
+    return unitQuaternion(q);
 }
 
 GrainMotion parseMotion(const std::string& motion)

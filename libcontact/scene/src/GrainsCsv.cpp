@@ -158,7 +158,7 @@ void readGrainsCsv(const std::string& text, const std::string& path, int materia
         if (!(std::abs(q.norm() - 1.0) <= 1e-4))
             row.fail("qw", "the quaternion (qw, qx, qy, qz) has norm " + numberText(q.norm()),
                      "give a unit quaternion, asset frame to world");
-        g.pose.orientation = q.normalized();
+        g.pose.orientation = unitQuaternion(q);
         g.velocity = row.vec3("vx", "vy", "vz");
         g.angularVelocity = row.vec3("wx", "wy", "wz");
         scene.grains.push_back(g);

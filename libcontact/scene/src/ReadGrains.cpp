@@ -22,7 +22,7 @@ Quat readOrientation(TableReader& t)
         if (std::abs(r.norm() - 1.0) > 1e-6)
             t.fail("orientation", "is not a unit quaternion (norm " + TableReader::show(r.norm()) + ")",
                    "normalise it, or use axis_angle = [ax, ay, az, degrees]");
-        return r.normalized();
+        return unitQuaternion(r);
     }
     if (t.has("axis_angle")) {
         const std::vector<double> v = t.numbers("axis_angle", 4);

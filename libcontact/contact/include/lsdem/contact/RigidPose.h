@@ -7,9 +7,21 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+#include <limits>
+
 namespace lsdem {
 
 using Quat = Eigen::Quaterniond;
+
+/// @a q as a rotation, of unit length: normalised, unless it is already unit to rounding
+/// (|‖q‖² − 1| ≤ 4ε), then returned as it is, bit for bit. Normalising a normalised quaternion
+/// can move its last bit, so a pose written exactly and read back would not be the same pose.
+inline Quat unitQuaternion(const Quat& q)
+{
+    const double rounding = 4.0 * std::numeric_limits<double>::epsilon();
+    return std::abs(q.squaredNorm() - 1.0) <= rounding ? q : q.normalized();
+}
 
 struct RigidPose
 {

@@ -51,6 +51,178 @@ struct Listed
     std::string stage;
 };
 
+/// What a rank does with one run's description (formulation, SDP, VDP): bake the block, or
+/// keep the last one if it has the same discretization (one block in memory at a time), run
+/// the case, and return its record, with the block's file bytes and the progress lines when
+/// it has to travel to rank 0.
+class SlabRankWork
+{
+public:
+    SlabRankWork(const SlabStudyOptions& o, const SlabPanel& panel, std::ostream* log,
+                 const RunDistributor& ranks)
+        : mOptions(o), mPanel(panel), mLog(log), mRanks(ranks), mLive(ranks.ranks() == 1),
+          mAssetDir(o.outDir + "/assets")
+    {
+    }
+
+    std::string operator()(const std::string& description)
+    {
+        ByteReader in(description);
+        const Formulation f = Formulation(in.integer());
+        const double sdp = in.number(), vdp = in.number();
+        // One process: the run prints its progress as it goes and saves its block. Several
+        // ranks: the block and the lines travel to rank 0 with the result.
+        std::ostringstream buffer;
+        std::ostream* out = mLive ? mLog : mLog ? &buffer : nullptr;
+        const auto bakeStart = SteadyClock::now();
+        const std::string blockBytes = bakeIfNew(f, sdp, vdp, out);
+        const double bakeSeconds = secondsSince(bakeStart);
+        if (out) *out << "  " << formulationName(f) << ", SDP " << sdp << ", VDP " << vdp << ": " << std::flush;
+        SlabRunResult r = runSlabCase(mOptions, mPanel, mBlock, f, sdp, vdp, [&](double d) {
+            if (mLive && out) *out << "δ = " << std::setprecision(3) << d << " mm ... " << std::flush;
+        });
+        r.bakeSeconds = bakeSeconds;
+        if (out) report(*out, r);
+        ByteWriter<> record;
+        writeSlabRunRecord(record, r);
+        record.text(blockBytes).text(buffer.str());
+        return record.bytes();
+    }
+
+private:
+    /// Bake the block of (@a sdp, @a vdp) unless it is the one held; saved (one process) or
+    /// returned as file bytes (several ranks; empty if none was baked).
+    std::string bakeIfNew(Formulation f, double sdp, double vdp, std::ostream* out)
+    {
+        if (mBakedFor.sdp == sdp && mBakedFor.vdp == vdp) return {};
+        const auto start = SteadyClock::now();
+        mBlock.reset();
+        mBlock = bakeSlabBlock(mPanel, vdp, sdp);
+        mBakedFor = {f, sdp, vdp};
+        std::string bytes;
+        if (mLive)
+            saveAsset(*mBlock, blockFileName(mAssetDir, sdp, vdp));
+        else
+            bytes = assetFileBytes(*mBlock);
+        if (out)
+            *out << "  baked SDP " << sdp << " mm, VDP " << vdp << " mm: " << mBlock->nodes.size()
+                 << " nodes per block (mean spacing " << std::setprecision(3)
+                 << mBlock->spacing.mean << " mm) in " << secondsSince(start) << " s\n"
+                 << std::flush;
+        return bytes;
+    }
+
+    void report(std::ostream& out, const SlabRunResult& r) const
+    {
+        double peak = 0;
+        for (const SlabSample& s : r.curve) peak = std::max(peak, s.force);
+        out << r.steps << " steps of " << std::setprecision(3) << r.dt << " s in " << r.runSeconds
+            << " s, peak P = " << peak << " N" << (r.stopped ? " (STOPPED: " + r.error + ")" : "")
+            << (mLive ? "" : " (rank " + std::to_string(mRanks.rank()) + ")") << "\n"
+            << std::flush;
+    }
+
+    const SlabStudyOptions& mOptions;
+    const SlabPanel& mPanel;
+    std::ostream* mLog;
+    const RunDistributor& mRanks;
+    bool mLive;
+    std::string mAssetDir;
+    SlabCase mBakedFor{Formulation::Adapted, -1.0, -1.0};
+    std::shared_ptr<const GrainAsset> mBlock;
+};
+
+/// Rank 0's side: runs listed stage by stage, spread over the ranks, entering the result in
+/// the order a serial study makes them, whatever order they finish in (`sequence` is that
+/// order, `entered` how far the result has got, `done` the runs finished ahead of their turn);
+/// a run listed again is not made again.
+class SlabRunsInOrder
+{
+public:
+    SlabRunsInOrder(const SlabStudyOptions& o, std::ostream* log, RunDistributor& ranks,
+                    const RunDistributor::Job& job,
+                    const std::function<void(const SlabStudyResult&)>& afterEachRun,
+                    SteadyClock::time_point start, SlabStudyResult& result)
+        : mOptions(o), mLog(log), mRanks(ranks), mJob(job), mAfterEachRun(afterEachRun),
+          mStart(start), mResult(result), mAssetDir(o.outDir + "/assets")
+    {
+    }
+
+    /// Make the runs of @a listed not made yet; their indices in the result.
+    std::vector<int> run(const std::vector<Listed>& listed)
+    {
+        std::vector<SlabCase> todo;
+        std::vector<std::string> descriptions;
+        std::vector<double> costs;
+        for (const Listed& l : listed) {
+            mSequence.push_back(l);
+            if (mIndexOf.count(l.run) || std::find(todo.begin(), todo.end(), l.run) != todo.end())
+                continue;
+            todo.push_back(l.run);
+            descriptions.push_back(ByteWriter<>()
+                                       .integer(static_cast<long long>(l.run.formulation))
+                                       .number(l.run.sdp)
+                                       .number(l.run.vdp)
+                                       .bytes());
+            costs.push_back(slabRunCost(mOptions, l.run).seconds);
+        }
+        mRanks.runAll(descriptions, costs, mJob, [&](size_t i, int, const std::string& bytes) {
+            arrived(todo[i], bytes);
+        });
+        enterFinished();  // runs all made before: nothing arrived to enter them
+        std::vector<int> indices;
+        for (const Listed& l : listed) indices.push_back(mIndexOf.at(l.run));
+        return indices;
+    }
+
+private:
+    /// A run's record from its rank: its block file written once, its lines logged.
+    void arrived(const SlabCase& run, const std::string& bytes)
+    {
+        ByteReader in(bytes);
+        SlabRunResult r = readSlabRunRecord(in);
+        const std::string blockBytes = in.text(), lines = in.text();
+        const std::string name = blockFileName(mAssetDir, r.sdp, r.vdp);
+        if (!blockBytes.empty() && mBlocksWritten.insert(name).second)
+            writeStreamAtomically(name, [&](std::ostream& file) {
+                file.write(blockBytes.data(), std::streamsize(blockBytes.size()));
+            });
+        if (mLog) *mLog << lines << std::flush;
+        mDone[run] = std::move(r);
+        enterFinished();
+    }
+
+    void enterFinished()
+    {
+        for (; mEntered < mSequence.size(); ++mEntered) {
+            const Listed& next = mSequence[mEntered];
+            if (mIndexOf.count(next.run)) continue;  // made already: the study shares it
+            const auto it = mDone.find(next.run);
+            if (it == mDone.end()) return;
+            mResult.runs.push_back(std::move(it->second));
+            mResult.stage.push_back(next.stage);
+            mIndexOf[next.run] = int(mResult.runs.size()) - 1;
+            mDone.erase(it);
+            mResult.wallSeconds = secondsSince(mStart);
+            if (mAfterEachRun) mAfterEachRun(mResult);
+        }
+    }
+
+    const SlabStudyOptions& mOptions;
+    std::ostream* mLog;
+    RunDistributor& mRanks;
+    const RunDistributor::Job& mJob;
+    const std::function<void(const SlabStudyResult&)>& mAfterEachRun;
+    SteadyClock::time_point mStart;
+    SlabStudyResult& mResult;
+    std::string mAssetDir;
+    std::vector<Listed> mSequence;
+    size_t mEntered = 0;
+    std::map<SlabCase, int> mIndexOf;
+    std::map<SlabCase, SlabRunResult> mDone;
+    std::set<std::string> mBlocksWritten;
+};
+
 } // namespace
 
 SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
@@ -60,121 +232,15 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
     checkSlabStudyOptions(o);
     const auto start = SteadyClock::now();
     const SlabPanel panel(o.panel);
-    const std::string assetDir = o.outDir + "/assets";
-    // One process: the runs print their progress as they go and save their blocks. Several
-    // ranks: a run's block and its lines travel to rank 0 with its result.
-    const bool live = ranks.ranks() == 1;
-
-    // The block of this rank's last run, kept for its next run at the same discretization
-    // (one block in memory at a time).
-    SlabCase bakedFor{Formulation::Adapted, -1.0, -1.0};
-    std::shared_ptr<const GrainAsset> block;
-    const RunDistributor::Job job = [&](const std::string& description) {
-        ByteReader in(description);
-        const Formulation f = Formulation(in.integer());
-        const double sdp = in.number(), vdp = in.number();
-        std::ostringstream buffer;
-        std::ostream* out = live ? log : log ? &buffer : nullptr;
-        std::string blockBytes;
-        const auto bakeStart = SteadyClock::now();
-        if (!(bakedFor.sdp == sdp && bakedFor.vdp == vdp)) {
-            block.reset();
-            block = bakeSlabBlock(panel, vdp, sdp);
-            bakedFor = {f, sdp, vdp};
-            if (live)
-                saveAsset(*block, blockFileName(assetDir, sdp, vdp));
-            else
-                blockBytes = assetFileBytes(*block);
-            if (out)
-                *out << "  baked SDP " << sdp << " mm, VDP " << vdp << " mm: " << block->nodes.size()
-                     << " nodes per block (mean spacing " << std::setprecision(3)
-                     << block->spacing.mean << " mm) in " << secondsSince(bakeStart) << " s\n"
-                     << std::flush;
-        }
-        const double bakeSeconds = secondsSince(bakeStart);
-        if (out) *out << "  " << formulationName(f) << ", SDP " << sdp << ", VDP " << vdp << ": " << std::flush;
-        SlabRunResult r = runSlabCase(o, panel, block, f, sdp, vdp, [&](double d) {
-            if (live && out) *out << "δ = " << std::setprecision(3) << d << " mm ... " << std::flush;
-        });
-        r.bakeSeconds = bakeSeconds;
-        if (out) {
-            double peak = 0;
-            for (const SlabSample& s : r.curve) peak = std::max(peak, s.force);
-            *out << r.steps << " steps of " << std::setprecision(3) << r.dt << " s in "
-                 << r.runSeconds << " s, peak P = " << peak << " N"
-                 << (r.stopped ? " (STOPPED: " + r.error + ")" : "")
-                 << (live ? "" : " (rank " + std::to_string(ranks.rank()) + ")") << "\n"
-                 << std::flush;
-        }
-        ByteWriter<> record;
-        writeSlabRunRecord(record, r);
-        record.text(blockBytes).text(buffer.str());
-        return record.bytes();
-    };
+    SlabRankWork work(o, panel, log, ranks);
+    const RunDistributor::Job job = [&](const std::string& description) { return work(description); };
     if (!ranks.isRoot()) {
         ranks.serve(job);
         return {};
     }
-    std::filesystem::create_directories(assetDir);
-
-    // The runs enter the result in the order a serial study makes them, whatever order they
-    // finish in: `sequence` is that order, `entered` how far the result has got, `done` the
-    // runs finished ahead of their turn.
+    std::filesystem::create_directories(o.outDir + "/assets");
     SlabStudyResult result;
-    std::vector<Listed> sequence;
-    size_t entered = 0;
-    std::map<SlabCase, int> indexOf;
-    std::map<SlabCase, SlabRunResult> done;
-    std::set<std::string> blocksWritten;
-    auto enterFinished = [&] {
-        for (; entered < sequence.size(); ++entered) {
-            const Listed& next = sequence[entered];
-            if (indexOf.count(next.run)) continue;  // made already: the study shares it
-            const auto it = done.find(next.run);
-            if (it == done.end()) return;
-            result.runs.push_back(std::move(it->second));
-            result.stage.push_back(next.stage);
-            indexOf[next.run] = int(result.runs.size()) - 1;
-            done.erase(it);
-            result.wallSeconds = secondsSince(start);
-            if (afterEachRun) afterEachRun(result);
-        }
-    };
-    // Make the runs of @a listed not made yet, spread over the ranks; their indices in the result.
-    auto runListed = [&](const std::vector<Listed>& listed) {
-        std::vector<SlabCase> todo;
-        std::vector<std::string> descriptions;
-        std::vector<double> costs;
-        for (const Listed& l : listed) {
-            sequence.push_back(l);
-            if (indexOf.count(l.run) || std::find(todo.begin(), todo.end(), l.run) != todo.end())
-                continue;
-            todo.push_back(l.run);
-            descriptions.push_back(ByteWriter<>()
-                                       .integer(static_cast<long long>(l.run.formulation))
-                                       .number(l.run.sdp)
-                                       .number(l.run.vdp)
-                                       .bytes());
-            costs.push_back(slabRunCost(o, l.run).seconds);
-        }
-        ranks.runAll(descriptions, costs, job, [&](size_t i, int, const std::string& bytes) {
-            ByteReader in(bytes);
-            SlabRunResult r = readSlabRunRecord(in);
-            const std::string blockBytes = in.text(), lines = in.text();
-            const std::string name = blockFileName(assetDir, r.sdp, r.vdp);
-            if (!blockBytes.empty() && blocksWritten.insert(name).second)
-                writeStreamAtomically(name, [&](std::ostream& file) {
-                    file.write(blockBytes.data(), std::streamsize(blockBytes.size()));
-                });
-            if (log) *log << lines << std::flush;
-            done[todo[i]] = std::move(r);
-            enterFinished();
-        });
-        enterFinished();  // runs all made before: nothing arrived to enter them
-        std::vector<int> indices;
-        for (const Listed& l : listed) indices.push_back(indexOf.at(l.run));
-        return indices;
-    };
+    SlabRunsInOrder runs(o, log, ranks, job, afterEachRun, start, result);
 
     // Stage 1: SDP refined at fixed VDP, every formulation.
     const std::vector<double> sdps = slabCoarseToFine(o.sdps);
@@ -182,7 +248,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
     const std::vector<SlabCase> stageOne = slabStageOneCases(o);
     std::vector<Listed> listed;
     for (const SlabCase& c : stageOne) listed.push_back({c, "sdp"});
-    const std::vector<int> stageOneRuns = runListed(listed);
+    const std::vector<int> stageOneRuns = runs.run(listed);
     std::vector<int> adaptedBySdp;
     for (size_t i = 0; i < stageOne.size(); ++i) {
         result.sdpSeries[stageOne[i].formulation].push_back(stageOneRuns[i]);
@@ -201,7 +267,7 @@ SlabStudyResult runSlabStudy(const SlabStudyOptions& o, std::ostream* log,
         listed.clear();
         for (const SlabCase& c : slabStageTwoCases(o, result.convergedSdp)) listed.push_back({c, "vdp"});
         listed.push_back({slabCoarseCase(o), "coarse"});
-        std::vector<int> byVdp = runListed(listed);
+        std::vector<int> byVdp = runs.run(listed);
         result.coarseRun = byVdp.back();
         byVdp.pop_back();
         result.vdpSeries = byVdp;

@@ -1,4 +1,5 @@
 #include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/SceneValidation.h"
 
 #include "SceneChecks.h"
 
@@ -154,8 +155,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
     // A scene built in code has not been through the file reader's checks: a pair of materials
     // without a law would get the zero model, and its grains would pass through each other;
     // two grains of one name would be two rows of one name in grains.csv.
-    scenefile::checkContactPairs(scene);
-    scenefile::checkUniqueNames(scene);
+    validateScene(scene);
     World w;
     w.assets = loadOrBakeAll(scene.assets, warnings);
 

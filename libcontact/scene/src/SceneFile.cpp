@@ -2,6 +2,7 @@
 // across them). Each section has its reader in a file of its own (SceneSections.h), and every
 // table goes through a TableReader, so a misspelt key is reported, never ignored.
 #include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/SceneValidation.h"
 
 #include "SceneSections.h"
 
@@ -144,9 +145,9 @@ Scene parseScene(const std::string& text, const std::string& path)
     }
     readSimulation(root["simulation"].as_table(), scene);
     readOutput(root["output"].as_table(), scene);
-    checkUniqueNames(scene);
+    checkUniqueNames(scene);  // before the servo walls' area walls are looked up by name
     resolveServoAreaWalls(scene);
-    checkContactPairs(scene);
+    validateRunnableScene(scene);
     return scene;
 }
 

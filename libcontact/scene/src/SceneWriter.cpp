@@ -4,6 +4,8 @@
 // (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
 #include "lsdem/scene/SceneWriter.h"
 
+#include "lsdem/scene/SceneValidation.h"
+
 #include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/Error.h"
@@ -313,6 +315,9 @@ void writeOutput(TomlText& t, const OutputSpec& o)
 std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
                         const std::string& header)
 {
+    // What is written holds to the rules a file is read by. (A scene still being built, without
+    // grains or an end condition yet, is written as it is: the reader will ask for them.)
+    validateScene(scene);
     TomlText t;
     if (!header.empty()) t.comment(header);
     t.table("units");

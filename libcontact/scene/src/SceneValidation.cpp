@@ -1,0 +1,181 @@
+// The rules of a whole scene (SceneValidation.h), section by section, then across sections
+// (SceneChecks.h: names, contact laws per pair of materials).
+#include "lsdem/scene/SceneValidation.h"
+
+#include "SceneChecks.h"
+
+#include "lsdem/contact/ContactCoefficients.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
+
+#include <cmath>
+#include <string>
+
+namespace lsdem {
+
+namespace {
+
+bool finite(const Vec3& v)
+{
+    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
+}
+
+/// @a index names one of @a count entries.
+bool inRange(int index, size_t count)
+{
+    return index >= 0 && static_cast<size_t>(index) < count;
+}
+
+/// "where: what" of an entry, for the few built in code without a `where`.
+std::string placeOf(const std::string& where, const std::string& fallback)
+{
+    return where.empty() ? fallback : where;
+}
+
+void validateMaterials(const Scene& s)
+{
+    for (const MaterialSpec& m : s.materials) {
+        if (m.name.empty()) throw Error(s.path, "a material without a name", "give it a name");
+        if (!(std::isfinite(m.density) && m.density >= 0.0))
+            throw Error(s.path, "material '" + m.name + "': density must be >= 0 (got " +
+                                    numberText(m.density) + ")",
+                        "give a density in mass/length³ (0 for boundaries)");
+    }
+}
+
+void validateContacts(const Scene& s)
+{
+    for (const ContactSpec& c : s.contacts) {
+        const std::string where = placeOf(c.where, s.path);
+        if (!inRange(c.materialA, s.materials.size()) || !inRange(c.materialB, s.materials.size()))
+            throw Error(where, "[[contacts]]: a material index out of range",
+                        "name two materials of the scene");
+        if (const std::optional<ContactProblem> p = checkContactModel(c.model))
+            throw Error(where, "[[contacts]] " + p->key + ": " + p->problem, p->fix);
+    }
+}
+
+void validateGrains(const Scene& s)
+{
+    for (size_t i = 0; i < s.grains.size(); ++i) {
+        const GrainSpec& g = s.grains[i];
+        const std::string where = placeOf(g.where, "grain " + std::to_string(i));
+        if (!inRange(g.asset, s.assets.size()))
+            throw Error(where, "the grain's asset index is out of range", "name an asset");
+        if (!inRange(g.material, s.materials.size()))
+            throw Error(where, "the grain's material index is out of range", "name a material");
+        if (!finite(g.pose.position) || !finite(g.velocity) || !finite(g.angularVelocity))
+            throw Error(where, "the grain's position, velocity or angular velocity is not finite",
+                        "give finite numbers");
+        if (!(std::abs(g.pose.orientation.norm() - 1.0) <= 1e-6))
+            throw Error(where, "the grain's orientation is not a unit quaternion (norm " +
+                                   numberText(g.pose.orientation.norm()) + ")",
+                        "normalise it");
+        if (!(std::isfinite(g.mass) && g.mass >= 0.0))
+            throw Error(where, "the grain's mass must be >= 0 (0: density × volume)", "");
+    }
+}
+
+/// A boundary's size: the radius of the shapes that have one, an orifice plate's thickness.
+void validateBoundaryShape(const BoundarySpec& b, const std::string& where, size_t assets)
+{
+    const bool round = b.shape == BoundaryShape::Sphere || b.shape == BoundaryShape::Cylinder ||
+                       b.shape == BoundaryShape::Orifice;
+    if (round && !(std::isfinite(b.radius) && b.radius > 0.0))
+        throw Error(where, "boundary '" + b.name + "': radius must be > 0", "give its radius");
+    if (b.shape == BoundaryShape::Orifice && !(std::isfinite(b.thickness) && b.thickness > 0.0))
+        throw Error(where, "boundary '" + b.name + "': the plate's thickness must be > 0", "");
+    if (b.shape == BoundaryShape::Plane && !(b.normal.norm() > 0.0))
+        throw Error(where, "boundary '" + b.name + "': the normal must not be zero", "");
+    if ((b.shape == BoundaryShape::Cylinder || b.shape == BoundaryShape::Orifice) &&
+        !(b.axis.norm() > 0.0))
+        throw Error(where, "boundary '" + b.name + "': the axis must not be zero", "");
+    if (b.shape == BoundaryShape::LevelSet && !inRange(b.asset, assets))
+        throw Error(where, "boundary '" + b.name + "': its asset index is out of range",
+                    "name an asset");
+}
+
+void validateBoundaries(const Scene& s)
+{
+    for (size_t i = 0; i < s.boundaries.size(); ++i) {
+        const BoundarySpec& b = s.boundaries[i];
+        const std::string where = placeOf(b.where, "boundary " + std::to_string(i));
+        if (b.name.empty()) throw Error(where, "a boundary without a name", "give it a name");
+        if (!inRange(b.material, s.materials.size()))
+            throw Error(where, "boundary '" + b.name + "': its material index is out of range",
+                        "name a material");
+        const bool sizesFinite = std::isfinite(b.extentU) && std::isfinite(b.extentV) &&
+                                 std::isfinite(b.thickness) && std::isfinite(b.radius) &&
+                                 b.extentU >= 0.0 && b.extentV >= 0.0 && b.thickness >= 0.0;
+        if (!finite(b.point) || !finite(b.normal) || !finite(b.axisU) || !finite(b.center) ||
+            !finite(b.axis) || !finite(b.pose.position) || !finite(b.velocity) || !sizesFinite)
+            throw Error(where, "boundary '" + b.name + "': a position, direction, size or "
+                                                       "velocity is not finite or is negative",
+                        "give finite numbers");
+        validateBoundaryShape(b, where, s.assets.size());
+        const StressServo& v = b.servo;
+        if (v.targetStress != 0.0 &&
+            !(v.targetStress > 0.0 && std::isfinite(v.targetStress) && v.maxSpeed > 0.0 &&
+              std::isfinite(v.maxSpeed) && v.gain > 0.0 && v.gain <= 1.0 &&
+              std::isfinite(v.area) && v.area >= 0.0))
+            throw Error(where, "boundary '" + b.name + "': a servo wall needs stress > 0, "
+                                                       "max_speed > 0, servo_gain in (0, 1] "
+                                                       "and an area >= 0",
+                        "see docs/scenes.md, [[boundaries]]");
+    }
+}
+
+void validateSimulation(const Scene& s)
+{
+    const std::string where = s.path.empty() ? "[simulation]" : s.path + ": [simulation]";
+    if (!finite(s.gravity)) throw Error(where, "gravity must be finite", "");
+    if (!(s.globalDamping >= 0.0 && s.globalDamping < 1.0))
+        throw Error(where, "global_damping must be in [0, 1) (got " + numberText(s.globalDamping) + ")",
+                    "0 means none; 0.1–0.3 settles grains");
+    if (!(std::isfinite(s.timeStep.fixed) && s.timeStep.fixed >= 0.0))
+        throw Error(where, "time_step must be > 0 (or automatic)", "");
+    if (!(s.timeStep.safety > 0.0 && s.timeStep.safety <= 1.0))
+        throw Error(where, "safety must be in (0, 1]", "0.1–0.3 is usual");
+    const EndCondition& e = s.end;
+    if (!(std::isfinite(e.time) && e.time >= 0.0) || e.steps < 0)
+        throw Error(where, "end_time and end_steps must be >= 0", "");
+    if (e.boundary >= 0 && (!inRange(e.boundary, s.boundaries.size()) ||
+                            !(std::isfinite(e.displacement) && e.displacement > 0.0)))
+        throw Error(where, "end_displacement needs a boundary of the scene and a value > 0", "");
+}
+
+void validateOutput(const Scene& s)
+{
+    const OutputSpec& o = s.output;
+    const bool sane = o.historyEvery >= 0 && std::isfinite(o.historyPeriod) &&
+                      o.historyPeriod >= 0.0 && std::isfinite(o.vtkPeriod) && o.vtkPeriod >= 0.0 &&
+                      std::isfinite(o.checkpointPeriod) && o.checkpointPeriod >= 0.0;
+    if (!sane)
+        throw Error(s.path.empty() ? "[output]" : s.path + ": [output]",
+                    "history_every and the periods must be >= 0 and finite", "");
+}
+
+} // namespace
+
+void validateRunnableScene(const Scene& scene)
+{
+    validateScene(scene);
+    const EndCondition& e = scene.end;
+    if (e.time <= 0.0 && e.steps <= 0 && e.boundary < 0)
+        throw Error(scene.path.empty() ? "[simulation]" : scene.path + ": [simulation]",
+                    "has no end condition", "add end_time, end_steps or end_displacement");
+}
+
+void validateScene(const Scene& scene)
+{
+    validateMaterials(scene);
+    validateContacts(scene);
+    validateGrains(scene);
+    validateBoundaries(scene);
+    validateSimulation(scene);
+    validateOutput(scene);
+    scenefile::checkUniqueNames(scene);
+    scenefile::checkContactPairs(scene);
+}
+
+} // namespace lsdem

@@ -55,6 +55,7 @@ struct BakeCommandLine
 };
 
 /// Every option of lsdem-bake, its default and its help.
+// Long by nature: one entry per option, in the order --help lists them.
 void addOptions(CLI::App& app, BakeCommandLine& c)
 {
     using lsdem::cli::addInteger;

@@ -148,6 +148,7 @@ const char* kBakeKeywords =
 
 } // namespace
 
+// Long by nature: one .def per method and property of Asset, in the order help() lists them.
 void bindAssets(py::module_& m)
 {
     py::class_<NodesHandle>(m, "Nodes",

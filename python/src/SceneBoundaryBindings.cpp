@@ -91,6 +91,7 @@ BoundarySpec axialBoundary(const Scene& s, const std::string& name, const std::s
 
 } // namespace
 
+// Long by nature: one .def per builder method, each with its keyword arguments and docstring.
 void bindSceneBoundaries(py::class_<Scene>& scene)
 {
     scene

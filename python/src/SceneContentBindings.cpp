@@ -17,6 +17,7 @@ namespace lsdem::python {
 
 namespace fs = std::filesystem;
 
+// Long by nature: one .def per builder method, each with its keyword arguments and docstring.
 void bindSceneContents(py::class_<Scene>& scene)
 {
     scene

@@ -16,6 +16,7 @@ namespace lsdem::python {
 
 namespace fs = std::filesystem;
 
+// Long by nature: one .def per builder method, each with its keyword arguments and docstring.
 void bindSceneFileSources(py::class_<Scene>& scene)
 {
     scene

@@ -21,6 +21,7 @@ std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads)
                    : std::make_unique<tbb::task_arena>();
 }
 
+// Long by nature: one .def per method and property of Simulation, in the order help() lists them.
 void bindSimulation(py::module_& m)
 {
     bindSimulationViews(m);

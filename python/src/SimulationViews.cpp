@@ -20,6 +20,7 @@ const char* shapeName(BoundaryShape s)
 
 } // namespace
 
+// Long by nature: the three view classes' .defs, one per property, as help() lists them.
 void bindSimulationViews(py::module_& m)
 {
     py::class_<GrainsView>(

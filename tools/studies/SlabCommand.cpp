@@ -31,6 +31,7 @@ const cli::StudyFiles kOwnFiles = {
 
 } // namespace
 
+// Long by nature: one entry per option, in the order --help lists them.
 SlabCommand::SlabCommand(CLI::App& study)
     : mCommand(study.add_subcommand(
           "slab",

@@ -19,6 +19,7 @@ double slabDeltaMax(const SlabStudyOptions& o)
     return o.deltaMax > 0.0 ? o.deltaMax : 2.0 * o.panel.thickness;
 }
 
+// Long by nature: one check per option, each with its own message.
 void checkSlabStudyOptions(const SlabStudyOptions& o)
 {
     checkSlabPanelOptions(o.panel);

@@ -80,6 +80,96 @@ double ContactList::skinFor(const World& w) const
     return mSkinFraction * sorted[half];
 }
 
+namespace {
+
+using GrainPair = std::pair<int, int>;
+
+/// Slot @a s takes the knowledge (its node blocks near the other body and its force buffers)
+/// of the previous slot with the same @a key (keyOf of it), found by advancing @a cursor
+/// through previous[cursor, end), sorted by that key.
+template <class KeyOf>
+void inheritKnowledge(ContactSlot& s, std::vector<ContactSlot>& previous, size_t& cursor,
+                      size_t end, const GrainPair& key, KeyOf keyOf)
+{
+    while (cursor < end && keyOf(previous[cursor]) < key) ++cursor;
+    if (cursor < end && keyOf(previous[cursor]) == key) {
+        s.candidates = std::move(previous[cursor].candidates);
+        s.forces.swap(previous[cursor].forces);
+    }
+}
+
+/// Append a slot per pair of @a pairs (sorted) to @a slots, walking the sorted histories along:
+/// histories of pairs no longer listed are dropped, new pairs start empty. std::map nodes do
+/// not move, so the slots can point into the map until the next rebuild. A pair still listed
+/// keeps what it knew from previous[0, previousPairs).
+void makePairSlots(World& w, const std::vector<GrainPair>& pairs, std::vector<ContactSlot>& slots,
+                   std::vector<ContactSlot>& previous, size_t previousPairs)
+{
+    const auto pairOf = [](const ContactSlot& o) { return GrainPair(o.first, o.second); };
+    size_t kept = 0;
+    auto it = w.pairHistory.begin();
+    for (const GrainPair& p : pairs) {
+        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
+        if (it == w.pairHistory.end() || it->first != p)
+            it = w.pairHistory.emplace_hint(it, p, PairHistory{});
+        ContactSlot& s = slots.emplace_back();
+        s.first = p.first;
+        s.second = p.second;
+        s.pairHistory = &it->second;
+        inheritKnowledge(s, previous, kept, previousPairs, p, pairOf);
+        ++it;
+    }
+    w.pairHistory.erase(it, w.pairHistory.end());
+}
+
+/// The same for grain–boundary slots, sorted by grain, then boundary (@a nearBoundaries per
+/// grain): a level-set obstacle's slot keeps the grain's nodes near it, from
+/// previous[previousPairs, end).
+void makeBoundarySlots(World& w, const std::vector<std::vector<int>>& nearBoundaries,
+                       std::vector<ContactSlot>& slots, std::vector<ContactSlot>& previous,
+                       size_t previousPairs)
+{
+    const auto grainAndBoundaryOf = [](const ContactSlot& o) { return GrainPair(o.first, o.boundary); };
+    auto it = w.boundaryHistory.begin();
+    size_t kept = previousPairs;
+    for (size_t i = 0; i < nearBoundaries.size(); ++i)
+        for (int b : nearBoundaries[i]) {
+            const GrainPair key(static_cast<int>(i), b);
+            while (it != w.boundaryHistory.end() && it->first < key) it = w.boundaryHistory.erase(it);
+            if (it == w.boundaryHistory.end() || it->first != key)
+                it = w.boundaryHistory.emplace_hint(it, key, ShearHistory{});
+            ContactSlot& s = slots.emplace_back();
+            s.first = key.first;
+            s.boundary = b;
+            s.boundaryHistory = &it->second;
+            inheritKnowledge(s, previous, kept, previous.size(), key, grainAndBoundaryOf);
+            ++it;
+        }
+    w.boundaryHistory.erase(it, w.boundaryHistory.end());
+}
+
+/// Each grain's slots in list order (a grain's forces are summed in this order): @a starts
+/// (n + 1 entries) into @a refs.
+void indexSlotsByGrain(const std::vector<ContactSlot>& slots, int n, std::vector<size_t>& starts,
+                       std::vector<GrainSlotRef>& refs)
+{
+    starts.assign(size_t(n) + 1, 0);
+    for (const ContactSlot& s : slots) {
+        ++starts[size_t(s.first) + 1];
+        if (s.boundary < 0) ++starts[size_t(s.second) + 1];
+    }
+    for (int i = 0; i < n; ++i) starts[size_t(i) + 1] += starts[size_t(i)];
+    refs.resize(starts.back());
+    std::vector<size_t> fill(starts.begin(), starts.end() - 1);
+    for (size_t k = 0; k < slots.size(); ++k) {
+        const ContactSlot& s = slots[k];
+        refs[fill[size_t(s.first)]++] = {static_cast<int>(k), true};
+        if (s.boundary < 0) refs[fill[size_t(s.second)]++] = {static_cast<int>(k), false};
+    }
+}
+
+} // namespace
+
 void ContactList::rebuild(World& w, bool keepPairKnowledge)
 {
     const int n = static_cast<int>(w.grains.size());
@@ -97,11 +187,11 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
     // Grain pairs whose spheres come within the skin (kinematic pairs too, so their forces
     // are recorded), and the boundaries each grain may touch within the skin, found in
     // parallel and joined in grain order (sorted as if found serially).
-    std::vector<std::pair<int, int>> pairs = findCandidatePairs(centers, radii, mSkin);
+    std::vector<GrainPair> pairs = findCandidatePairs(centers, radii, mSkin);
     if (mOwned) {  // only the pairs this rank evaluates
         const std::vector<char>& owned = *mOwned;
         pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                                   [&](const std::pair<int, int>& p) {
+                                   [&](const GrainPair& p) {
                                        return !owned[size_t(p.first)] && !owned[size_t(p.second)];
                                    }),
                     pairs.end());
@@ -115,79 +205,17 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
                 nearBoundaries[size_t(i)].push_back(b);
     });
 
-    // Walk the sorted list and the sorted histories together: histories of pairs no longer on
-    // the list are dropped, new pairs start empty. std::map nodes do not move, so the slots
-    // can point into the maps until the next rebuild. A pair that stays on the list keeps its
-    // node blocks near the other grain (they hold whatever the list) and its buffers, so a
-    // rebuild after motion costs its pairs no full walk of their blocks.
+    // The slots, pairs then grain–boundary, each keeping its history and (after motion) what
+    // it knew, so a rebuild costs its pairs no full walk of their blocks.
     std::vector<ContactSlot> previous;
     if (keepPairKnowledge) previous.swap(mSlots);
     const size_t previousPairs = keepPairKnowledge ? mPairSlots : 0;
     mSlots.clear();
     mSlots.reserve(pairs.size() + previous.size() - previousPairs);
-    // Slot @a s takes the knowledge of the previous slot with the same @a key (keyOf of it),
-    // found by advancing @a cursor through previous[cursor, end), sorted by that key.
-    auto inherit = [&](ContactSlot& s, size_t& cursor, size_t end, const std::pair<int, int>& key,
-                       auto keyOf) {
-        while (cursor < end && keyOf(previous[cursor]) < key) ++cursor;
-        if (cursor < end && keyOf(previous[cursor]) == key) {
-            s.candidates = std::move(previous[cursor].candidates);
-            s.forces.swap(previous[cursor].forces);
-        }
-    };
-    auto pairOf = [](const ContactSlot& o) { return std::make_pair(o.first, o.second); };
-    auto grainAndBoundaryOf = [](const ContactSlot& o) {
-        return std::make_pair(o.first, o.boundary);
-    };
-    size_t kept = 0;
-    auto it = w.pairHistory.begin();
-    for (const auto& p : pairs) {
-        while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
-        if (it == w.pairHistory.end() || it->first != p)
-            it = w.pairHistory.emplace_hint(it, p, PairHistory{});
-        ContactSlot& s = mSlots.emplace_back();
-        s.first = p.first;
-        s.second = p.second;
-        s.pairHistory = &it->second;
-        inherit(s, kept, previousPairs, p, pairOf);
-        ++it;
-    }
-    w.pairHistory.erase(it, w.pairHistory.end());
+    makePairSlots(w, pairs, mSlots, previous, previousPairs);
     mPairSlots = mSlots.size();
-    // Grain–boundary slots likewise (sorted by grain, then boundary): a level-set obstacle's
-    // slot keeps the grain's nodes near it.
-    auto bit = w.boundaryHistory.begin();
-    size_t keptBoundary = previousPairs;
-    for (int i = 0; i < n; ++i)
-        for (int b : nearBoundaries[size_t(i)]) {
-            const std::pair<int, int> key(i, b);
-            while (bit != w.boundaryHistory.end() && bit->first < key)
-                bit = w.boundaryHistory.erase(bit);
-            if (bit == w.boundaryHistory.end() || bit->first != key)
-                bit = w.boundaryHistory.emplace_hint(bit, key, ShearHistory{});
-            ContactSlot& s = mSlots.emplace_back();
-            s.first = i;
-            s.boundary = b;
-            s.boundaryHistory = &bit->second;
-            inherit(s, keptBoundary, previous.size(), key, grainAndBoundaryOf);
-            ++bit;
-        }
-    w.boundaryHistory.erase(bit, w.boundaryHistory.end());
-
-    // Each grain's slots in list order (a grain's forces are summed in this order).
-    mGrainSlotStart.assign(size_t(n) + 1, 0);
-    for (const ContactSlot& s : mSlots) {
-        ++mGrainSlotStart[size_t(s.first) + 1];
-        if (s.boundary < 0) ++mGrainSlotStart[size_t(s.second) + 1];
-    }
-    for (int i = 0; i < n; ++i) mGrainSlotStart[size_t(i) + 1] += mGrainSlotStart[size_t(i)];
-    mGrainSlots.resize(mGrainSlotStart.back());
-    std::vector<size_t> fill(mGrainSlotStart.begin(), mGrainSlotStart.end() - 1);
-    for (size_t k = 0; k < mSlots.size(); ++k) {
-        const ContactSlot& s = mSlots[k];
-        mGrainSlots[fill[size_t(s.first)]++] = {static_cast<int>(k), true};
-        if (s.boundary < 0) mGrainSlots[fill[size_t(s.second)]++] = {static_cast<int>(k), false};
-    }
+    makeBoundarySlots(w, nearBoundaries, mSlots, previous, previousPairs);
+    indexSlotsByGrain(mSlots, n, mGrainSlotStart, mGrainSlots);
 
     mGrainPositionsAtBuild = centers;
     mBoundaryDisplacementsAtBuild.clear();
@@ -195,5 +223,6 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
     mBuilt = true;
     ++mRebuilds;
 }
+
 
 } // namespace lsdem

@@ -22,21 +22,43 @@ double NormalModel::continuumSphereForce(double radius, double overlap, double t
     return exactSphereContactForce(radius, overlap, traction);
 }
 
+namespace {
+
+/// The registry: every formulation with its sub-model, in the order messages and studies list
+/// them. A new law is its file (NormalModel<Name>.cpp), its Formulation value and its line here.
+struct Registered
+{
+    Formulation formulation;
+    const NormalModel& (*model)();
+};
+
+const std::vector<Registered>& registry()
+{
+    static const std::vector<Registered> all = {
+        {Formulation::Original, normal_models::original},
+        {Formulation::Adapted, normal_models::adapted},
+        {Formulation::SingleNode, normal_models::singleNode},
+        {Formulation::Volume, normal_models::volume},
+    };
+    return all;
+}
+
+} // namespace
+
 const NormalModel& normalModel(Formulation formulation)
 {
-    switch (formulation) {
-    case Formulation::Original: return normal_models::original();
-    case Formulation::Adapted: return normal_models::adapted();
-    case Formulation::SingleNode: return normal_models::singleNode();
-    case Formulation::Volume: return normal_models::volume();
-    }
+    for (const Registered& r : registry())
+        if (r.formulation == formulation) return r.model();
     throw Error("", "unknown contact formulation (corrupt value)");
 }
 
 const std::vector<Formulation>& allFormulations()
 {
-    static const std::vector<Formulation> all = {Formulation::Original, Formulation::Adapted,
-                                                 Formulation::SingleNode, Formulation::Volume};
+    static const std::vector<Formulation> all = [] {
+        std::vector<Formulation> v;
+        for (const Registered& r : registry()) v.push_back(r.formulation);
+        return v;
+    }();
     return all;
 }
 

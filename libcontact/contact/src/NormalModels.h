@@ -1,5 +1,5 @@
-// The four normal sub-models, one per file (NormalModel<Name>.cpp); NormalModel.cpp hands them
-// out by formulation.
+// The normal sub-models, one per file (NormalModel<Name>.cpp); NormalModel.cpp registers them
+// (its registry(): one line each) and hands them out by formulation.
 #pragma once
 
 #include "lsdem/contact/NormalModel.h"

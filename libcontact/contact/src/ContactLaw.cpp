@@ -1,5 +1,8 @@
 #include "lsdem/contact/ContactLaw.h"
 
+#include "ContactDashpot.h"
+#include "ForceSums.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,109 +13,7 @@ namespace lsdem {
 
 namespace {
 
-/// The mass that the contact's dashpot acts on: the reduced mass of two free bodies, or the
-/// free one's mass against an immovable one (0 when neither can move).
-double effectiveMass(const ContactGrain& a, const ContactGrain& b)
-{
-    if (a.mass > 0.0 && b.mass > 0.0) return a.mass * b.mass / (a.mass + b.mass);
-    return std::max(a.mass, b.mass);
-}
-
-/// A point as three numbers. A Vec3 copied into a local may be stored in a 16- and an 8-byte
-/// piece and then read back across both, which stalls until the stores complete.
-struct Point3
-{
-    double x, y, z;
-    explicit Point3(const Vec3& v) : x(v.x()), y(v.y()), z(v.z()) {}
-};
-
-/// @a sum += (p − c) × f, or −= with @a subtract; component by component, the same operations
-/// as Eigen's cross product, which would go through memory and stall the sum reading it back.
-void accumulateMoment(Vec3& sum, const Vec3& p, const Point3& c, const Vec3& f, bool subtract)
-{
-    const double rx = p.x() - c.x, ry = p.y() - c.y, rz = p.z() - c.z;
-    const double mx = ry * f.z() - rz * f.y(), my = rz * f.x() - rx * f.z(),
-                 mz = rx * f.y() - ry * f.x();
-    if (subtract)
-        sum = Vec3(sum.x() - mx, sum.y() - my, sum.z() - mz);
-    else
-        sum = Vec3(sum.x() + mx, sum.y() + my, sum.z() + mz);
-}
-
-/// The unit direction of point force @a f of a side: its contact's normal for a per-node law
-/// (@a contact not null), else the force's own direction (zero for a zero force).
-Vec3 directionOf(const PointForce& f, const NodeContact* contact)
-{
-    if (contact) return contact->normal;
-    const double size = f.force.norm();
-    return size > 0.0 ? Vec3(f.force / size) : Vec3::Zero();
-}
-
-/// The contact seen as one body of springs: where it acts, along which normal, how stiff it is
-/// along it and how fast its force grows with penetration. What its dashpot is made from.
-struct ContactAxis
-{
-    Vec3 centre = Vec3::Zero();  ///< stiffness-weighted centre of the point forces
-    Vec3 normal = Vec3::Zero();  ///< unit, pushing first out of second (zero: none)
-    double stiffness = 0.0;      ///< Σ k_f·(n_f·n)²: the stiffness along the normal
-    double force = 0.0;          ///< P: the elastic force along the normal (on first)
-    double exponent = 1.0;       ///< d ln P / d ln δ ≈ δ_max·K/P (1 for a flat face)
-};
-
-/// The axis of the elastic point forces @a forces[s] of the @a sideCount sides. @a summed: the
-/// law sums the nodes (every law but the single-node one, whose force is one node's spring).
-ContactAxis contactAxis(const ContactSide* sides, int sideCount,
-                        const std::vector<PointForce>* forces, bool perNodeForces, bool summed)
-{
-    ContactAxis axis;
-    const ContactGrain* first = sides[0].tester;
-    double total = 0.0, deepest = 0.0, area = 0.0, areaSquares = 0.0;
-    Vec3 weightedPoint = Vec3::Zero(), weightedNormal = Vec3::Zero();
-    for (int s = 0; s < sideCount; ++s) {
-        const double sign = sides[s].tester == first ? 1.0 : -1.0;
-        for (size_t k = 0; k < forces[s].size(); ++k) {
-            const PointForce& f = forces[s][k];
-            const NodeContact* c = perNodeForces ? &sides[s].contacts[k] : nullptr;
-            total += f.stiffness;
-            weightedPoint += f.stiffness * f.point;
-            weightedNormal += (sign * f.stiffness) * directionOf(f, c);
-        }
-        for (const NodeContact& c : sides[s].contacts) {
-            deepest = std::max(deepest, c.depth);
-            area += c.area;
-            areaSquares += c.area * c.area;
-        }
-    }
-    const double normalLength = weightedNormal.norm();
-    if (!(total > 0.0) || !(normalLength > 0.0)) return axis;
-    axis.centre = weightedPoint / total;
-    axis.normal = weightedNormal / normalLength;
-    // Along the normal: the stiffness K, and the elastic force P that it builds up.
-    double& force = axis.force;
-    for (int s = 0; s < sideCount; ++s) {
-        const double sign = sides[s].tester == first ? 1.0 : -1.0;
-        for (size_t k = 0; k < forces[s].size(); ++k) {
-            const PointForce& f = forces[s][k];
-            const double along = directionOf(f, perNodeForces ? &sides[s].contacts[k] : nullptr)
-                                     .dot(axis.normal);
-            axis.stiffness += f.stiffness * along * along;
-            force += sign * f.force.dot(axis.normal);
-        }
-    }
-    // P = κ·δ^p gives p = δ·K/P, δ the contact's overlap. The deepest node stands for it; on
-    // a curved contact, whose nodes' depths spread evenly over [0, δ] (a cap's area grows in
-    // proportion to depth), the deepest of n nodes is δ·n/(n + 1) deep on average, so the
-    // overlap is δ_max·(1 + 1/n), n the nodes' effective count (Σ A)²/Σ A². (A flat face's
-    // nodes all sit at one depth, but there n is large.) Without that, a contact of a few nodes
-    // would look flat, p → 1, and get a linear spring's damping. Every node is at most δ_max
-    // deep, so P ≤ δ_max·K: p ≥ 1.
-    if (force > 0.0) {
-        const double nodes = summed && areaSquares > 0.0 ? area * area / areaSquares : 0.0;
-        const double overlap = nodes > 0.0 ? deepest * (1.0 + 1.0 / nodes) : deepest;
-        axis.exponent = std::max(1.0, overlap * axis.stiffness / force);
-    }
-    return axis;
-}
+using namespace contactlaw;
 
 /// The contact's stiffness for the stability check (PairForces, SimulationForces.cpp), summed point
 /// force by point force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ and
@@ -192,42 +93,6 @@ private:
     Rotation mFirst, mSecond;
 };
 
-/// The contact's dashpot (DampingModel.h): one force on first at the contact's centre along its
-/// normal, against the approach (second gets the opposite), and its share per unit of point
-/// force stiffness, which counts as normal force in Coulomb's limit.
-struct Dashpot
-{
-    double coefficient = 0.0;          ///< c (0: none)
-    ContactAxis axis;
-    Vec3 force = Vec3::Zero();         ///< on first
-    double viscousPerStiffness = 0.0;  ///< its normal force over Σ k of the point forces
-};
-
-Dashpot contactDashpot(const ContactSide* sides, int sideCount, const ContactModel& model,
-                       const std::vector<PointForce>* normal, bool perNodeForces)
-{
-    Dashpot d;
-    if (!model.damping.active()) return d;
-    const ContactGrain& first = *sides[0].tester;
-    const ContactGrain& second = *sides[0].other;
-    d.axis = contactAxis(sides, sideCount, normal, perNodeForces,
-                         perNodeForces || model.normal().stiffnessPerArea());
-    d.coefficient =
-        model.damping.dashpot(effectiveMass(first, second), d.axis.stiffness, d.axis.exponent);
-    if (!(d.coefficient > 0.0)) return d;
-    const Vec3 relative = first.pointVelocity(d.axis.centre) - second.pointVelocity(d.axis.centre);
-    // It may push but not pull: at most the elastic force, against it, as the bodies part
-    // (DampingModel.h).
-    const double viscous =
-        std::max(-d.coefficient * relative.dot(d.axis.normal), -std::max(d.axis.force, 0.0));
-    d.force = viscous * d.axis.normal;
-    double total = 0.0;
-    for (int s = 0; s < sideCount; ++s)
-        for (const PointForce& f : normal[s]) total += f.stiffness;
-    d.viscousPerStiffness = viscous / total;
-    return d;
-}
-
 /// The stored shear of each node of a side, found by walking the sorted history alongside the
 /// nodes (in node order; from the start again if a caller gave them otherwise).
 class StoredShear
@@ -287,6 +152,37 @@ void addSideForces(const ContactSide& side, const ContactGrain& first,
     if (testerIsFirst) result.pointForcesOnFirst += static_cast<int>(forces.size());
 }
 
+/// The normal law's point forces of every side into @a normal[s]; the number of contact nodes.
+/// A per-node law must give one force per contact (NormalModel::perNodeForces).
+int normalForces(const ContactSide* sides, int sideCount, const ContactModel& model,
+                 std::vector<PointForce>* normal)
+{
+    const NormalModel& law = model.normal();
+    int nodes = 0;
+    for (int s = 0; s < sideCount; ++s) {
+        normal[s].clear();
+        law.forces(sides[s].contacts, model.normalStiffness, sides[s].weight, normal[s]);
+        nodes += static_cast<int>(sides[s].contacts.size());
+        if (law.perNodeForces() && normal[s].size() != sides[s].contacts.size())
+            throw std::logic_error("resolveContact: a per-node normal law gave " +
+                                   std::to_string(normal[s].size()) + " forces for " +
+                                   std::to_string(sides[s].contacts.size()) + " contacts");
+    }
+    return nodes;
+}
+
+/// The contact's dashpot force on both bodies, at its axis's centre.
+void addDashpot(const Dashpot& dashpot, const ContactGrain& first, const ContactGrain& second,
+                PairForces& result)
+{
+    result.forceOnFirst += dashpot.force;
+    accumulateMoment(result.torqueOnFirst, dashpot.axis.centre, Point3(first.pose.position),
+                     dashpot.force, false);
+    result.forceOnSecond -= dashpot.force;
+    accumulateMoment(result.torqueOnSecond, dashpot.axis.centre, Point3(second.pose.position),
+                     dashpot.force, true);
+}
+
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
@@ -302,22 +198,13 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     const NormalModel& normalLaw = model.normal();
     const ShearSpringModel shearSprings = model.tangential();
     std::vector<PointForce>* normal = work.forces;
-    for (int s = 0; s < sideCount; ++s) {
-        normal[s].clear();
-        normalLaw.forces(sides[s].contacts, model.normalStiffness, sides[s].weight, normal[s]);
-        result.contactNodes += static_cast<int>(sides[s].contacts.size());
-    }
+    result.contactNodes = normalForces(sides, sideCount, model, normal);
     const bool perNodeShear = shearSprings.active(normalLaw);
     // A per-node law gives contact i exactly one force, k_i·d_i along its unit normal n_i
     // (NormalModel::perNodeForces): its size and direction are read from the contact rather
     // than recovered from the force with a root and divisions.
     const bool perNodeForces = normalLaw.perNodeForces();
     const bool shearPerArea = normalLaw.stiffnessPerArea();
-    for (int s = 0; s < sideCount; ++s)
-        if (perNodeForces && normal[s].size() != sides[s].contacts.size())
-            throw std::logic_error("resolveContact: a per-node normal law gave " +
-                                   std::to_string(normal[s].size()) + " forces for " +
-                                   std::to_string(sides[s].contacts.size()) + " contacts");
 
     const Dashpot dashpot = contactDashpot(sides, sideCount, model, normal, perNodeForces);
     result.dashpot = dashpot.coefficient;
@@ -379,14 +266,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             ++result.pointForcesOnFirst;
         }
     }
-    if (result.dashpot > 0.0) {
-        result.forceOnFirst += dashpot.force;
-        accumulateMoment(result.torqueOnFirst, dashpot.axis.centre, Point3(first.pose.position),
-                         dashpot.force, false);
-        result.forceOnSecond -= dashpot.force;
-        accumulateMoment(result.torqueOnSecond, dashpot.axis.centre, Point3(second.pose.position),
-                         dashpot.force, true);
-    }
+    if (result.dashpot > 0.0) addDashpot(dashpot, first, second, result);
     result.elasticEnergy = elasticEnergy;
     stiffness.store(result);
     return result;

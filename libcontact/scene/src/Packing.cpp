@@ -3,6 +3,8 @@
 // Packing.h for the numerical set-up).
 #include "lsdem/scene/Packing.h"
 
+#include "PackingContainer.h"
+
 #include "lsdem/core/Constants.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/core/NumberText.h"
@@ -27,78 +29,6 @@ constexpr double kGravity = 1.0;
 constexpr double kDamping = 0.3;
 constexpr double kRestOverlap = 0.01;  // static overlap / bounding radius under the column
 constexpr double kLayerDiameters = 3.0;  // insertion layer height, in largest grain diameters
-
-/// The corners of the container's bounding box.
-Vec3 containerMin(const PackingOptions& o)
-{
-    if (!o.cylinder) return o.boxMin;
-    const PackingCylinder& c = *o.cylinder;
-    return Vec3(c.x - c.radius, c.y - c.radius, c.zMin);
-}
-
-Vec3 containerMax(const PackingOptions& o)
-{
-    if (!o.cylinder) return o.boxMax;
-    const PackingCylinder& c = *o.cylinder;
-    return Vec3(c.x + c.radius, c.y + c.radius, c.zMax);
-}
-
-double containerVolume(const PackingOptions& o)
-{
-    if (!o.cylinder) return (o.boxMax - o.boxMin).prod();
-    const PackingCylinder& c = *o.cylinder;
-    return kPi * c.radius * c.radius * (c.zMax - c.zMin);
-}
-
-void checkOptions(const PackingOptions& o)
-{
-    if (o.mixture.empty())
-        throw Error("", "no grain assets to pack", "give at least one asset");
-    double total = 0.0;
-    for (const PackingComponent& c : o.mixture) {
-        if (!c.asset) throw Error("", "asset '" + c.name + "' is not loaded");
-        if (!(c.fraction >= 0.0) || !std::isfinite(c.fraction))
-            throw Error("", "the fraction of '" + c.name + "' must be a number >= 0",
-                        "give fractions such as 0.7 0.3");
-        total += c.fraction;
-    }
-    if (!(total > 0.0)) throw Error("", "the fractions add up to 0", "give a positive fraction");
-    if (o.cylinder) {
-        const PackingCylinder& c = *o.cylinder;
-        if (!std::isfinite(c.x) || !std::isfinite(c.y) || !(c.radius > 0.0) ||
-            !std::isfinite(c.radius) || !(c.zMax > c.zMin) || !std::isfinite(c.zMin) ||
-            !std::isfinite(c.zMax))
-            throw Error("", "the cylinder is empty (its radius must be > 0 and Z1 > Z0)",
-                        "give --cylinder CX CY RADIUS Z0 Z1 with RADIUS > 0 and Z1 > Z0");
-    } else if (!((o.boxMax - o.boxMin).minCoeff() > 0.0) || !o.boxMin.allFinite() ||
-               !o.boxMax.allFinite()) {
-        throw Error("", "the box is empty (its max corner must exceed its min corner)",
-                    "give --box X0 Y0 Z0 X1 Y1 Z1 with X1 > X0, Y1 > Y0, Z1 > Z0");
-    }
-    // A negative friction used to pack as frictionless, and a tolerance <= 0 is never met, so
-    // every layer ran to maxStepsPerLayer.
-    if (!(o.friction >= 0.0) || !std::isfinite(o.friction))
-        throw Error("", "--friction must be a finite number >= 0, got " + numberText(o.friction),
-                    "give --friction 0 (the densest packing) or a Coulomb coefficient such as 0.5");
-    if (!(o.settleTolerance > 0.0) || !std::isfinite(o.settleTolerance))
-        throw Error("", "--settle must be a finite number > 0, got " +
-                            numberText(o.settleTolerance),
-                    "give a small fraction such as --settle 1e-5 (the default)");
-    if (o.count < 1) throw Error("", "the grain count must be >= 1", "give --count N");
-    if (o.count > 1000000)  // a scene's limit (SceneSections.h): checked before any memory is taken
-        throw Error("", "the grain count " + std::to_string(o.count) +
-                            " is over the limit of a scene (1000000)", "split the packing");
-    const Vec3 size = containerMax(o) - containerMin(o);
-    for (const PackingComponent& c : o.mixture) {
-        const double d = 2.0 * c.asset->boundingRadius;
-        if (c.fraction > 0.0 && d >= size.minCoeff()) {
-            std::ostringstream s;
-            s << "grain '" << c.name << "' (bounding diameter " << d
-              << ") does not fit in the " << (o.cylinder ? "cylinder" : "box");
-            throw Error("", s.str(), o.cylinder ? "enlarge the cylinder" : "enlarge the box");
-        }
-    }
-}
 
 /// Grains per component: the floor of fraction·count, plus one for the largest remainders
 /// (the earlier component on a tie), so they add up to count.
@@ -235,17 +165,19 @@ size_t insertLayer(const PackingOptions& o, const std::vector<int>& order, size_
     return placed;
 }
 
-} // namespace
-
-PackingResult generatePacking(const PackingOptions& o,
-                              const std::function<void(const PackingResult&)>& progress)
+/// The deposition's scales from the mixture (by count): the contact stiffness, the step, a
+/// layer's height and the time a grain takes to fall through it.
+struct DepositionScales
 {
-    checkOptions(o);
-    const Stopwatch clock;
-    std::mt19937_64 rng(o.seed);
-    const std::vector<int> order = insertionOrder(componentCounts(o), rng);
+    double largest = 0.0;  ///< the largest bounding diameter
+    double knStar = 0.0;
+    double dt = 0.0;
+    double layerHeight = 0.0;
+    double fallTime = 0.0;
+};
 
-    // Scales of the mixture (by count): mean bounding radius and volume, largest diameter.
+DepositionScales depositionScales(const PackingOptions& o, const std::vector<int>& order)
+{
     double meanRadius = 0.0, meanVolume = 0.0, largest = 0.0, lightest = 1e300;
     for (int k : order) {
         const GrainAsset& a = *o.mixture[size_t(k)].asset;
@@ -254,6 +186,8 @@ PackingResult generatePacking(const PackingOptions& o,
         largest = std::max(largest, 2.0 * a.boundingRadius);
         lightest = std::min(lightest, kDensity * a.mass.volume);
     }
+    DepositionScales d;
+    d.largest = largest;
     // kn* so that the weight of the column a deposition moves (height / mean diameter grains)
     // presses a grain by kRestOverlap of its radius: n·m·g = π·kn*·R·δ² (a sphere on a plane),
     // δ = ε·R. That column is at most the new layer and the free depth above the fixed band,
@@ -262,91 +196,134 @@ PackingResult generatePacking(const PackingOptions& o,
         std::min(containerMax(o).z() - containerMin(o).z(),
                  (kLayerDiameters + kFreeDepthDiameters + kSupportDepthDiameters) * largest);
     const double layers = std::max(1.0, height / (2.0 * meanRadius));
-    const double knStar = layers * kDensity * meanVolume * kGravity /
-                          (kPi * kRestOverlap * kRestOverlap * std::pow(meanRadius, 3));
+    d.knStar = layers * kDensity * meanVolume * kGravity /
+               (kPi * kRestOverlap * kRestOverlap * std::pow(meanRadius, 3));
     // The step: a fifth of sqrt(m/k) for the lightest grain held by four contacts, each
     // pressed by three times the rest overlap of the largest grain (a landing): k = 2π·kn*·R·δ.
     // A step the stability check refuses is halved and the layer deposited again.
     const double rMax = 0.5 * largest;
-    const double contactStiffness = 2.0 * kPi * knStar * rMax * 3.0 * kRestOverlap * rMax;
-    double dt = 0.2 * std::sqrt(lightest / (4.0 * contactStiffness));
-    const double layerHeight = kLayerDiameters * largest;
-    const double fallTime = std::sqrt(2.0 * layerHeight / kGravity);
+    const double contactStiffness = 2.0 * kPi * d.knStar * rMax * 3.0 * kRestOverlap * rMax;
+    d.dt = 0.2 * std::sqrt(lightest / (4.0 * contactStiffness));
+    d.layerHeight = kLayerDiameters * largest;
+    d.fallTime = std::sqrt(2.0 * d.layerHeight / kGravity);
+    return d;
+}
+
+/// The grains of one deposition: those whose centres lie above the free depth below the new
+/// layer's bottom @a bedTop move (the new layer, from @a before on, among them); those
+/// reaching into the support band below are held fixed; the deeper ones are buried and left
+/// out. @a moving gets the indices into @a packed.grains of the free grains, in order.
+Scene depositionLayer(const PackingOptions& o, const Scene& base, const Scene& packed,
+                      size_t before, double bedTop, double largest, double floorZ,
+                      std::vector<size_t>& moving)
+{
+    const double freeBottom = bedTop - kFreeDepthDiameters * largest;
+    const double supportBottom = freeBottom - kSupportDepthDiameters * largest;
+    Scene layer = base;
+    moving.clear();
+    for (size_t i = 0; i < packed.grains.size(); ++i) {
+        const GrainSpec& g = packed.grains[i];
+        const double z = g.pose.position.z();
+        const double r = o.mixture[size_t(g.asset)].asset->boundingRadius;
+        if (i >= before || z > freeBottom) {
+            moving.push_back(i);
+            layer.grains.push_back(g);
+        } else if (z + r > supportBottom) {
+            layer.grains.push_back(g);
+            layer.grains.back().motion = GrainMotion::Fixed;
+        }
+    }
+    // A grain small enough to pass between the fixed ones (a wide size range) lands on a
+    // floor at the bottom of the support band, not inside the grains left out below it.
+    if (supportBottom > floorZ) {
+        BoundarySpec bed;
+        bed.name = "buried";
+        bed.point = Vec3(0, 0, supportBottom);
+        bed.normal = Vec3::UnitZ();
+        layer.boundaries.push_back(bed);
+    }
+    return layer;
+}
+
+/// Deposit @a layer from rest until its kinetic energy is below @a tolerance of its grains'
+/// rest energy (or the step limit); a step the stability check refuses is halved in @a dt and
+/// the layer deposited again. The simulation at its end; @a steps and @a atRest say how it went.
+std::unique_ptr<Simulation> depositFromRest(const PackingOptions& o, const Scene& layer,
+                                            double fallTime, double tolerance, double& dt,
+                                            long long& steps, bool& atRest)
+{
+    std::vector<std::string> warnings;
+    for (int attempt = 0;; ++attempt) {
+        try {
+            auto sim = std::make_unique<Simulation>(buildWorld(layer, warnings), dt);
+            double restEnergy = 0.0;
+            for (const Grain& g : sim->world().grains)
+                if (g.isFree()) restEnergy += g.body.mass * kGravity * 2.0 * g.asset->boundingRadius;
+            steps = 0;
+            atRest = false;
+            while (!atRest && steps < o.maxStepsPerLayer) {
+                for (int k = 0; k < 100; ++k) sim->step();
+                steps += 100;
+                atRest = sim->world().time > 2.0 * fallTime &&
+                         sim->energies().kinetic < tolerance * restEnergy;
+            }
+            return sim;
+        } catch (const Error&) {
+            if (attempt >= 5) throw;  // not a matter of the step
+            dt *= 0.5;
+        }
+    }
+}
+
+/// The largest overlap of any two grains of @a scene, relative to the smaller's bounding radius.
+double largestRelativeOverlap(const Scene& scene)
+{
+    if (scene.grains.empty()) return 0.0;
+    std::vector<std::string> warnings;
+    const World w = buildWorld(scene, warnings);
+    double largest = 0.0;
+    for (const GrainOverlap& v : findGrainOverlaps(w))
+        largest = std::max(largest, v.depth / std::min(w.grains[size_t(v.first)].asset->boundingRadius,
+                                                       w.grains[size_t(v.second)].asset->boundingRadius));
+    return largest;
+}
+
+} // namespace
+
+PackingResult generatePacking(const PackingOptions& o,
+                              const std::function<void(const PackingResult&)>& progress)
+{
+    checkPackingOptions(o);
+    const Stopwatch clock;
+    std::mt19937_64 rng(o.seed);
+    const std::vector<int> order = insertionOrder(componentCounts(o), rng);
+    DepositionScales scales = depositionScales(o, order);
 
     PackingResult result;
-    const Scene base = depositionScene(o, knStar);
+    const Scene base = depositionScene(o, scales.knStar);
     result.scene = base;
     const double floorZ = containerMin(o).z(), lidZ = containerMax(o).z();
     size_t next = 0;
     double bedTop = floorZ;
     while (next < order.size()) {
-        const double zHigh = std::min(lidZ, bedTop + layerHeight);
+        const double zHigh = std::min(lidZ, bedTop + scales.layerHeight);
         const size_t before = result.scene.grains.size();
         const size_t placed = insertLayer(o, order, next, bedTop, zHigh, rng, result.scene);
         if (placed == 0) break;  // the container is full
         next += placed;
         ++result.layers;
-
-        // The grains of this deposition: those whose centres lie above the free depth below
-        // the new layer's bottom move (the new layer among them); those reaching into the
-        // support band below are held fixed; the deeper ones are buried and left out.
-        const double freeBottom = bedTop - kFreeDepthDiameters * largest;
-        const double supportBottom = freeBottom - kSupportDepthDiameters * largest;
-        Scene layer = base;
-        std::vector<size_t> moving;  // indices into result.scene.grains of the free grains
-        for (size_t i = 0; i < result.scene.grains.size(); ++i) {
-            const GrainSpec& g = result.scene.grains[i];
-            const double z = g.pose.position.z();
-            const double r = o.mixture[size_t(g.asset)].asset->boundingRadius;
-            if (i >= before || z > freeBottom) {
-                moving.push_back(i);
-                layer.grains.push_back(g);
-            } else if (z + r > supportBottom) {
-                layer.grains.push_back(g);
-                layer.grains.back().motion = GrainMotion::Fixed;
-            }
-        }
-        // A grain small enough to pass between the fixed ones (a wide size range) lands on a
-        // floor at the bottom of the support band, not inside the grains left out below it.
-        if (supportBottom > floorZ) {
-            BoundarySpec bed;
-            bed.name = "buried";
-            bed.point = Vec3(0, 0, supportBottom);
-            bed.normal = Vec3::UnitZ();
-            layer.boundaries.push_back(bed);
-        }
+        std::vector<size_t> moving;
+        const Scene layer = depositionLayer(o, base, result.scene, before, bedTop, scales.largest,
+                                            floorZ, moving);
         result.largestLayerGrains =
             std::max(result.largestLayerGrains, static_cast<long long>(layer.grains.size()));
-
-        // Deposit from rest until the kinetic energy is small (a layer that more will cover
-        // only needs to be roughly at rest: 100 times the tolerance).
+        // A layer that more will cover only needs to be roughly at rest: 100 times the tolerance.
         const double tolerance =
             next == order.size() ? o.settleTolerance : 100.0 * o.settleTolerance;
-        std::vector<std::string> warnings;
-        std::unique_ptr<Simulation> sim;
         long long steps = 0;
         bool atRest = false;
-        for (int attempt = 0; !sim; ++attempt) {
-            try {
-                sim = std::make_unique<Simulation>(buildWorld(layer, warnings), dt);
-                double restEnergy = 0.0;
-                for (const Grain& g : sim->world().grains)
-                    if (g.isFree())
-                        restEnergy += g.body.mass * kGravity * 2.0 * g.asset->boundingRadius;
-                steps = 0;
-                atRest = false;
-                while (!atRest && steps < o.maxStepsPerLayer) {
-                    for (int k = 0; k < 100; ++k) sim->step();
-                    steps += 100;
-                    atRest = sim->world().time > 2.0 * fallTime &&
-                             sim->energies().kinetic < tolerance * restEnergy;
-                }
-            } catch (const Error&) {
-                if (attempt >= 5) throw;  // not a matter of the step
-                sim.reset();
-                dt *= 0.5;
-            }
-        }
+        const std::unique_ptr<Simulation> sim =
+            depositFromRest(o, layer, scales.fallTime, tolerance, scales.dt, steps, atRest);
         result.steps += steps;
         result.unsettledLayers += atRest ? 0 : 1;
         // The layer's free grains are those of `moving`, in the same order.
@@ -366,15 +343,7 @@ PackingResult generatePacking(const PackingOptions& o,
         if (progress) progress(result);
     }
     result.complete = next == order.size();
-    if (!result.scene.grains.empty()) {
-        std::vector<std::string> warnings;
-        const World w = buildWorld(result.scene, warnings);
-        for (const GrainOverlap& v : findGrainOverlaps(w))
-            result.maxOverlap =
-                std::max(result.maxOverlap,
-                         v.depth / std::min(w.grains[size_t(v.first)].asset->boundingRadius,
-                                            w.grains[size_t(v.second)].asset->boundingRadius));
-    }
+    result.maxOverlap = largestRelativeOverlap(result.scene);
     result.seconds = clock.seconds();
     return result;
 }

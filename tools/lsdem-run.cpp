@@ -32,40 +32,21 @@ void onSignal(int)
     std::signal(SIGTERM, SIG_DFL);
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/// What the command line gives.
+struct RunCommandLine
 {
-    using lsdem::Error;
-    // Under mpirun: MPI starts here, and only rank 0 prints (its errors are every rank's).
-    std::unique_ptr<lsdem::RunRanks> ranks;
-    if (const int failed = lsdem::cli::runTool("lsdem-run", [&] {
-            ranks = lsdem::startRunRanks(argc, argv);
-            return 0;
-        }))
-        return failed;
-    if (ranks && !ranks->group().isRoot() && !std::freopen("/dev/null", "w", stdout))
-        return 3;
-
-    CLI::App app(
-        "Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:\n"
-        "energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), "
-        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set; under "
-        "mpirun a\n.pvtu per frame and a .vtu piece per rank) and checkpoint.lsdem.\n\n"
-        "  lsdem-run SCENE.toml --out DIR [options]\n"
-        "  lsdem-run --restart DIR/checkpoint.lsdem [options]\n"
-        "  mpirun -n N lsdem-run SCENE.toml --out DIR   (split by space: each rank "
-        "owns a sub-domain's grains; the same bytes)",
-        "lsdem-run");
-    lsdem::cli::applyConventions(app);
-    app.footer("Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; "
-               "a second\nCtrl-C stops at once. Exit codes: 0 finished, 1 bad input, 3 internal "
-               "error, 130 stopped.");
     lsdem::RunOptions options;
     std::vector<std::string> scenes;
     long long threads = 0;
     bool quiet = false;
-    app.add_option("scene", scenes, "the scene file (TOML)")->type_name("SCENE.toml");
+};
+
+/// The options after the scene, in the order --help lists them.
+void addOptions(CLI::App& app, RunCommandLine& c)
+{
+    using lsdem::Error;
+    lsdem::RunOptions& options = c.options;
+    app.add_option("scene", c.scenes, "the scene file (TOML)")->type_name("SCENE.toml");
     app.add_option("--out", options.outDir,
                    "output folder (created if missing; on restart: the checkpoint's\nfolder)")
         ->type_name("DIR");
@@ -75,7 +56,7 @@ int main(int argc, char** argv)
     app.add_option("--restart", options.restartPath,
                    "continue a run from its checkpoint, bit-identically")
         ->type_name("FILE");
-    lsdem::cli::addThreads(app, threads,
+    lsdem::cli::addThreads(app, c.threads,
                            "worker threads (default: all cores; under mpirun, the cores shared "
                            "among\nthe ranks on each machine); results do not depend on N");
     // A step count >= 1 into @a value.
@@ -106,42 +87,79 @@ int main(int argc, char** argv)
             ->type_name("T");
     addStepCount("--end-steps", options.endSteps, "a step count", "end after N steps in all, likewise")
         ->excludes(endTime);
-    app.add_flag("-q,--quiet", quiet, "no progress line");
+    app.add_flag("-q,--quiet", c.quiet, "no progress line");
+}
 
+/// The run the parsed command line @a c asks for, on @a ranks (none: one process); its exit code.
+int runCommandLine(RunCommandLine& c, lsdem::RunRanks* ranks)
+{
+    using lsdem::Error;
+    lsdem::RunOptions& options = c.options;
+    if (c.scenes.size() > 1)
+        throw Error("", "more than one scene file given ('" + c.scenes[1] + "')",
+                    "run one scene at a time");
+    if (!c.scenes.empty()) options.scenePath = c.scenes[0];
+    if (options.scenePath.empty() == options.restartPath.empty())
+        throw Error("", "give either a scene file or --restart CHECKPOINT", "see lsdem-run --help");
+    if (!options.scenePath.empty() && options.outDir.empty())
+        throw Error("", "no output folder given", "pass --out DIR");
+    options.progress = !c.quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
+    long long threads = c.threads;
+    if (ranks) {
+        options.ranks = &ranks->group();
+        // Ranks on one machine share its cores rather than each taking them all, and a rank
+        // the launcher bound to fewer cores (TBB sees its affinity) keeps to those.
+        if (threads == 0) {
+            const int machine = static_cast<int>(std::thread::hardware_concurrency());
+            const int share = machine / std::max(1, ranks->ranksOnThisMachine());
+            threads = std::max(1, std::min(tbb::info::default_concurrency(), share));
+        }
+    }
+    std::unique_ptr<tbb::global_control> limit;
+    if (threads > 0)
+        limit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+    options.threads = static_cast<int>(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    const lsdem::RunResult result = lsdem::runSimulation(options, std::cout);
+    return result.interrupted ? 130 : 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    // Under mpirun: MPI starts here, and only rank 0 prints (its errors are every rank's).
+    std::unique_ptr<lsdem::RunRanks> ranks;
+    if (const int failed = lsdem::cli::runTool("lsdem-run", [&] {
+            ranks = lsdem::startRunRanks(argc, argv);
+            return 0;
+        }))
+        return failed;
+    if (ranks && !ranks->group().isRoot() && !std::freopen("/dev/null", "w", stdout))
+        return 3;
+
+    CLI::App app(
+        "Run the simulation described by a scene file (see docs/scenes.md) and write to DIR:\n"
+        "energy.csv, boundary_<name>.csv (displacement and reaction of each boundary), "
+        "grains.csv,\nframes.pvd + frames_*.vtu (ParaView, if [output] vtk_period is set; under "
+        "mpirun a\n.pvtu per frame and a .vtu piece per rank) and checkpoint.lsdem.\n\n"
+        "  lsdem-run SCENE.toml --out DIR [options]\n"
+        "  lsdem-run --restart DIR/checkpoint.lsdem [options]\n"
+        "  mpirun -n N lsdem-run SCENE.toml --out DIR   (split by space: each rank "
+        "owns a sub-domain's grains; the same bytes)",
+        "lsdem-run");
+    lsdem::cli::applyConventions(app);
+    app.footer("Ctrl-C (SIGINT) or SIGTERM stops after the current step and writes a checkpoint; "
+               "a second\nCtrl-C stops at once. Exit codes: 0 finished, 1 bad input, 3 internal "
+               "error, 130 stopped.");
+    RunCommandLine c;
+    addOptions(app, c);
     const auto body = [&] {
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
-        if (scenes.size() > 1)
-            throw Error("", "more than one scene file given ('" + scenes[1] + "')",
-                        "run one scene at a time");
-        if (!scenes.empty()) options.scenePath = scenes[0];
-        if (options.scenePath.empty() == options.restartPath.empty())
-            throw Error("", "give either a scene file or --restart CHECKPOINT",
-                        "see lsdem-run --help");
-        if (!options.scenePath.empty() && options.outDir.empty())
-            throw Error("", "no output folder given", "pass --out DIR");
-        options.progress =
-            !quiet && isatty(STDERR_FILENO) && (!ranks || ranks->group().isRoot());
-        if (ranks) {
-            options.ranks = &ranks->group();
-            // Ranks on one machine share its cores rather than each taking them all, and a
-            // rank the launcher bound to fewer cores (TBB sees its affinity) keeps to those.
-            if (threads == 0) {
-                const int machine = static_cast<int>(std::thread::hardware_concurrency());
-                const int share = machine / std::max(1, ranks->ranksOnThisMachine());
-                threads = std::max(1, std::min(tbb::info::default_concurrency(), share));
-            }
-        }
-
-        std::unique_ptr<tbb::global_control> limit;
-        if (threads > 0)
-            limit = std::make_unique<tbb::global_control>(
-                tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-        options.threads = static_cast<int>(
-            tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-        std::signal(SIGINT, onSignal);
-        std::signal(SIGTERM, onSignal);
-        const lsdem::RunResult result = lsdem::runSimulation(options, std::cout);
-        return result.interrupted ? 130 : 0;
+        return runCommandLine(c, ranks.get());
     };
     return ranks ? ranks->run("lsdem-run", body) : lsdem::cli::runTool("lsdem-run", body);
 }

@@ -196,47 +196,90 @@ void appendRows(const Cube27Options& o, const Key& key, const std::vector<Sample
 
 } // namespace
 
+namespace {
+
+/// One run of the plan, on any rank, as a record for rank 0: the sphere of its node count
+/// baked (or the one kept: under MPI a rank keeps the spheres it baked, tens of MB each, so
+/// each node count is baked once per rank that runs it; serially the plan's order needs one
+/// sphere at a time), the stack simulated, its samples and lines.
+std::string cube27RunRecord(const Cube27Options& o, const Cube27Run& run, bool live,
+                            std::map<int, std::shared_ptr<const GrainAsset>>& spheres)
+{
+    std::string log;
+    double bakeSeconds = 0.0;
+    if (live && !spheres.count(run.nodes)) spheres.clear();
+    std::shared_ptr<const GrainAsset>& sphere = spheres[run.nodes];
+    if (!sphere) {
+        const auto bakeStart = SteadyClock::now();
+        std::vector<std::string> warnings;
+        sphere = std::make_shared<const GrainAsset>(bakeSeriesSphere(o, run.nodes, warnings));
+        bakeSeconds = secondsSince(bakeStart);
+        if (!o.quiet) {
+            char line[160];
+            std::snprintf(line, sizeof line, "N = %d: baked %zu nodes (spacing %.3g mm), voxel %g mm\n",
+                          run.nodes, sphere->nodes.size(), sphere->spacing.mean, o.voxel);
+            log += line;
+            for (const std::string& w : warnings) log += "  warning: " + w + "\n";
+        }
+        if (live) {
+            std::fputs(log.c_str(), stdout);
+            log.clear();
+        }
+    }
+    Cube27Run done = run;
+    const auto start = SteadyClock::now();
+    const Samples s = simulateRun(o, done, sphere);
+    ByteWriter<> out;
+    out.number(secondsSince(start)).number(done.stabilityLimitSeen).integer(done.contactNodes);
+    out.number(double(sphere->nodes.size())).number(bakeSeconds);
+    out.numbers(s.delta).numbers(s.top).numbers(s.floor).numbers(s.side).text(log);
+    return out.bytes();
+}
+
+/// The line of a run done: its rank's lines, the run, and the time left at the rate so far
+/// (node-steps per second of one rank, the time left shared among the ranks).
+void printRunDone(const std::string& log, size_t done, size_t runs, const Cube27Run& run,
+                  const Samples& s, double rate, double nodeStepsLeft, int ranks, int rank)
+{
+    std::printf("%s  [%zu/%zu] %-8s N=%-6d k=%-8s m=%d: %lld steps, %.2f s; "
+                "P(δmax) = %.5g N; stability margin %.1fx; ETA %.0f s",
+                log.c_str(), done, runs, formulationName(run.formulation).c_str(), run.nodes,
+                formatNumber(run.stiffness).c_str(), run.orientation, run.steps, run.seconds,
+                s.top.back(), run.stabilityLimitSeen / run.timeStep, nodeStepsLeft / rate / ranks);
+    if (ranks > 1) std::printf(" (rank %d)", rank);
+    std::printf("\n");
+    std::fflush(stdout);
+}
+
+/// The result's rows, grouped by (formulation, N, k) in plan order, wherever each run was done.
+void appendGroupedRows(const Cube27Options& o, Cube27Result& result, std::vector<Samples>& samplesOf,
+                       std::map<int, double>& nodesActual)
+{
+    std::map<Key, std::vector<Samples>> samples;
+    std::vector<Key> order;
+    for (size_t i = 0; i < result.runs.size(); ++i) {
+        const Cube27Run& run = result.runs[i];
+        const Key key{int(run.formulation), run.nodes, run.stiffness};
+        if (!samples.count(key)) order.push_back(key);
+        samples[key].push_back(std::move(samplesOf[i]));
+    }
+    UnitForces unitForce;
+    for (const Key& key : order)
+        appendRows(o, key, samples[key], nodesActual[std::get<1>(key)], unitForce, result.rows);
+}
+
+} // namespace
+
 Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
 {
     checkCube27Options(o);
     Cube27Result result;
     result.runs = planCube27(o);
     const bool live = ranks.ranks() == 1;
-
-    // One job per run of the plan. Under MPI a rank keeps the spheres it baked (tens of MB
-    // each), so each node count is baked once per rank that runs it; serially the plan's order
-    // needs one sphere at a time.
     std::map<int, std::shared_ptr<const GrainAsset>> spheres;
     const RunDistributor::Job job = [&](const std::string& description) {
-        Cube27Run run = result.runs.at(size_t(ByteReader(description).integer()));
-        ByteWriter<> out;
-        std::string log;
-        double bakeSeconds = 0.0;
-        if (live && !spheres.count(run.nodes)) spheres.clear();
-        std::shared_ptr<const GrainAsset>& sphere = spheres[run.nodes];
-        if (!sphere) {
-            const auto bakeStart = SteadyClock::now();
-            std::vector<std::string> warnings;
-            sphere = std::make_shared<const GrainAsset>(bakeSeriesSphere(o, run.nodes, warnings));
-            bakeSeconds = secondsSince(bakeStart);
-            if (!o.quiet) {
-                char line[160];
-                std::snprintf(line, sizeof line, "N = %d: baked %zu nodes (spacing %.3g mm), voxel %g mm\n",
-                              run.nodes, sphere->nodes.size(), sphere->spacing.mean, o.voxel);
-                log += line;
-                for (const std::string& w : warnings) log += "  warning: " + w + "\n";
-            }
-            if (live) {
-                std::fputs(log.c_str(), stdout);
-                log.clear();
-            }
-        }
-        const auto start = SteadyClock::now();
-        const Samples s = simulateRun(o, run, sphere);
-        out.number(secondsSince(start)).number(run.stabilityLimitSeen).integer(run.contactNodes);
-        out.number(double(sphere->nodes.size())).number(bakeSeconds);
-        out.numbers(s.delta).numbers(s.top).numbers(s.floor).numbers(s.side).text(log);
-        return out.bytes();
+        return cube27RunRecord(o, result.runs.at(size_t(ByteReader(description).integer())), live,
+                               spheres);
     };
     if (!ranks.isRoot()) {
         ranks.serve(job);
@@ -277,35 +320,14 @@ Cube27Result runCube27(const Cube27Options& o, RunDistributor& ranks)
         doneNodeSteps += costs[index];
         shares.add(rank);
         ++done;
-        if (!o.quiet) {
-            // Node-steps per second of one rank, so the time left is shared among the ranks.
-            const double rate = doneNodeSteps / std::max(result.simulateSeconds, 1e-9);
-            std::printf("%s  [%zu/%zu] %-8s N=%-6d k=%-8s m=%d: %lld steps, %.2f s; "
-                        "P(δmax) = %.5g N; stability margin %.1fx; ETA %.0f s",
-                        log.c_str(), done, result.runs.size(), formulationName(run.formulation).c_str(),
-                        run.nodes, formatNumber(run.stiffness).c_str(), run.orientation, run.steps,
-                        run.seconds, s.top.back(), run.stabilityLimitSeen / run.timeStep,
-                        (totalNodeSteps - doneNodeSteps) / rate / ranks.ranks());
-            if (!live) std::printf(" (rank %d)", rank);
-            std::printf("\n");
-            std::fflush(stdout);
-        }
+        if (!o.quiet)
+            printRunDone(log, done, result.runs.size(), run, s,
+                         doneNodeSteps / std::max(result.simulateSeconds, 1e-9),
+                         totalNodeSteps - doneNodeSteps, ranks.ranks(), rank);
     });
     ranks.finish();
     if (!live) std::printf("%s\n", shares.text().c_str());
-
-    // Rows grouped by (formulation, N, k) in plan order, wherever each run was done.
-    std::map<Key, std::vector<Samples>> samples;
-    std::vector<Key> order;
-    for (size_t i = 0; i < result.runs.size(); ++i) {
-        const Cube27Run& run = result.runs[i];
-        const Key key{int(run.formulation), run.nodes, run.stiffness};
-        if (!samples.count(key)) order.push_back(key);
-        samples[key].push_back(std::move(samplesOf[i]));
-    }
-    UnitForces unitForce;
-    for (const Key& key : order)
-        appendRows(o, key, samples[key], nodesActual[std::get<1>(key)], unitForce, result.rows);
+    appendGroupedRows(o, result, samplesOf, nodesActual);
     return result;
 }
 

@@ -110,26 +110,9 @@ void readContainer(const PackCommandLine& c, lsdem::PackingOptions& o)
     o.cylinder = cyl;
 }
 
-} // namespace
-
-int main(int argc, char** argv)
+/// The options after the assets, in the order --help lists them.
+void addOptions(CLI::App& app, PackCommandLine& c)
 {
-    CLI::App app(
-        "Fill a box or a vertical cylinder with a mixture of grain assets, without overlaps, "
-        "and write\nthe packing as a grains CSV (asset, x, y, z, qw, qx, qy, qz) for a scene's "
-        "[[grain_files]]\n(docs/packing.md).\n\n"
-        "  lsdem-pack A.vdb [B.vdb ...] --count N --box X0 Y0 Z0 X1 Y1 Z1 -o packing.csv "
-        "[options]\n"
-        "  lsdem-pack --catalog assets/catalog.csv --set sand --count N "
-        "--cylinder CX CY R Z0 Z1 -o packing.csv\n\n"
-        "Grains are inserted at random in layers and deposited under gravity (along -z) until "
-        "at rest;\nthe same seed gives the same file on any thread count. Lengths "
-        "are the assets'.",
-        "lsdem-pack");
-    lsdem::cli::applyConventions(app);
-    app.footer("Exit codes: 0 packed, 1 bad input or the count does not fit (the message says "
-               "how many did),\n3 internal error.");
-    PackCommandLine c;
     app.add_option("assets", c.files, "grain assets baked by lsdem-bake")->type_name("ASSET.vdb");
     app.add_option("--catalog", c.catalog,
                    "pack every asset of this catalogue (lsdem-bake --out-dir writes it)")
@@ -156,53 +139,82 @@ int main(int argc, char** argv)
                           "at rest when kinetic energy < this x sum of m*g*d");
     app.add_option("-o,--out", c.out, "the grains CSV to write (atomically)")->type_name("FILE");
     lsdem::cli::addThreads(app, c.threads, "worker threads (default: all cores)");
+}
+
+/// The packing the parsed command line @a c asks for, written to its -o file; the exit code.
+int pack(PackCommandLine& c)
+{
+    if (c.out.empty()) throw Error("", "no output file given", "pass -o packing.csv");
+    std::vector<std::string> inputs = c.files;
+    if (!c.catalog.empty()) {
+        inputs.push_back(c.catalog);
+        // The catalogue's assets are inputs too: -o cat/grain_0000.vdb replaced one.
+        for (const std::string& asset : lsdem::catalogAssetFiles(c.catalog))
+            inputs.push_back(asset);
+    }
+    lsdem::cli::refuseOutputOverInput(c.out, "-o", inputs);
+    lsdem::checkOutputFile(c.out);  // before minutes of packing, not after
+    lsdem::PackingOptions& options = c.options;
+    readContainer(c, options);
+    if (c.seed < 0) throw Error("", "--seed wants a number >= 0");
+    std::unique_ptr<tbb::global_control> limit;
+    if (c.threads > 0)
+        limit = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, static_cast<size_t>(c.threads));
+    options.mixture = readMixture(c);
+    options.count = c.count;
+    options.seed = static_cast<uint64_t>(c.seed);
+    const char* container = options.cylinder ? "cylinder" : "box";
+    const lsdem::PackingResult r =
+        lsdem::generatePacking(options, [](const lsdem::PackingResult& p) {
+            std::fprintf(stderr, "layer %d: %zu grains, solid fraction %.3f, %lld steps, %.1f s\n",
+                         p.layers, p.scene.grains.size(), p.solidFraction, p.steps,
+                         p.seconds);
+        });
+    const size_t placed = r.scene.grains.size();
+    if (!r.complete) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "only %zu of %lld grains fit in the %s (solid fraction %.3f of its "
+                      "volume)", placed, c.count, container, r.solidFraction);
+        throw Error(c.out, text, std::string("enlarge the ") + container +
+                                     ", or ask for at most " + std::to_string(placed) +
+                                     " grains");
+    }
+    lsdem::writeGrainsCsv(r.scene, 0, placed, c.out);
+    std::printf("packed %zu grains in %d layers (%lld steps, %.1f s, at most %lld grains per "
+                "deposition): solid fraction %.4f, deepest overlap %.2g of the smaller "
+                "bounding radius%s\nwrote %s\n",
+                placed, r.layers, r.steps, r.seconds, r.largestLayerGrains, r.solidFraction,
+                r.maxOverlap, r.unsettledLayers > 0 ? " (some layers not fully at rest)" : "",
+                c.out.c_str());
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app(
+        "Fill a box or a vertical cylinder with a mixture of grain assets, without overlaps, "
+        "and write\nthe packing as a grains CSV (asset, x, y, z, qw, qx, qy, qz) for a scene's "
+        "[[grain_files]]\n(docs/packing.md).\n\n"
+        "  lsdem-pack A.vdb [B.vdb ...] --count N --box X0 Y0 Z0 X1 Y1 Z1 -o packing.csv "
+        "[options]\n"
+        "  lsdem-pack --catalog assets/catalog.csv --set sand --count N "
+        "--cylinder CX CY R Z0 Z1 -o packing.csv\n\n"
+        "Grains are inserted at random in layers and deposited under gravity (along -z) until "
+        "at rest;\nthe same seed gives the same file on any thread count. Lengths "
+        "are the assets'.",
+        "lsdem-pack");
+    lsdem::cli::applyConventions(app);
+    app.footer("Exit codes: 0 packed, 1 bad input or the count does not fit (the message says "
+               "how many did),\n3 internal error.");
+    PackCommandLine c;
+    addOptions(app, c);
 
     return lsdem::cli::runTool("lsdem-pack", [&] {
         if (const auto exitCode = lsdem::cli::parse(app, argc, argv)) return *exitCode;
-        if (c.out.empty()) throw Error("", "no output file given", "pass -o packing.csv");
-        std::vector<std::string> inputs = c.files;
-        if (!c.catalog.empty()) {
-            inputs.push_back(c.catalog);
-            // The catalogue's assets are inputs too: -o cat/grain_0000.vdb replaced one.
-            for (const std::string& asset : lsdem::catalogAssetFiles(c.catalog))
-                inputs.push_back(asset);
-        }
-        lsdem::cli::refuseOutputOverInput(c.out, "-o", inputs);
-        lsdem::checkOutputFile(c.out);  // before minutes of packing, not after
-        lsdem::PackingOptions& options = c.options;
-        readContainer(c, options);
-        if (c.seed < 0) throw Error("", "--seed wants a number >= 0");
-        std::unique_ptr<tbb::global_control> limit;
-        if (c.threads > 0)
-            limit = std::make_unique<tbb::global_control>(
-                tbb::global_control::max_allowed_parallelism, static_cast<size_t>(c.threads));
-        options.mixture = readMixture(c);
-        options.count = c.count;
-        options.seed = static_cast<uint64_t>(c.seed);
-        const char* container = options.cylinder ? "cylinder" : "box";
-        const lsdem::PackingResult r =
-            lsdem::generatePacking(options, [](const lsdem::PackingResult& p) {
-                std::fprintf(stderr, "layer %d: %zu grains, solid fraction %.3f, %lld steps, %.1f s\n",
-                             p.layers, p.scene.grains.size(), p.solidFraction, p.steps,
-                             p.seconds);
-            });
-        const size_t placed = r.scene.grains.size();
-        if (!r.complete) {
-            char text[200];
-            std::snprintf(text, sizeof text,
-                          "only %zu of %lld grains fit in the %s (solid fraction %.3f of its "
-                          "volume)", placed, c.count, container, r.solidFraction);
-            throw Error(c.out, text, std::string("enlarge the ") + container +
-                                         ", or ask for at most " + std::to_string(placed) +
-                                         " grains");
-        }
-        lsdem::writeGrainsCsv(r.scene, 0, placed, c.out);
-        std::printf("packed %zu grains in %d layers (%lld steps, %.1f s, at most %lld grains per "
-                    "deposition): solid fraction %.4f, deepest overlap %.2g of the smaller "
-                    "bounding radius%s\nwrote %s\n",
-                    placed, r.layers, r.steps, r.seconds, r.largestLayerGrains, r.solidFraction,
-                    r.maxOverlap, r.unsettledLayers > 0 ? " (some layers not fully at rest)" : "",
-                    c.out.c_str());
-        return 0;
+        return pack(c);
     });
 }

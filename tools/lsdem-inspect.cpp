@@ -134,6 +134,25 @@ void printText(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& 
                 100.0 * r.bandGradientOffShare, r.bandVoxels);
 }
 
+/// φ and ∇φ at each point of @a samples (x, y, z in turn), as text or JSON Lines.
+void printSamples(const lsdem::InspectionTarget& target, const std::vector<double>& samples,
+                  bool json)
+{
+    using namespace lsdem;
+    if (samples.empty()) return;
+    LevelSetSampler sampler(*target.levelSet);
+    for (size_t i = 0; i + 2 < samples.size(); i += 3) {
+        const Vec3 p(samples[i], samples[i + 1], samples[i + 2]);
+        const LevelSetSample s = sampler.sample(p);
+        if (json)
+            std::cout << text({{"point", vec(p)}, {"phi", number(s.phi)}, {"gradient", vec(s.gradient)}},
+                              -1)
+                      << "\n";
+        else
+            std::printf("phi(%.6g, %.6g, %.6g) = %.8g   grad = (%.6g, %.6g, %.6g)\n", p.x(), p.y(),
+                        p.z(), s.phi, s.gradient.x(), s.gradient.y(), s.gradient.z());
+    }
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -186,23 +205,7 @@ int main(int argc, char** argv)
         cli::refuseOutputOverInput(meshPath, "--mesh", paths);
 
         const InspectionTarget target = openForInspection(paths[0]);
-        if (!samples.empty()) {
-            LevelSetSampler sampler(*target.levelSet);
-            for (size_t i = 0; i + 2 < samples.size(); i += 3) {
-                const Vec3 p(samples[i], samples[i + 1], samples[i + 2]);
-                const LevelSetSample s = sampler.sample(p);
-                if (json)
-                    std::cout << text({{"point", vec(p)},
-                                       {"phi", number(s.phi)},
-                                       {"gradient", vec(s.gradient)}},
-                                      -1)
-                              << "\n";
-                else
-                    std::printf("phi(%.6g, %.6g, %.6g) = %.8g   grad = (%.6g, %.6g, %.6g)\n",
-                                p.x(), p.y(), p.z(), s.phi, s.gradient.x(), s.gradient.y(),
-                                s.gradient.z());
-            }
-        }
+        printSamples(target, samples, json);
         if (sliceSpec) {
             writeSlicePng(target, *sliceSpec, pngPath);
             if (!json) std::printf("wrote %s\n", pngPath.c_str());

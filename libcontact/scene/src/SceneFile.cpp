@@ -56,15 +56,10 @@ std::vector<const toml::table*> arrayOfTables(const toml::table& root, const std
     return out;
 }
 
-} // namespace
-
-Scene parseScene(const std::string& text, const std::string& path)
+/// The TOML of @a text, whose top-level keys must be a scene's sections, those meant as one
+/// table being tables. @throw Error naming the line otherwise.
+toml::table parseSceneRoot(const std::string& text, const std::string& path)
 {
-    Scene scene;
-    scene.path = path;
-    scene.directory = fs::absolute(fs::path(path)).parent_path().string();
-    scene.text = text;
-
     toml::table root;
     try {
         root = toml::parse(text, path);
@@ -94,6 +89,20 @@ Scene parseScene(const std::string& text, const std::string& path)
                         "write [" + std::string(single) + "] (or [" + single +
                             ".name]) followed by its keys");
     }
+
+    return root;
+}
+
+} // namespace
+
+Scene parseScene(const std::string& text, const std::string& path)
+{
+    Scene scene;
+    scene.path = path;
+    scene.directory = fs::absolute(fs::path(path)).parent_path().string();
+    scene.text = text;
+
+    const toml::table root = parseSceneRoot(text, path);
 
     scene.units = readUnits(root["units"].as_table(), path);
     for (const auto& [name, table] : tablesInFileOrder(root["assets"].as_table(), "assets", path))

@@ -3,6 +3,7 @@
 // (BeverlooFit.h). Spheres and the bundled sand grains; the adapted law throughout (a bulk
 // flow of thousands of grains: the single-contact cases above compare the laws).
 #include "studies/verify/BeverlooFit.h"
+#include "studies/verify/SiloParking.h"
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/ls/Bake.h"
@@ -185,39 +186,6 @@ struct DischargeRun
     std::vector<VerifyFrame> frames;
 };
 
-/// Grains that have fallen well clear of the silo are set aside, fixed, on a grid far below
-/// (inside the cylinder, which is unbounded, and apart from each other): they no longer fall,
-/// collide or make the contact list rebuild, and keep their place in the world (and their
-/// shear histories' indices).
-class Parking
-{
-public:
-    Parking(double siloRadius, double largestRadius) : mSpacing(2.5 * largestRadius)
-    {
-        const double reach = siloRadius - 2.0 * largestRadius;
-        const int n = static_cast<int>(reach / mSpacing);
-        for (int i = -n; i <= n; ++i)
-            for (int j = -n; j <= n; ++j)
-                if (std::hypot(i * mSpacing, j * mSpacing) <= reach)
-                    mSlots.emplace_back(i * mSpacing, j * mSpacing);
-    }
-    void park(Grain& g)
-    {
-        const size_t layer = mUsed / mSlots.size(), k = mUsed % mSlots.size();
-        g.body.pose.position =
-            Vec3(mSlots[k].first, mSlots[k].second, -1000.0 - mSpacing * double(layer));
-        g.body.velocity = Vec3::Zero();
-        g.body.angularMomentum = Vec3::Zero();
-        g.motion = GrainMotion::Fixed;
-        ++mUsed;
-    }
-
-private:
-    double mSpacing;
-    std::vector<std::pair<double, double>> mSlots;
-    size_t mUsed = 0;
-};
-
 DischargeRun discharge(const World& settled, const SiloPlan& p, double orifice, double dt,
                        double size, bool recordFrames)
 {
@@ -275,9 +243,9 @@ DischargeRun discharge(const World& settled, const SiloPlan& p, double orifice, 
     return run;
 }
 
-void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
+/// The fill: the packing generator deposits the grains layer by layer in the closed silo.
+PackingResult packedFill(const SiloPlan& p, const GrainKind& kind)
 {
-    // Fill: the packing generator deposits the grains layer by layer in the closed silo.
     PackingOptions fill;
     fill.mixture = kind.mixture;
     fill.cylinder = PackingCylinder{0.0, 0.0, p.siloRadius, 0.5 * p.plateThickness,
@@ -285,12 +253,67 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     fill.count = p.grains;
     fill.friction = p.friction;
     fill.seed = 7;
-    const PackingResult packed = generatePacking(fill);
+    PackingResult packed = generatePacking(fill);
     if (!packed.complete)
         throw Error("", "silo: the packing generator fitted " +
                             std::to_string(packed.scene.grains.size()) + " of " +
                             std::to_string(p.grains) + " grains",
                     "a bug in the silo's plan: the silo is too small for its grains");
+    return packed;
+}
+
+/// One orifice's checks: every grain out through the hole, no clog, a steady flow.
+void addDischargeChecks(Context& c, const std::string& where, const SiloPlan& p,
+                        const DischargeRun& run)
+{
+    c.report.add({where, "adapted", "grains out through the hole", "", 1.0,
+                  run.times.empty() ? 0.0 : 1.0 - double(run.outsideTheHole) / double(run.times.size()),
+                  1.0, 0.0, "every grain leaves through the orifice, none through the plate"});
+    c.report.add({where, "adapted", "flow without clogging", "", 1.0, run.clogged ? 0.0 : 1.0,
+                  1.0, 0.0,
+                  "a grain out at least every " + numberText(p.clogTime) +
+                      " s; D ≥ 5 d clogs rarely (Zuriguel et al. 2005)"});
+    if (run.clogged) return;
+    c.report.add({where, "adapted", "steady flow: R² of M(t)", "", 1.0, run.steady.rSquared, 1.0,
+                  0.01,
+                  "Beverloo's premise: a constant flow; M(t) a line over grains " +
+                      std::to_string(p.countFrom) + "–" + std::to_string(p.countTo) +
+                      " out (R² ≥ 0.99)"});
+}
+
+/// The checks over the orifices: Beverloo's C and k judged (from three orifices on), the
+/// line's R² and the flows' own exponent shown.
+void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Discharge>& flows,
+                       double rho, double grainSize)
+{
+    const BeverlooFit fit = fitBeverloo(flows, rho, 9810.0, grainSize);
+    // Two orifices (the quick version) fix the line exactly: its fit is shown, not judged.
+    const bool judged = flows.size() >= 3;
+    // Over D = 5–8 d the exponent is weakly determined (a law W ∝ D³ still gives R² 0.9996 for
+    // W^(2/5) against D): the line's R² and the flows' own exponent are shown, C and k judged.
+    Check linear{name, "adapted", "W^(2/5) a line in D: R²", "", 1.0, fit.rSquared, 1.0, 0.0,
+                 "shown: over D = 5–8 d even W ∝ D³ gives R² 0.9996"};
+    linear.informative = true;
+    c.report.add(linear);
+    Check cFit{name, "adapted", "Beverloo's C", "", 0.6, fit.c, 0.6, 0.05 / 0.6,
+               "C = 0.55–0.65 (Beverloo et al. 1961; Nedderman 1992), with ρ_b measured"};
+    cFit.informative = !judged;
+    c.report.add(cFit);
+    Check kFit{name, "adapted", "Beverloo's k", "", 2.0, fit.k, 1.0, 1.0,
+               "k = 1–3 grain sizes (1.4–1.5 for spheres, up to ~3 for angular sand; Nedderman "
+               "1992)"};
+    kFit.informative = !judged;
+    c.report.add(kFit);
+    Check exponent{name, "adapted", "exponent of W, k as fitted", "", 2.5,
+                   fittedExponent(flows, fit.k * grainSize), 2.5, 0.0,
+                   "shown: the flows' own exponent, 5/2 in Beverloo's law"};
+    exponent.informative = true;
+    c.report.add(exponent);
+}
+
+void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
+{
+    const PackingResult packed = packedFill(p, kind);
     // Settle under the real law and gravity, then open each orifice in turn on that fill.
     const Scene scene = filledSilo(p, kind, packed);
     const double dt = automaticTimeStep(buildCase(scene), 0.2);
@@ -318,23 +341,10 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
                (run.clogged ? " (clogged)" : ", steady flow " +
                                                   roundedText(run.steady.slope, 4) + " t/s") +
                ", " + roundedText(runClock.seconds(), 3) + " s wall");
-        const std::string where = name + " D=" + numberText(orifice);
-        c.report.add({where, "adapted", "grains out through the hole", "", 1.0,
-                      run.times.empty() ? 0.0
-                                        : 1.0 - double(run.outsideTheHole) / double(run.times.size()),
-                      1.0, 0.0, "every grain leaves through the orifice, none through the plate"});
-        c.report.add({where, "adapted", "flow without clogging", "", 1.0, run.clogged ? 0.0 : 1.0,
-                      1.0, 0.0,
-                      "a grain out at least every " + numberText(p.clogTime) +
-                          " s; D ≥ 5 d clogs rarely (Zuriguel et al. 2005)"});
+        addDischargeChecks(c, name + " D=" + numberText(orifice), p, run);
         for (size_t k = 0; k < run.times.size(); k += 10)
             curves.rows.push_back({orifice, run.times[k], run.masses[k]});
         if (run.clogged) continue;
-        c.report.add({where, "adapted", "steady flow: R² of M(t)", "", 1.0, run.steady.rSquared,
-                      1.0, 0.01,
-                      "Beverloo's premise: a constant flow; M(t) a line over grains " +
-                          std::to_string(p.countFrom) + "–" + std::to_string(p.countTo) +
-                          " out (R² ≥ 0.99)"});
         flows.push_back({orifice, run.steady.slope});
         if (frames) c.report.frames.push_back({"silo_" + kind.name, std::move(run.frames)});
     }
@@ -344,30 +354,7 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     for (const Discharge& f : flows) rates.rows.push_back({f.diameter, f.massFlow, rho, kind.size});
     c.report.series.push_back(rates);
     c.report.series.push_back(curves);
-    if (flows.size() < 2) return;
-    const BeverlooFit fit = fitBeverloo(flows, rho, 9810.0, kind.size);
-    // Two orifices (the quick version) fix the line exactly: its fit is shown, not judged.
-    const bool judged = flows.size() >= 3;
-    // Over D = 5–8 d the exponent is weakly determined (a law W ∝ D³ still gives R² 0.9996 for
-    // W^(2/5) against D): the line's R² and the flows' own exponent are shown, C and k judged.
-    Check linear{name, "adapted", "W^(2/5) a line in D: R²", "", 1.0, fit.rSquared, 1.0, 0.0,
-                 "shown: over D = 5–8 d even W ∝ D³ gives R² 0.9996"};
-    linear.informative = true;
-    c.report.add(linear);
-    Check cFit{name, "adapted", "Beverloo's C", "", 0.6, fit.c, 0.6, 0.05 / 0.6,
-               "C = 0.55–0.65 (Beverloo et al. 1961; Nedderman 1992), with ρ_b measured"};
-    cFit.informative = !judged;
-    c.report.add(cFit);
-    Check kFit{name, "adapted", "Beverloo's k", "", 2.0, fit.k, 1.0, 1.0,
-               "k = 1–3 grain sizes (1.4–1.5 for spheres, up to ~3 for angular sand; Nedderman "
-               "1992)"};
-    kFit.informative = !judged;
-    c.report.add(kFit);
-    Check exponent{name, "adapted", "exponent of W, k as fitted", "", 2.5,
-                   fittedExponent(flows, fit.k * kind.size), 2.5, 0.0,
-                   "shown: the flows' own exponent, 5/2 in Beverloo's law"};
-    exponent.informative = true;
-    c.report.add(exponent);
+    if (flows.size() >= 2) addBeverlooChecks(c, name, flows, rho, kind.size);
 }
 
 } // namespace

@@ -15,8 +15,10 @@
 
 namespace lsdem {
 
-void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
-                      const SlabPanel& panel)
+namespace {
+
+/// The comment line every CSV of the study starts with: the panel, the indenter and the law.
+std::string slabHeader(const SlabStudyOptions& o)
 {
     const SlabStiffness k = slabStiffness(o);
     std::ostringstream head;
@@ -26,14 +28,15 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
          << " mm at " << o.speed << " mm/s; kn*=" << k.knStar << " N/mm^3, ks*=" << k.ksStar
          << " N/mm^3, kn=" << k.kn << " N/mm, ks=" << k.ks << " N/mm, mu=" << o.material.friction
          << ", testing=" << nodeTestingName(o.testing) << "; force in N, lengths in mm\n";
-    auto label = [](const SlabRunResult& r) {
-        std::ostringstream s;
-        s << formulationName(r.formulation) << " SDP " << r.sdp << " VDP " << r.vdp;
-        return s.str();
-    };
+    return head.str();
+}
 
+/// slab.csv: every run's P–δ curve.
+void writeSlabCurves(const SlabStudyResult& result, const SlabStudyOptions& o,
+                     const std::string& head)
+{
     std::ostringstream curves;
-    curves << std::setprecision(10) << head.str()
+    curves << std::setprecision(10) << head
            << "run,formulation,sdp,vdp,nodes,delta,P,central_drop,others_max,frame_force,kinetic\n";
     for (size_t i = 0; i < result.runs.size(); ++i) {
         const SlabRunResult& r = result.runs[i];
@@ -44,10 +47,15 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     }
     writeTextFileAtomically(o.outDir + "/slab.csv", curves.str());
 
-    // Each run against the finest of its refinement series (stage 1 of its formulation, and
-    // stage 2); empty where it is not a member.
+}
+
+/// slab_runs.csv: each run, against the finest of its refinement series (stage 1 of its
+/// formulation, and stage 2); empty where it is not a member.
+void writeSlabRuns(const SlabStudyResult& result, const SlabStudyOptions& o, const SlabPanel& panel,
+                   const std::string& head)
+{
     std::ostringstream runs;
-    runs << std::setprecision(10) << head.str()
+    runs << std::setprecision(10) << head
          << "run,stage,role,formulation,sdp,vdp,vdp_over_sdp,nodes,spacing_measured,stiffness,dt,"
             "stability_limit,steps,bake_s,run_s,node_checks,P_max,delta_at_P_max,central_drop,"
             "others_max,diff_sdp_series,diff_vdp_series,diff_whole_curve,failure_mode,stopped\n";
@@ -86,9 +94,20 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     }
     writeTextFileAtomically(o.outDir + "/slab_runs.csv", runs.str());
 
-    // Snapshots of the coarse and the converged runs: every face of every block.
+}
+
+/// slab_snapshots.csv: every face of every block of the coarse and the converged runs.
+void writeSlabSnapshots(const SlabStudyResult& result, const SlabStudyOptions& o,
+                        const SlabPanel& panel, const std::string& head)
+{
+    auto label = [](const SlabRunResult& r) {
+        std::ostringstream s;
+        s << formulationName(r.formulation) << " SDP " << r.sdp << " VDP " << r.vdp;
+        return s.str();
+    };
+
     std::ostringstream snaps;
-    snaps << std::setprecision(8) << head.str()
+    snaps << std::setprecision(8) << head
           << "run,role,label,delta,block,i,j,displacement,face,x0,y0,z0,x1,y1,z1,x2,y2,z2,x3,y3,z3\n";
     for (int i : {result.coarseRun, result.convergedRun}) {
         if (i < 0) continue;
@@ -108,6 +127,12 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     }
     writeTextFileAtomically(o.outDir + "/slab_snapshots.csv", snaps.str());
 
+}
+
+/// slab_failure.txt: how the panel failed, per run.
+void writeSlabFailure(const SlabStudyResult& result, const SlabStudyOptions& o,
+                      const SlabPanel& panel)
+{
     std::ostringstream text;
     text << "Failure of the panel at delta_max = " << slabDeltaMax(o) << " mm, per run\n\n";
     for (size_t i = 0; i < result.runs.size(); ++i) {
@@ -119,6 +144,18 @@ void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
     }
     writeTextFileAtomically(o.outDir + "/slab_failure.txt", text.str());
 
+}
+
+} // namespace
+
+void writeSlabOutputs(const SlabStudyResult& result, const SlabStudyOptions& o,
+                      const SlabPanel& panel)
+{
+    const std::string head = slabHeader(o);
+    writeSlabCurves(result, o, head);
+    writeSlabRuns(result, o, panel, head);
+    writeSlabSnapshots(result, o, panel, head);
+    writeSlabFailure(result, o, panel);
     if (o.writeScene && result.convergedRun >= 0) {
         const SlabRunResult& r = result.runs[result.convergedRun];
         std::ostringstream name;

@@ -152,6 +152,48 @@ bool TriaxialCommand::chosen() const
     return mCommand->parsed();
 }
 
+namespace {
+
+/// The sample, a table of the runs, the seeds' means and the change between the two finest SDPs.
+void printTriaxialSummary(const TriaxialOptions& o, const TriaxialStudyResult& result)
+{
+    const bool seeds = o.seeds.size() > 1;
+    std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
+                "spacing %.17g mm\n",
+                result.grains, result.meshes, result.meanDiameter, result.spacing);
+    std::printf("%-9s %6s %5s %6s %7s %6s %8s %7s %8s %7s %8s %9s %8s %8s %8s\n", "formul.",
+                "SDP", "seed", "nodes", "e0", "Z0", "E50 MPa", "phi_pk", "eps_pk", "phi_cs", "e_cs",
+                "I_max", "steps", "ms/step", "wall s");
+    for (const TriaxialRun& r : result.runs) {
+        const TriaxialTestResult& t = r.test;
+        std::printf("%-9s %6.3g %5lld %6.0f %7.3f %6.2f %8.2f %7.2f %7.3f %8.2f %7.3f %9.2e %8lld "
+                    "%8.2f %8.0f%s\n",
+                    formulationName(r.formulation).c_str(), r.sdp, r.seed, r.nodesPerGrain,
+                    t.consolidated.voidRatio, t.consolidated.coordination, t.secantModulus50,
+                    t.peakFrictionAngle,
+                    t.peakAxialStrain, t.criticalFrictionAngle, t.criticalVoidRatio,
+                    t.maxInertialNumber, t.consolidationSteps + t.shearSteps, r.msPerStep,
+                    r.runSeconds, t.consolidatedWithinTolerance ? "" : "  (not consolidated)");
+    }
+    if (seeds)
+        for (const TriaxialSeedMean& m : triaxialSeedMeans(result))
+            std::printf("%s SDP %g, mean of %d seeds (standard deviation): peak friction angle "
+                        "%.2f (%.2f) deg, E50 %.2f (%.2f) MPa\n",
+                        formulationName(m.formulation).c_str(), m.sdp, m.seeds,
+                        m.peakFrictionAngle, m.peakFrictionAngleSpread, m.secantModulus50,
+                        m.secantModulus50Spread);
+    for (Formulation f : o.formulations) {
+        const double change = finestPeakChange(result, f);
+        if (std::isfinite(change))
+            std::printf("%s, between the two finest SDPs%s: peak friction angle %+.2f deg, "
+                        "E50 %+.1f %%\n",
+                        formulationName(f).c_str(), seeds ? " (means over the seeds)" : "",
+                        change, 100.0 * finestModulusChange(result, f));
+    }
+}
+
+} // namespace
+
 int TriaxialCommand::run(RunDistributor& ranks) const
 {
     const TriaxialOptions& o = mOptions;
@@ -202,38 +244,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     writeTriaxialCsv(result, csv);
     writeTriaxialRunsCsv(result, runsCsv);
 
-    std::printf("sample: %lld grains of %d meshes (equivalent diameter %.3g mm), lattice "
-                "spacing %.17g mm\n",
-                result.grains, result.meshes, result.meanDiameter, result.spacing);
-    std::printf("%-9s %6s %5s %6s %7s %6s %8s %7s %8s %7s %8s %9s %8s %8s %8s\n", "formul.",
-                "SDP", "seed", "nodes", "e0", "Z0", "E50 MPa", "phi_pk", "eps_pk", "phi_cs", "e_cs",
-                "I_max", "steps", "ms/step", "wall s");
-    for (const TriaxialRun& r : result.runs) {
-        const TriaxialTestResult& t = r.test;
-        std::printf("%-9s %6.3g %5lld %6.0f %7.3f %6.2f %8.2f %7.2f %7.3f %8.2f %7.3f %9.2e %8lld "
-                    "%8.2f %8.0f%s\n",
-                    formulationName(r.formulation).c_str(), r.sdp, r.seed, r.nodesPerGrain,
-                    t.consolidated.voidRatio, t.consolidated.coordination, t.secantModulus50,
-                    t.peakFrictionAngle,
-                    t.peakAxialStrain, t.criticalFrictionAngle, t.criticalVoidRatio,
-                    t.maxInertialNumber, t.consolidationSteps + t.shearSteps, r.msPerStep,
-                    r.runSeconds, t.consolidatedWithinTolerance ? "" : "  (not consolidated)");
-    }
-    if (seeds)
-        for (const TriaxialSeedMean& m : triaxialSeedMeans(result))
-            std::printf("%s SDP %g, mean of %d seeds (standard deviation): peak friction angle "
-                        "%.2f (%.2f) deg, E50 %.2f (%.2f) MPa\n",
-                        formulationName(m.formulation).c_str(), m.sdp, m.seeds,
-                        m.peakFrictionAngle, m.peakFrictionAngleSpread, m.secantModulus50,
-                        m.secantModulus50Spread);
-    for (Formulation f : o.formulations) {
-        const double change = finestPeakChange(result, f);
-        if (std::isfinite(change))
-            std::printf("%s, between the two finest SDPs%s: peak friction angle %+.2f deg, "
-                        "E50 %+.1f %%\n",
-                        formulationName(f).c_str(), seeds ? " (means over the seeds)" : "",
-                        change, 100.0 * finestModulusChange(result, f));
-    }
+    printTriaxialSummary(o, result);
     // The first formulation's finest run (of the first seed), as a scene to rerun the
     // shearing with lsdem-run (ParaView frames, wall histories) or to edit.
     const TriaxialRun* finest = nullptr;

@@ -214,18 +214,17 @@ void saveAsset(const GrainAsset& asset, const std::string& path)
     });
 }
 
-std::shared_ptr<const GrainAsset> loadAsset(const std::string& path, NodeNormals normals)
-{
-    initializeOpenVdb();
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        throw Error(path, "no such file", "check the path; bake assets with lsdem-bake");
-    if (std::filesystem::is_directory(path, ec))
-        throw Error(path, "is a folder, not an asset file");
-    // OpenVDB believes the sizes a file states; only a file that is byte for byte as written
-    // reaches it.
-    verifyAssetFile(path);
+namespace {
 
+/// The level set and the nodes grid of the asset file at @a path.
+struct AssetGrids
+{
+    openvdb::FloatGrid::Ptr phi;
+    openvdb::points::PointDataGrid::Ptr nodes;
+};
+
+AssetGrids readAssetGrids(const std::string& path)
+{
     openvdb::GridPtrVecPtr grids;
     try {
         openvdb::io::File file(path);
@@ -237,75 +236,110 @@ std::shared_ptr<const GrainAsset> loadAsset(const std::string& path, NodeNormals
                     "the file is corrupt or not a .vdb; bake it again with lsdem-bake");
     }
 
-    openvdb::FloatGrid::Ptr phi;
-    openvdb::points::PointDataGrid::Ptr nodesGrid;
+    AssetGrids g;
     for (const auto& grid : *grids) {
         if (grid->getName() == kLevelSetGridName)
-            phi = openvdb::gridPtrCast<openvdb::FloatGrid>(grid);
+            g.phi = openvdb::gridPtrCast<openvdb::FloatGrid>(grid);
         else if (grid->getName() == kNodesGridName)
-            nodesGrid = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(grid);
+            g.nodes = openvdb::gridPtrCast<openvdb::points::PointDataGrid>(grid);
     }
-    if (!phi)
+    if (!g.phi)
         throw Error(path, "holds no float grid named 'phi'",
                     "this is not an lsdem asset; bake one with lsdem-bake (lsdem-inspect can "
                     "still summarise any level-set .vdb)");
-    const std::string format = readMeta<std::string>(*phi, "lsdem_format", path);
-    const int version = readMeta<int32_t>(*phi, "lsdem_format_version", path);
+    return g;
+}
+
+/// The asset format and version @a phi declares must be this lsdem's; the nodes grid must be
+/// there and the transform a uniform linear map.
+void checkAssetFormat(const AssetGrids& g, const std::string& path)
+{
+    const std::string format = readMeta<std::string>(*g.phi, "lsdem_format", path);
+    const int version = readMeta<int32_t>(*g.phi, "lsdem_format_version", path);
     if (format != kAssetFormatName || version != kFormatVersion)
         throw Error(path, "is an asset of format '" + format + "' version " +
                               std::to_string(version) + "; this lsdem reads version " +
                               std::to_string(kFormatVersion),
                     "bake the asset again with this lsdem");
-    if (!nodesGrid)
+    if (!g.nodes)
         throw Error(path, "holds no points grid named 'nodes'", "bake the asset again");
-    const auto& xform = phi->transform();
+    const auto& xform = g.phi->transform();
     if (!xform.isLinear() || !xform.hasUniformScale())
         throw Error(path, "the level set's transform is not a uniform linear map",
                     "bake the asset again with lsdem-bake");
+}
 
-    // The exact voxel size and origin are kept as metadata (the transform's matrix would round
-    // them); they must agree with the transform that OpenVDB tools use.
+/// The level set of @a phi with its exact voxel size and origin, which are kept as metadata
+/// (the transform's matrix would round them) and must agree with the transform OpenVDB tools use.
+std::shared_ptr<LevelSetGrid> readLevelSet(const openvdb::FloatGrid& phi, const std::string& path)
+{
+    const auto& xform = phi.transform();
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->voxelSize = readMeta<double>(*phi, "voxel_size", path);
-    levelSet->origin = readVec3(*phi, "grid_origin", path);
+    levelSet->voxelSize = readMeta<double>(phi, "voxel_size", path);
+    levelSet->origin = readVec3(phi, "grid_origin", path);
     if (!(levelSet->voxelSize > 0.0 && std::isfinite(levelSet->voxelSize)) ||
         !levelSet->origin.allFinite())
         throw Error(path, "the voxel size or the grid origin is not a finite length",
                     "the file is corrupt; bake the asset again");
-    levelSet->grid = toLevelSetGrid(*phi);
+    levelSet->grid = toLevelSetGrid(phi);
     const Vec3 transformOrigin = fromVdb(xform.indexToWorld(openvdb::Vec3d(0, 0, 0)));
     if (std::abs(xform.voxelSize()[0] - levelSet->voxelSize) > 1e-9 * levelSet->voxelSize ||
         (transformOrigin - levelSet->origin).norm() > 1e-6 * levelSet->voxelSize)
         throw Error(path, "the level set's transform disagrees with its lsdem metadata",
                     "the file was edited or is corrupt; bake the asset again");
+    return levelSet;
+}
 
+/// The asset's properties kept as metadata of @a phi: mass properties, its input frame, how
+/// its nodes were placed, its provenance.
+void readAssetMetadata(const openvdb::FloatGrid& phi, GrainAsset& asset, const std::string& path)
+{
+    asset.exteriorBandVoxels = readMeta<int32_t>(phi, "exterior_band_voxels", path);
+    asset.mass.volume = readMeta<double>(phi, "volume", path);
+    asset.mass.centroid = readVec3(phi, "centroid", path);
+    for (int r = 0; r < 3; ++r)
+        asset.mass.inertia.row(r) =
+            readVec3(phi, "inertia_row" + std::to_string(r), path).transpose();
+    asset.inputFrame.centroid = readVec3(phi, "input_centroid", path);
+    for (int r = 0; r < 3; ++r)
+        asset.inputFrame.rotation.row(r) =
+            readVec3(phi, "input_to_asset_row" + std::to_string(r), path).transpose();
+    asset.inputFrame.moments = readVec3(phi, "principal_moments", path);
+    const std::string rule = readMeta<std::string>(phi, "area_rule", path);
+    asset.areaRule = rule == "uniform" ? AreaRule::Uniform : AreaRule::Mesh;
+    asset.spacing.mean = readMeta<double>(phi, "node_spacing_mean", path);
+    asset.spacing.min = readMeta<double>(phi, "node_spacing_min", path);
+    asset.spacing.max = readMeta<double>(phi, "node_spacing_max", path);
+    asset.boundingRadius = readMeta<double>(phi, "bounding_radius", path);
+    asset.provenance.lsdemVersion = readMeta<std::string>(phi, "lsdem_version", path);
+    asset.provenance.source = readMeta<std::string>(phi, "source", path);
+    asset.provenance.sourceSha256 = readMeta<std::string>(phi, "source_sha256", path);
+    asset.provenance.options = readMeta<std::string>(phi, "bake_options", path);
+}
+
+} // namespace
+
+std::shared_ptr<const GrainAsset> loadAsset(const std::string& path, NodeNormals normals)
+{
+    initializeOpenVdb();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw Error(path, "no such file", "check the path; bake assets with lsdem-bake");
+    if (std::filesystem::is_directory(path, ec))
+        throw Error(path, "is a folder, not an asset file");
+    // OpenVDB believes the sizes a file states; only a file that is byte for byte as written
+    // reaches it.
+    verifyAssetFile(path);
+    const AssetGrids grids = readAssetGrids(path);
+    checkAssetFormat(grids, path);
+    const openvdb::FloatGrid& phi = *grids.phi;
     auto asset = std::make_shared<GrainAsset>();
-    asset->levelSet = levelSet;
-    asset->voxelSize = levelSet->voxelSize;
-    asset->exteriorBandVoxels = readMeta<int32_t>(*phi, "exterior_band_voxels", path);
-    asset->mass.volume = readMeta<double>(*phi, "volume", path);
-    asset->mass.centroid = readVec3(*phi, "centroid", path);
-    for (int r = 0; r < 3; ++r)
-        asset->mass.inertia.row(r) =
-            readVec3(*phi, "inertia_row" + std::to_string(r), path).transpose();
-    asset->inputFrame.centroid = readVec3(*phi, "input_centroid", path);
-    for (int r = 0; r < 3; ++r)
-        asset->inputFrame.rotation.row(r) =
-            readVec3(*phi, "input_to_asset_row" + std::to_string(r), path).transpose();
-    asset->inputFrame.moments = readVec3(*phi, "principal_moments", path);
-    const std::string rule = readMeta<std::string>(*phi, "area_rule", path);
-    asset->areaRule = rule == "uniform" ? AreaRule::Uniform : AreaRule::Mesh;
-    asset->spacing.mean = readMeta<double>(*phi, "node_spacing_mean", path);
-    asset->spacing.min = readMeta<double>(*phi, "node_spacing_min", path);
-    asset->spacing.max = readMeta<double>(*phi, "node_spacing_max", path);
-    asset->boundingRadius = readMeta<double>(*phi, "bounding_radius", path);
-    asset->provenance.lsdemVersion = readMeta<std::string>(*phi, "lsdem_version", path);
-    asset->provenance.source = readMeta<std::string>(*phi, "source", path);
-    asset->provenance.sourceSha256 = readMeta<std::string>(*phi, "source_sha256", path);
-    asset->provenance.options = readMeta<std::string>(*phi, "bake_options", path);
-    const int64_t count = readMeta<int64_t>(*phi, "node_count", path);
+    asset->levelSet = readLevelSet(phi, path);
+    asset->voxelSize = asset->levelSet->voxelSize;
+    readAssetMetadata(phi, *asset, path);
+    const int64_t count = readMeta<int64_t>(phi, "node_count", path);
     if (count <= 0) throw Error(path, "the asset has no surface nodes", "bake it again");
-    asset->nodes = readNodesGrid(*nodesGrid, size_t(count), normals, path);
+    asset->nodes = readNodesGrid(*grids.nodes, size_t(count), normals, path);
     deriveContactBounds(*asset);
     return asset;
 }

@@ -74,6 +74,9 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 
 } // namespace
 
+// Long on purpose: its passes (the deep step, the table's size, pass 1 classifying the places,
+// the bricks laid out in place order, pass 2 writing them) share the table under construction,
+// and are marked below; the storage's rework (16-bit bricks, issue 35) will split it with it.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
 {

@@ -13,6 +13,80 @@
 
 namespace lsdem {
 
+namespace {
+
+/// What a slab run measures as the indenter goes down, from the grains' rest poses: the P–δ
+/// curve's samples and the snapshots of every block.
+class SlabRecorder
+{
+public:
+    SlabRecorder(const Simulation& sim, const SlabPanel& panel, const GrainAsset& block)
+        : mSim(sim), mPanel(panel), mIndenter(static_cast<int>(sim.world().boundaries.size()) - 1),
+          mCentre(panel.centralBlock()),
+          // The reference block's origin in the asset frame: where a block's rest centre goes.
+          mOrigin(-(block.inputFrame.rotation * block.inputFrame.centroid))
+    {
+        for (const Grain& g : sim.world().grains) {
+            mRestPosition.push_back(g.body.pose.position);
+            mRestOrientation.push_back(g.body.pose.orientation);
+        }
+    }
+
+    /// How far the indenter has gone down.
+    double delta() const { return -world().boundaries[size_t(mIndenter)].displacement.z(); }
+
+    SlabSample sample(double delta) const
+    {
+        const World& w = world();
+        SlabSample s;
+        s.delta = delta;
+        s.force = w.boundaries[size_t(mIndenter)].force.z();
+        s.centralDrop = -displacement(mCentre).z();
+        for (int k = 0; k < count(); ++k)
+            if (k != mCentre) s.othersMax = std::max(s.othersMax, displacement(k).norm());
+        for (int b = 0; b < mIndenter; ++b) s.frameForce -= w.boundaries[size_t(b)].force.z();
+        s.kinetic = mSim.energies().kinetic;
+        return s;
+    }
+
+    SlabSnapshot snapshot(double delta) const
+    {
+        SlabSnapshot s;
+        s.delta = delta;
+        for (int k = 0; k < count(); ++k) {
+            const RigidPose& pose = world().grains[size_t(k)].body.pose;
+            s.displacement.push_back(displacement(k));
+            const Mat3 turn = (pose.orientation * mRestOrientation[size_t(k)].conjugate()).toRotationMatrix();
+            s.faces.push_back(mPanel.faces(mPanel.blocks()[size_t(k)], turn, pose.toWorld(mOrigin)));
+        }
+        return s;
+    }
+
+    std::vector<Vec3> displacements() const
+    {
+        std::vector<Vec3> d;
+        for (int k = 0; k < count(); ++k) d.push_back(displacement(k));
+        return d;
+    }
+
+private:
+    const World& world() const { return mSim.world(); }
+    int count() const { return static_cast<int>(mRestPosition.size()); }
+    Vec3 displacement(int k) const
+    {
+        return world().grains[size_t(k)].body.pose.position - mRestPosition[size_t(k)];
+    }
+
+    const Simulation& mSim;
+    const SlabPanel& mPanel;
+    int mIndenter, mCentre;
+    Vec3 mOrigin;
+    std::vector<Vec3> mRestPosition;
+    std::vector<Quat> mRestOrientation;
+};
+
+} // namespace
+
 SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
                           std::shared_ptr<const GrainAsset> block, Formulation f, double sdp,
                           double vdp, const std::function<void(double)>& progress)
@@ -29,67 +103,31 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
 
     const Scene scene = makeSlabScene(o, f, block, r.dt);
     std::vector<std::string> warnings;
-    World world = buildWorld(scene, warnings);
-    Simulation sim(std::move(world), r.dt);
-    const World& w = sim.world();
-    const int indenter = static_cast<int>(w.boundaries.size()) - 1;
-    const int centre = panel.centralBlock();
-    const int count = static_cast<int>(w.grains.size());
-    std::vector<Vec3> p0(count);
-    std::vector<Quat> q0(count);
-    for (int k = 0; k < count; ++k) {
-        p0[k] = w.grains[k].body.pose.position;
-        q0[k] = w.grains[k].body.pose.orientation;
-    }
-    // The reference block's origin in the asset frame: where a block's rest centre goes.
-    const Vec3 origin = -(block->inputFrame.rotation * block->inputFrame.centroid);
+    Simulation sim(buildWorld(scene, warnings), r.dt);
+    const SlabRecorder recorder(sim, panel, *block);
 
     const double deltaMax = slabDeltaMax(o);
     const long long totalSteps = static_cast<long long>(std::ceil(deltaMax / (o.speed * r.dt)));
     const long long recordEvery = std::max<long long>(1, totalSteps / o.samples);
     const std::vector<double> targets = slabSnapshotDeltas(o);
     size_t nextSnapshot = 0;
-
-    auto sample = [&](double delta) {
-        SlabSample s;
-        s.delta = delta;
-        s.force = w.boundaries[indenter].force.z();
-        s.centralDrop = -(w.grains[centre].body.pose.position - p0[centre]).z();
-        for (int k = 0; k < count; ++k)
-            if (k != centre)
-                s.othersMax = std::max(s.othersMax, (w.grains[k].body.pose.position - p0[k]).norm());
-        for (int b = 0; b < indenter; ++b) s.frameForce -= w.boundaries[b].force.z();
-        s.kinetic = sim.energies().kinetic;
-        r.curve.push_back(s);
-    };
-    auto snapshot = [&](double delta) {
-        SlabSnapshot s;
-        s.delta = delta;
-        for (int k = 0; k < count; ++k) {
-            const RigidPose& pose = w.grains[k].body.pose;
-            s.displacement.push_back(pose.position - p0[k]);
-            const Mat3 turn = (pose.orientation * q0[k].conjugate()).toRotationMatrix();
-            s.faces.push_back(panel.faces(panel.blocks()[k], turn, pose.toWorld(origin)));
-        }
-        r.snapshots.push_back(std::move(s));
-    };
-    auto delta = [&] { return -w.boundaries[indenter].displacement.z(); };
     auto takeSnapshots = [&](double d) {
         while (nextSnapshot < targets.size() && d >= targets[nextSnapshot] - 1e-9 * deltaMax) {
-            snapshot(d);
+            r.snapshots.push_back(recorder.snapshot(d));
             ++nextSnapshot;
         }
     };
 
-    sample(0.0);
+    r.curve.push_back(recorder.sample(0.0));
     takeSnapshots(0.0);
     SteadyClock::time_point lastReport = SteadyClock::now();
     try {
-        while (delta() < deltaMax * (1.0 - 1e-12)) {
+        while (recorder.delta() < deltaMax * (1.0 - 1e-12)) {
             sim.step();
             ++r.steps;
-            const double d = delta();
-            if (r.steps % recordEvery == 0 || d >= deltaMax * (1.0 - 1e-12)) sample(d);
+            const double d = recorder.delta();
+            if (r.steps % recordEvery == 0 || d >= deltaMax * (1.0 - 1e-12))
+                r.curve.push_back(recorder.sample(d));
             takeSnapshots(d);
             if (progress && secondsSince(lastReport) > 10.0) {
                 progress(d);
@@ -100,9 +138,10 @@ SlabRunResult runSlabCase(const SlabStudyOptions& o, const SlabPanel& panel,
         // Keep what was recorded; the caller reports the failure.
         r.stopped = true;
         r.error = e.what();
-        if (r.curve.empty() || r.curve.back().delta != delta()) sample(delta());
+        const double d = recorder.delta();
+        if (r.curve.empty() || r.curve.back().delta != d) r.curve.push_back(recorder.sample(d));
     }
-    for (int k = 0; k < count; ++k) r.finalDisplacement.push_back(w.grains[k].body.pose.position - p0[k]);
+    r.finalDisplacement = recorder.displacements();
     r.nodeChecks = sim.counters().nodes.nodesConsidered;
     r.stabilityLimit = sim.stabilityLimitSeen();
     r.runSeconds = wall.seconds();

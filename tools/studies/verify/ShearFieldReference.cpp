@@ -46,6 +46,8 @@ Vec3 Surface::normalAt(const Vec3& p) const
     return (p - Vec3(0, 0, -radius)).normalized();
 }
 
+// Long on purpose: the whole reference integrator in one place, written apart from lsdem's
+// contact code, so that it can be read against the equations line by line.
 BallImpact ballOnSurface(const SurfacePoints& points, const ContactModel& law, double mass,
                          double inertia, const Surface& surface, double height,
                          const Vec3& velocity, const Vec3& spin, double step)

@@ -143,6 +143,37 @@ TEST(VerifyReferences, BeverlooFitRecoversTheLawsConstants)
     EXPECT_NEAR(line.intercept, 1.0, 1e-15);
     EXPECT_EQ(line.rSquared, 1.0);
     EXPECT_LT(fitLine({0, 1, 2, 3}, {1, 3, 6, 7}).rSquared, 0.99);
+}
+
+// The line's uncertainty, worked by hand for y = {1, 3, 6, 7} at x = {0, 1, 2, 3}: the line
+// 2.1x + 1.1, residuals −0.1, −0.2, 0.7, −0.4, σ² = 0.70/2, Sxx = 5, x̄ = 1.5: Var(slope)
+// 0.07, Var(intercept) 0.35·(1/4 + 2.25/5) = 0.245, Cov −1.5·0.35/5 = −0.105. Carried to
+// Beverloo's C and k for the spheres' four silo flows (docs/verification.md), the half-widths
+// of the 95 % intervals agree with numpy's polyfit covariance and the same first-order
+// propagation (0.1433 and 0.6711, t = 4.303); exact flows give zero, two flows none.
+TEST(VerifyReferences, BeverlooFitSaysHowLooselyTheFlowsFixCAndK)
+{
+    const LineFit line = fitLine({0, 1, 2, 3}, {1, 3, 6, 7});
+    EXPECT_EQ(line.degreesOfFreedom, 2);
+    EXPECT_NEAR(line.slopeVariance, 0.07, 1e-14);
+    EXPECT_NEAR(line.interceptVariance, 0.245, 1e-14);
+    EXPECT_NEAR(line.covariance, -0.105, 1e-14);
+
+    const std::vector<Discharge> spheres = {
+        {5.0, 2.013e-6}, {6.0, 3.578e-6}, {7.0, 5.984e-6}, {8.0, 8.472e-6}};
+    const BeverlooFit fit = fitBeverloo(spheres, 1.532e-9, 9810.0, 1.0);
+    EXPECT_NEAR(fit.c, 0.46529, 1e-4);
+    EXPECT_NEAR(fit.cHalfWidth95, 0.14334, 1e-4);
+    EXPECT_NEAR(fit.k, 1.17007, 1e-4);
+    EXPECT_NEAR(fit.kHalfWidth95, 0.67108, 1e-4);
+
+    const double c = 0.58, k = 1.4, d = 1.2, rho = 1.6e-9, g = 9810.0;
+    std::vector<Discharge> exact;
+    for (double diameter : {5.0, 6.5, 8.0})
+        exact.push_back({diameter, c * rho * std::sqrt(g) * std::pow(diameter - k * d, 2.5)});
+    EXPECT_NEAR(fitBeverloo(exact, rho, g, d).cHalfWidth95, 0.0, 1e-6);
+    exact.pop_back();
+    EXPECT_TRUE(std::isnan(fitBeverloo(exact, rho, g, d).cHalfWidth95));
     EXPECT_THROW(fitLine({1, 1}, {2, 3}), std::exception);
 }
 

@@ -3,8 +3,25 @@
 #include "lsdem/core/Error.h"
 
 #include <cmath>
+#include <limits>
 
 namespace lsdem::verify {
+
+namespace {
+
+/// Student's t at 97.5 % (a two-sided 95 % interval) for @a dof degrees of freedom (Abramowitz
+/// & Stegun, Table 26.10); NaN for none; the normal's 1.96 beyond 30.
+double studentT975(int dof)
+{
+    static const double t[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262,
+                               2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101,
+                               2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052,
+                               2.048, 2.045, 2.042};
+    if (dof < 1) return std::numeric_limits<double>::quiet_NaN();
+    return dof <= 30 ? t[dof - 1] : 1.96;
+}
+
+} // namespace
 
 LineFit fitLine(const std::vector<double>& x, const std::vector<double>& y)
 {
@@ -30,6 +47,12 @@ LineFit fitLine(const std::vector<double>& x, const std::vector<double>& y)
         residual += r * r;
     }
     fit.rSquared = syy > 0.0 ? 1.0 - residual / syy : 1.0;
+    fit.degreesOfFreedom = static_cast<int>(n) - 2;
+    const double variance = fit.degreesOfFreedom > 0 ? residual / fit.degreesOfFreedom
+                                                     : std::numeric_limits<double>::quiet_NaN();
+    fit.slopeVariance = variance / sxx;
+    fit.interceptVariance = variance * (1.0 / double(n) + mx * mx / sxx);
+    fit.covariance = -mx * variance / sxx;
     return fit;
 }
 
@@ -47,6 +70,13 @@ BeverlooFit fitBeverloo(const std::vector<Discharge>& flows, double bulkDensity,
     fit.c = std::pow(line.slope, 2.5) / (bulkDensity * std::sqrt(gravity));
     fit.k = -line.intercept / line.slope / grainSize;
     fit.rSquared = line.rSquared;
+    // C = s^(5/2)/(ρ_b·√g): dC/ds = 2.5·C/s. k = −b/(s·d): dk/ds = b/(s²·d), dk/db = −1/(s·d).
+    const double t = studentT975(line.degreesOfFreedom);
+    const double s = line.slope, b = line.intercept;
+    fit.cHalfWidth95 = t * 2.5 * fit.c / s * std::sqrt(line.slopeVariance);
+    const double ks = b / (s * s * grainSize), kb = -1.0 / (s * grainSize);
+    fit.kHalfWidth95 = t * std::sqrt(ks * ks * line.slopeVariance + kb * kb * line.interceptVariance +
+                                     2.0 * ks * kb * line.covariance);
     return fit;
 }
 

@@ -21,6 +21,10 @@ struct LineFit
 {
     double slope = 0.0, intercept = 0.0;
     double rSquared = 0.0;  ///< 1 − residual / total sum of squares (1: every point on it)
+    /// The least-squares estimates' variances and covariance, with the residuals' variance
+    /// σ² = Σr²/(n − 2): σ²/Sxx, σ²·(1/n + x̄²/Sxx), −x̄·σ²/Sxx. NaN for two points.
+    double slopeVariance = 0.0, interceptVariance = 0.0, covariance = 0.0;
+    int degreesOfFreedom = 0;  ///< n − 2
 };
 
 /// The least-squares line through (@a x, @a y) (at least two points, x not all equal).
@@ -38,6 +42,10 @@ struct BeverlooFit
     double c = 0.0;         ///< Beverloo's C
     double k = 0.0;         ///< the empty annulus, in grain sizes
     double rSquared = 0.0;  ///< of W^(2/5) against D
+    /// Half-widths of the 95 % intervals of C and k from the line's uncertainty (Student's t
+    /// for n − 2 degrees of freedom; C and k carried from the slope and intercept to first
+    /// order). NaN for two orifices, whose line is exact.
+    double cHalfWidth95 = 0.0, kHalfWidth95 = 0.0;
 };
 
 /// Beverloo's law with the exponent 5/2 fitted to @a flows (at least two diameters) for bulk

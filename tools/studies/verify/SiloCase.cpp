@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 
 namespace lsdem::verify {
 
@@ -304,6 +305,19 @@ void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Di
                "1992)"};
     kFit.informative = !judged;
     c.report.add(kFit);
+    if (judged) {
+        // How loosely the orifices fix C and k: their 95 % intervals, shown.
+        for (const auto& [quantity, value, reference, scale, tolerance] :
+             {std::make_tuple("Beverloo's C, 95 % interval from", fit.c - fit.cHalfWidth95, 0.6, 0.6, 0.05 / 0.6),
+              std::make_tuple("Beverloo's C, 95 % interval to", fit.c + fit.cHalfWidth95, 0.6, 0.6, 0.05 / 0.6),
+              std::make_tuple("Beverloo's k, 95 % interval from", fit.k - fit.kHalfWidth95, 2.0, 1.0, 1.0),
+              std::make_tuple("Beverloo's k, 95 % interval to", fit.k + fit.kHalfWidth95, 2.0, 1.0, 1.0)}) {
+            Check interval{name, "adapted", quantity, "", reference, value, scale, tolerance,
+                           "shown: the line's uncertainty carried to C and k (Student's t)"};
+            interval.informative = true;
+            c.report.add(interval);
+        }
+    }
     Check exponent{name, "adapted", "exponent of W, k as fitted", "", 2.5,
                    fittedExponent(flows, fit.k * grainSize), 2.5, 0.0,
                    "shown: the flows' own exponent, 5/2 in Beverloo's law"};

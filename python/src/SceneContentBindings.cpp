@@ -7,11 +7,9 @@
 
 #include <pybind11/stl.h>
 
-#include <filesystem>
-
 #include <algorithm>
 #include <cmath>
-#include <iterator>
+#include <filesystem>
 
 namespace lsdem::python {
 
@@ -64,14 +62,11 @@ void bindSceneContents(py::class_<Scene>& scene)
                  const std::pair<const char*, double> given[] = {
                      {"normal_stiffness", normalStiffness}, {"shear_stiffness", shearStiffness},
                      {"friction", friction}, {"restitution", restitution}};
-                 for (const ContactCoefficient& k : contactCoefficients()) {
-                     const auto value = std::find_if(std::begin(given), std::end(given),
-                                                     [&](const auto& g) { return k.key == g.first; });
-                     if (value == std::end(given))  // a coefficient added to the schema only
-                         throw std::logic_error("add_contact does not take " + k.key);
-                     if (std::optional<ContactProblem> p = k.rangeProblem(value->second))
+                 for (const auto& [key, value] : given) {
+                     const ContactCoefficient& k = contactCoefficient(key);
+                     if (std::optional<ContactProblem> p = k.rangeProblem(value))
                          throw Error("", p->key + " " + p->problem, p->fix);
-                     k.set(c.model, value->second);
+                     k.set(c.model, value);
                  }
                  if (std::optional<ContactProblem> p = checkContactModel(c.model, "'"))
                      throw Error("", p->key + " " + p->problem, p->fix);

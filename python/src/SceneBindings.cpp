@@ -7,6 +7,7 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneWriter.h"
 
 #include <pybind11/stl.h>
@@ -149,56 +150,53 @@ void bindSceneFiles(py::class_<Scene>& scene)
         });
 }
 
+/// A setting's value for Python: a float, an int, a bool or an array (3,).
+py::object settingToPython(const SettingValue& value)
+{
+    if (const double* d = std::get_if<double>(&value)) return py::float_(*d);
+    if (const long long* n = std::get_if<long long>(&value)) return py::int_(*n);
+    if (const bool* b = std::get_if<bool>(&value)) return py::bool_(*b);
+    return toArray(std::get<Vec3>(value));
+}
+
+/// A Python value as @a setting's type: ints for counts, bools for flags (not a number that
+/// happens to be 0 or 1), three numbers for a vector.
+SettingValue settingFromPython(const SceneSetting& setting, const py::handle& value)
+{
+    const SettingValue kind = setting.defaultValue();
+    if (std::holds_alternative<Vec3>(kind)) return toVec3(value, setting.key);
+    if (std::holds_alternative<bool>(kind)) {
+        if (!py::isinstance<py::bool_>(value))
+            throw Error("", setting.key + " must be True or False", "");
+        return value.cast<bool>();
+    }
+    if (std::holds_alternative<long long>(kind)) {
+        if (!py::isinstance<py::int_>(value) || py::isinstance<py::bool_>(value))
+            throw Error("", setting.key + " must be a whole number", "");
+        return value.cast<long long>();
+    }
+    if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
+        throw Error("", setting.key + " must be a number", "");
+    return value.cast<double>();
+}
+
 void bindSceneSettings(py::class_<Scene>& scene)
 {
+    // One property per setting of [simulation] and [output], with the file's name, range and
+    // advice (SceneSettings.h); the setter refuses what a file would.
+    for (const SceneSetting& setting : sceneSettings()) {
+        const SceneSetting* s = &setting;  // the schema lives as long as the program
+        scene.def_property(
+            s->key.c_str(), [s](const Scene& sc) { return settingToPython(s->get(sc)); },
+            [s](Scene& sc, const py::object& value) {
+                const SettingValue v = settingFromPython(*s, value);
+                checkSetting(*s, v, "");
+                markChanged(sc);
+                s->set(sc, v);
+            },
+            ("[" + s->section + "] " + s->doc).c_str());
+    }
     scene
-        .def_property(
-            "gravity", [](const Scene& s) { return toArray(s.gravity); },
-            [](Scene& s, const py::object& g) {
-                const Vec3 gravity = toVec3(g, "gravity");
-                markChanged(s);
-                s.gravity = gravity;
-            },
-            "Gravity (3,), length/time².")
-        .def_property(
-            "global_damping", [](const Scene& s) { return s.globalDamping; },
-            [](Scene& s, double d) {
-                if (!(d >= 0.0 && d < 1.0))
-                    throw Error("", "global_damping must be in [0, 1)",
-                                "0 for none; about 0.1 to 0.3 for quasi-static loading");
-                markChanged(s);
-                s.globalDamping = d;
-            },
-            "Non-viscous damping λ in [0, 1) (as YADE's NewtonIntegrator).")
-        .def_property(
-            "time_step", [](const Scene& s) { return s.timeStep.fixed; },
-            [](Scene& s, double dt) {
-                if (!(dt >= 0.0) || !std::isfinite(dt))
-                    throw Error("", "time_step must be >= 0 (0: automatic)");
-                markChanged(s);
-                s.timeStep.fixed = dt;
-            },
-            "The fixed time step, or 0 for automatic (safety · 2·sqrt(m/k)).")
-        .def_property(
-            "end_time", [](const Scene& s) { return s.end.time; },
-            [](Scene& s, double t) {
-                if (!(finite(t, "end_time") >= 0.0))
-                    throw Error("", "end_time must be >= 0, got " + std::to_string(t),
-                                "0 for no time limit");
-                markChanged(s);
-                s.end.time = t;
-            },
-            "Stop at this simulated time (0: no time limit).")
-        .def_property(
-            "end_steps", [](const Scene& s) { return s.end.steps; },
-            [](Scene& s, long long n) {
-                if (n < 0)
-                    throw Error("", "end_steps must be >= 0, got " + std::to_string(n),
-                                "0 for no step limit");
-                markChanged(s);
-                s.end.steps = n;
-            },
-            "Stop after this many steps (0: no step limit).")
         .def("set_end_displacement",
              [](Scene& s, const std::string& boundary, double value) {
                  if (!(value > 0.0) || !std::isfinite(value))

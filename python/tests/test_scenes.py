@@ -112,6 +112,59 @@ def test_contact_numbers_obey_one_schema_in_python_and_in_files(tmp_path, key, v
         lsdem.Scene.from_toml(str(path))
 
 
+@pytest.mark.parametrize("section, key, value, problem", [
+    ("simulation", "global_damping", 1.0, r"must be in \[0, 1\) \(got 1\)"),
+    ("simulation", "safety", 2.0, r"must be in \(0, 1\] \(got 2\)"),
+    ("simulation", "end_time", -1.0, r"must be >= 0 \(got -1\)"),
+    ("output", "vtk_period", -0.5, r"must be >= 0 \(got -0.5\)"),
+    ("output", "checkpoint_period", -2.0, r"must be >= 0 \(got -2\)"),
+    ("output", "history_every", -3, r"must be >= 0 \(got -3\)"),
+])
+def test_settings_obey_one_schema_in_python_and_in_files(tmp_path, section, key, value, problem):
+    """Every [simulation] and [output] setting is a Scene property of the same name; Python and a
+    file refuse the same value with the same words (both ask the scene library's schema)."""
+    scene = lsdem.Scene.from_toml(str(SCENES / "bounce.toml"))
+    before = getattr(scene, key)
+    with pytest.raises(lsdem.Error, match=key + " " + problem):
+        setattr(scene, key, value)
+    assert getattr(scene, key) == before and scene.text  # refused: nothing changed
+    # (bounce.toml gives history_period, which history_every would clash with)
+    text = "\n".join(line for line in (SCENES / "bounce.toml").read_text().splitlines()
+                     if not line.startswith(("history_", key + " "))) + "\n"
+    header = "[" + section + "]\n"
+    if header not in text:
+        text += "\n" + header
+    path = tmp_path / "bounce.toml"
+    path.write_text(text.replace(header, header + f"{key} = {value!r}\n"))
+    with pytest.raises(lsdem.Error, match=key + ": " + problem):
+        lsdem.Scene.from_toml(str(path))
+
+
+def test_output_settings_are_set_in_python_and_written():
+    """[output]'s settings, set in Python, reach the written file and read back; each takes its
+    own type only."""
+    scene = lsdem.Scene.from_toml(str(SCENES / "bounce.toml"))
+    scene.history_period = 0.0
+    scene.vtk_period = 0.01
+    scene.checkpoint_period = 0.05
+    scene.contact_forces = False
+    scene.history_every = 25
+    text = scene.to_toml()
+    for line in ["vtk_period = 0.01", "checkpoint_period = 0.05", "contact_forces = false",
+                 "history_every = 25"]:
+        assert line in text
+    back = lsdem.Scene.from_text(text, str(SCENES / "written.toml"))
+    assert (back.vtk_period, back.checkpoint_period, back.contact_forces, back.history_every) == \
+        (0.01, 0.05, False, 25)
+    with pytest.raises(lsdem.Error, match="whole number"):
+        scene.history_every = 2.5
+    with pytest.raises(lsdem.Error, match="True or False"):
+        scene.contact_forces = 1
+    with pytest.raises(lsdem.Error, match="both history_every and history_period"):
+        scene.history_period = 0.1
+        scene.to_toml()
+
+
 def test_build_servo_walls_a_cylinder_asset_sets_and_grain_files(sphere, tmp_path):
     """The builder makes what a scene file says with [asset_sets], [[grain_files]], servo
     walls and a cylinder: the TOML it writes reads back to the same text, and it simulates."""

@@ -12,7 +12,7 @@ namespace {
 /// The normal law's coefficient: its stiffness, in the unit the formulation gives it.
 ContactCoefficient normalStiffness()
 {
-    return {"normal_stiffness", "normal", CoefficientRange::Positive, std::nullopt,
+    return {"normal_stiffness", "normal", NumberRange::Positive, std::nullopt,
             [](const ContactModel& m) { return m.normalStiffness; },
             [](ContactModel& m, double v) { m.normalStiffness = v; },
             [](const ContactModel& m) { return m.normal().stiffnessUnit(); }};
@@ -22,10 +22,10 @@ ContactCoefficient normalStiffness()
 /// rule, and Coulomb's μ that caps them.
 std::vector<ContactCoefficient> tangential()
 {
-    return {{"shear_stiffness", "tangential", CoefficientRange::NonNegative, 0.0,
+    return {{"shear_stiffness", "tangential", NumberRange::NonNegative, 0.0,
              [](const ContactModel& m) { return m.shearStiffness; },
              [](ContactModel& m, double v) { m.shearStiffness = v; }},
-            {"friction", "tangential", CoefficientRange::NonNegative, 0.0,
+            {"friction", "tangential", NumberRange::NonNegative, 0.0,
              [](const ContactModel& m) { return m.friction; },
              [](ContactModel& m, double v) { m.friction = v; }}};
 }
@@ -33,7 +33,7 @@ std::vector<ContactCoefficient> tangential()
 /// The dashpot's coefficient (DampingModel.h): the restitution it is calibrated for.
 ContactCoefficient restitution()
 {
-    return {"restitution", "damping", CoefficientRange::Restitution, 1.0,
+    return {"restitution", "damping", NumberRange::PositiveFraction, 1.0,
             [](const ContactModel& m) { return m.damping.restitution(); },
             [](ContactModel& m, double v) { m.damping = ViscousDamping(v); }};
 }
@@ -63,23 +63,14 @@ std::optional<ContactProblem> tangentialProblem(const ContactModel& m, const std
 
 std::string ContactCoefficient::rangeText() const
 {
-    switch (range) {
-    case CoefficientRange::Positive: return "> 0";
-    case CoefficientRange::NonNegative: return ">= 0";
-    case CoefficientRange::Restitution: return "in (0, 1]";
-    }
-    return "";
+    return numberRangeText(range);
 }
 
 std::optional<ContactProblem> ContactCoefficient::rangeProblem(double value) const
 {
-    bool in = std::isfinite(value);
-    if (range == CoefficientRange::Positive) in = in && value > 0.0;
-    if (range == CoefficientRange::NonNegative) in = in && value >= 0.0;
-    if (range == CoefficientRange::Restitution) in = in && value > 0.0 && value <= 1.0;
-    if (in) return std::nullopt;
+    if (inNumberRange(range, value)) return std::nullopt;
     return ContactProblem{key, "must be " + rangeText() + " (got " + numberText(value) + ")",
-                          range == CoefficientRange::Restitution ? "1 means no contact damping"
+                          range == NumberRange::PositiveFraction ? "1 means no contact damping"
                                                                  : "give a value " + rangeText()};
 }
 

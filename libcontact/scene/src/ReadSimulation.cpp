@@ -1,7 +1,32 @@
 // [simulation] and [output]: time stepping, the end condition and the outputs.
 #include "SceneSections.h"
 
+#include "lsdem/scene/SceneSettings.h"
+
 namespace lsdem::scenefile {
+
+namespace {
+
+/// The settings of @a section (SceneSettings.h) that a file gives as plain values: each read
+/// in its type and checked against its range. One that 0 would leave unset is given > 0 or
+/// left out.
+void readSettings(TableReader& t, const std::string& section, Scene& scene)
+{
+    for (const SceneSetting& s : sceneSettings()) {
+        if (s.section != section || s.form == SettingForm::OwnForm || !t.has(s.key)) continue;
+        SettingValue value = s.defaultValue();
+        if (std::holds_alternative<double>(value)) value = t.number(s.key);
+        if (std::holds_alternative<long long>(value)) value = t.integer(s.key);
+        if (std::holds_alternative<bool>(value)) value = t.boolean(s.key, false);
+        if (std::holds_alternative<Vec3>(value)) value = t.vec3(s.key);
+        if (std::optional<std::string> p = s.problem(value)) t.fail(s.key, *p, s.fix);
+        if (s.form == SettingForm::OmittedWhenZero && value == s.defaultValue())
+            t.fail(s.key, "must be > 0 (got 0)", "leave it out: " + s.fix);
+        s.set(scene, value);
+    }
+}
+
+} // namespace
 
 void readSimulation(const toml::table* table, Scene& scene)
 {
@@ -10,10 +35,7 @@ void readSimulation(const toml::table* table, Scene& scene)
                     "add [simulation] with at least an end condition (end_time, end_steps or "
                     "end_displacement)");
     TableReader t(*table, "[simulation]", scene.path);
-    scene.gravity = t.vec3("gravity", Vec3::Zero());
-    scene.globalDamping = t.number("global_damping", 0.0);
-    if (!(scene.globalDamping >= 0.0 && scene.globalDamping < 1.0))
-        t.fail("global_damping", "must be in [0, 1)", "0 means none; 0.1–0.3 settles grains");
+    readSettings(t, "simulation", scene);
     if (t.has("time_step")) {
         const toml::node& n = t.node("time_step");
         if (n.is_string()) {
@@ -27,13 +49,12 @@ void readSimulation(const toml::table* table, Scene& scene)
     if (t.has("safety")) {
         if (scene.timeStep.fixed > 0.0)
             t.fail("safety", "only applies to time_step = \"auto\"", "remove it");
-        scene.timeStep.safety = t.positive("safety");
-        if (scene.timeStep.safety > 1.0)
-            t.fail("safety", "must be in (0, 1]", "0.1–0.3 is usual");
+        const SceneSetting& safety = sceneSetting("safety");
+        const double value = t.number("safety");
+        if (std::optional<std::string> p = safety.problem(value)) t.fail("safety", *p, safety.fix);
+        scene.timeStep.safety = value;
     }
     EndCondition& end = scene.end;
-    if (t.has("end_time")) end.time = t.positive("end_time");
-    if (t.has("end_steps")) end.steps = t.positiveInteger("end_steps");
     if (t.has("end_displacement")) {
         const toml::node& n = t.node("end_displacement");
         if (!n.is_table())
@@ -67,14 +88,9 @@ void readOutput(const toml::table* table, Scene& scene)
 {
     if (!table) return;
     TableReader t(*table, "[output]", scene.path);
-    OutputSpec& o = scene.output;
     if (t.has("history_every") && t.has("history_period"))
         t.fail("history_period", "both history_every and history_period are given", "keep one");
-    if (t.has("history_every")) o.historyEvery = t.positiveInteger("history_every");
-    if (t.has("history_period")) o.historyPeriod = t.positive("history_period");
-    o.vtkPeriod = t.nonNegative("vtk_period", 0.0);
-    o.checkpointPeriod = t.nonNegative("checkpoint_period", 0.0);
-    o.contactForces = t.boolean("contact_forces", true);
+    readSettings(t, "output", scene);
     t.rejectUnknownKeys();
 }
 

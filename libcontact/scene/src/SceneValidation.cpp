@@ -4,6 +4,8 @@
 
 #include "SceneChecks.h"
 
+#include "lsdem/scene/SceneSettings.h"
+
 #include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/core/NumberText.h"
@@ -125,34 +127,26 @@ void validateBoundaries(const Scene& s)
     }
 }
 
-void validateSimulation(const Scene& s)
+/// "[simulation]", or "scene.toml: [simulation]" for a scene read from a file.
+std::string sectionPlace(const Scene& s, const std::string& section)
 {
-    const std::string where = s.path.empty() ? "[simulation]" : s.path + ": [simulation]";
-    if (!finite(s.gravity)) throw Error(where, "gravity must be finite", "");
-    if (!(s.globalDamping >= 0.0 && s.globalDamping < 1.0))
-        throw Error(where, "global_damping must be in [0, 1) (got " + numberText(s.globalDamping) + ")",
-                    "0 means none; 0.1–0.3 settles grains");
-    if (!(std::isfinite(s.timeStep.fixed) && s.timeStep.fixed >= 0.0))
-        throw Error(where, "time_step must be > 0 (or automatic)", "");
-    if (!(s.timeStep.safety > 0.0 && s.timeStep.safety <= 1.0))
-        throw Error(where, "safety must be in (0, 1]", "0.1–0.3 is usual");
-    const EndCondition& e = s.end;
-    if (!(std::isfinite(e.time) && e.time >= 0.0) || e.steps < 0)
-        throw Error(where, "end_time and end_steps must be >= 0", "");
-    if (e.boundary >= 0 && (!inRange(e.boundary, s.boundaries.size()) ||
-                            !(std::isfinite(e.displacement) && e.displacement > 0.0)))
-        throw Error(where, "end_displacement needs a boundary of the scene and a value > 0", "");
+    return s.path.empty() ? "[" + section + "]" : s.path + ": [" + section + "]";
 }
 
-void validateOutput(const Scene& s)
+/// [simulation] and [output]: each setting in its range (SceneSettings.h), then the rules
+/// between them.
+void validateSettings(const Scene& s)
 {
-    const OutputSpec& o = s.output;
-    const bool sane = o.historyEvery >= 0 && std::isfinite(o.historyPeriod) &&
-                      o.historyPeriod >= 0.0 && std::isfinite(o.vtkPeriod) && o.vtkPeriod >= 0.0 &&
-                      std::isfinite(o.checkpointPeriod) && o.checkpointPeriod >= 0.0;
-    if (!sane)
-        throw Error(s.path.empty() ? "[output]" : s.path + ": [output]",
-                    "history_every and the periods must be >= 0 and finite", "");
+    for (const SceneSetting& setting : sceneSettings())
+        checkSetting(setting, setting.get(s), sectionPlace(s, setting.section));
+    const EndCondition& e = s.end;
+    if (e.boundary >= 0 && (!inRange(e.boundary, s.boundaries.size()) ||
+                            !(std::isfinite(e.displacement) && e.displacement > 0.0)))
+        throw Error(sectionPlace(s, "simulation"),
+                    "end_displacement needs a boundary of the scene and a value > 0", "");
+    if (s.output.historyEvery > 0 && s.output.historyPeriod > 0.0)
+        throw Error(sectionPlace(s, "output"), "both history_every and history_period are given",
+                    "keep one (set the other to 0)");
 }
 
 } // namespace
@@ -162,8 +156,7 @@ void validateRunnableScene(const Scene& scene)
     validateScene(scene);
     const EndCondition& e = scene.end;
     if (e.time <= 0.0 && e.steps <= 0 && e.boundary < 0)
-        throw Error(scene.path.empty() ? "[simulation]" : scene.path + ": [simulation]",
-                    "has no end condition", "add end_time, end_steps or end_displacement");
+        throw Error(sectionPlace(scene, "simulation"), "has no end condition", "add end_time, end_steps or end_displacement");
 }
 
 void validateScene(const Scene& scene)
@@ -172,8 +165,7 @@ void validateScene(const Scene& scene)
     validateContacts(scene);
     validateGrains(scene);
     validateBoundaries(scene);
-    validateSimulation(scene);
-    validateOutput(scene);
+    validateSettings(scene);
     scenefile::checkUniqueNames(scene);
     scenefile::checkContactPairs(scene);
 }

@@ -4,6 +4,7 @@
 // (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
 #include "lsdem/scene/SceneWriter.h"
 
+#include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneValidation.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
@@ -281,33 +282,49 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
     if (!b.velocity.isZero(0.0)) t.vec3("velocity", b.velocity);
 }
 
+/// The settings of @a section (SceneSettings.h) in the schema's order, those that the file
+/// must give; @a special writes the ones with a form of their own in a file.
+template <class Special>
+void writeSettings(TomlText& t, const Scene& scene, const std::string& section, Special special)
+{
+    for (const SceneSetting& s : sceneSettings()) {
+        if (s.section != section) continue;
+        if (s.form == SettingForm::OwnForm) {
+            special(s.key);
+            continue;
+        }
+        if (!s.written(scene)) continue;
+        const SettingValue v = s.get(scene);
+        if (const double* d = std::get_if<double>(&v)) t.number(s.key, *d);
+        if (const long long* n = std::get_if<long long>(&v)) t.integer(s.key, *n);
+        if (const bool* b = std::get_if<bool>(&v)) t.boolean(s.key, *b);
+        if (const Vec3* x = std::get_if<Vec3>(&v)) t.vec3(s.key, *x);
+    }
+}
+
 void writeSimulation(TomlText& t, const Scene& scene)
 {
     t.table("simulation");
-    t.vec3("gravity", scene.gravity);
-    if (scene.globalDamping > 0.0) t.number("global_damping", scene.globalDamping);
-    if (scene.timeStep.fixed > 0.0) {
-        t.number("time_step", scene.timeStep.fixed);
-    } else {
-        t.string("time_step", "auto");
-        t.number("safety", scene.timeStep.safety);
-    }
+    // time_step: a number, or "auto" with its safety.
+    writeSettings(t, scene, "simulation", [&](const std::string& key) {
+        if (key != "time_step") return;
+        if (scene.timeStep.fixed > 0.0) {
+            t.number("time_step", scene.timeStep.fixed);
+        } else {
+            t.string("time_step", "auto");
+            t.number("safety", scene.timeStep.safety);
+        }
+    });
     const EndCondition& end = scene.end;
-    if (end.time > 0.0) t.number("end_time", end.time);
-    if (end.steps > 0) t.integer("end_steps", end.steps);
     if (end.boundary >= 0)
         t.inlineTable("end_displacement", "boundary", scene.boundaries[end.boundary].name,
                       "value", end.displacement);
 }
 
-void writeOutput(TomlText& t, const OutputSpec& o)
+void writeOutput(TomlText& t, const Scene& scene)
 {
     t.table("output");
-    if (o.historyEvery > 0) t.integer("history_every", o.historyEvery);
-    if (o.historyPeriod > 0.0) t.number("history_period", o.historyPeriod);
-    if (o.vtkPeriod > 0.0) t.number("vtk_period", o.vtkPeriod);
-    if (o.checkpointPeriod > 0.0) t.number("checkpoint_period", o.checkpointPeriod);
-    t.boolean("contact_forces", o.contactForces);
+    writeSettings(t, scene, "output", [](const std::string&) {});
 }
 
 } // namespace
@@ -354,7 +371,7 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
     }
     for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
     writeSimulation(t, scene);
-    writeOutput(t, scene.output);
+    writeOutput(t, scene);
     return t.str();
 }
 

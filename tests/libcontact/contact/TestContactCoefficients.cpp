@@ -59,9 +59,9 @@ TEST(ContactCoefficients, RangesRefuseWhatTheySayAndNothingElse)
         EXPECT_FALSE(k.rangeProblem(0.5)) << k.key;
         EXPECT_FALSE(k.rangeProblem(1.0)) << k.key;
         // Zero: allowed only where the range includes it.
-        EXPECT_EQ(k.rangeProblem(0.0).has_value(), k.range != CoefficientRange::NonNegative) << k.key;
+        EXPECT_EQ(k.rangeProblem(0.0).has_value(), k.range != NumberRange::NonNegative) << k.key;
         // Above one: refused only for the restitution.
-        EXPECT_EQ(k.rangeProblem(1.5).has_value(), k.range == CoefficientRange::Restitution) << k.key;
+        EXPECT_EQ(k.rangeProblem(1.5).has_value(), k.range == NumberRange::PositiveFraction) << k.key;
     }
 }
 

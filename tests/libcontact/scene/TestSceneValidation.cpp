@@ -70,7 +70,12 @@ std::vector<Breach> breaches()
              s.end.boundary = 5;
              s.end.displacement = 1.0;
          }, "end_displacement"},
-        {"output period", [](Scene& s) { s.output.vtkPeriod = -1.0; }, "periods must be >= 0"},
+        {"end steps", [](Scene& s) { s.end.steps = -1; }, "end_steps must be >= 0 (got -1)"},
+        {"output period", [](Scene& s) { s.output.vtkPeriod = -1.0; }, "vtk_period must be >= 0"},
+        {"history both ways", [](Scene& s) {
+             s.output.historyEvery = 10;
+             s.output.historyPeriod = 0.1;
+         }, "both history_every and history_period"},
         {"names", [](Scene& s) { s.grains.push_back(s.grains[0]); }, "a second grain named"},
     };
 }

@@ -219,4 +219,16 @@ TEST(VerifyOptions, BadOptionsAreRefusedNamingTheFix)
     o.setup.sphereNodes = 4000;
     o.setup.sphereVoxel = 0.0;
     EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.setup.sphereVoxel = 0.1;
+    EXPECT_NO_THROW(checkVerifyOptions(o));
+    // The silo's orifices: between two grain sizes and 2/5 of the silo's width.
+    o.siloOrifices = {5.0, 6.0};
+    EXPECT_NO_THROW(checkVerifyOptions(o));
+    o.siloOrifices = {5.0, 12.0};
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.siloOrifices = {1.0};
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.quick = true;
+    o.siloOrifices = {8.0};
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
 }

@@ -375,7 +375,12 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
 
 void siloDischarge(Context& c)
 {
-    const SiloPlan p = planFor(c.quick);
+    SiloPlan p = planFor(c.quick);
+    if (!c.siloOrifices.empty()) {
+        p.orifices = c.siloOrifices;
+        std::sort(p.orifices.begin(), p.orifices.end());
+        p.orifices.erase(std::unique(p.orifices.begin(), p.orifices.end()), p.orifices.end());
+    }
     auto wanted = [&](const char* kind) {
         return std::find(c.siloGrains.begin(), c.siloGrains.end(), kind) != c.siloGrains.end();
     };

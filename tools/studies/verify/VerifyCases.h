@@ -21,6 +21,7 @@ struct Context
     Report& report;
     std::string sandMeshes;                 ///< the sand grains' meshes (the silo)
     std::vector<std::string> siloGrains;    ///< "spheres", "sand": the silo's grain kinds
+    std::vector<double> siloOrifices;       ///< D, mm (empty: the plan's)
     /// Where a long case says how far it has got (may be empty).
     std::function<void(const std::string&)> progress;
 

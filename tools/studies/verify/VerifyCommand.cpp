@@ -97,6 +97,11 @@ VerifyCommand::VerifyCommand(CLI::App& study)
         ->check(CLI::IsMember({"spheres", "sand"}))
         ->type_name("KIND")
         ->group(bodies);
+    cli::addNumbers(*mCommand, "--silo-orifices", o.siloOrifices,
+                    "the silo's orifice diameters, mm (default 5 6 7 8; in --quick 4 5): "
+                    "to run some of them, each from the same settled fill")
+        ->type_name("D")
+        ->group(bodies);
     mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
     cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the failures and the tally");

@@ -49,6 +49,15 @@ void checkVerifyOptions(const VerifyOptions& o)
     }
     if (o.formulations.empty())
         throw Error("", "--formulation: no formulation given", "name at least one");
+    // The silo is 20 mm wide (8 mm in --quick): Beverloo's premise wants it 2.5 orifices wide;
+    // an orifice under two grain sizes (1 mm grains) clogs at once.
+    const double widest = o.quick ? 5.0 : 8.0;
+    for (double d : o.siloOrifices)
+        if (!(d >= 2.0 && d <= widest))
+            throw Error("", "--silo-orifices: " + numberText(d) + " mm is outside [2, " +
+                                numberText(widest) + "] mm",
+                        "the silo is " + std::string(o.quick ? "8" : "20") +
+                            " mm wide and its grains 1 mm; e.g. --silo-orifices 5 6");
     if (!(o.setup.sphereNodes >= 100))
         throw Error("", "--nodes must be at least 100 (got " + std::to_string(o.setup.sphereNodes) + ")",
                     "e.g. --nodes 4000");
@@ -62,8 +71,8 @@ Report runVerification(const VerifyOptions& o,
 {
     Report report;
     Bodies bodies(o.setup);
-    Context context{bodies,       o.formulations, o.quick, report,
-                    o.sandMeshes, o.siloGrains,    progress};
+    Context context{bodies,       o.formulations, o.quick,          report,
+                    o.sandMeshes, o.siloGrains,    o.siloOrifices, progress};
     for (const CaseEntry& e : caseList()) {
         if (o.cases.empty() ? e.onlyWhenNamed && !o.quick
                             : std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())

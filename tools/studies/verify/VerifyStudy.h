@@ -23,6 +23,8 @@ struct VerifyOptions
     std::string sandMeshes = "assets/meshes/sand";  ///< the silo's sand grains
     /// The silo's grain kinds: "spheres", "sand" (the quick version runs spheres only).
     std::vector<std::string> siloGrains = {"spheres", "sand"};
+    /// The silo's orifice diameters, mm (empty: the plan's, 5 … 8 mm; 4 and 5 in --quick).
+    std::vector<double> siloOrifices;
     std::string outDir = "results/verify";
     bool plots = true, quiet = false;
 };

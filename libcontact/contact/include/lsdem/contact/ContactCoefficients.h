@@ -9,19 +9,13 @@
 #pragma once
 
 #include "lsdem/contact/ContactModel.h"
+#include "lsdem/core/NumberRange.h"
 
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace lsdem {
-
-/// The values a coefficient may take (never NaN or an infinity).
-enum class CoefficientRange {
-    Positive,     ///< > 0
-    NonNegative,  ///< >= 0
-    Restitution,  ///< in (0, 1]
-};
 
 /// A rule a contact model breaks: the key it is about, what is wrong, the fix.
 struct ContactProblem
@@ -34,7 +28,7 @@ struct ContactCoefficient
 {
     std::string key;       ///< as scenes and Python's add_contact name it
     std::string subModel;  ///< "normal", "tangential" or "damping"
-    CoefficientRange range;
+    NumberRange range;  ///< the values it may take
     std::optional<double> defaultValue;  ///< none: the scene must give it
     double (*get)(const ContactModel&);
     /// Set on @a model a value already in range.

@@ -4,6 +4,7 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/ServoKeys.h"
 
 #include <pybind11/stl.h>
 
@@ -14,55 +15,16 @@ namespace lsdem::python {
 
 namespace {
 
-/// A plane's stress servo from the keyword arguments of add_plane (the checks of the scene
-/// reader's [[boundaries]] servo keys, docs/scenes.md). Nothing unless @a stress is given.
+/// A plane's stress servo from the keyword arguments of add_plane, by the rules a file's
+/// [[boundaries]] servo keys obey (ServoKeys.h). Nothing unless @a stress is given.
 void setServo(BoundarySpec& b, const std::optional<double>& stress,
               const std::optional<double>& area,
               const std::optional<std::vector<std::string>>& areaWalls,
               const std::optional<double>& maxSpeed, const std::optional<double>& gain)
 {
-    const std::string label = "boundary '" + b.name + "': ";
-    if (!stress) {
-        if (area || areaWalls || maxSpeed || gain)
-            throw Error("", label + "area, area_walls, max_speed and servo_gain only make sense "
-                                    "for a servo wall",
-                        "add stress=σ (the target normal stress) or remove them");
-        return;
-    }
-    StressServo& v = b.servo;
-    if (!(*stress > 0.0) || !std::isfinite(*stress))
-        throw Error("", label + "stress must be > 0: a wall can only push on the grains",
-                    "give the compressive stress as a positive number (force/length²)");
-    v.targetStress = *stress;
-    if (!b.velocity.isZero(0.0))
-        throw Error("", label + "a servo wall chooses its own velocity",
-                    "remove velocity, or remove stress for a wall moving at a fixed velocity");
-    if (area && areaWalls)
-        throw Error("", label + "both area and area_walls are given", "keep one of them");
-    if (!area && !areaWalls)
-        throw Error("", label + "a servo wall needs the area its stress acts on",
-                    "give area=A (length²) or area_walls=[x0, x1, y0, y1] (two pairs of "
-                    "opposite walls around it, added before it)");
-    if (area) {
-        if (!(*area > 0.0) || !std::isfinite(*area))
-            throw Error("", label + "area must be > 0");
-        v.area = *area;
-    } else {
-        if (areaWalls->size() != 4)
-            throw Error("", label + "area_walls wants the names of four walls",
-                        "give two pairs of opposite walls, e.g. ['x0', 'x1', 'y0', 'y1']");
-        b.areaWallNames = *areaWalls;
-    }
-    if (!maxSpeed || !(*maxSpeed > 0.0) || !std::isfinite(*maxSpeed))
-        throw Error("", label + "a servo wall needs a limit speed max_speed > 0",
-                    "give max_speed=v (length/time): how fast it may move towards its stress");
-    v.maxSpeed = *maxSpeed;
-    if (gain) {
-        if (!(*gain > 0.0 && *gain <= 1.0))
-            throw Error("", label + "servo_gain must be in (0, 1]",
-                        "a gain above 1 overshoots the target every step; 0.5 is the default");
-        v.gain = *gain;
-    }
+    const ServoKeys keys{stress, area, areaWalls, maxSpeed, gain, !b.velocity.isZero(0.0)};
+    if (std::optional<ServoProblem> p = applyServoKeys(keys, b))
+        throw Error("", "boundary '" + b.name + "': " + p->key + " " + p->problem, p->fix);
 }
 
 /// A boundary about an axis (a cylinder's side wall, an orifice plate), checked as the scene

@@ -256,7 +256,7 @@ def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):
     with pytest.raises(lsdem.Error, match=r"\(0, 1\]"):
         scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0, area=1.0,
                         max_speed=1.0, servo_gain=2.0)
-    with pytest.raises(lsdem.Error, match="only make sense for a servo wall"):
+    with pytest.raises(lsdem.Error, match="only makes sense for a servo wall"):
         scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], area=1.0)
     with pytest.raises(lsdem.Error, match="chooses its own velocity"):
         scene.add_plane("lid", "wall", point=[0, 0, 1], normal=[0, 0, -1], stress=1.0, area=1.0,

@@ -3,6 +3,7 @@
 #include "SceneSections.h"
 
 #include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/ServoKeys.h"
 
 #include <algorithm>
 #include <cctype>
@@ -21,55 +22,28 @@ bool isFileNameSafe(const std::string& s)
     return true;
 }
 
-/// A plane's stress servo: stress, its area (a number or four walls) and the servo's gain and
-/// limit speed (StressServo.h). Nothing unless stress is given.
+/// A plane's stress servo: its keys read in their types, then the servo's rules
+/// (ServoKeys.h). Nothing unless stress is given.
 void readServo(TableReader& t, BoundarySpec& b)
 {
-    if (!t.has("stress")) {
-        for (const char* key : {"area", "area_walls", "max_speed", "servo_gain"})
-            if (t.has(key))
-                t.fail(key, "only makes sense for a servo wall",
-                       "add stress = σ (the target normal stress) or remove " + std::string(key));
-        return;
-    }
-    StressServo& s = b.servo;
-    s.targetStress = t.number("stress");
-    if (!(s.targetStress > 0.0))
-        t.fail("stress",
-               "must be > 0 (got " + TableReader::show(s.targetStress) +
-                   "): a wall can only push on the grains, so its stress is compressive",
-               "give the compressive stress as a positive number (force/length²)");
-    if (t.has("velocity"))
-        t.fail("velocity", "a servo wall chooses its own velocity",
-               "remove velocity, or remove stress for a wall moving at a fixed velocity");
-    if (t.has("area") && t.has("area_walls"))
-        t.fail("area_walls", "both area and area_walls are given", "keep one of them");
-    if (t.has("area")) {
-        s.area = t.positive("area");
-    } else if (t.has("area_walls")) {
-        const toml::node& n = t.node("area_walls");
-        const toml::array* a = n.as_array();
-        if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& e) {
-                return e.is_string();
-            }))
+    ServoKeys keys;
+    const auto number = [&t](const char* key) {
+        return t.has(key) ? std::optional<double>(t.number(key)) : std::nullopt;
+    };
+    keys.stress = number("stress");
+    keys.area = number("area");
+    keys.maxSpeed = number("max_speed");
+    keys.gain = number("servo_gain");
+    keys.velocityGiven = t.has("velocity");
+    if (t.has("area_walls")) {
+        const toml::array* a = t.node("area_walls").as_array();
+        if (!a || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_string(); }))
             t.fail("area_walls", "expected the names of four walls (two opposite pairs)",
                    "write e.g. area_walls = [\"left\", \"right\", \"front\", \"back\"]");
-        for (const toml::node& e : *a) b.areaWallNames.push_back(e.as_string()->get());
-    } else {
-        t.fail("stress", "a servo wall needs the area its stress acts on",
-               "add area = A (length²) or area_walls = [\"left\", \"right\", \"front\", "
-               "\"back\"] (two pairs of opposite walls around it)");
+        keys.areaWalls.emplace();
+        for (const toml::node& e : *a) keys.areaWalls->push_back(e.as_string()->get());
     }
-    if (!t.has("max_speed"))
-        t.fail("stress", "a servo wall needs a limit speed",
-               "add max_speed = v (length/time): how fast it may move towards its stress");
-    s.maxSpeed = t.positive("max_speed");
-    if (t.has("servo_gain")) {
-        s.gain = t.positive("servo_gain");
-        if (s.gain > 1.0)
-            t.fail("servo_gain", "must be in (0, 1] (got " + TableReader::show(s.gain) + ")",
-                   "a gain above 1 overshoots the target every step; 0.5 is the default");
-    }
+    if (std::optional<ServoProblem> p = applyServoKeys(keys, b)) t.fail(p->key, p->problem, p->fix);
 }
 
 } // namespace

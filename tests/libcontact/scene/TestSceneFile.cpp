@@ -308,7 +308,7 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"servo with zero area", servo("stress = 1.5\narea = 0.0\nmax_speed = 1.0"), "area = 0.0", "must be > 0"},
         {"servo without limit speed", servo("stress = 1.5\narea = 4.0"), "stress = 1.5", "limit speed"},
         {"servo with zero limit speed", servo("stress = 1.5\narea = 4.0\nmax_speed = 0"), "max_speed = 0", "must be > 0"},
-        {"servo with zero gain", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nservo_gain = 0.0"), "servo_gain", "must be > 0"},
+        {"servo with zero gain", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nservo_gain = 0.0"), "servo_gain", "must be in (0, 1] (got 0)"},
         {"servo with gain above 1", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nservo_gain = 1.5"), "servo_gain", "(0, 1]"},
         {"servo with a velocity", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\nvelocity = [0, 0, 1]"), "velocity = [0, 0, 1]", "chooses its own velocity"},
         {"servo area and walls", servo("stress = 1.5\narea = 4.0\nmax_speed = 1\narea_walls = [\"a\", \"b\", \"c\", \"d\"]"), "area_walls", "both area and area_walls"},

@@ -203,6 +203,33 @@ double AnalyticShape::signedDistance(const Vec3& p) const
     return 0.0;
 }
 
+namespace {
+
+/// An analytic shape's distance; its gradient points from the closest surface point to the
+/// point, outwards on either side (the surface's normal on it).
+class ShapeDistance final : public ExactDistance
+{
+public:
+    explicit ShapeDistance(const AnalyticShape& shape) : mShape(shape) {}
+    double phi(const Vec3& p) const override { return mShape.signedDistance(p); }
+    Vec3 gradient(const Vec3& p) const override
+    {
+        const Vec3 closest = mShape.closestSurfacePoint(p);
+        const double d = mShape.signedDistance(p);
+        return d != 0.0 ? Vec3((p - closest) / d) : mShape.outwardNormal(closest);
+    }
+
+private:
+    AnalyticShape mShape;
+};
+
+} // namespace
+
+std::shared_ptr<const ExactDistance> AnalyticShape::exactDistance() const
+{
+    return std::make_shared<ShapeDistance>(*this);
+}
+
 Vec3 AnalyticShape::closestSurfacePoint(const Vec3& p) const
 {
     switch (kind) {

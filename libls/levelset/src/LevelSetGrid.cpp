@@ -147,6 +147,8 @@ void deriveContactBounds(GrainAsset& asset)
     asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);
     insideBox(*asset.levelSet, asset.insideBoxMin, asset.insideBoxMax);
     asset.levelSetSlope = levelSetSlopeBound(*asset.levelSet);
+    // A closed-form distance has slope 1 (the voxels' bound is about 1, maybe a hair under).
+    if (asset.levelSet->exact) asset.levelSetSlope = std::max(asset.levelSetSlope, 1.0);
 }
 
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin)

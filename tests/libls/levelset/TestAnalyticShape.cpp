@@ -109,3 +109,35 @@ TEST(AnalyticShape, RejectsNonPositiveSizes)
     EXPECT_THROW(AnalyticShape::box(1, -1, 1), Error);
     EXPECT_THROW(AnalyticShape::ellipsoid(1, 1, std::nan("")), Error);
 }
+
+// The exact distance a level set may carry (ExactDistance.h): φ is the shape's signed distance,
+// and the gradient is unit, points outwards on both sides, and matches φ's central differences
+// away from the ridges (a box's medial planes, where φ has a kink).
+TEST(AnalyticShape, ExactDistanceGradientIsUnitOutwardAndMatchesDifferences)
+{
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-2.0, 2.0);
+    for (const AnalyticShape& shape : {AnalyticShape::sphere(1.0), AnalyticShape::box(2.0, 1.6, 1.2),
+                                       AnalyticShape::ellipsoid(1.0, 0.7, 0.5)}) {
+        const auto exact = shape.exactDistance();
+        int checked = 0;
+        for (int k = 0; k < 400; ++k) {
+            const Vec3 p(u(rng), u(rng), u(rng));
+            EXPECT_EQ(exact->phi(p), shape.signedDistance(p));
+            const Vec3 g = exact->gradient(p);
+            EXPECT_NEAR(g.norm(), 1.0, 1e-9) << shape.describe();
+            // Outwards: a small step along it raises φ.
+            EXPECT_GT(exact->phi(p + 1e-4 * g), exact->phi(p)) << shape.describe();
+            const double h = 1e-6;
+            Vec3 difference;
+            for (int axis = 0; axis < 3; ++axis) {
+                const Vec3 e = Vec3::Unit(axis) * h;
+                difference[axis] = (exact->phi(p + e) - exact->phi(p - e)) / (2.0 * h);
+            }
+            if (std::abs(difference.norm() - 1.0) > 1e-4) continue;  // on a ridge: no gradient
+            EXPECT_LT((difference - g).norm(), 1e-4) << shape.describe() << " at " << p.transpose();
+            ++checked;
+        }
+        EXPECT_GT(checked, 300) << shape.describe();
+    }
+}

@@ -108,3 +108,31 @@ TEST(LevelSetSampler, ManyThreadsSeeTheSameValuesAsOne)
         ASSERT_EQ(serial[i].gradient, tasks[i].gradient);
     }
 }
+
+// A level set that carries an exact distance (LevelSetGrid::exact) is sampled as that distance,
+// not as its voxels: the same bits as the closed form, while the voxels' interpolant differs by
+// its interpolation error.
+TEST(LevelSetSampler, AnExactDistanceIsSampledInsteadOfTheVoxels)
+{
+    BakeOptions o;
+    o.voxelSize = 0.1;
+    o.nodeSpacing = 0.3;
+    std::vector<std::string> warnings;
+    const AnalyticShape sphere = AnalyticShape::sphere(1.0);
+    const GrainAsset a = bakeAnalytic(sphere, o, warnings);
+    LevelSetGrid exactGrid = *a.levelSet;
+    exactGrid.exact = sphere.exactDistance();
+    LevelSetSampler voxels(*a.levelSet), exact(exactGrid);
+    double largestVoxelError = 0.0;
+    for (const Vec3& p : {Vec3(0.97, 0.05, 0.11), Vec3(-0.33, 0.71, -0.61), Vec3(0.2, -1.02, 0.03)}) {
+        const LevelSetSample s = exact.sample(p);
+        EXPECT_EQ(s.phi, p.norm() - 1.0);
+        EXPECT_EQ(exact.phi(p), p.norm() - 1.0);
+        // (p − closest point)/φ: round-off of ε·|p|/|φ| near the surface (|φ| ≥ 0.02 here).
+        EXPECT_LT((s.gradient - p.normalized()).norm(), 1e-12);
+        largestVoxelError = std::max(largestVoxelError, std::abs(voxels.phi(p) - s.phi));
+    }
+    // The voxels' trilinear interpolant errs by about h²/(8R) on a sphere, never zero here.
+    EXPECT_GT(largestVoxelError, 1e-6);
+    EXPECT_LT(largestVoxelError, 0.1 * 0.1);
+}

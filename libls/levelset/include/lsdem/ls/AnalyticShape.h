@@ -4,9 +4,11 @@
 ///        the origin and already in its principal frame.
 #pragma once
 
+#include "lsdem/ls/ExactDistance.h"
 #include "lsdem/ls/MassProperties.h"
 #include "lsdem/mesh/TriangleMesh.h"
 
+#include <memory>
 #include <string>
 
 namespace lsdem {
@@ -27,6 +29,9 @@ struct AnalyticShape
     Vec3 closestSurfacePoint(const Vec3& p) const;
     /// Outward unit normal at a surface point (for a box edge/corner: the mean of the faces').
     Vec3 outwardNormal(const Vec3& surfacePoint) const;
+    /// The signed distance and its gradient as an ExactDistance, for a level set baked from
+    /// this shape to be sampled exactly (LevelSetGrid::exact).
+    std::shared_ptr<const ExactDistance> exactDistance() const;
 
     /// Exact surface area (the ellipsoid's by numerical quadrature to ~1e-12 relative).
     double surfaceArea() const;

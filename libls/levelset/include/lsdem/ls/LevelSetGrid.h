@@ -5,6 +5,7 @@
 ///        Heavy header (OpenVDB): include it only where grids are built, sampled or written.
 #pragma once
 
+#include "lsdem/ls/ExactDistance.h"
 #include "lsdem/ls/LevelSetBricks.h"
 #include "lsdem/core/Vec3.h"
 
@@ -21,6 +22,10 @@ struct LevelSetGrid
     std::shared_ptr<const LevelSetBricks> grid;
     Vec3 origin = Vec3::Zero();    ///< world position of index (0,0,0)
     double voxelSize = 0.0;
+    /// If set, the samplers return this closed-form distance instead of interpolating the
+    /// voxels (ExactDistance.h: reference fixtures); the voxels still bound where φ < 0 can be
+    /// (insideBox) for the narrow phase's culling. Never written to a file.
+    std::shared_ptr<const ExactDistance> exact;
 };
 
 /// @a grid's values, states, background, transform and metadata as bricks (see

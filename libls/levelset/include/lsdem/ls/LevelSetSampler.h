@@ -25,7 +25,7 @@ public:
     explicit LevelSetSampler(const LevelSetGrid& levelSet)
         : mBricks(levelSet.grid.get()), mBrickOrigin(levelSet.grid->origin()),
           mOrigin(levelSet.origin),
-          mInvVoxel(1.0 / levelSet.voxelSize)
+          mInvVoxel(1.0 / levelSet.voxelSize), mExact(levelSet.exact.get())
     {
     }
 
@@ -43,6 +43,7 @@ public:
     /// (and otherwise reading them into it): for a point sampled again at the next step.
     LevelSetSample sample(const Vec3& p, LevelSetCell& cell)
     {
+        if (mExact) return {mExact->phi(p), mExact->gradient(p)};
         const Vec3 index = (p - mOrigin) * mInvVoxel;
         const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
         const std::array<int, 3> lower = {static_cast<int>(base.x()), static_cast<int>(base.y()),
@@ -69,7 +70,10 @@ public:
     }
 
     /// φ alone (same interpolant as sample()).
-    double phi(const Vec3& p) { return evaluate((p - mOrigin) * mInvVoxel).phi; }
+    double phi(const Vec3& p)
+    {
+        return mExact ? mExact->phi(p) : evaluate((p - mOrigin) * mInvVoxel).phi;
+    }
 
 private:
     /// Within this many voxels of a cell face a point counts as on it (lattice-aligned nodes
@@ -167,6 +171,7 @@ private:
     openvdb::Coord mBrickOrigin;  ///< index of the bricks' first voxel
     Vec3 mOrigin;
     double mInvVoxel;
+    const ExactDistance* mExact;  ///< the level set's closed form, if it has one
 };
 
 } // namespace lsdem

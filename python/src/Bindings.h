@@ -30,6 +30,7 @@ void bindAssets(py::module_& m);
 void bindSampling(py::module_& m);  ///< adds Asset.sample (after bindAssets)
 void bindScenes(py::module_& m);
 void bindSimulation(py::module_& m);
+void bindMicromechanics(py::module_& m);  ///< adds Simulation.contact_pairs (after bindSimulation)
 void bindRuns(py::module_& m);      ///< run_scene (lsdem-run) and the study submodule
 
 /// A grain asset as Python sees it: shared and read-only (many grains, one asset), with the

@@ -92,5 +92,6 @@ PYBIND11_MODULE(_lsdem, m)
     bindSampling(m);
     bindScenes(m);
     bindSimulation(m);
+    bindMicromechanics(m);
     bindRuns(m);
 }

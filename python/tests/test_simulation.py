@@ -263,3 +263,33 @@ def test_a_checkpoint_keeps_the_histories_it_was_restarted_with(lsdem_run, tmp_p
     assert after[:len(before)] == before
     assert len(after) > len(before)
     assert int(after[len(before)].split(",")[0]) > 1000
+
+
+def test_contact_pairs_and_micromechanics_agree_with_the_walls_and_numpy():
+    """After 300 steps of the 27-sphere stack: each wall's contacts sum to the opposite of its
+    reaction (two separate sums in the simulation), normals are unit, the fabric from the
+    grain pairs' normals in numpy is micromechanics()'s, and the free grains' stresses add up
+    to the stress moment (Σ V_p σ_p, V_p = m_p / ρ)."""
+    scene = lsdem.Scene.from_toml(str(SCENES / "cube27.toml"))
+    scene.end_time = 0.0
+    scene.end_steps = 300
+    sim = lsdem.Simulation(scene, threads=2)
+    sim.run()
+    pairs = sim.contact_pairs
+    k = len(pairs.first)
+    assert k > 0 and pairs.forces.shape == (k, 3) and pairs.normals.shape == (k, 3)
+    assert np.allclose(np.linalg.norm(pairs.normals, axis=1), 1.0, atol=1e-12)
+    assert np.all((pairs.second >= 0) != (pairs.boundary >= 0))  # a grain or a boundary
+    for index, name in enumerate(sim.boundaries.keys()):
+        on_grains = pairs.forces[pairs.boundary == index].sum(axis=0)
+        reaction = sim.boundaries[name].reaction
+        assert np.allclose(on_grains, -reaction, rtol=1e-12, atol=1e-12 * np.abs(reaction).max())
+    m = sim.micromechanics()
+    grain = pairs.second >= 0
+    n = pairs.normals[grain]
+    assert m["grain_contacts"] == int(grain.sum()) and m["free_grains"] == 27
+    assert np.allclose(m["fabric"], n.T @ n / len(n), rtol=1e-12, atol=1e-15)
+    assert m["fabric"].trace() == pytest.approx(1.0, abs=1e-12)
+    volumes = sim.grains.masses / 7.85e-9  # cube27.toml's steel
+    summed = np.einsum("p,pij->ij", volumes, m["grain_stresses"])
+    assert np.allclose(summed, m["stress_moment"], rtol=1e-9, atol=1e-9 * np.abs(summed).max())

@@ -18,14 +18,14 @@ double effectiveMass(const ContactGrain& a, const ContactGrain& b)
     return std::max(a.mass, b.mass);
 }
 
-/// The axis of the elastic point forces @a forces[s] of the @a sideCount sides. @a summed: the
-/// law sums the nodes (every law but the single-node one, whose force is one node's spring).
-ContactAxis contactAxis(const ContactSide* sides, int sideCount,
-                        const std::vector<PointForce>* forces, bool perNodeForces, bool summed)
+} // namespace
+
+ContactPlace contactPlace(const ContactSide* sides, int sideCount,
+                          const std::vector<PointForce>* forces, bool perNodeForces)
 {
-    ContactAxis axis;
+    ContactPlace place;
     const ContactGrain* first = sides[0].tester;
-    double total = 0.0, deepest = 0.0, area = 0.0, areaSquares = 0.0;
+    double total = 0.0;
     Vec3 weightedPoint = Vec3::Zero(), weightedNormal = Vec3::Zero();
     for (int s = 0; s < sideCount; ++s) {
         const double sign = sides[s].tester == first ? 1.0 : -1.0;
@@ -36,16 +36,34 @@ ContactAxis contactAxis(const ContactSide* sides, int sideCount,
             weightedPoint += f.stiffness * f.point;
             weightedNormal += (sign * f.stiffness) * directionOf(f, c);
         }
+    }
+    const double normalLength = weightedNormal.norm();
+    if (!(total > 0.0) || !(normalLength > 0.0)) return place;
+    place.centre = weightedPoint / total;
+    place.normal = weightedNormal / normalLength;
+    return place;
+}
+
+namespace {
+
+/// The axis of the elastic point forces @a forces[s] of the @a sideCount sides. @a summed: the
+/// law sums the nodes (every law but the single-node one, whose force is one node's spring).
+ContactAxis contactAxis(const ContactSide* sides, int sideCount,
+                        const std::vector<PointForce>* forces, bool perNodeForces, bool summed)
+{
+    ContactAxis axis;
+    const ContactPlace place = contactPlace(sides, sideCount, forces, perNodeForces);
+    if (place.normal.isZero(0.0)) return axis;
+    axis.centre = place.centre;
+    axis.normal = place.normal;
+    const ContactGrain* first = sides[0].tester;
+    double deepest = 0.0, area = 0.0, areaSquares = 0.0;
+    for (int s = 0; s < sideCount; ++s)
         for (const NodeContact& c : sides[s].contacts) {
             deepest = std::max(deepest, c.depth);
             area += c.area;
             areaSquares += c.area * c.area;
         }
-    }
-    const double normalLength = weightedNormal.norm();
-    if (!(total > 0.0) || !(normalLength > 0.0)) return axis;
-    axis.centre = weightedPoint / total;
-    axis.normal = weightedNormal / normalLength;
     // Along the normal: the stiffness K, and the elastic force P that it builds up.
     double& force = axis.force;
     for (int s = 0; s < sideCount; ++s) {

@@ -8,6 +8,19 @@
 
 namespace lsdem::contactlaw {
 
+/// Where a contact is: the stiffness-weighted centre of its elastic point forces and their
+/// stiffness-weighted mean direction, pushing first out of second (zero if it has none).
+struct ContactPlace
+{
+    Vec3 centre = Vec3::Zero();
+    Vec3 normal = Vec3::Zero();
+};
+
+/// The place of the contact whose elastic point forces of the @a sideCount sides are
+/// @a forces[s] (@a perNodeForces: one per contact, as NormalModel::perNodeForces says).
+ContactPlace contactPlace(const ContactSide* sides, int sideCount,
+                          const std::vector<PointForce>* forces, bool perNodeForces);
+
 /// The contact seen as one body of springs: where it acts, along which normal, how stiff it is
 /// along it and how fast its force grows with penetration. What its dashpot is made from.
 struct ContactAxis

@@ -208,6 +208,14 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
 
     const Dashpot dashpot = contactDashpot(sides, sideCount, model, normal, perNodeForces);
     result.dashpot = dashpot.coefficient;
+    if (dashpot.axis.normal.isZero(0.0)) {
+        const ContactPlace place = contactPlace(sides, sideCount, normal, perNodeForces);
+        result.centre = place.centre;
+        result.normal = place.normal;
+    } else {
+        result.centre = dashpot.axis.centre;
+        result.normal = dashpot.axis.normal;
+    }
     // The turn of the shear history about the normal in this step: the pair's mean spin.
     const Vec3 meanTurn = (0.5 * dt) * (first.angularVelocity + second.angularVelocity);
 

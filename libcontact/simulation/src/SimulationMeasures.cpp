@@ -52,6 +52,28 @@ std::vector<int> Simulation::grainContactCounts() const
     return counts;
 }
 
+std::vector<ContactRecord> Simulation::contactRecords() const
+{
+    std::vector<ContactRecord> records;
+    const std::vector<ContactSlot>& slots = mContacts.slots();
+    for (size_t k = 0; k < slots.size(); ++k) {
+        const ContactSlot& s = slots[k];
+        if (s.result.contactNodes <= 0) continue;
+        ContactRecord r;
+        r.first = s.first;
+        if (k < mContacts.pairSlotCount())
+            r.second = s.second;
+        else
+            r.boundary = s.boundary;
+        r.force = s.result.forceOnFirst;
+        r.centre = s.result.centre;
+        r.normal = s.result.normal;
+        r.nodes = s.result.contactNodes;
+        records.push_back(r);
+    }
+    return records;
+}
+
 Energies Simulation::energies() const
 {
     Energies e;

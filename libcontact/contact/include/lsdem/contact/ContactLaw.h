@@ -77,6 +77,11 @@ struct PairForces
     Mat3 rotationalStiffnessOfFirst = Mat3::Zero(), rotationalStiffnessOfSecond = Mat3::Zero();
     /// The contact's dashpot c (force·time/length) along its mean normal; 0 without damping.
     double dashpot = 0.0;
+    /// Where the contact is, for micromechanics (Micromechanics.h): the stiffness-weighted
+    /// centre of its elastic point forces and their mean direction, unit, pushing first out of
+    /// second (both zero for a contact without nodes).
+    Vec3 centre = Vec3::Zero();
+    Vec3 normal = Vec3::Zero();
 };
 
 /// Turn the sides of one contact into forces. The sides' testers must be the same two bodies

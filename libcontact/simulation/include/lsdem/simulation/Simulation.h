@@ -45,6 +45,19 @@ struct ContactForceRecord
     int grain = 0;
 };
 
+/// One contact of the last evaluation as a whole (micromechanics, Python): its two bodies, the
+/// resultant force on the first, where it acts and along which normal, and its nodes.
+struct ContactRecord
+{
+    int first = 0;       ///< grain index
+    int second = -1;     ///< the other grain's index, or -1 ...
+    int boundary = -1;   ///< ... the boundary's index
+    Vec3 force = Vec3::Zero();   ///< resultant on first (second gets the opposite)
+    Vec3 centre = Vec3::Zero();  ///< stiffness-weighted centre of its point forces
+    Vec3 normal = Vec3::Zero();  ///< unit, pushing first out of the other body
+    int nodes = 0;               ///< penetrating nodes, both sides
+};
+
 class Simulation
 {
 public:
@@ -90,6 +103,10 @@ public:
     /// evaluation, by grain index: the coordination of granular mechanics (walls not counted).
     /// Split by space: over this rank's contacts, by the index of its world (not collective).
     std::vector<int> grainContactCounts() const;
+    /// Every contact with a penetrating node at the last evaluation, grain pairs first, in the
+    /// contact list's order (the same on any thread count). Split by space: this rank's, by the
+    /// index of its world (not collective).
+    std::vector<ContactRecord> contactRecords() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
     /// The split by space given at construction (null: none).

@@ -1,0 +1,76 @@
+#include "lsdem/simulation/Micromechanics.h"
+
+#include <cmath>
+
+namespace lsdem {
+
+namespace {
+
+/// Whether grain @a index of @a world belongs to the sample (a free grain).
+bool inSample(const World& world, int index)
+{
+    return index >= 0 && world.grains[size_t(index)].isFree();
+}
+
+/// Calls @a act(grain, force) for each free grain that contact @a r acts on: @a r.force on
+/// its first grain, the opposite on its second.
+template <typename Act>
+void forEachSampleGrain(const World& world, const ContactRecord& r, Act&& act)
+{
+    if (inSample(world, r.first)) act(r.first, r.force);
+    if (inSample(world, r.second)) act(r.second, Vec3(-r.force));
+}
+
+} // namespace
+
+Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRecord>& records)
+{
+    Micromechanics m;
+    std::vector<int> contacts(world.grains.size(), 0);
+    for (const ContactRecord& r : records) {
+        forEachSampleGrain(world, r, [&](int p, const Vec3& f) {
+            m.stressMoment += (r.centre - world.grains[size_t(p)].body.pose.position) * f.transpose();
+        });
+        if (inSample(world, r.first) && inSample(world, r.second)) {
+            ++m.grainContacts;
+            ++contacts[size_t(r.first)];
+            ++contacts[size_t(r.second)];
+            m.fabric += r.normal * r.normal.transpose();
+        } else if (inSample(world, r.first) || inSample(world, r.second)) {
+            ++m.boundaryContacts;
+        }
+    }
+    int none = 0, one = 0;
+    for (size_t p = 0; p < world.grains.size(); ++p) {
+        if (!world.grains[p].isFree()) continue;
+        ++m.freeGrains;
+        none += contacts[p] == 0;
+        one += contacts[p] == 1;
+    }
+    m.rattlers = none + one;
+    if (m.freeGrains > m.rattlers)
+        m.mechanicalCoordination =
+            double(2 * m.grainContacts - one) / double(m.freeGrains - m.rattlers);
+    if (m.grainContacts > 0) {
+        m.fabric /= double(m.grainContacts);
+        const Mat3 a = 7.5 * (m.fabric - Mat3::Identity() / 3.0);
+        m.fabricAnisotropy = std::sqrt(1.5 * (a.array() * a.array()).sum());
+    }
+    return m;
+}
+
+std::vector<Mat3> grainStresses(const World& world, const std::vector<ContactRecord>& records)
+{
+    std::vector<Mat3> stress(world.grains.size(), Mat3::Zero());
+    for (const ContactRecord& r : records)
+        forEachSampleGrain(world, r, [&](int p, const Vec3& f) {
+            stress[size_t(p)] += (r.centre - world.grains[size_t(p)].body.pose.position) * f.transpose();
+        });
+    for (size_t p = 0; p < world.grains.size(); ++p) {
+        const Grain& g = world.grains[p];
+        if (g.isFree()) stress[p] /= g.asset->mass.volume;
+    }
+    return stress;
+}
+
+} // namespace lsdem

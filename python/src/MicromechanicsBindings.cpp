@@ -1,0 +1,98 @@
+// Simulation.contact_pairs and Simulation.micromechanics() in Python: each contact as a whole
+// (both bodies, resultant, centre, normal, nodes) and what granular mechanics derives from them
+// (Micromechanics.h), so a user can compute fabrics and stresses without the point forces.
+#include "PySimulation.h"
+
+#include "lsdem/simulation/Micromechanics.h"
+
+namespace lsdem::python {
+
+namespace {
+
+py::array_t<double> rowsOf(const std::vector<ContactRecord>& records, Vec3 ContactRecord::*field)
+{
+    const auto n = static_cast<py::ssize_t>(records.size());
+    py::array_t<double> rows({n, py::ssize_t{3}});
+    auto r = rows.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k) r(i, k) = (records[size_t(i)].*field)[k];
+    return rows;
+}
+
+py::array_t<int> columnOf(const std::vector<ContactRecord>& records, int ContactRecord::*field)
+{
+    py::array_t<int> column(static_cast<py::ssize_t>(records.size()));
+    for (size_t i = 0; i < records.size(); ++i) column.mutable_at(py::ssize_t(i)) = records[i].*field;
+    return column;
+}
+
+py::array_t<double> matrixOf(const Mat3& m)
+{
+    py::array_t<double> a({py::ssize_t{3}, py::ssize_t{3}});
+    auto r = a.mutable_unchecked<2>();
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r(i, j) = m(i, j);
+    return a;
+}
+
+} // namespace
+
+void bindMicromechanics(py::module_& m)
+{
+    auto simulation = py::reinterpret_borrow<py::class_<PySimulation>>(m.attr("Simulation"));
+    simulation.def_property_readonly(
+        "contact_pairs",
+        [](const PySimulation& s) {
+            s.checkNotSteppingElsewhere();
+            const std::vector<ContactRecord> records = s.sim().contactRecords();
+            py::dict d;
+            d["first"] = columnOf(records, &ContactRecord::first);
+            d["second"] = columnOf(records, &ContactRecord::second);
+            d["boundary"] = columnOf(records, &ContactRecord::boundary);
+            d["forces"] = rowsOf(records, &ContactRecord::force);
+            d["centres"] = rowsOf(records, &ContactRecord::centre);
+            d["normals"] = rowsOf(records, &ContactRecord::normal);
+            d["nodes"] = columnOf(records, &ContactRecord::nodes);
+            return py::module_::import("types").attr("SimpleNamespace")(**d);
+        },
+        "Every contact of the last evaluation as a whole (copies; K contacts, grain pairs "
+        "first): .first (K,) grain index; .second (K,) the other grain's index or -1, and then "
+        ".boundary (K,) the boundary's index (else -1); .forces (K, 3) the resultant on the "
+        "first grain (the other body gets the opposite); .centres (K, 3) where it acts (the "
+        "stiffness-weighted centre of its point forces); .normals (K, 3) unit, pushing the first "
+        "grain out; .nodes (K,) its penetrating nodes.");
+    simulation.def(
+        "micromechanics",
+        [](const PySimulation& s) {
+            s.checkNotSteppingElsewhere();
+            const std::vector<ContactRecord> records = s.sim().contactRecords();
+            const Micromechanics mm = micromechanicsOf(s.world(), records);
+            const std::vector<Mat3> perGrain = grainStresses(s.world(), records);
+            const auto n = static_cast<py::ssize_t>(perGrain.size());
+            py::array_t<double> grains({n, py::ssize_t{3}, py::ssize_t{3}});
+            auto g = grains.mutable_unchecked<3>();
+            for (py::ssize_t p = 0; p < n; ++p)
+                for (int i = 0; i < 3; ++i)
+                    for (int j = 0; j < 3; ++j) g(p, i, j) = perGrain[size_t(p)](i, j);
+            py::dict d;
+            d["stress_moment"] = matrixOf(mm.stressMoment);
+            d["grain_stresses"] = grains;
+            d["fabric"] = matrixOf(mm.fabric);
+            d["fabric_anisotropy"] = mm.fabricAnisotropy;
+            d["grain_contacts"] = mm.grainContacts;
+            d["boundary_contacts"] = mm.boundaryContacts;
+            d["free_grains"] = mm.freeGrains;
+            d["rattlers"] = mm.rattlers;
+            d["mechanical_coordination"] = mm.mechanicalCoordination;
+            return d;
+        },
+        "The sample's micromechanics at the last evaluation (docs/micromechanics.md), free "
+        "grains being the sample: stress_moment (3, 3) Σ (x_c − x_p) ⊗ f_c, the Love–Weber "
+        "stress times the sample's volume (divide by your sample's volume); grain_stresses "
+        "(N, 3, 3) each free grain's mean stress; fabric (3, 3) of the grain contacts' normals "
+        "and fabric_anisotropy sqrt(3/2 a:a), a = 15/2 (fabric − I/3); grain_contacts, "
+        "boundary_contacts, free_grains, rattlers (free grains with fewer than two grain "
+        "contacts) and Thornton's mechanical_coordination (2C − N1)/(N − N0 − N1).");
+}
+
+} // namespace lsdem::python

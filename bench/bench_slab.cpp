@@ -15,6 +15,7 @@
 #include "studies/SlabScene.h"
 
 #include "lsdem/ls/LevelSetGrid.h"
+#include "lsdem/ls/LevelSetSampler.h"
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 
@@ -87,7 +88,62 @@ void BM_SlabStep(benchmark::State& state)
         static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled);
 }
 
+/// The floor under a sampled node's cost (issue 35: "the physical limit"): the fine:1 block's
+/// nodes, moved 0.3 voxel inward as a neighbour's penetrating nodes sit, read in their stored
+/// (Morton) order from the block's grid (12.7 MiB, larger than this machine's caches). Arg 0:
+/// only the 8 corner values of each node's cell (the stream of 8-voxel fetches: table look-up,
+/// brick, 3-byte codes); arg 1: the sampler's φ and ∇φ, as the narrow phase asks for them.
+void BM_NodeFetchFloor(benchmark::State& state)
+{
+    const bool fullSample = state.range(0) == 1;
+    const GrainAsset& block = *loadedPanel(1).world().grains.front().asset;
+    const LevelSetGrid& levelSet = *block.levelSet;
+    const LevelSetBricks& grid = *levelSet.grid;
+    std::vector<Vec3> points;
+    for (size_t i = 0; i < block.nodes.size(); ++i)
+        points.push_back(block.nodes.positions[i] - 0.3 * levelSet.voxelSize * block.nodes.normals[i]);
+    LevelSetSampler sampler(levelSet);
+    const double inverseVoxel = 1.0 / levelSet.voxelSize;
+    for (auto _ : state) {
+        double sum = 0.0;
+        for (const Vec3& p : points) {
+            if (fullSample) {
+                const LevelSetSample s = sampler.sample(p);
+                sum += s.phi + s.gradient.x();
+                continue;
+            }
+            const Vec3 index = (p - levelSet.origin) * inverseVoxel;
+            const openvdb::Coord base(int(std::floor(index.x())), int(std::floor(index.y())),
+                                      int(std::floor(index.z())));
+            for (int corner = 0; corner < 8; ++corner)
+                sum += grid.value(base.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2));
+        }
+        benchmark::DoNotOptimize(sum);
+    }
+    state.counters["ns_per_node"] = benchmark::Counter(
+        double(points.size()),
+        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["grid_MiB"] = double(grid.memUsage()) / (1024.0 * 1024.0);
+}
+
+/// This machine's streaming read bandwidth (a 256 MiB array summed in order), for the bytes
+/// a node's fetch cannot avoid when its bricks are not in cache.
+void BM_ReadBandwidth(benchmark::State& state)
+{
+    std::vector<double> data(size_t(32) << 20, 1.0);  // 256 MiB
+    for (auto _ : state) {
+        double sum = 0.0;
+        for (double v : data) sum += v;
+        benchmark::DoNotOptimize(sum);
+    }
+    state.counters["GB_per_s"] = benchmark::Counter(
+        double(data.size() * sizeof(double)) / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+}
+
 } // namespace
+
+BENCHMARK(BM_NodeFetchFloor)->ArgName("full_sample")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ReadBandwidth)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_SlabStep)
     ->ArgsProduct({{0, 1, 2}, {1, 2}})

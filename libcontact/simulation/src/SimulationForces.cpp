@@ -157,34 +157,9 @@ void Simulation::updateContactList()
 
 void Simulation::computeContacts(double slipStep)
 {
-    // Narrow phase and contact laws, one slot per task; nothing shared is written.
-    const World& w = mWorld;
-    std::vector<ContactSlot>& slots = mContacts.slots();
-    const bool record = mRecordForces;
-    const std::vector<ContactGrain>& views = mViews;
-    const std::vector<ContactGrain>& boundaryViews = mBoundaryViews;
-    mSlotTotals.resize(slots.size());
-    tbb::parallel_for(size_t(0), slots.size(), [&](size_t k) {
-        ContactSlot& s = slots[k];
-        ContactScratch& scratch = mScratch.local().value;  // this thread's buffers, reused
-        s.stats = NodeCheckStats();
-        s.forces.clear();
-        std::vector<PointForce>* out = record ? &s.forces : nullptr;
-        const int material = w.grains[s.first].material;
-        if (s.boundary < 0) {
-            const ContactModel& m = w.model(material, w.grains[s.second].material);
-            s.result = computePairContact(views[s.first], views[s.second], m, slipStep,
-                                          s.pairHistory, s.stats, out, &scratch, &s.candidates);
-        } else {
-            const Boundary& b = w.boundaries[s.boundary];
-            // A level-set obstacle remembers the grain's nodes near it, as a grain pair does.
-            s.result = computeBoundaryContact(views[s.first], b, boundaryViews[s.boundary],
-                                              w.model(material, b.material), slipStep,
-                                              s.boundaryHistory, s.stats, out, scratch,
-                                              &s.candidates.ofFirst);
-        }
-        mSlotTotals[k] = {s.stats, s.result.elasticEnergy, s.result.contactNodes};
-    });
+    mSlotTotals.resize(mContacts.slots().size());
+    (*mBackend).compute(ContactBatch{mWorld, mViews, mBoundaryViews, mContacts.slots(),
+                                     mSlotTotals, slipStep, mRecordForces});
 }
 
 void Simulation::sumGrainForces()

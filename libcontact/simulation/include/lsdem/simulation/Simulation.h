@@ -5,12 +5,10 @@
 ///        contact and summed in a fixed order, so results are identical for any thread count.
 #pragma once
 
-#include "lsdem/core/ThreadPrivate.h"
+#include "lsdem/simulation/ContactBackend.h"
 #include "lsdem/simulation/ContactList.h"
 #include "lsdem/simulation/StableStep.h"
 #include "lsdem/simulation/World.h"
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include <vector>
 
@@ -109,6 +107,13 @@ public:
     std::vector<ContactRecord> contactRecords() const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
+    /// Compute the contacts with @a backend from the next step on (ContactBackend.h; the CPU's
+    /// by default). Every backend that computes each slot with computeContactSlot gives the
+    /// same numbers.
+    void setContactBackend(std::unique_ptr<ContactBackend> backend)
+    {
+        mBackend.reset(std::move(backend));
+    }
     /// The split by space given at construction (null: none).
     const GhostDecomposition* ghosts() const { return mGhosts; }
 
@@ -164,25 +169,15 @@ private:
     std::vector<GrainStiffness> mGrainStiffness;  ///< per grain at the last evaluation
     ContactList mContacts;
     std::vector<ContactGrain> mViews, mBoundaryViews;  ///< the bodies as the contact laws see them
-    /// Of each slot, what the pass after the narrow phase sums, side by side: read in order
-    /// from one array, it streams; read from the slots (688 bytes apart, each last written by
-    /// whichever thread computed it) it cost a cache miss or a transfer from the other core
-    /// per slot.
-    struct SlotTotals
-    {
-        NodeCheckStats stats;
-        double elasticEnergy = 0.0;
-        long long contactNodes = 0;
-    };
-    std::vector<SlotTotals> mSlotTotals;
+    using SlotTotals = ContactSlotTotals;
+    std::vector<SlotTotals> mSlotTotals;  ///< per slot, filled by the backend beside it
     std::vector<SlotTotals> mRunTotals;  ///< mSlotTotals summed by runs of slots
     std::vector<double> mStepLimits;  ///< per grain, at the last stability check
     StepCounters mCounters;
     GhostDecomposition* mGhosts = nullptr;
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
-    /// Each thread's working memory for the contact laws (no allocation in the hot loop).
-    tbb::enumerable_thread_specific<ThreadPrivate<ContactScratch>> mScratch;
+    ContactBackendHolder mBackend;  ///< computes the contact slots (the CPU's by default)
 };
 
 } // namespace lsdem

@@ -1,0 +1,66 @@
+#include "lsdem/simulation/ContactBackend.h"
+
+#include "lsdem/contact/PairContact.h"
+#include "lsdem/core/ThreadPrivate.h"
+#include "lsdem/simulation/BoundaryContact.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace lsdem {
+
+void computeContactSlot(const ContactBatch& batch, size_t k, ContactScratch& scratch)
+{
+    const World& w = batch.world;
+    ContactSlot& s = batch.slots[k];
+    s.stats = NodeCheckStats();
+    s.forces.clear();
+    std::vector<PointForce>* out = batch.recordForces ? &s.forces : nullptr;
+    const int material = w.grains[s.first].material;
+    if (s.boundary < 0) {
+        const ContactModel& m = w.model(material, w.grains[s.second].material);
+        s.result = computePairContact(batch.grains[s.first], batch.grains[s.second], m,
+                                      batch.slipStep, s.pairHistory, s.stats, out, &scratch,
+                                      &s.candidates);
+    } else {
+        const Boundary& b = w.boundaries[s.boundary];
+        // A level-set obstacle remembers the grain's nodes near it, as a grain pair does.
+        s.result = computeBoundaryContact(batch.grains[s.first], b, batch.boundaries[s.boundary],
+                                          w.model(material, b.material), batch.slipStep,
+                                          s.boundaryHistory, s.stats, out, scratch,
+                                          &s.candidates.ofFirst);
+    }
+    batch.totals[k] = {s.stats, s.result.elasticEnergy, s.result.contactNodes};
+}
+
+namespace {
+
+class CpuContactBackend final : public ContactBackend
+{
+public:
+    std::unique_ptr<ContactBackend> clone() const override
+    {
+        return std::make_unique<CpuContactBackend>();
+    }
+
+    void compute(const ContactBatch& batch) override
+    {
+        // One slot per task; nothing shared is written.
+        tbb::parallel_for(size_t(0), batch.slots.size(), [&](size_t k) {
+            computeContactSlot(batch, k, mScratch.local().value);  // this thread's buffers
+        });
+    }
+
+private:
+    /// Each thread's working memory for the contact laws (no allocation in the hot loop).
+    tbb::enumerable_thread_specific<ThreadPrivate<ContactScratch>> mScratch;
+};
+
+} // namespace
+
+std::unique_ptr<ContactBackend> makeCpuContactBackend()
+{
+    return std::make_unique<CpuContactBackend>();
+}
+
+} // namespace lsdem

@@ -40,10 +40,10 @@ Quat toQuat(const py::handle& value)
 
 GrainMotion parseMotion(const std::string& motion)
 {
-    if (motion == "free") return GrainMotion::Free;
-    if (motion == "fixed") return GrainMotion::Fixed;
-    if (motion == "prescribed") return GrainMotion::Prescribed;
-    throw Error("", "motion wants 'free', 'fixed' or 'prescribed', got '" + motion + "'");
+    if (const std::optional<GrainMotion> m = parseGrainMotion(motion)) return *m;
+    std::string names;
+    for (const std::string& n : grainMotionNames()) names += (names.empty() ? "'" : ", '") + n + "'";
+    throw Error("", "motion wants one of " + names + ", got '" + motion + "'");
 }
 
 void markChanged(Scene& s)

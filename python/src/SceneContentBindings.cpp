@@ -103,8 +103,9 @@ void bindSceneContents(py::class_<Scene>& scene)
                  g.motion = parseMotion(motion);
                  if (g.motion == GrainMotion::Fixed &&
                      (g.velocity.norm() > 0.0 || g.angularVelocity.norm() > 0.0))
-                     throw Error("", "a fixed grain may not have a velocity",
-                                 "use motion='prescribed' to move it at that velocity");
+                     throw Error("", "a fixed grain cannot move, but it has a velocity",
+                                 "remove the velocity, or use motion='prescribed' to move it at "
+                                 "that velocity");
                  if (!name.empty()) checkNewName(s.grains, name, "grain");
                  g.name = name;
                  g.where = "grain " + std::to_string(s.grains.size());

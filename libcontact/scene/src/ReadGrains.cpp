@@ -37,9 +37,8 @@ Quat readOrientation(TableReader& t)
 /// The motion and velocities of a grain (or of every grain of a lattice).
 void readMotion(TableReader& t, GrainSpec& g)
 {
-    const std::string motion = t.choice("motion", {"free", "fixed", "prescribed"}, "free");
-    g.motion = motion == "free" ? GrainMotion::Free
-             : motion == "fixed" ? GrainMotion::Fixed : GrainMotion::Prescribed;
+    g.motion = *parseGrainMotion(
+        t.choice("motion", grainMotionNames(), grainMotionName(GrainMotion::Free)));
     g.velocity = t.vec3("velocity", Vec3::Zero());
     g.angularVelocity = t.vec3("angular_velocity", Vec3::Zero());
     if (g.motion == GrainMotion::Fixed && (t.has("velocity") || t.has("angular_velocity")))

@@ -75,6 +75,11 @@ void validateGrains(const Scene& s)
                         "normalise it");
         if (!(std::isfinite(g.mass) && g.mass >= 0.0))
             throw Error(where, "the grain's mass must be >= 0 (0: density × volume)", "");
+        if (g.motion == GrainMotion::Fixed &&
+            (!g.velocity.isZero(0.0) || !g.angularVelocity.isZero(0.0)))
+            throw Error(where, "a fixed grain cannot move, but it has a velocity",
+                        "remove the velocity, or make its motion prescribed to move it at that "
+                        "velocity");
     }
 }
 

@@ -129,15 +129,6 @@ std::string pathFrom(const std::string& directory, const std::string& file)
     return relative.string();
 }
 
-std::string motionName(GrainMotion m)
-{
-    switch (m) {
-    case GrainMotion::Free: return "free";
-    case GrainMotion::Fixed: return "fixed";
-    case GrainMotion::Prescribed: return "prescribed";
-    }
-    return "free";
-}
 
 void writeBakeKeys(TomlText& t, const BakeOptions& b)
 {
@@ -211,7 +202,7 @@ void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
     t.string("material", scene.materials[g.material].name);
     t.vec3("position", g.pose.position);
     writeOrientation(t, g.pose.orientation);
-    if (g.motion != GrainMotion::Free) t.string("motion", motionName(g.motion));
+    if (g.motion != GrainMotion::Free) t.string("motion", grainMotionName(g.motion));
     if (g.motion != GrainMotion::Fixed) {
         if (!g.velocity.isZero(0.0)) t.vec3("velocity", g.velocity);
         if (!g.angularVelocity.isZero(0.0)) t.vec3("angular_velocity", g.angularVelocity);

@@ -71,6 +71,10 @@ std::vector<Breach> breaches()
              s.end.displacement = 1.0;
          }, "end_displacement"},
         {"end steps", [](Scene& s) { s.end.steps = -1; }, "end_steps must be >= 0 (got -1)"},
+        {"fixed grain moving", [](Scene& s) {
+             s.grains[0].motion = GrainMotion::Fixed;
+             s.grains[0].angularVelocity = Vec3(0.0, 0.0, 1.0);
+         }, "a fixed grain cannot move"},
         {"output period", [](Scene& s) { s.output.vtkPeriod = -1.0; }, "vtk_period must be >= 0"},
         {"history both ways", [](Scene& s) {
              s.output.historyEvery = 10;

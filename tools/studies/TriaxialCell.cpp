@@ -1,5 +1,7 @@
 #include "studies/TriaxialCell.h"
 
+#include "lsdem/simulation/Micromechanics.h"
+
 #include "lsdem/core/Constants.h"
 #include "lsdem/core/Error.h"
 
@@ -31,7 +33,7 @@ const Boundary& wall(const World& world, const TriaxialWalls& walls, int which)
 } // namespace
 
 TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
-                                  const std::vector<int>& contactCounts)
+                                  const std::vector<ContactRecord>& contacts)
 {
     TriaxialState s;
     double force[6];
@@ -61,11 +63,16 @@ TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls
     s.q = s.stress.z() - 0.5 * (s.stress.x() + s.stress.y());
     const double solid = solidVolume(world);
     s.voidRatio = solid > 0.0 ? (s.volume - solid) / solid : 0.0;
-    if (!contactCounts.empty() && !world.grains.empty()) {
-        long long ends = 0;
-        for (int c : contactCounts) ends += c;
-        s.coordination = static_cast<double>(ends) / static_cast<double>(world.grains.size());
-    }
+    if (contacts.empty() || world.grains.empty()) return s;
+    long long pairs = 0, nodes = 0;
+    for (const ContactRecord& c : contacts)
+        if (c.second >= 0) ++pairs, nodes += c.nodes;
+    s.coordination = 2.0 * double(pairs) / double(world.grains.size());
+    s.nodesPerContact = pairs > 0 ? double(nodes) / double(pairs) : 0.0;
+    const Micromechanics m = micromechanicsOf(world, contacts);
+    s.loveWeberStress = -m.stressMoment.diagonal() / s.volume;
+    s.mechanicalCoordination = m.mechanicalCoordination;
+    s.fabricAnisotropy = m.fabricAnisotropy;
     return s;
 }
 

@@ -6,6 +6,7 @@
 ///        is z. Units are the scene's (e.g. mm, N: stresses in N/mm² = MPa).
 #pragma once
 
+#include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/World.h"
 
 #include <array>
@@ -34,14 +35,21 @@ struct TriaxialState
     double q = 0.0;               ///< deviator σ_z − (σ_x + σ_y) / 2
     double voidRatio = 0.0;       ///< (volume − solid volume) / solid volume
     double coordination = 0.0;    ///< mean grain–grain contacts per grain, 2C/N
+    // From the contacts themselves (Micromechanics.h), when they are given:
+    /// The Love–Weber stress's normal components over the cell's volume, compression positive
+    /// as `stress` is: the grains' own measure of what the walls measure.
+    Vec3 loveWeberStress = Vec3::Zero();
+    double mechanicalCoordination = 0.0;  ///< rattlers out (Thornton)
+    double fabricAnisotropy = 0.0;        ///< of the grain contacts' normals
+    double nodesPerContact = 0.0;         ///< mean penetrating nodes of a grain–grain contact
 };
 
 /// The cell of @a world bounded by @a walls (plane boundaries, checked: @throw Error naming
 /// the wall if one is not a plane, not facing into the cell, or opposite walls not parallel
-/// and facing each other). @a contactCounts: each grain's grain contacts (see
-/// Simulation::grainContactCounts; empty gives coordination 0).
+/// and facing each other). @a contacts: the contacts of the last evaluation
+/// (Simulation::contactRecords; empty leaves the coordination and what comes from contacts 0).
 TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
-                                  const std::vector<int>& contactCounts);
+                                  const std::vector<ContactRecord>& contacts);
 
 /// The grains' solid volume: Σ of their assets' volumes.
 double solidVolume(const World& world);

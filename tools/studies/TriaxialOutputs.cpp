@@ -15,7 +15,8 @@ void writeTriaxialCsv(const TriaxialStudyResult& r, const std::string& path)
     out.precision(10);
     out << "formulation,sdp,seed,nodes_per_grain,stage,step,time,axial_strain,volumetric_strain,"
            "sigma_x,sigma_y,sigma_z,p,q,q_over_p,friction_angle,void_ratio,coordination,"
-           "inertial_number,kinetic_energy,size_x,size_y,size_z\n";
+           "inertial_number,kinetic_energy,size_x,size_y,size_z,love_weber_x,love_weber_y,"
+           "love_weber_z,mechanical_coordination,fabric_anisotropy,nodes_per_contact\n";
     for (const TriaxialRun& run : r.runs)
         for (const TriaxialRow& row : run.test.rows) {
             const TriaxialState& s = row.state;
@@ -27,7 +28,9 @@ void writeTriaxialCsv(const TriaxialStudyResult& r, const std::string& path)
                 << (s.p > 0.0 ? s.q / s.p : 0.0) << ',' << row.frictionAngle << ','
                 << s.voidRatio << ',' << s.coordination << ',' << row.inertialNumber << ','
                 << row.kinetic << ',' << s.size.x() << ',' << s.size.y() << ',' << s.size.z()
-                << '\n';
+                << ',' << s.loveWeberStress.x() << ',' << s.loveWeberStress.y() << ','
+                << s.loveWeberStress.z() << ',' << s.mechanicalCoordination << ','
+                << s.fabricAnisotropy << ',' << s.nodesPerContact << '\n';
         }
     writeTextFileAtomically(path, out.str());
 }

@@ -44,7 +44,7 @@ TriaxialRow measureRow(const Simulation& sim, const TriaxialWalls& walls, int st
     r.stage = stage;
     r.step = sim.world().step;
     r.time = sim.world().time;
-    r.state = measureTriaxialCell(sim.world(), walls, sim.grainContactCounts());
+    r.state = measureTriaxialCell(sim.world(), walls, sim.contactRecords());
     if (reference) {
         r.axialStrain = axialStrain(*reference, r.state);
         r.volumetricStrain = volumetricStrain(*reference, r.state);
@@ -126,7 +126,7 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
 
     // Shearing: the reference is the consolidated cell; the end walls move towards each other
     // at ε̇·H₀/2 each, the side walls keep σ₃ (fast enough for a dilation rate of 2ε̇).
-    result.consolidated = measureTriaxialCell(w, walls, sim.grainContactCounts());
+    result.consolidated = measureTriaxialCell(w, walls, sim.contactRecords());
     for (const Grain& g : w.grains) result.consolidatedPoses.push_back(g.body.pose);
     for (int k = 0; k < 6; ++k) {
         const Boundary& b = wallOf(w, walls, k);

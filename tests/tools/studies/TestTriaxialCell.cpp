@@ -73,7 +73,20 @@ TEST(TriaxialCell, StressesStrainsAndVoidRatioFromTheWalls)
         return g;
     };
     w.grains = {grainOfVolume(6.0), grainOfVolume(9.12)};  // solid 15.12 of 22.68
-    const TriaxialState now = measureTriaxialCell(w, walls(), {3, 1});
+    w.grains[1].body.pose.position = Vec3(0, 0, 1);
+    // Two contacts between the grains, each pressing them apart along z with force 2 at
+    // their midpoint, of 4 and 6 nodes.
+    std::vector<ContactRecord> contacts(2);
+    for (ContactRecord& c : contacts) {
+        c.first = 0;
+        c.second = 1;
+        c.force = Vec3(0, 0, -2);
+        c.centre = Vec3(0, 0, 0.5);
+        c.normal = Vec3(0, 0, -1);
+    }
+    contacts[0].nodes = 4;
+    contacts[1].nodes = 6;
+    const TriaxialState now = measureTriaxialCell(w, walls(), contacts);
 
     EXPECT_NEAR(now.size.x(), 2.1, 1e-12);
     EXPECT_NEAR(now.size.z(), 3.6, 1e-12);
@@ -84,7 +97,15 @@ TEST(TriaxialCell, StressesStrainsAndVoidRatioFromTheWalls)
     EXPECT_NEAR(now.p, 3.0, 1e-12);
     EXPECT_NEAR(now.q, 3.0, 1e-12);
     EXPECT_NEAR(now.voidRatio, 0.5, 1e-12);        // 22.68 / 15.12 − 1
-    EXPECT_DOUBLE_EQ(now.coordination, 2.0);       // (3 + 1) / 2
+    EXPECT_DOUBLE_EQ(now.coordination, 2.0);       // 2·2 contacts / 2 grains
+    EXPECT_DOUBLE_EQ(now.mechanicalCoordination, 2.0);
+    EXPECT_DOUBLE_EQ(now.nodesPerContact, 5.0);
+    // Each contact: (0.5·e_z)⊗(−2 e_z) on one grain and (−0.5·e_z)⊗(2 e_z) on the other, −2
+    // in all along zz; two contacts, over the volume, compression positive: 4/22.68.
+    EXPECT_NEAR(now.loveWeberStress.z(), 4.0 / 22.68, 1e-12);
+    EXPECT_EQ(now.loveWeberStress.x(), 0.0);
+    // Every normal along z: fabric e_z e_z, a = 15/2·diag(−1/3, −1/3, 2/3), sqrt(3/2 a:a) = 7.5.
+    EXPECT_NEAR(now.fabricAnisotropy, 7.5, 1e-12);
     EXPECT_NEAR(axialStrain(start, now), 0.1, 1e-12);
     EXPECT_NEAR(volumetricStrain(start, now), (24.0 - 22.68) / 24.0, 1e-12);
     // sin φ = (5 − 2)/(5 + 2); and q/p = 6 sin φ / (3 − sin φ) for triaxial compression.

@@ -2,6 +2,8 @@
 // library's schema, as the scene reader checks [[contacts]]) and grains, one by one.
 #include "SceneBuilding.h"
 
+#include "lsdem/scene/SceneSettings.h"
+
 #include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/Error.h"
 
@@ -36,8 +38,8 @@ void bindSceneContents(py::class_<Scene>& scene)
         .def("add_material",
              [](Scene& s, const std::string& name, double density) {
                  checkNewName(s.materials, name, "material");
-                 if (!(density >= 0.0) || !std::isfinite(density))
-                     throw Error("", "material '" + name + "': density must be >= 0");
+                 if (std::optional<std::string> p = densityProblem(density))
+                     throw Error("", "material '" + name + "': density " + *p, kDensityFix);
                  markChanged(s);
                  s.materials.push_back({name, density});
              },

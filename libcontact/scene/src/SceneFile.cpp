@@ -2,6 +2,7 @@
 // across them). Each section has its reader in a file of its own (SceneSections.h), and every
 // table goes through a TableReader, so a misspelt key is reported, never ignored.
 #include "lsdem/scene/SceneFile.h"
+#include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneValidation.h"
 
 #include "SceneSections.h"
@@ -115,7 +116,9 @@ Scene parseScene(const std::string& text, const std::string& path)
         TableReader t(*table, "[materials." + name + "]", path);
         MaterialSpec m;
         m.name = name;
-        m.density = t.nonNegative("density", 0.0);
+        m.density = t.number("density", 0.0);
+        if (std::optional<std::string> p = densityProblem(m.density))
+            t.fail("density", *p, kDensityFix);
         t.rejectUnknownKeys();
         scene.materials.push_back(m);
     }

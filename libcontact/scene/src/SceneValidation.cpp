@@ -38,10 +38,8 @@ void validateMaterials(const Scene& s)
 {
     for (const MaterialSpec& m : s.materials) {
         if (m.name.empty()) throw Error(s.path, "a material without a name", "give it a name");
-        if (!(std::isfinite(m.density) && m.density >= 0.0))
-            throw Error(s.path, "material '" + m.name + "': density must be >= 0 (got " +
-                                    numberText(m.density) + ")",
-                        "give a density in mass/length³ (0 for boundaries)");
+        if (std::optional<std::string> p = densityProblem(m.density))
+            throw Error(s.path, "material '" + m.name + "': density " + *p, kDensityFix);
     }
 }
 

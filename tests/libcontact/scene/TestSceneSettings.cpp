@@ -203,3 +203,29 @@ TEST(SceneSettings, ScenesMdTablesAgreeWithTheSchema)
                 << "docs/scenes.md lists '" << key << "' in [" << name
                 << "], which the schema does not know";
 }
+
+// A material's density: the reader and validateScene refuse a negative one in the same words.
+TEST(SceneSettings, DensityIsRefusedInTheSameWordsFromAFileAndAScene)
+{
+    const std::string words = "density " + *densityProblem(-1.0);
+    EXPECT_EQ(words, "density must be >= 0 (got -1)");
+    EXPECT_FALSE(densityProblem(0.0));
+    EXPECT_TRUE(densityProblem(std::nan("")));
+    std::string text = kScene;
+    text.replace(text.find("density = 7.85e-9"), 17, "density = -1.0");
+    try {
+        parseScene(text, "settings.toml");
+        ADD_FAILURE() << "the reader accepted a negative density";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("density: must be >= 0 (got -1)"), std::string::npos)
+            << e.what();
+    }
+    Scene scene = parseScene(kScene, "settings.toml");
+    scene.materials[0].density = -1.0;
+    try {
+        validateScene(scene);
+        ADD_FAILURE() << "validateScene accepted a negative density";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+}

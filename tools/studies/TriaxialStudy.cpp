@@ -20,7 +20,7 @@ namespace lsdem {
 
 namespace {
 
-constexpr int kRowFields = 19;
+constexpr int kRowFields = 25;
 
 void packRow(const TriaxialRow& r, std::vector<double>& out)
 {
@@ -28,7 +28,9 @@ void packRow(const TriaxialRow& r, std::vector<double>& out)
     const double fields[kRowFields] = {
         double(r.stage), double(r.step), r.time, s.size.x(), s.size.y(), s.size.z(), s.volume,
         s.stress.x(), s.stress.y(), s.stress.z(), s.p, s.q, s.voidRatio, s.coordination,
-        r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber, r.kinetic};
+        r.axialStrain, r.volumetricStrain, r.frictionAngle, r.inertialNumber, r.kinetic,
+        s.loveWeberStress.x(), s.loveWeberStress.y(), s.loveWeberStress.z(),
+        s.mechanicalCoordination, s.fabricAnisotropy, s.nodesPerContact};
     out.insert(out.end(), fields, fields + kRowFields);
 }
 
@@ -50,6 +52,10 @@ TriaxialRow unpackRow(const double* f)
     r.frictionAngle = f[16];
     r.inertialNumber = f[17];
     r.kinetic = f[18];
+    r.state.loveWeberStress = Vec3(f[19], f[20], f[21]);
+    r.state.mechanicalCoordination = f[22];
+    r.state.fabricAnisotropy = f[23];
+    r.state.nodesPerContact = f[24];
     return r;
 }
 

@@ -163,6 +163,14 @@ TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
     for (const TriaxialRun& run : r.runs) {
         EXPECT_TRUE(run.test.consolidatedWithinTolerance);
         EXPECT_NEAR(run.test.rows.back().axialStrain, 0.01, 1e-4);
+        // What comes from the contacts survives the runs' records (packed for the ranks).
+        const TriaxialState& end = run.test.rows.back().state;
+        EXPECT_GT(end.nodesPerContact, 1.0);
+        EXPECT_GT(end.mechanicalCoordination, 0.0);
+        // (27 grains sheared fast: only roughly the walls' stress; a consolidated sample
+        // agrees to 0.1 %, TriaxialTest.HundredGrains…)
+        EXPECT_NEAR(end.loveWeberStress.x(), end.stress.x(), 0.2 * end.stress.x());
+        EXPECT_GT(run.test.consolidated.nodesPerContact, 1.0);
     }
 
     const std::string dir = ::testing::TempDir() + "/triaxial_study";

@@ -68,8 +68,9 @@ std::string ContactCoefficient::rangeText() const
 
 std::optional<ContactProblem> ContactCoefficient::rangeProblem(double value) const
 {
-    if (inNumberRange(range, value)) return std::nullopt;
-    return ContactProblem{key, "must be " + rangeText() + " (got " + numberText(value) + ")",
+    const std::optional<std::string> problem = outOfRange(range, value);
+    if (!problem) return std::nullopt;
+    return ContactProblem{key, *problem,
                           range == NumberRange::PositiveFraction ? "1 means no contact damping"
                                                                  : "give a value " + rangeText()};
 }

@@ -80,13 +80,9 @@ std::vector<SceneSetting> outputSettings()
 std::optional<std::string> SceneSetting::problem(const SettingValue& value) const
 {
     if (value.index() != defaultValue().index()) return "has the wrong type";
-    const auto outside = [&](double v) -> std::optional<std::string> {
-        if (inNumberRange(range, v)) return std::nullopt;
-        return "must be " + numberRangeText(range) + " (got " + numberText(v) + ")";
-    };
-    if (const double* d = std::get_if<double>(&value)) return outside(*d);
+    if (const double* d = std::get_if<double>(&value)) return outOfRange(range, *d);
     if (const long long* n = std::get_if<long long>(&value))
-        return outside(static_cast<double>(*n));
+        return outOfRange(range, static_cast<double>(*n));
     if (const Vec3* v = std::get_if<Vec3>(&value)) {
         if (std::isfinite(v->x()) && std::isfinite(v->y()) && std::isfinite(v->z()))
             return std::nullopt;
@@ -136,9 +132,7 @@ const char* const kDensityFix =
 
 std::optional<std::string> densityProblem(double density)
 {
-    if (inNumberRange(NumberRange::NonNegative, density)) return std::nullopt;
-    return "must be " + numberRangeText(NumberRange::NonNegative) + " (got " +
-           numberText(density) + ")";
+    return outOfRange(NumberRange::NonNegative, density);
 }
 
 std::string settingText(const SettingValue& value)

@@ -1,20 +1,8 @@
 #include "lsdem/scene/ServoKeys.h"
 
 #include "lsdem/core/NumberRange.h"
-#include "lsdem/core/NumberText.h"
 
 namespace lsdem {
-
-namespace {
-
-/// "must be > 0 (got -1)" if @a value is not in @a range.
-std::optional<std::string> outside(NumberRange range, double value)
-{
-    if (inNumberRange(range, value)) return std::nullopt;
-    return "must be " + numberRangeText(range) + " (got " + numberText(value) + ")";
-}
-
-} // namespace
 
 std::optional<ServoProblem> applyServoKeys(const ServoKeys& k, BoundarySpec& wall)
 {
@@ -30,7 +18,7 @@ std::optional<ServoProblem> applyServoKeys(const ServoKeys& k, BoundarySpec& wal
         return std::nullopt;
     }
     StressServo servo;
-    if (std::optional<std::string> p = outside(NumberRange::Positive, *k.stress))
+    if (std::optional<std::string> p = outOfRange(NumberRange::Positive, *k.stress))
         return ServoProblem{"stress", *p + ": a wall can only push on the grains, so its stress is "
                                            "compressive",
                             "give the compressive stress as a positive number (force/length²)"};
@@ -47,7 +35,7 @@ std::optional<ServoProblem> applyServoKeys(const ServoKeys& k, BoundarySpec& wal
                             "opposite walls around it, e.g. [\"left\", \"right\", \"front\", "
                             "\"back\"]"};
     if (k.area) {
-        if (std::optional<std::string> p = outside(NumberRange::Positive, *k.area))
+        if (std::optional<std::string> p = outOfRange(NumberRange::Positive, *k.area))
             return ServoProblem{"area", *p, "give the area the stress acts on (length²)"};
         servo.area = *k.area;
     } else if (k.areaWalls->size() != 4) {
@@ -58,11 +46,11 @@ std::optional<ServoProblem> applyServoKeys(const ServoKeys& k, BoundarySpec& wal
         return ServoProblem{"stress", "a servo wall needs a limit speed",
                             "give max_speed (length/time): how fast it may move towards its "
                             "stress"};
-    if (std::optional<std::string> p = outside(NumberRange::Positive, *k.maxSpeed))
+    if (std::optional<std::string> p = outOfRange(NumberRange::Positive, *k.maxSpeed))
         return ServoProblem{"max_speed", *p, "how fast it may move towards its stress"};
     servo.maxSpeed = *k.maxSpeed;
     if (k.gain) {
-        if (std::optional<std::string> p = outside(NumberRange::PositiveFraction, *k.gain))
+        if (std::optional<std::string> p = outOfRange(NumberRange::PositiveFraction, *k.gain))
             return ServoProblem{"servo_gain", *p,
                                 "0.5 is the default; a gain above 1 overshoots the target "
                                 "every step"};

@@ -35,4 +35,8 @@ TEST(NumberRange, EachRangeHoldsWhatItsWordsSay)
                          -std::numeric_limits<double>::infinity()})
             EXPECT_FALSE(inNumberRange(r.range, v)) << r.words << " " << v;
     }
+    // The words every check of a user's number uses.
+    EXPECT_EQ(outOfRange(NumberRange::Fraction, 1.0), "must be in [0, 1) (got 1)");
+    EXPECT_EQ(outOfRange(NumberRange::Positive, -0.5), "must be > 0 (got -0.5)");
+    EXPECT_FALSE(outOfRange(NumberRange::NonNegative, 0.0));
 }

@@ -4,7 +4,10 @@
 ///        the infinities lie in none.
 #pragma once
 
+#include "lsdem/core/NumberText.h"
+
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace lsdem {
@@ -42,6 +45,14 @@ inline std::string numberRangeText(NumberRange range)
     case NumberRange::PositiveFraction: return "in (0, 1]";
     }
     return "";
+}
+
+/// "must be > 0 (got -1)" if @a value is not in @a range: the words every check of a user's
+/// number uses (after the key it is about).
+inline std::optional<std::string> outOfRange(NumberRange range, double value)
+{
+    if (inNumberRange(range, value)) return std::nullopt;
+    return "must be " + numberRangeText(range) + " (got " + numberText(value) + ")";
 }
 
 } // namespace lsdem

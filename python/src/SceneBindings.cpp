@@ -6,6 +6,7 @@
 #include "SceneBuilding.h"
 
 #include "lsdem/core/Error.h"
+#include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneWriter.h"
@@ -33,8 +34,8 @@ Quat toQuat(const py::handle& value)
     if (!a || a.ndim() != 1 || a.shape(0) != 4)
         throw Error("", "orientation must be four numbers [w, x, y, z]");
     const Quat q(a.at(0), a.at(1), a.at(2), a.at(3));
-    if (!(std::abs(q.norm() - 1.0) < 1e-6))
-        throw Error("", "orientation must be a unit quaternion", "normalize [w, x, y, z]");
+    if (std::optional<std::string> p = orientationProblem(q))
+        throw Error("", "orientation " + *p, kOrientationFix);
     return unitQuaternion(q);
 }
 

@@ -2,7 +2,7 @@
 // library's schema, as the scene reader checks [[contacts]]) and grains, one by one.
 #include "SceneBuilding.h"
 
-#include "lsdem/scene/SceneSettings.h"
+#include "lsdem/scene/EntryRules.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/Error.h"

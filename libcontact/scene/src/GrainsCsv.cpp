@@ -1,5 +1,7 @@
 #include "lsdem/scene/GrainsCsv.h"
 
+#include "lsdem/scene/EntryRules.h"
+
 #include "SceneSections.h"
 
 #include "lsdem/core/AtomicFile.h"
@@ -155,9 +157,8 @@ void readGrainsCsv(const std::string& text, const std::string& path, int materia
         }
         g.pose.position = row.vec3("x", "y", "z");
         const Quat q(row.number("qw"), row.number("qx"), row.number("qy"), row.number("qz"));
-        if (!(std::abs(q.norm() - 1.0) <= 1e-4))
-            row.fail("qw", "the quaternion (qw, qx, qy, qz) has norm " + numberText(q.norm()),
-                     "give a unit quaternion, asset frame to world");
+        if (std::optional<std::string> p = orientationProblem(q, kTableOrientationTolerance))
+            row.fail("qw", "the quaternion (qw, qx, qy, qz) " + *p, kOrientationFix);
         g.pose.orientation = unitQuaternion(q);
         g.velocity = row.vec3("vx", "vy", "vz");
         g.angularVelocity = row.vec3("wx", "wy", "wz");

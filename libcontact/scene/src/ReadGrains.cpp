@@ -2,6 +2,8 @@
 // motion.
 #include "SceneSections.h"
 
+#include "lsdem/scene/EntryRules.h"
+
 #include "lsdem/core/Constants.h"
 #include "lsdem/scene/RandomRotation.h"
 
@@ -15,13 +17,10 @@ Quat readOrientation(TableReader& t)
         t.fail("axis_angle", "both orientation and axis_angle are given", "keep one of them");
     if (t.has("orientation")) {
         const std::vector<double> q = t.numbers("orientation", 4);
-        Quat r(q[0], q[1], q[2], q[3]);
-        if (!(r.norm() > 1e-12))
-            t.fail("orientation", "is not a rotation (zero quaternion)",
-                   "give a unit quaternion [w, x, y, z], e.g. [1, 0, 0, 0]");
-        if (std::abs(r.norm() - 1.0) > 1e-6)
-            t.fail("orientation", "is not a unit quaternion (norm " + TableReader::show(r.norm()) + ")",
-                   "normalise it, or use axis_angle = [ax, ay, az, degrees]");
+        const Quat r(q[0], q[1], q[2], q[3]);
+        if (std::optional<std::string> p = orientationProblem(r))
+            t.fail("orientation", *p,
+                   std::string(kOrientationFix) + ", or use axis_angle = [ax, ay, az, degrees]");
         return unitQuaternion(r);
     }
     if (t.has("axis_angle")) {

@@ -2,7 +2,7 @@
 // across them). Each section has its reader in a file of its own (SceneSections.h), and every
 // table goes through a TableReader, so a misspelt key is reported, never ignored.
 #include "lsdem/scene/SceneFile.h"
-#include "lsdem/scene/SceneSettings.h"
+#include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/SceneValidation.h"
 
 #include "SceneSections.h"

@@ -127,14 +127,6 @@ void checkSetting(const SceneSetting& setting, const SettingValue& value, const 
         throw Error(where, setting.key + " " + *p, setting.fix);
 }
 
-const char* const kDensityFix =
-    "give a density in mass/length³ (0 for a material only boundaries use)";
-
-std::optional<std::string> densityProblem(double density)
-{
-    return outOfRange(NumberRange::NonNegative, density);
-}
-
 std::string settingText(const SettingValue& value)
 {
     if (const double* d = std::get_if<double>(&value)) return numberText(*d);

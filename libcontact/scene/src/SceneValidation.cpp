@@ -4,6 +4,7 @@
 
 #include "SceneChecks.h"
 
+#include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/SceneSettings.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
@@ -67,10 +68,8 @@ void validateGrains(const Scene& s)
         if (!finite(g.pose.position) || !finite(g.velocity) || !finite(g.angularVelocity))
             throw Error(where, "the grain's position, velocity or angular velocity is not finite",
                         "give finite numbers");
-        if (!(std::abs(g.pose.orientation.norm() - 1.0) <= 1e-6))
-            throw Error(where, "the grain's orientation is not a unit quaternion (norm " +
-                                   numberText(g.pose.orientation.norm()) + ")",
-                        "normalise it");
+        if (std::optional<std::string> p = orientationProblem(g.pose.orientation))
+            throw Error(where, "the grain's orientation " + *p, kOrientationFix);
         if (!(std::isfinite(g.mass) && g.mass >= 0.0))
             throw Error(where, "the grain's mass must be >= 0 (0: density × volume)", "");
         if (g.motion == GrainMotion::Fixed &&

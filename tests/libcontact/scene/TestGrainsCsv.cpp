@@ -202,7 +202,7 @@ TEST(GrainsCsv, BadTablesAreRefusedWithFileLineAndColumn)
         {"NaN", header + "big,0,0,nan,1,0,0,0\n", 2, "column 'z': is not finite"},
         {"not a number", header + "big,0,0,0,1,0,0,zero\n", 2, "column 'qz': 'zero' is not a number"},
         {"short row", header + "big,0,0,0,1,0,0\n", 2, "has 7 fields, the header 8"},
-        {"zero quaternion", header + "big,0,0,0,0,0,0,0\n", 2, "has norm 0"},
+        {"zero quaternion", header + "big,0,0,0,0,0,0,0\n", 2, "is not a rotation (zero quaternion)"},
         {"unknown material", "asset,material,x,y,z,qw,qx,qy,qz\nbig,steel,0,0,0,1,0,0,0\n", 2, "no material named 'steel'"},
         {"empty file", "", 1, "no header row"},
         {"header only", header, 0, "holds no grains"},

@@ -4,6 +4,7 @@
 // defaults. (Python's properties, made from the same schema: python/tests/test_scenes.py.)
 #include "lsdem/scene/SceneSettings.h"
 
+#include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneValidation.h"
 #include "lsdem/scene/SceneWriter.h"

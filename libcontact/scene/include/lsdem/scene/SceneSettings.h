@@ -63,10 +63,4 @@ void checkSetting(const SceneSetting& setting, const SettingValue& value, const 
 /// A setting's value as text, as a file writes it ("0.2", "[0, 0, -9810]", "true").
 std::string settingText(const SettingValue& value);
 
-/// A material's density (mass/length³) is >= 0 (0 for a material only boundaries use):
-/// "must be >= 0 (got -1)" if @a density is not. For the reader, validateScene and Python.
-std::optional<std::string> densityProblem(double density);
-/// The advice that goes with densityProblem.
-extern const char* const kDensityFix;
-
 } // namespace lsdem

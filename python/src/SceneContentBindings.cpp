@@ -48,7 +48,8 @@ void bindSceneContents(py::class_<Scene>& scene)
         .def("add_contact",
              [](Scene& s, const std::string& a, const std::string& b,
                 const std::string& formulation, double normalStiffness, double shearStiffness,
-                double friction, double restitution, const std::string& testing) {
+                double friction, double restitution, const std::string& testing,
+                const std::string& quadrature) {
                  ContactSpec c;
                  c.materialA = indexOf(s.materials, a, "material");
                  c.materialB = indexOf(s.materials, b, "material");
@@ -60,6 +61,7 @@ void bindSceneContents(py::class_<Scene>& scene)
                                      "give each pair of materials one law");
                  c.model.formulation = parseFormulation(formulation);
                  c.model.testing = parseNodeTesting(testing);
+                 c.model.quadrature = parseNodeQuadrature(quadrature);
                  // The contact library's schema checks the numbers, as the scene reader does.
                  const std::pair<const char*, double> given[] = {
                      {"normal_stiffness", normalStiffness}, {"shear_stiffness", shearStiffness},
@@ -81,11 +83,12 @@ void bindSceneContents(py::class_<Scene>& scene)
              py::arg("shear_stiffness") = contactCoefficientDefault("shear_stiffness"),
              py::arg("friction") = contactCoefficientDefault("friction"),
              py::arg("restitution") = contactCoefficientDefault("restitution"),
-             py::arg("testing") = "symmetric",
+             py::arg("testing") = "symmetric", py::arg("quadrature") = "node",
              "The contact law between two materials: formulation ('adapted', 'original', "
              "'single-node', 'volume'), normal_stiffness (kn or kn*, see docs/contact.md), "
-             "shear springs, friction, restitution in (0, 1] (1: no damping) and node testing "
-             "('symmetric' or 'one-way').")
+             "shear springs, friction, restitution in (0, 1] (1: no damping), node testing "
+             "('symmetric' or 'one-way') and quadrature ('node', or 'patch': each node "
+             "integrated over its patch, for contacts narrower than the node spacing).")
         .def("add_grain",
              [](Scene& s, const std::string& asset, const std::string& material,
                 const py::object& position, const py::object& orientation,

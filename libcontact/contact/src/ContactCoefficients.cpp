@@ -109,7 +109,15 @@ std::optional<ContactProblem> checkContactModel(const ContactModel& model, const
 {
     for (const ContactCoefficient& c : contactCoefficients())
         if (std::optional<ContactProblem> p = c.rangeProblem(c.get(model))) return p;
-    return tangentialProblem(model, quote);
+    if (std::optional<ContactProblem> p = tangentialProblem(model, quote)) return p;
+    if (model.quadrature == NodeQuadrature::Patch && !model.normal().integratesPatches())
+        return ContactProblem{
+            "quadrature",
+            "'patch' needs a law with a traction per area and a force per node, not formulation " +
+                quote + formulationName(model.formulation) + quote,
+            "use " + formulationNamesWhere(&NormalModel::integratesPatches, quote) +
+                ", or quadrature = " + quote + "node" + quote};
+    return std::nullopt;
 }
 
 } // namespace lsdem

@@ -58,11 +58,13 @@ ContactAxis contactAxis(const ContactSide* sides, int sideCount,
     axis.normal = place.normal;
     const ContactGrain* first = sides[0].tester;
     double deepest = 0.0, area = 0.0, areaSquares = 0.0;
+    bool patches = false;
     for (int s = 0; s < sideCount; ++s)
         for (const NodeContact& c : sides[s].contacts) {
-            deepest = std::max(deepest, c.depth);
+            deepest = std::max(deepest, c.deepest());
             area += c.area;
             areaSquares += c.area * c.area;
+            patches |= c.isPatch();
         }
     // Along the normal: the stiffness K, and the elastic force P that it builds up.
     double& force = axis.force;
@@ -84,7 +86,9 @@ ContactAxis contactAxis(const ContactSide* sides, int sideCount,
     // would look flat, p → 1, and get a linear spring's damping. Every node is at most δ_max
     // deep, so P ≤ δ_max·K: p ≥ 1.
     if (force > 0.0) {
-        const double nodes = summed && areaSquares > 0.0 ? area * area / areaSquares : 0.0;
+        // Patches know their deepest point (to second order): that is the overlap itself.
+        const double nodes =
+            summed && !patches && areaSquares > 0.0 ? area * area / areaSquares : 0.0;
         const double overlap = nodes > 0.0 ? deepest * (1.0 + 1.0 / nodes) : deepest;
         axis.exponent = std::max(1.0, overlap * axis.stiffness / force);
     }

@@ -235,8 +235,10 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             const double size = c ? f.stiffness * c->depth : f.force.norm();
             if (size == 0.0 || f.stiffness <= 0.0) continue;
             const Vec3 n = c ? c->normal : Vec3(f.force / size);
-            // ½·(k·d)·d for a per-node force; the other laws' energy is added once per side.
-            if (c) elasticEnergy += 0.5 * size * c->depth;
+            // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added once per side.
+            if (c)
+                elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
+                                              : 0.5 * size * c->depth;
             double shearStiffness = 0.0;
             if (perNodeShear && side.history) {
                 // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes

@@ -2,12 +2,14 @@
 
 #include "lsdem/contact/NodeBlockWalk.h"
 #include "lsdem/contact/CandidateBlocks.h"
+#include "lsdem/contact/PatchQuadrature.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 
 namespace lsdem {
 
@@ -53,10 +55,14 @@ class NodeContactSearch
 {
 public:
     NodeContactSearch(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
-                      const RigidPose& poseB, std::vector<NodeContact>& out, NodeCheckStats& stats)
+                      const RigidPose& poseB, std::vector<NodeContact>& out, NodeCheckStats& stats,
+                      bool patches)
         : mA(a), mB(b), mPoseA(poseA), mPoseB(poseB), mOut(out), mStats(stats),
-          mReachB(b.boundingRadius)
+          mPatches(patches), mReach(patches ? patchReach(a, b) : 0.0),
+          mReachB(b.boundingRadius + mReach)
     {
+        if (patches && a.nodeShapes.size() != a.nodes.size())
+            throw std::logic_error("findNodeContacts: patch quadrature on an asset without node shapes");
     }
 
     void run(CandidateBlocks* candidates)
@@ -99,6 +105,16 @@ public:
     }
 
 private:
+    /// How far from B a node of A may be and still have its patch touch B: A's patches' own
+    /// reach (NodeShape.h) at B's steepest slope, and B's surface bending toward the patch by
+    /// at most what one voxel of its level set resolves (the Hessian is taken a voxel apart).
+    static double patchReach(const GrainAsset& a, const GrainAsset& b)
+    {
+        const double slope = std::isfinite(b.levelSetSlope) ? std::max(1.0, b.levelSetSlope) : 1.0;
+        return a.patchReach * slope +
+               0.5 * a.patchReach * a.patchReach * slope / b.levelSet->voxelSize;
+    }
+
     /// Whether a ball of A's frame (a cluster, a block; a node is a ball of radius 0) misses
     /// B's bounding sphere (tested in A's frame, where it costs no rotation) or the box outside
     /// which φ_B is never negative. With a margin m > 0 the answer holds for every pose of A
@@ -111,7 +127,7 @@ private:
         if ((center - mCenterOfB).squaredNorm() > reach * reach) return true;
         const Vec3 c = mRotation * center + mTranslation;
         const Vec3 outside = (mB.insideBoxMin - c).cwiseMax(0.0) + (c - mB.insideBoxMax).cwiseMax(0.0);
-        const double r = (radius + m) * slack;
+        const double r = (radius + m + mReach) * slack;
         return outside.squaredNorm() > r * r;
     }
 
@@ -175,29 +191,35 @@ private:
                 } else {  // near the sphere: its gap is the larger of the two bounds
                     const Vec3 inB = intoB(inA);
                     const double outside = beyondBox(inB);
-                    const double fromSurface =
-                        outside > 0.0 ? outside : sampler().phi(inB) / mB.levelSetSlope;
+                    const double fromSurface = outside > 0.0
+                                                   ? outside - mReach
+                                                   : (sampler().phi(inB) - mReach) / mB.levelSetSlope;
                     mNearestInBand = std::min(
                         mNearestInBand, std::max(std::sqrt(d2) - reachB, fromSurface));
                 }
                 continue;
             }
             const Vec3 inB = intoB(inA);
-            const double outside = beyondBox(inB);
+            const double outside = beyondBox(inB) - mReach;
             if (outside > 0.0) {
-                ++culled;  // outside the box where φ_B can be negative
+                ++culled;  // outside the box where φ_B can be negative (by more than the reach)
                 outsideBox = std::min(outsideBox, outside);
                 continue;
             }
             ++mStats.nodesSampled;
             const LevelSetSample s = sampleNode(i, inB);
-            if (!(s.phi < 0.0)) {
-                mSmallestPhi = std::min(mSmallestPhi, s.phi);  // (a NaN φ leaves it: see below)
+            if (!(s.phi < mReach)) {
+                // (a NaN φ leaves the smallest: see below)
+                mSmallestPhi = std::min(mSmallestPhi, s.phi - mReach);
                 mAnyInside |= std::isnan(s.phi);
-                if (s.phi > mLeaveOutAbove) mLeftOut->push_back(i);
+                if (s.phi > mLeaveOutAbove + mReach) mLeftOut->push_back(i);
                 continue;
             }
             mAnyInside = true;
+            if (mPatches) {
+                addPatchContact(i, inB, s);
+                continue;
+            }
             const double gradientLength = s.gradient.norm();
             if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
             ++mStats.nodesInContact;
@@ -213,6 +235,47 @@ private:
         mStats.nodesCulled += culled;
         mNearestOutsideSphere2 = outsideSphere2;
         mNearestOutsideBox = outsideBox;
+    }
+
+    /// Node @a i's patch against B (its φ and ∇φ at the node @a s, at @a inB in B's frame),
+    /// appended to the contacts if any of it is in B. B's Hessian along the node's tangents is
+    /// taken by central differences of ∇φ_B a voxel apart, only for a node whose patch may
+    /// reach B.
+    void addPatchContact(int i, const Vec3& inB, const LevelSetSample& s)
+    {
+        const double gradientLength = s.gradient.norm();
+        if (gradientLength == 0.0) return;
+        const NodeShape& shape = mA.nodeShapes[static_cast<size_t>(i)];
+        PatchFrame frame;
+        frame.normal = mRotation * shape.normal;
+        frame.tangent1 = mRotation * shape.tangent;
+        frame.tangent2 = frame.normal.cross(frame.tangent1);
+        frame.k11 = shape.k11;
+        frame.k12 = shape.k12;
+        frame.k22 = shape.k22;
+        const double radius = patchRadius(mA.nodes.areas[static_cast<size_t>(i)]);
+        const double h = mB.levelSet->voxelSize;
+        // First without B's bend, allowing for the most a voxel's Hessian can give it.
+        PatchDepth depth = patchDepth(frame, s.phi, s.gradient, 0.0, 0.0, 0.0);
+        if (patchPeakBound(depth, radius) + 0.5 * radius * radius * gradientLength / h <= 0.0)
+            return;
+        auto change = [&](const Vec3& t) {
+            return Vec3((sampler().sample(inB + h * t).gradient -
+                         sampler().sample(inB - h * t).gradient) /
+                        (2.0 * h));
+        };
+        const Vec3 along1 = change(frame.tangent1), along2 = change(frame.tangent2);
+        depth = patchDepth(frame, s.phi, s.gradient, frame.tangent1.dot(along1),
+                           0.5 * (frame.tangent2.dot(along1) + frame.tangent1.dot(along2)),
+                           frame.tangent2.dot(along2));
+        NodeContact c;
+        Vec3 offset;
+        if (!fillPatchContact(integratePatch(depth, radius), frame, c, offset)) return;
+        ++mStats.nodesInContact;
+        c.node = i;
+        c.normal = mBToWorld * (s.gradient * (1.0 / gradientLength));
+        c.point = mPoseB.position + mBToWorld * (inB + offset) + 0.5 * c.depth * c.normal;
+        mOut.push_back(c);
     }
 
     /// Walk every cluster and block with the margin, and remember the nodes let through. Each
@@ -306,7 +369,9 @@ private:
     const RigidPose& mPoseB;
     std::vector<NodeContact>& mOut;
     NodeCheckStats& mStats;
-    const double mReachB;
+    const bool mPatches;   ///< integrate over each node's patch (PatchQuadrature.h)
+    const double mReach;   ///< how far from B a node may touch it: 0, or its patch's reach
+    const double mReachB;  ///< B's bounding radius and that
     Quat mToB = Quat::Identity();
     Vec3 mTranslation = Vec3::Zero();
     Eigen::Matrix3d mRotation, mBToWorld;
@@ -335,9 +400,9 @@ private:
 
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
                       const RigidPose& poseB, std::vector<NodeContact>& out,
-                      NodeCheckStats& stats, CandidateBlocks* candidates)
+                      NodeCheckStats& stats, CandidateBlocks* candidates, bool patches)
 {
-    NodeContactSearch(a, poseA, b, poseB, out, stats).run(candidates);
+    NodeContactSearch(a, poseA, b, poseB, out, stats, patches).run(candidates);
 }
 
 } // namespace lsdem

@@ -21,6 +21,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         testSecond = !testFirst;
         weight = 1.0;
     }
+    const bool patches = model.quadrature == NodeQuadrature::Patch;
     // A direction not tested carries no history.
     if (history && !testFirst) history->shearOnFirstNodes.clear();
     if (history && !testSecond) history->shearOnSecondNodes.clear();
@@ -36,7 +37,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.contacts.swap(work.contacts[count - 1]);  // reuse the thread's buffer
         s.contacts.clear();
         findNodeContacts(*first.asset, first.pose, *second.asset, second.pose, s.contacts, stats,
-                         candidates ? &candidates->ofFirst : nullptr);
+                         candidates ? &candidates->ofFirst : nullptr, patches);
     }
     if (testSecond) {
         ContactSide& s = sides[count++];
@@ -47,7 +48,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         s.contacts.swap(work.contacts[count - 1]);
         s.contacts.clear();
         findNodeContacts(*second.asset, second.pose, *first.asset, first.pose, s.contacts,
-                         stats, candidates ? &candidates->ofSecond : nullptr);
+                         stats, candidates ? &candidates->ofSecond : nullptr, patches);
     }
     PairForces result = resolveContact(sides, count, model, dt, forces, &work);
     for (int k = 0; k < count; ++k) sides[k].contacts.swap(work.contacts[k]);  // hand back

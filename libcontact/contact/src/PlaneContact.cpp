@@ -1,17 +1,55 @@
 #include "lsdem/contact/PlaneContact.h"
 
 #include "lsdem/contact/NodeBlockWalk.h"
+#include "lsdem/contact/PatchQuadrature.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace lsdem {
 
+namespace {
+
+/// The patch of node @a i of @a a (at @a rotation, world position @a x, @a distance in front
+/// of @a plane) against the plane: appended to @a out if any of it is behind.
+void addPatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation, const Vec3& x,
+                     double distance, const Plane& plane, std::vector<NodeContact>& out,
+                     NodeCheckStats& stats)
+{
+    const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
+    PatchFrame frame;
+    frame.normal = rotation * shape.normal;
+    frame.tangent1 = rotation * shape.tangent;
+    frame.tangent2 = frame.normal.cross(frame.tangent1);
+    frame.k11 = shape.k11;
+    frame.k12 = shape.k12;
+    frame.k22 = shape.k22;
+    // The plane's φ is the distance in front of it, ∇φ its normal, and it does not bend.
+    const PatchDepth depth = patchDepth(frame, distance, plane.normal, 0.0, 0.0, 0.0);
+    const double radius = patchRadius(a.nodes.areas[static_cast<size_t>(i)]);
+    if (patchPeakBound(depth, radius) <= 0.0) return;
+    NodeContact c;
+    Vec3 offset;
+    if (!fillPatchContact(integratePatch(depth, radius), frame, c, offset)) return;
+    ++stats.nodesInContact;
+    c.node = i;
+    c.normal = plane.normal;
+    c.point = x + offset + 0.5 * c.depth * plane.normal;
+    out.push_back(c);
+}
+
+} // namespace
+
 void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& plane,
-                       std::vector<NodeContact>& out, NodeCheckStats& stats)
+                       std::vector<NodeContact>& out, NodeCheckStats& stats, bool patches)
 {
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
-    if (plane.signedDistance(pose.position) > a.boundingRadius) {  // the whole grain is clear
+    if (patches && a.nodeShapes.size() != a.nodes.size())
+        throw std::logic_error("findPlaneContacts: patch quadrature on an asset without node shapes");
+    // How far in front of the plane a node may be and still have its patch reach behind it.
+    const double reach = patches ? a.patchReach : 0.0;
+    if (plane.signedDistance(pose.position) > a.boundingRadius + reach) {  // the whole grain is clear
         stats.nodesCulled += count;
         return;
     }
@@ -27,12 +65,17 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
         // Most nodes of a block near the wall are in front of it: that test runs on locals
         // (registers), and the count is added once.
         const Vec3 n = normalInGrain;
-        const double front = slack - offset;
+        const double front = slack + reach - offset;
         stats.nodesSampled += end - begin;
         for (int i = begin; i < end; ++i) {
             if (positions[i].dot(n) > front) continue;  // in front
             const Vec3 x = rotation * positions[i] + pose.position;
             const double distance = plane.signedDistance(x);
+            if (patches) {
+                if (distance < reach && plane.withinPatch(x, distance))
+                    addPatchContact(a, i, rotation, x, distance, plane, out, stats);
+                continue;
+            }
             if (!(distance < 0.0) || !plane.withinPatch(x, distance)) continue;
             ++stats.nodesInContact;
             NodeContact c;
@@ -46,7 +89,7 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
     };
     // A grain touching a wall has most of its nodes wholly in front of it: skip those.
     auto isClear = [&](const NodeBlock& run) {
-        return run.center.dot(normalInGrain) + offset > run.radius + slack;
+        return run.center.dot(normalInGrain) + offset > run.radius + slack + reach;
     };
     forEachBlockNotClear(a, isClear, visit, stats);
 }

@@ -9,6 +9,7 @@
 #include "lsdem/simulation/GrainOverlaps.h"
 
 #include <algorithm>
+#include <map>
 #include <limits>
 #include <sstream>
 
@@ -54,6 +55,40 @@ std::vector<std::shared_ptr<const GrainAsset>> loadOrBakeAll(const std::vector<A
         warnings.insert(warnings.end(), assetWarnings[k].begin(), assetWarnings[k].end());
     failed.rethrowIfAny();
     return assets;
+}
+
+/// Where a contact integrates node patches (PatchQuadrature.h), its grains' assets (and a
+/// level-set boundary's) need their node shapes: every asset gets them then, in a copy (an
+/// asset handed in is its owner's), shared by its grains. Refused against a boundary shape
+/// that has no patch quadrature yet.
+void addNodeShapesWherePatchesAre(const Scene& scene, World& w)
+{
+    bool any = false;
+    for (const ContactSpec& c : scene.contacts) any |= c.model.quadrature == NodeQuadrature::Patch;
+    if (!any) return;
+    for (size_t k = 0; k < scene.boundaries.size(); ++k) {
+        const Boundary& b = w.boundaries[k];
+        if (integratesPatches(b.shape)) continue;
+        for (const ContactSpec& c : scene.contacts)
+            if (c.model.quadrature == NodeQuadrature::Patch &&
+                (c.materialA == b.material || c.materialB == b.material))
+                throw Error(scene.boundaries[k].where,
+                            "boundary '" + b.name + "' has no patch quadrature (its shape is not "
+                            "a plane, a sphere or a level set)",
+                            "give the contact between materials '" +
+                                scene.materials[c.materialA].name + "' and '" +
+                                scene.materials[c.materialB].name + "' quadrature = \"node\"");
+    }
+    std::map<const GrainAsset*, std::shared_ptr<const GrainAsset>> shaped;
+    auto withShapes = [&](const std::shared_ptr<const GrainAsset>& a) {
+        std::shared_ptr<const GrainAsset>& s = shaped[a.get()];
+        if (!s) s = std::make_shared<const GrainAsset>(withNodeShapes(*a));
+        return s;
+    };
+    for (std::shared_ptr<const GrainAsset>& a : w.assets) a = withShapes(a);
+    for (Grain& g : w.grains) g.asset = withShapes(g.asset);
+    for (Boundary& b : w.boundaries)
+        if (b.asset) b.asset = withShapes(b.asset);
 }
 
 Grain makeGrain(const GrainSpec& spec, const Scene& scene,
@@ -177,6 +212,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
         w.boundaries.push_back(
             makeBoundary(spec, spec.asset >= 0 ? w.assets.at(spec.asset) : nullptr));
 
+    addNodeShapesWherePatchesAre(scene, w);
     w.gravity = scene.gravity;
     w.globalDamping = scene.globalDamping;
     return w;

@@ -29,6 +29,8 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
         parseFormulation(t.choice("formulation", formulations, formulationName(model.formulation)));
     model.testing = parseNodeTesting(
         t.choice("testing", {"one-way", "symmetric"}, nodeTestingName(model.testing)));
+    model.quadrature = parseNodeQuadrature(
+        t.choice("quadrature", {"node", "patch"}, nodeQuadratureName(model.quadrature)));
     // The numbers, as the contact library's schema lists them (ContactCoefficients.h).
     for (const ContactCoefficient& k : contactCoefficients()) {
         const double v = k.defaultValue ? t.number(k.key, *k.defaultValue) : t.number(k.key);

@@ -183,6 +183,7 @@ void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
     t.strings("materials", scene.materials[c.materialA].name, scene.materials[c.materialB].name);
     t.string("formulation", formulationName(m.formulation));
     t.string("testing", nodeTestingName(m.testing));
+    if (m.quadrature != NodeQuadrature::Point) t.string("quadrature", nodeQuadratureName(m.quadrature));
     // The contact library's schema (ContactCoefficients.h): what is required or not at its
     // default, with its unit where the formulation decides it.
     for (const ContactCoefficient& k : contactCoefficients())

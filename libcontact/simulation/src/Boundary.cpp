@@ -1,8 +1,10 @@
 #include "lsdem/simulation/Boundary.h"
 
 #include "lsdem/contact/NodeBlockWalk.h"
+#include "lsdem/contact/PatchQuadrature.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace lsdem {
 
@@ -22,13 +24,53 @@ RigidPose movedPose(const Boundary& b)
     return p;
 }
 
-/// Nodes of @a a inside the sphere (centre @a c, radius @a r): depth r - |x - c|.
+/// Node @a i's patch (at @a x, world) against the sphere (centre @a c, radius @a r), appended
+/// to @a out if any of it is inside: φ = |x − c| − r, ∇φ the unit offset n, and the sphere's
+/// surface bends away from the patch as (I − n nᵀ)/|x − c|.
+void addSpherePatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation,
+                           const Vec3& x, const Vec3& c, double r, std::vector<NodeContact>& out,
+                           NodeCheckStats& stats)
+{
+    const Vec3 offset = x - c;
+    const double distance = offset.norm();
+    if (distance == 0.0) return;
+    const Vec3 n = offset / distance;
+    const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
+    PatchFrame frame;
+    frame.normal = rotation * shape.normal;
+    frame.tangent1 = rotation * shape.tangent;
+    frame.tangent2 = frame.normal.cross(frame.tangent1);
+    frame.k11 = shape.k11;
+    frame.k12 = shape.k12;
+    frame.k22 = shape.k22;
+    auto hessian = [&](const Vec3& u, const Vec3& v) {
+        return (u.dot(v) - u.dot(n) * v.dot(n)) / distance;
+    };
+    const PatchDepth depth = patchDepth(
+        frame, distance - r, n, hessian(frame.tangent1, frame.tangent1),
+        hessian(frame.tangent1, frame.tangent2), hessian(frame.tangent2, frame.tangent2));
+    const double radius = patchRadius(a.nodes.areas[static_cast<size_t>(i)]);
+    if (patchPeakBound(depth, radius) <= 0.0) return;
+    NodeContact nc;
+    Vec3 shift;
+    if (!fillPatchContact(integratePatch(depth, radius), frame, nc, shift)) return;
+    ++stats.nodesInContact;
+    nc.node = i;
+    nc.normal = n;
+    nc.point = x + shift + 0.5 * nc.depth * n;
+    out.push_back(nc);
+}
+
+/// Nodes of @a a inside the sphere (centre @a c, radius @a r): depth r - |x - c|. With
+/// @a patches, every node whose patch reaches into it, integrated over its patch.
 void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& c, double r,
-                        std::vector<NodeContact>& out, NodeCheckStats& stats)
+                        std::vector<NodeContact>& out, NodeCheckStats& stats, bool patches)
 {
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
-    if ((pose.position - c).norm() > a.boundingRadius + r) {
+    // Outside the sphere, a node's patch reaches at most this far in (the sphere is convex).
+    const double reach = patches ? a.patchReach : 0.0;
+    if ((pose.position - c).norm() > a.boundingRadius + r + reach) {
         stats.nodesCulled += count;
         return;
     }
@@ -39,6 +81,10 @@ void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& 
             ++stats.nodesSampled;
             const Vec3 offset = x - c;
             const double distance = offset.norm();
+            if (patches) {
+                if (distance < r + reach) addSpherePatchContact(a, i, rotation, x, c, r, out, stats);
+                continue;
+            }
             if (!(distance < r) || distance == 0.0) continue;
             ++stats.nodesInContact;
             NodeContact nc;
@@ -52,8 +98,8 @@ void findSphereContacts(const GrainAsset& a, const RigidPose& pose, const Vec3& 
     };
     // An indenter touches a small patch of the grain: skip the nodes clear of it.
     auto isClear = [&](const NodeBlock& run) {
-        const double reach = r + run.radius;
-        return (rotation * run.center + pose.position - c).squaredNorm() > reach * reach;
+        const double within = r + run.radius + reach;
+        return (rotation * run.center + pose.position - c).squaredNorm() > within * within;
     };
     forEachBlockNotClear(a, isClear, visit, stats);
 }
@@ -200,17 +246,27 @@ bool Boundary::mayTouch(const Vec3& grainCenter, double grainRadius) const
     return false;
 }
 
+bool integratesPatches(BoundaryShape shape)
+{
+    return shape == BoundaryShape::Plane || shape == BoundaryShape::Sphere ||
+           shape == BoundaryShape::LevelSet;
+}
+
 void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
                           std::vector<NodeContact>& out, NodeCheckStats& stats,
-                          CandidateBlocks* candidates)
+                          CandidateBlocks* candidates, bool patches)
 {
+    if (patches && !integratesPatches(b.shape))
+        throw std::logic_error("findBoundaryContacts: no patch quadrature against this shape");
     switch (b.shape) {
-    case BoundaryShape::Plane: findPlaneContacts(a, pose, movedPlane(b), out, stats); return;
+    case BoundaryShape::Plane:
+        findPlaneContacts(a, pose, movedPlane(b), out, stats, patches);
+        return;
     case BoundaryShape::Sphere:
-        findSphereContacts(a, pose, b.center + b.displacement, b.radius, out, stats);
+        findSphereContacts(a, pose, b.center + b.displacement, b.radius, out, stats, patches);
         return;
     case BoundaryShape::LevelSet:
-        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats, candidates);
+        findNodeContacts(a, pose, *b.asset, movedPose(b), out, stats, candidates, patches);
         return;
     case BoundaryShape::Cylinder:
         findCylinderContacts(a, pose, b.center + b.displacement, b.axis, b.radius, out, stats);

@@ -16,7 +16,8 @@ PairForces computeBoundaryContact(const ContactGrain& grain, const Boundary& bou
     // handed back.
     side.contacts.swap(scratch.contacts[0]);
     side.contacts.clear();
-    findBoundaryContacts(*grain.asset, grain.pose, boundary, side.contacts, stats, candidates);
+    findBoundaryContacts(*grain.asset, grain.pose, boundary, side.contacts, stats, candidates,
+                         model.quadrature == NodeQuadrature::Patch);
     const PairForces result = resolveContact(&side, 1, model, dt, forces, &scratch);
     side.contacts.swap(scratch.contacts[0]);
     return result;

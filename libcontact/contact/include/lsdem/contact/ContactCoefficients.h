@@ -59,7 +59,7 @@ double contactCoefficientDefault(const std::string& key);
 
 /// The first rule @a model breaks, if any: each coefficient's range, then the rules between
 /// sub-models (shear springs need a law whose forces are per node; friction caps shear
-/// springs, so it needs them). @a quote goes around formulation names in the fixes.
+/// springs, so it needs them; patch quadrature needs a traction per area). @a quote goes around formulation names in the fixes.
 std::optional<ContactProblem> checkContactModel(const ContactModel& model,
                                                 const std::string& quote = "");
 

@@ -9,6 +9,7 @@
 
 #include "lsdem/contact/DampingModel.h"
 #include "lsdem/contact/NormalModel.h"
+#include "lsdem/contact/PatchQuadrature.h"
 #include "lsdem/contact/TangentialModel.h"
 
 #include <string>
@@ -25,6 +26,8 @@ struct ContactModel
 {
     Formulation formulation = Formulation::Adapted;
     NodeTesting testing = NodeTesting::Symmetric;
+    /// Each node as a point (the paper's rule) or as its patch (PatchQuadrature.h).
+    NodeQuadrature quadrature = NodeQuadrature::Point;
     double normalStiffness = 0.0;  ///< kn or kn* (normal().stiffnessUnit())
     double shearStiffness = 0.0;   ///< ks (force/length) or ks* (force/length³), per node
     double friction = 0.0;         ///< Coulomb coefficient μ

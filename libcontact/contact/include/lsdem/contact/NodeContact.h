@@ -20,6 +20,17 @@ struct NodeContact
     Vec3 normal = Vec3::Zero();    ///< unit ∇φ_B at the node: pushes A out of B
     Vec3 point = Vec3::Zero();     ///< contact point: the node moved d/2 toward B's surface
     double area = 0.0;             ///< the node's tributary area, length²
+    /// Patch quadrature (PatchQuadrature.h) only; 0 for a node taken as a point. With it,
+    /// @a area is the part of the node's patch in contact, @a depth the mean depth over that
+    /// part (so k·area·depth is the traction's integral) and @a point its centre.
+    double squareDepth = 0.0;      ///< mean of d² over the part in contact, length²
+    double peakDepth = 0.0;        ///< the deepest point of the patch, length
+
+    /// The mean of d² over the contact (the elastic energy is ½·k·area·this).
+    double meanSquareDepth() const { return squareDepth > 0.0 ? squareDepth : depth * depth; }
+    /// The deepest point of the contact: the node, or the deepest point of its patch.
+    double deepest() const { return peakDepth > 0.0 ? peakDepth : depth; }
+    bool isPatch() const { return peakDepth > 0.0; }
 };
 
 /// Counters of the narrow phase, to report node checks per second and culling efficiency.
@@ -45,8 +56,11 @@ struct NodeCheckStats
 /// @param candidates  if not null, the blocks of A near B found at an earlier call for the
 ///                    same pair, used while they hold and refreshed when they do not: the
 ///                    contacts are the same as without it (see CandidateBlocks.h)
+/// @param patches     integrate over each node's patch (PatchQuadrature.h): every node whose
+///                    patch reaches into B; A must carry its node shapes
 void findNodeContacts(const GrainAsset& a, const RigidPose& poseA, const GrainAsset& b,
                       const RigidPose& poseB, std::vector<NodeContact>& out,
-                      NodeCheckStats& stats, CandidateBlocks* candidates = nullptr);
+                      NodeCheckStats& stats, CandidateBlocks* candidates = nullptr,
+                      bool patches = false);
 
 } // namespace lsdem

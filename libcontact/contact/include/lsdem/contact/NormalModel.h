@@ -49,6 +49,10 @@ public:
     /// spring). The contact law relies on that (resolveContact reads |F| = k_i·d_i and n_i
     /// from the contact).
     virtual bool perNodeForces() const = 0;
+    /// Whether its nodes may be integrated over their patches (PatchQuadrature.h): a traction
+    /// per area with a force per node (the adapted law). The original law's spring per node
+    /// has no traction to integrate.
+    bool integratesPatches() const { return stiffnessPerArea() && perNodeForces(); }
     /// The stiffness of the paper's studies (Feldfogel et al. 2024): kn = 1 GN/mm per node,
     /// kn* = 1 GPa/mm = 1e3 N/mm³ per area (in mm, N).
     virtual double paperStiffness() const = 0;

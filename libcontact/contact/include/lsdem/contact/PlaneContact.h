@@ -38,8 +38,11 @@ struct Plane
 };
 
 /// Append every node of grain @a a (at @a pose) behind @a plane, in node order. The contact
-/// point is halfway between the node and the plane.
+/// point is halfway between the node and the plane. With @a patches, every node whose patch
+/// reaches behind the plane, its contact integrated over the patch (PatchQuadrature.h; @a a
+/// must carry its node shapes).
 void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& plane,
-                       std::vector<NodeContact>& out, NodeCheckStats& stats);
+                       std::vector<NodeContact>& out, NodeCheckStats& stats,
+                       bool patches = false);
 
 } // namespace lsdem

@@ -56,8 +56,14 @@ struct Boundary
 /// @param candidates  for a level-set obstacle, the grain's nodes near it remembered from
 ///                    earlier calls for this grain and boundary (CandidateBlocks.h), kept up
 ///                    to date; the other shapes ignore it. The contacts are the same either way.
+/// With @a patches, each node's contact is integrated over its patch (PatchQuadrature.h; the
+/// asset must carry its node shapes): for the shapes integratesPatches() names.
 void findBoundaryContacts(const GrainAsset& a, const RigidPose& pose, const Boundary& b,
                           std::vector<NodeContact>& out, NodeCheckStats& stats,
-                          CandidateBlocks* candidates = nullptr);
+                          CandidateBlocks* candidates = nullptr, bool patches = false);
+
+/// Whether contacts with a boundary of shape @a shape can be integrated over node patches
+/// (planes, spheres and level sets; not yet cylinders and orifices).
+bool integratesPatches(BoundaryShape shape);
 
 } // namespace lsdem

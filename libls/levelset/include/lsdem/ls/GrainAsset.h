@@ -4,6 +4,7 @@
 #pragma once
 
 #include "lsdem/ls/MassProperties.h"
+#include "lsdem/ls/NodeShape.h"
 #include "lsdem/ls/SurfaceNodes.h"
 
 #include <limits>
@@ -53,6 +54,11 @@ struct GrainAsset
     /// known) by default. With it, φ ≥ g at a node means the node stays outside while it
     /// moves less than g over this.
     double levelSetSlope = std::numeric_limits<double>::infinity();
+    /// The surface's shape at each node (NodeShape.h), for contacts that integrate over each
+    /// node's patch; empty unless a simulation's contacts ask for it (withNodeShapes): not
+    /// stored in the file, and at 72 bytes a node not kept where no law reads it.
+    std::vector<NodeShape> nodeShapes;
+    double patchReach = 0.0;  ///< patchReachOf(nodeShapes), length; 0 without them
     AreaRule areaRule = AreaRule::Mesh;
     NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)
 

@@ -24,11 +24,12 @@ def block():
     a.save(os.path.join(tmp, "box.vdb"))
     return a
 
-def scene(asset, pos, vel=(0, 0, 0), e=1.0, mu=0.0, ks=0.5e3, gravity=(0, 0, 0), dt=0.0):
+def scene(asset, pos, vel=(0, 0, 0), e=1.0, mu=0.0, ks=0.5e3, gravity=(0, 0, 0), dt=0.0,
+          quadrature="node"):
     s = lsdem.Scene()
     s.add_asset("g", asset)
     s.add_material("steel", density=RHO); s.add_material("wall")
-    kw = dict(formulation="adapted", normal_stiffness=1e3, restitution=e)
+    kw = dict(formulation="adapted", normal_stiffness=1e3, restitution=e, quadrature=quadrature)
     if mu > 0: kw.update(shear_stiffness=ks, friction=mu)
     s.add_contact("steel", "wall", **kw)
     s.add_grain("g", "steel", list(pos), velocity=list(vel))
@@ -54,11 +55,13 @@ vt, vn = V * math.sin(th), V * math.cos(th)
 sim = impact(scene(b, (0, 0, R + 0.005), (vt, 0, -vn), mu=mu, dt=2e-7), R)
 v = sim.grains.velocities[0]; w = sim.grains.angular_velocities[0]
 print(f"oblique 60°: v_t' {100*(v[0]/(vt - 2*mu*vn)-1):+.2f} %, omega' {100*(abs(w[1])/(5*mu*2*vn/(2*R))-1):+.2f} %")
-# 2./3. slide-to-roll, mu 0.3, e 0.3 and 1, gravity; v0 1 m/s.
-for e in (0.3, 1.0):
+# 2./3. slide-to-roll, mu 0.3, e 0.3 and 1, gravity; v0 1 m/s; the nodes as points (the
+# paper's rule) and as patches (docs/contact.md, patch quadrature).
+for quadrature, e in [(q, e) for q in ("node", "patch") for e in (0.3, 1.0)]:
     v0, mu = 1000.0, 0.3
     ts, vs = 2 * v0 / (7 * mu * G), 5 / 7 * v0
-    s = scene(b, (0, 0, R), (v0, 0, 0), e=e, mu=mu, gravity=(0, 0, -G), dt=2e-6)
+    s = scene(b, (0, 0, R), (v0, 0, 0), e=e, mu=mu, gravity=(0, 0, -G), dt=2e-6,
+              quadrature=quadrature)
     sim = lsdem.Simulation(s, threads=2, record_contacts=False)
     end, vend, rise, ts_meas = ts + 0.2, None, 0.0, None
     times, speeds = [], []
@@ -70,7 +73,7 @@ for e in (0.3, 1.0):
             times.append(sim.time); speeds.append(vx)
             rise = max(rise, sim.grains.positions[0][2] - R)
     a = -np.polyfit(times, speeds, 1)[0]
-    print(f"slide-to-roll e={e}: slip ends {100*(ts_meas/ts-1):+.1f} %, speed then {100*(vend/vs-1):+.1f} %, "
+    print(f"slide-to-roll, {quadrature} quadrature, e={e}: slip ends {100*(ts_meas/ts-1):+.1f} %, speed then {100*(vend/vs-1):+.1f} %, "
           f"mu_r {1.4*a/G:.4f}, highest rise {rise:.3g} mm")
 # 4. the box dropped flat, time_step auto.
 bx = block()

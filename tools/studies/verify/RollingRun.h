@@ -22,8 +22,9 @@ struct RollingRun
 
 /// @a ball set on a floor at its resting overlap, at speed @a speed without spin, under the
 /// setup's gravity, with law @a f, friction @a friction and restitution @a restitution; slides,
-/// then rolls for @a rollTime.
+/// then rolls for @a rollTime; the nodes taken as points or as patches (@a quadrature).
 RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& ball, Formulation f,
-                        double speed, double friction, double restitution, double rollTime);
+                        double speed, double friction, double restitution, double rollTime,
+                        NodeQuadrature quadrature = NodeQuadrature::Point);
 
 } // namespace lsdem::verify

@@ -246,14 +246,8 @@ private:
         const double gradientLength = s.gradient.norm();
         if (gradientLength == 0.0) return;
         const NodeShape& shape = mA.nodeShapes[static_cast<size_t>(i)];
-        PatchFrame frame;
-        frame.normal = mRotation * shape.normal;
-        frame.tangent1 = mRotation * shape.tangent;
-        frame.tangent2 = frame.normal.cross(frame.tangent1);
-        frame.k11 = shape.k11;
-        frame.k12 = shape.k12;
-        frame.k22 = shape.k22;
-        const double radius = patchRadius(mA.nodes.areas[static_cast<size_t>(i)]);
+        const PatchFrame frame = patchFrame(shape, mRotation);
+        const double radius = shape.reach;
         const double h = mB.levelSet->voxelSize;
         // First without B's bend, allowing for the most a voxel's Hessian can give it.
         PatchDepth depth = patchDepth(frame, s.phi, s.gradient, 0.0, 0.0, 0.0);
@@ -270,7 +264,7 @@ private:
                            frame.tangent2.dot(along2));
         NodeContact c;
         Vec3 offset;
-        if (!fillPatchContact(integratePatch(depth, radius), frame, c, offset)) return;
+        if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, c, offset)) return;
         ++mStats.nodesInContact;
         c.node = i;
         c.normal = mBToWorld * (s.gradient * (1.0 / gradientLength));

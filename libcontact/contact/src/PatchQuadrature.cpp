@@ -25,19 +25,24 @@ double patchRadius(double area) { return std::sqrt(area / kPi); }
 
 namespace {
 
-/// The rays' directions, cos and sin of (k + ½)·2π/kPatchRays.
+/// The rays' directions, cos and sin of patchRayAngle(k).
 struct Rays
 {
     std::array<double, kPatchRays> cos{}, sin{};
     Rays()
     {
         for (int k = 0; k < kPatchRays; ++k) {
-            const double angle = (k + 0.5) * 2.0 * kPi / kPatchRays;
-            cos[static_cast<size_t>(k)] = std::cos(angle);
-            sin[static_cast<size_t>(k)] = std::sin(angle);
+            cos[static_cast<size_t>(k)] = std::cos(patchRayAngle(k));
+            sin[static_cast<size_t>(k)] = std::sin(patchRayAngle(k));
         }
     }
 };
+
+const Rays& rays()
+{
+    static const Rays r;
+    return r;
+}
 
 /// The smallest and largest eigenvalues of [[c11, c12], [c12, c22]].
 std::pair<double, double> eigenRange(double c11, double c12, double c22)
@@ -62,6 +67,66 @@ RayIntegrals rayIntegralsAt(double d0, double a, double b, double r)
                 2 * a * b * r5 / 5 + b * b * r6 / 6};
 }
 
+/// The integrals over the patch that reaches extentOf(k) along ray k: exact along each ray
+/// (d⁺ is a polynomial between its roots), the trapezoid rule over the rays' angles.
+template <typename ExtentOf>
+PatchIntegral integrateRays(const PatchDepth& d, ExtentOf extentOf)
+{
+    PatchIntegral out;
+    const Rays& r = rays();
+    const double weight = 2.0 * kPi / kPatchRays;
+    for (size_t k = 0; k < static_cast<size_t>(kPatchRays); ++k) {
+        const double rho = extentOf(k);
+        const double cs = r.cos[k], sn = r.sin[k];
+        const double a = d.g1 * cs + d.g2 * sn;
+        const double b = -0.5 * (d.c11 * cs * cs + 2 * d.c12 * cs * sn + d.c22 * sn * sn);
+        // d along the ray is positive between its roots in (0, ρ) and the ends.
+        std::array<double, 4> cuts{0.0, rho, rho, rho};
+        int count = 1;
+        const double disc = a * a - 4 * b * d.d0;
+        if (disc >= 0.0) {
+            const double q = -0.5 * (a + std::copysign(std::sqrt(disc), a));
+            if (q != 0.0) {
+                const double root = d.d0 / q;
+                if (root > 0.0 && root < rho) cuts[static_cast<size_t>(count++)] = root;
+                if (b != 0.0) {
+                    const double other = q / b;
+                    if (other > 0.0 && other < rho) cuts[static_cast<size_t>(count++)] = other;
+                }
+            }
+        }
+        if (count == 3 && cuts[1] > cuts[2]) std::swap(cuts[1], cuts[2]);
+        cuts[static_cast<size_t>(count)] = rho;
+        RayIntegrals ray{0, 0, 0, 0};
+        for (int p = 0; p < count; ++p) {
+            const double lo = cuts[static_cast<size_t>(p)], hi = cuts[static_cast<size_t>(p + 1)];
+            if (!(hi > lo)) continue;
+            const double mid = 0.5 * (lo + hi);
+            if (!(d.d0 + mid * (a + mid * b) > 0.0)) continue;
+            const RayIntegrals upper = rayIntegralsAt(d.d0, a, b, hi);
+            const RayIntegrals lower = rayIntegralsAt(d.d0, a, b, lo);
+            ray.area += upper.area - lower.area;
+            ray.depth += upper.depth - lower.depth;
+            ray.moment += upper.moment - lower.moment;
+            ray.squareDepth += upper.squareDepth - lower.squareDepth;
+        }
+        out.area += weight * ray.area;
+        out.depth += weight * ray.depth;
+        out.squareDepth += weight * ray.squareDepth;
+        out.moment1 += weight * ray.moment * cs;
+        out.moment2 += weight * ray.moment * sn;
+        // The deepest point along the ray: an end, or the vertex of a concave d.
+        double peak = std::max(d.d0, d.d0 + rho * (a + rho * b));
+        if (b < 0.0) {
+            const double vertex = -a / (2 * b);
+            if (vertex > 0.0 && vertex < rho)
+                peak = std::max(peak, d.d0 + vertex * (a + vertex * b));
+        }
+        out.peak = std::max(out.peak, peak);
+    }
+    return out;
+}
+
 } // namespace
 
 double patchPeakBound(const PatchDepth& d, double radius)
@@ -73,91 +138,44 @@ double patchPeakBound(const PatchDepth& d, double radius)
 
 PatchIntegral integratePatch(const PatchDepth& d, double radius)
 {
-    PatchIntegral out;
     const double rho = radius, rho2 = rho * rho;
     const double slope = std::hypot(d.g1, d.g2);
-    const auto [lowest, highest] = eigenRange(d.c11, d.c12, d.c22);
-    if (d.d0 - slope * rho - 0.5 * rho2 * std::max(0.0, highest) > 0.0) {
-        // Wholly in contact: the integrals of the quadratic over the disk in closed form.
-        const double disk = kPi * rho2, trace = d.c11 + d.c22;
-        const double squares = 3 * d.c11 * d.c11 + 3 * d.c22 * d.c22 + 2 * d.c11 * d.c22 +
-                               4 * d.c12 * d.c12;  // 4/π·∫c(θ)² dθ
-        out.area = disk;
-        out.depth = disk * (d.d0 - trace * rho2 / 8);
-        out.moment1 = disk * rho2 / 4 * d.g1;
-        out.moment2 = disk * rho2 / 4 * d.g2;
-        out.squareDepth = disk * d.d0 * d.d0 + disk * rho2 / 4 * (slope * slope - d.d0 * trace) +
-                          kPi * rho2 * rho2 * rho2 * squares / 96;
-    } else if (d.d0 + slope * rho + 0.5 * rho2 * std::max(0.0, -lowest) <= 0.0) {
-        return out;  // wholly clear
-    } else {
-        static const Rays rays;
-        const double weight = 2.0 * kPi / kPatchRays;
-        for (size_t k = 0; k < static_cast<size_t>(kPatchRays); ++k) {
-            const double cs = rays.cos[k], sn = rays.sin[k];
-            const double a = d.g1 * cs + d.g2 * sn;
-            const double b = -0.5 * (d.c11 * cs * cs + 2 * d.c12 * cs * sn + d.c22 * sn * sn);
-            // d along the ray is positive between its roots in (0, ρ) and the ends.
-            std::array<double, 4> cuts{0.0, rho, rho, rho};
-            int count = 1;
-            const double disc = a * a - 4 * b * d.d0;
-            if (disc >= 0.0) {
-                const double q = -0.5 * (a + std::copysign(std::sqrt(disc), a));
-                if (q != 0.0) {
-                    const double r = d.d0 / q;
-                    if (r > 0.0 && r < rho) cuts[static_cast<size_t>(count++)] = r;
-                    if (b != 0.0) {
-                        const double s = q / b;
-                        if (s > 0.0 && s < rho) cuts[static_cast<size_t>(count++)] = s;
-                    }
-                }
-            }
-            if (count == 3 && cuts[1] > cuts[2]) std::swap(cuts[1], cuts[2]);
-            cuts[static_cast<size_t>(count)] = rho;
-            RayIntegrals ray{0, 0, 0, 0};
-            for (int p = 0; p < count; ++p) {
-                const double lo = cuts[static_cast<size_t>(p)], hi = cuts[static_cast<size_t>(p + 1)];
-                if (!(hi > lo)) continue;
-                const double mid = 0.5 * (lo + hi);
-                if (!(d.d0 + mid * (a + mid * b) > 0.0)) continue;
-                const RayIntegrals upper = rayIntegralsAt(d.d0, a, b, hi);
-                const RayIntegrals lower = rayIntegralsAt(d.d0, a, b, lo);
-                ray.area += upper.area - lower.area;
-                ray.depth += upper.depth - lower.depth;
-                ray.moment += upper.moment - lower.moment;
-                ray.squareDepth += upper.squareDepth - lower.squareDepth;
-            }
-            out.area += weight * ray.area;
-            out.depth += weight * ray.depth;
-            out.squareDepth += weight * ray.squareDepth;
-            out.moment1 += weight * ray.moment * cs;
-            out.moment2 += weight * ray.moment * sn;
-            // The deepest point along the ray: an end, or the vertex of a concave d.
-            double peak = std::max(d.d0, d.d0 + rho * (a + rho * b));
-            if (b < 0.0) {
-                const double vertex = -a / (2 * b);
-                if (vertex > 0.0 && vertex < rho) peak = std::max(peak, d.d0 + vertex * (a + vertex * b));
-            }
-            out.peak = std::max(out.peak, peak);
-        }
-        return out;
-    }
-    // Wholly in: the deepest point, at the vertex if it is in the disk, else on the rim (the
-    // rays' ends stand for it).
-    double peak = d.d0;
-    static const Rays rays;
-    for (size_t k = 0; k < static_cast<size_t>(kPatchRays); ++k) {
-        const double cs = rays.cos[k], sn = rays.sin[k];
-        const double a = d.g1 * cs + d.g2 * sn;
-        const double b = -0.5 * (d.c11 * cs * cs + 2 * d.c12 * cs * sn + d.c22 * sn * sn);
-        peak = std::max(peak, d.d0 + rho * (a + rho * b));
-        if (b < 0.0) {
-            const double vertex = -a / (2 * b);
-            if (vertex > 0.0 && vertex < rho) peak = std::max(peak, d.d0 + vertex * (a + vertex * b));
-        }
-    }
-    out.peak = peak;
+    const double highest = eigenRange(d.c11, d.c12, d.c22).second;
+    if (patchPeakBound(d, radius) <= 0.0) return {};  // wholly clear
+    if (!(d.d0 - slope * rho - 0.5 * rho2 * std::max(0.0, highest) > 0.0))
+        return integrateRays(d, [rho](size_t) { return rho; });
+    // Wholly in contact: the integrals of the quadratic over the disk in closed form (the
+    // rays' rule gives the same, being exact for it), the peak from the rays' ends.
+    PatchIntegral out = integrateRays(d, [rho](size_t) { return rho; });
+    const double disk = kPi * rho2, trace = d.c11 + d.c22;
+    const double squares =
+        3 * d.c11 * d.c11 + 3 * d.c22 * d.c22 + 2 * d.c11 * d.c22 + 4 * d.c12 * d.c12;
+    out.area = disk;
+    out.depth = disk * (d.d0 - trace * rho2 / 8);
+    out.moment1 = disk * rho2 / 4 * d.g1;
+    out.moment2 = disk * rho2 / 4 * d.g2;
+    out.squareDepth = disk * d.d0 * d.d0 + disk * rho2 / 4 * (slope * slope - d.d0 * trace) +
+                      kPi * rho2 * rho2 * rho2 * squares / 96;
     return out;
+}
+
+PatchIntegral integratePatch(const PatchDepth& d, const std::array<float, kPatchRays>& extents,
+                             double reach)
+{
+    if (patchPeakBound(d, reach) <= 0.0) return {};
+    return integrateRays(d, [&extents](size_t k) { return double(extents[k]); });
+}
+
+PatchFrame patchFrame(const NodeShape& shape, const Eigen::Matrix3d& rotation)
+{
+    PatchFrame frame;
+    frame.normal = rotation * shape.normal;
+    frame.tangent1 = rotation * shape.tangent;
+    frame.tangent2 = frame.normal.cross(frame.tangent1);
+    frame.k11 = shape.k11;
+    frame.k12 = shape.k12;
+    frame.k22 = shape.k22;
+    return frame;
 }
 
 PatchDepth patchDepth(const PatchFrame& frame, double phi, const Vec3& gradient, double h11,

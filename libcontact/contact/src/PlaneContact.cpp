@@ -17,20 +17,13 @@ void addPatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation
                      NodeCheckStats& stats)
 {
     const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
-    PatchFrame frame;
-    frame.normal = rotation * shape.normal;
-    frame.tangent1 = rotation * shape.tangent;
-    frame.tangent2 = frame.normal.cross(frame.tangent1);
-    frame.k11 = shape.k11;
-    frame.k12 = shape.k12;
-    frame.k22 = shape.k22;
+    const PatchFrame frame = patchFrame(shape, rotation);
     // The plane's φ is the distance in front of it, ∇φ its normal, and it does not bend.
     const PatchDepth depth = patchDepth(frame, distance, plane.normal, 0.0, 0.0, 0.0);
-    const double radius = patchRadius(a.nodes.areas[static_cast<size_t>(i)]);
-    if (patchPeakBound(depth, radius) <= 0.0) return;
+    if (patchPeakBound(depth, shape.reach) <= 0.0) return;
     NodeContact c;
     Vec3 offset;
-    if (!fillPatchContact(integratePatch(depth, radius), frame, c, offset)) return;
+    if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, c, offset)) return;
     ++stats.nodesInContact;
     c.node = i;
     c.normal = plane.normal;

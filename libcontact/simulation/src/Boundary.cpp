@@ -36,24 +36,17 @@ void addSpherePatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& ro
     if (distance == 0.0) return;
     const Vec3 n = offset / distance;
     const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
-    PatchFrame frame;
-    frame.normal = rotation * shape.normal;
-    frame.tangent1 = rotation * shape.tangent;
-    frame.tangent2 = frame.normal.cross(frame.tangent1);
-    frame.k11 = shape.k11;
-    frame.k12 = shape.k12;
-    frame.k22 = shape.k22;
+    const PatchFrame frame = patchFrame(shape, rotation);
     auto hessian = [&](const Vec3& u, const Vec3& v) {
         return (u.dot(v) - u.dot(n) * v.dot(n)) / distance;
     };
     const PatchDepth depth = patchDepth(
         frame, distance - r, n, hessian(frame.tangent1, frame.tangent1),
         hessian(frame.tangent1, frame.tangent2), hessian(frame.tangent2, frame.tangent2));
-    const double radius = patchRadius(a.nodes.areas[static_cast<size_t>(i)]);
-    if (patchPeakBound(depth, radius) <= 0.0) return;
+    if (patchPeakBound(depth, shape.reach) <= 0.0) return;
     NodeContact nc;
     Vec3 shift;
-    if (!fillPatchContact(integratePatch(depth, radius), frame, nc, shift)) return;
+    if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, nc, shift)) return;
     ++stats.nodesInContact;
     nc.node = i;
     nc.normal = n;

@@ -1,14 +1,18 @@
 #include "lsdem/ls/NodeShape.h"
 
+#include "lsdem/core/Constants.h"
 #include "lsdem/ls/GrainAsset.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
-#include "lsdem/core/Constants.h"
-
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
 
 namespace lsdem {
+
+double patchRayAngle(int k) { return (k + 0.5) * 2.0 * kPi / kPatchRays; }
 
 namespace {
 
@@ -21,48 +25,134 @@ Vec3 anyTangent(const Vec3& m)
     return t.normalized();
 }
 
+/// Normal, tangent and shape operator of the node at @a x from the level set.
+void shapeFromLevelSet(LevelSetSampler& sampler, double h, const Vec3& x, NodeShape& s)
+{
+    const Vec3 gradient = sampler.sample(x).gradient;
+    const double length = gradient.norm();
+    if (!(length > 0.0)) {
+        s.normal = x.norm() > 0.0 ? Vec3(x.normalized()) : Vec3::UnitZ();
+        s.tangent = anyTangent(s.normal);
+        return;  // flat: no curvature known
+    }
+    s.normal = gradient / length;
+    s.tangent = anyTangent(s.normal);
+    const Vec3 t2 = s.secondTangent();
+    // ∇φ's change along each tangent: the Hessian's columns H·t (central differences).
+    auto change = [&](const Vec3& t) {
+        return Vec3((sampler.sample(x + h * t).gradient - sampler.sample(x - h * t).gradient) /
+                    (2.0 * h));
+    };
+    const Vec3 along1 = change(s.tangent), along2 = change(t2);
+    s.k11 = s.tangent.dot(along1);
+    s.k22 = t2.dot(along2);
+    s.k12 = 0.5 * (t2.dot(along1) + s.tangent.dot(along2));
+}
+
+/// The nodes near each node: a hash grid of cells as wide as the search radius, which is
+/// three times the largest node's equal-area disk (a Voronoi neighbour of a node is rarely
+/// farther than two spacings).
+class NodeNeighbours
+{
+public:
+    explicit NodeNeighbours(const SurfaceNodes& nodes) : mNodes(nodes)
+    {
+        double largest = 0.0;
+        for (const double a : nodes.areas) largest = std::max(largest, a);
+        mCell = std::max(3.0 * std::sqrt(largest / kPi), 1e-300);
+        for (size_t i = 0; i < nodes.size(); ++i)
+            mGrid[key(cellOf(nodes.positions[i]))].push_back(static_cast<int>(i));
+    }
+
+    /// Call @a visit(j) for every other node j in the 27 cells around node @a i.
+    template <typename Visit>
+    void around(int i, Visit&& visit) const
+    {
+        const Eigen::Vector3i c = cellOf(mNodes.positions[static_cast<size_t>(i)]);
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = mGrid.find(key(c + Eigen::Vector3i(dx, dy, dz)));
+                    if (it == mGrid.end()) continue;
+                    for (const int j : it->second)
+                        if (j != i) visit(j);
+                }
+    }
+
+private:
+    Eigen::Vector3i cellOf(const Vec3& p) const
+    {
+        return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / mCell)),
+                               static_cast<int>(std::floor(p.y() / mCell)),
+                               static_cast<int>(std::floor(p.z() / mCell)));
+    }
+    static int64_t key(const Eigen::Vector3i& c)
+    {
+        const auto field = [](int v) { return (uint64_t(int64_t(v)) & 0x1FFFFFu); };
+        return int64_t((field(c.x()) << 42) | (field(c.y()) << 21) | field(c.z()));
+    }
+
+    const SurfaceNodes& mNodes;
+    double mCell = 1.0;
+    std::unordered_map<int64_t, std::vector<int>> mGrid;
+};
+
+/// Node @a i's Voronoi cell in its tangent plane, along each ray: the nearest bisector of the
+/// node and a neighbour (projected on the plane) that the ray meets.
+void cellOfNode(const SurfaceNodes& nodes, const std::vector<NodeShape>& shapes,
+                const NodeNeighbours& neighbours, int i, NodeShape& s)
+{
+    const Vec3& x = nodes.positions[static_cast<size_t>(i)];
+    const double disk = std::sqrt(nodes.areas[static_cast<size_t>(i)] / kPi);
+    const double cap = 2.0 * disk;
+    std::array<double, kPatchRays> extent;
+    extent.fill(cap);
+    std::array<double, kPatchRays> cs, sn;
+    for (int k = 0; k < kPatchRays; ++k) {
+        cs[static_cast<size_t>(k)] = std::cos(patchRayAngle(k));
+        sn[static_cast<size_t>(k)] = std::sin(patchRayAngle(k));
+    }
+    const Vec3 t2 = s.secondTangent();
+    neighbours.around(i, [&](int j) {
+        if (shapes[static_cast<size_t>(j)].normal.dot(s.normal) <= 0.0) return;  // the far side
+        const Vec3 q = nodes.positions[static_cast<size_t>(j)] - x;
+        const double q1 = q.dot(s.tangent), q2 = q.dot(t2);
+        const double half = 0.5 * (q1 * q1 + q2 * q2);
+        if (!(half > 0.0)) return;
+        for (size_t k = 0; k < extent.size(); ++k) {
+            const double along = q1 * cs[k] + q2 * sn[k];
+            if (along > 0.0) extent[k] = std::min(extent[k], half / along);
+        }
+    });
+    s.reach = 0.0f;
+    for (size_t k = 0; k < extent.size(); ++k) {
+        s.extents[k] = static_cast<float>(extent[k]);
+        s.reach = std::max(s.reach, s.extents[k]);
+    }
+}
+
 } // namespace
 
 std::vector<NodeShape> nodeShapesOf(const GrainAsset& asset)
 {
     std::vector<NodeShape> shapes(asset.nodes.size());
     LevelSetSampler sampler(*asset.levelSet);
-    const double h = asset.voxelSize;
-    for (size_t i = 0; i < shapes.size(); ++i) {
-        const Vec3& x = asset.nodes.positions[i];
-        NodeShape& s = shapes[i];
-        const Vec3 gradient = sampler.sample(x).gradient;
-        const double length = gradient.norm();
-        if (!(length > 0.0)) {
-            s.normal = x.norm() > 0.0 ? Vec3(x.normalized()) : Vec3::UnitZ();
-            s.tangent = anyTangent(s.normal);
-            continue;  // flat: no curvature known
-        }
-        s.normal = gradient / length;
-        s.tangent = anyTangent(s.normal);
-        const Vec3 t2 = s.secondTangent();
-        // ∇φ's change along each tangent: the Hessian's columns H·t (central differences).
-        auto change = [&](const Vec3& t) {
-            return Vec3((sampler.sample(x + h * t).gradient - sampler.sample(x - h * t).gradient) /
-                        (2.0 * h));
-        };
-        const Vec3 along1 = change(s.tangent), along2 = change(t2);
-        s.k11 = s.tangent.dot(along1);
-        s.k22 = t2.dot(along2);
-        s.k12 = 0.5 * (t2.dot(along1) + s.tangent.dot(along2));
-    }
+    for (size_t i = 0; i < shapes.size(); ++i)
+        shapeFromLevelSet(sampler, asset.voxelSize, asset.nodes.positions[i], shapes[i]);
+    const NodeNeighbours neighbours(asset.nodes);
+    for (size_t i = 0; i < shapes.size(); ++i)
+        cellOfNode(asset.nodes, shapes, neighbours, static_cast<int>(i), shapes[i]);
     return shapes;
 }
 
-double patchReachOf(const GrainAsset& asset, const std::vector<NodeShape>& shapes)
+double patchReachOf(const std::vector<NodeShape>& shapes)
 {
     double reach = 0.0;
-    for (size_t i = 0; i < shapes.size(); ++i) {
-        const NodeShape& s = shapes[i];
-        const double radius = std::sqrt(asset.nodes.areas[i] / kPi);
+    for (const NodeShape& s : shapes) {
         const double mean = 0.5 * (s.k11 + s.k22), half = 0.5 * (s.k11 - s.k22);
         const double lowest = mean - std::sqrt(half * half + s.k12 * s.k12);
-        reach = std::max(reach, radius + 0.5 * radius * radius * std::max(0.0, -lowest));
+        const double e = s.reach;
+        reach = std::max(reach, e + 0.5 * e * e * std::max(0.0, -lowest));
     }
     return reach;
 }
@@ -71,7 +161,7 @@ GrainAsset withNodeShapes(const GrainAsset& asset)
 {
     GrainAsset out = asset;
     out.nodeShapes = nodeShapesOf(asset);
-    out.patchReach = patchReachOf(asset, out.nodeShapes);
+    out.patchReach = patchReachOf(out.nodeShapes);
     return out;
 }
 

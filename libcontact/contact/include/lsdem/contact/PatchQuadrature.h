@@ -3,15 +3,16 @@
 ///        integral of the traction kn*·d over the surface, and a node at a point samples d
 ///        there: where a contact is narrower than the nodes' spacing (a ball rolling on a
 ///        floor under its own weight), the grain then rolls over its nodes like a polyhedron
-///        over its vertices. Patch quadrature takes each node's tributary area as a disk of the
-///        same area in the node's tangent plane, bent as the surface bends there (NodeShape.h),
-///        takes the other body's depth over it to second order, and integrates the positive
-///        part: exactly along each ray from the node, by a periodic trapezoid rule over the
-///        rays' angles. A node wholly inside gives k·A·(mean depth over its patch), one wholly
-///        outside nothing, and one at the contact's edge the part of its patch that is in.
+///        over its vertices. Patch quadrature takes each node's patch, its Voronoi cell in its
+///        tangent plane bent as the surface bends there (NodeShape.h), takes the other body's
+///        depth over it to second order, and integrates the positive part: exactly along each
+///        ray from the node, by a periodic trapezoid rule over the rays' angles. A node wholly
+///        inside gives k·(its patch's area)·(mean depth over it), one wholly outside nothing,
+///        and one at the contact's edge the part of its patch that is in.
 #pragma once
 
 #include "lsdem/contact/NodeContact.h"
+#include "lsdem/ls/NodeShape.h"
 
 #include <string>
 
@@ -47,12 +48,16 @@ struct PatchIntegral
     double peak = 0.0;         ///< max d⁺ over the disk, length
 };
 
-/// The number of rays: the trapezoid rule over them is exact for a patch wholly inside (its
-/// integrands are trigonometric polynomials of degree ≤ 4 in the angle).
-constexpr int kPatchRays = 16;
-
-/// The integrals of @a d⁺ over the disk of radius @a radius.
+/// The integrals of @a d⁺ over the disk of radius @a radius, along kPatchRays rays
+/// (NodeShape.h); the trapezoid rule over them is exact for a disk wholly in contact (its
+/// integrands are trigonometric polynomials of degree ≤ 4 in the angle), which is done in
+/// closed form.
 PatchIntegral integratePatch(const PatchDepth& d, double radius);
+
+/// The integrals of @a d⁺ over a node's patch, which reaches @a extents[k] along ray k and
+/// @a reach at most (NodeShape::extents, NodeShape::reach).
+PatchIntegral integratePatch(const PatchDepth& d, const std::array<float, kPatchRays>& extents,
+                             double reach);
 
 /// An upper bound on d over the disk of radius @a radius: no part of the patch is in contact
 /// when it is ≤ 0.
@@ -68,6 +73,10 @@ struct PatchFrame
     Vec3 normal, tangent1, tangent2;
     double k11 = 0.0, k12 = 0.0, k22 = 0.0;
 };
+
+/// The frame of a node of shape @a shape (asset frame), turned by @a rotation into the frame
+/// of the other body's φ.
+PatchFrame patchFrame(const NodeShape& shape, const Eigen::Matrix3d& rotation);
 
 /// The depth over the patch of a node facing a body whose signed distance φ at the node is
 /// @a phi, with gradient @a gradient and Hessian along the node's tangents (@a h11, @a h12,

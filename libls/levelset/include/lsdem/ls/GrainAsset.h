@@ -56,7 +56,7 @@ struct GrainAsset
     double levelSetSlope = std::numeric_limits<double>::infinity();
     /// The surface's shape at each node (NodeShape.h), for contacts that integrate over each
     /// node's patch; empty unless a simulation's contacts ask for it (withNodeShapes): not
-    /// stored in the file, and at 72 bytes a node not kept where no law reads it.
+    /// stored in the file, and at 144 bytes a node not kept where no law reads it.
     std::vector<NodeShape> nodeShapes;
     double patchReach = 0.0;  ///< patchReachOf(nodeShapes), length; 0 without them
     AreaRule areaRule = AreaRule::Mesh;

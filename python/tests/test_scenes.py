@@ -386,7 +386,7 @@ def test_patch_quadrature_is_written_refused_where_it_has_no_meaning_and_resolve
     # turns (−22 … +27 % here). Patches (the nodes' Voronoi cells) tile the floor's side of the
     # ball whatever the turn: what is left is the level set's (the nodes sit on the zero of a
     # level set of voxel 0.25, ~voxel²/(8R) = 0.0016 mm off the sphere, 3 % of δ) and the 16
-    # rays' over a cell's corners: within ±4 % here.
+    # rays' over a cell's corners: −1.5 … +3.5 % here.
     assert np.ptp(node) > 0.3
     assert np.ptp(patch) < np.ptp(node) / 5
     assert np.abs(patch).max() < 0.06

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace lsdem {
 
@@ -199,7 +200,9 @@ bool fillPatchContact(const PatchIntegral& integral, const PatchFrame& frame,
     contact.area = integral.area;
     contact.depth = integral.depth / integral.area;
     contact.squareDepth = integral.squareDepth / integral.area;
-    contact.peakDepth = std::max(integral.peak, contact.depth);
+    // (Never 0 for a patch in contact: it marks the contact as a patch's.)
+    contact.peakDepth = std::max(static_cast<float>(std::max(integral.peak, contact.depth)),
+                                 std::numeric_limits<float>::min());
     offset = (integral.moment1 / integral.depth) * frame.tangent1 +
              (integral.moment2 / integral.depth) * frame.tangent2;
     return true;

@@ -216,7 +216,10 @@ public:
     {
         const Vec3 closest = mShape.closestSurfacePoint(p);
         const double d = mShape.signedDistance(p);
-        return d != 0.0 ? Vec3((p - closest) / d) : mShape.outwardNormal(closest);
+        // Within a hair of the surface p − closest is round-off (a node on the surface has
+        // φ of an ulp or 0): the surface's normal there is the gradient to O(|φ|·curvature).
+        const double hair = 1e-8 * mShape.halfExtents().maxCoeff();
+        return std::abs(d) > hair ? Vec3((p - closest) / d) : mShape.outwardNormal(closest);
     }
 
 private:

@@ -97,6 +97,49 @@ private:
     std::unordered_map<int64_t, std::vector<int>> mGrid;
 };
 
+/// A convex polygon in a node's tangent plane (u₁, u₂), cut by half-planes.
+class PlanePolygon
+{
+public:
+    /// The regular polygon of @a corners corners inscribed in the circle of radius @a radius.
+    PlanePolygon(double radius, int corners)
+    {
+        for (int k = 0; k < corners; ++k) {
+            const double angle = 2.0 * kPi * k / corners;
+            mCorners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+        }
+    }
+    /// Keep the part where u·q ≤ @a limit.
+    void keepBelow(const Eigen::Vector2d& q, double limit)
+    {
+        std::vector<Eigen::Vector2d> kept;
+        const size_t n = mCorners.size();
+        for (size_t k = 0; k < n; ++k) {
+            const Eigen::Vector2d& a = mCorners[k];
+            const Eigen::Vector2d& b = mCorners[(k + 1) % n];
+            const double da = a.dot(q) - limit, db = b.dot(q) - limit;
+            if (da <= 0.0) kept.push_back(a);
+            if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0))
+                kept.push_back(a + (da / (da - db)) * (b - a));
+        }
+        mCorners.swap(kept);
+    }
+    double area() const
+    {
+        double twice = 0.0;
+        const size_t n = mCorners.size();
+        for (size_t k = 0; k < n; ++k) {
+            const Eigen::Vector2d& a = mCorners[k];
+            const Eigen::Vector2d& b = mCorners[(k + 1) % n];
+            twice += a.x() * b.y() - a.y() * b.x();
+        }
+        return 0.5 * twice;
+    }
+
+private:
+    std::vector<Eigen::Vector2d> mCorners;
+};
+
 /// Node @a i's Voronoi cell in its tangent plane, along each ray: the nearest bisector of the
 /// node and a neighbour (projected on the plane) that the ray meets.
 void cellOfNode(const SurfaceNodes& nodes, const std::vector<NodeShape>& shapes,
@@ -113,20 +156,30 @@ void cellOfNode(const SurfaceNodes& nodes, const std::vector<NodeShape>& shapes,
         sn[static_cast<size_t>(k)] = std::sin(patchRayAngle(k));
     }
     const Vec3 t2 = s.secondTangent();
+    // The cell itself, for its area: the cap's circle as a 64-gon, cut by the same bisectors.
+    PlanePolygon polygon(cap, 64);
     neighbours.around(i, [&](int j) {
         if (shapes[static_cast<size_t>(j)].normal.dot(s.normal) <= 0.0) return;  // the far side
         const Vec3 q = nodes.positions[static_cast<size_t>(j)] - x;
         const double q1 = q.dot(s.tangent), q2 = q.dot(t2);
         const double half = 0.5 * (q1 * q1 + q2 * q2);
         if (!(half > 0.0)) return;
+        polygon.keepBelow(Eigen::Vector2d(q1, q2), half);
         for (size_t k = 0; k < extent.size(); ++k) {
             const double along = q1 * cs[k] + q2 * sn[k];
             if (along > 0.0) extent[k] = std::min(extent[k], half / along);
         }
     });
+    // Scaled so that the rays' rule (Σ ½e²·Δθ) measures the cell's own area: the rule cuts a
+    // cell's corners or overshoots them (a square's area −2.4 % with a ray along a side,
+    // +4.9 % turned by half a ray spacing), and then the cells would not tile.
+    double rays = 0.0;
+    for (const double e : extent) rays += 0.5 * e * e * (2.0 * kPi / kPatchRays);
+    const double area = polygon.area();
+    const double scale = rays > 0.0 && area > 0.0 ? std::sqrt(area / rays) : 1.0;
     s.reach = 0.0f;
     for (size_t k = 0; k < extent.size(); ++k) {
-        s.extents[k] = static_cast<float>(extent[k]);
+        s.extents[k] = static_cast<float>(scale * extent[k]);
         s.reach = std::max(s.reach, s.extents[k]);
     }
 }

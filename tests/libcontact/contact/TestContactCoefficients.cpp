@@ -158,7 +158,8 @@ TEST(ContactCoefficients, ScenesMdTableAgreesWithTheSchema)
     // The other rows are the keys that are not numbers of a sub-model.
     for (const auto& [key, value] : defaults) {
         if (schemaKeys.count(key)) continue;
-        EXPECT_TRUE(key == "materials = [\"a\", \"b\"]" || key == "formulation" || key == "testing")
+        EXPECT_TRUE(key == "materials = [\"a\", \"b\"]" || key == "formulation" || key == "testing" ||
+                    key == "quadrature")
             << "docs/scenes.md lists '" << key << "', which the schema does not know";
     }
 }

@@ -340,6 +340,54 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
     }
 }
 
+// quadrature = "patch" (PatchQuadrature.h) integrates the traction over each node's patch: read
+// where the law has a traction per area and a force per node (adapted); refused, at the key's
+// line and with a fix, by the laws that have none (original: a spring per node; volume: one
+// force per side), and an unknown value refused like any other choice.
+TEST(SceneFile, PatchQuadratureIsReadForTheAdaptedLawAndRefusedForOthers)
+{
+    const Scene nodes = parseScene(kGood, "/data/scene.toml");
+    ASSERT_EQ(nodes.contacts.size(), 2u);
+    EXPECT_EQ(nodes.contacts[0].model.quadrature, NodeQuadrature::Point);  // the default
+    EXPECT_EQ(nodes.contacts[1].model.quadrature, NodeQuadrature::Point);
+
+    const std::string adapted =
+        edited("normal_stiffness = 1e3", "quadrature = \"patch\"\nnormal_stiffness = 1e3");
+    const Scene patches = parseScene(adapted, "/data/scene.toml");
+    EXPECT_EQ(patches.contacts[0].model.formulation, Formulation::Adapted);
+    EXPECT_EQ(patches.contacts[0].model.quadrature, NodeQuadrature::Patch);
+    EXPECT_EQ(patches.contacts[1].model.quadrature, NodeQuadrature::Point);
+    EXPECT_NO_THROW(parseScene(edited("normal_stiffness = 1e3", "quadrature = \"node\"\nnormal_stiffness = 1e3"), "s.toml"));
+
+    const struct
+    {
+        const char* what;
+        std::string text;
+        const char* message;
+    } refused[] = {
+        {"original", edited("testing = \"one-way\"", "testing = \"one-way\"\nquadrature = \"patch\""),
+         "not formulation original"},
+        {"volume", edited("normal_stiffness = 1e3\nshear_stiffness = 5e2\nfriction = 0.4\n",
+                          "formulation = \"volume\"\nquadrature = \"patch\"\nnormal_stiffness = 1e3\n"),
+         "not formulation volume"},
+        {"unknown value", edited("normal_stiffness = 1e3", "quadrature = \"gauss\"\nnormal_stiffness = 1e3"),
+         "unknown value 'gauss'"},
+    };
+    for (const auto& c : refused) {
+        try {
+            parseScene(c.text, "/data/scene.toml");
+            ADD_FAILURE() << c.what << ": accepted";
+        } catch (const Error& e) {
+            const std::string msg = e.what();
+            EXPECT_NE(msg.find("quadrature"), std::string::npos) << c.what << ": " << msg;
+            EXPECT_NE(msg.find(c.message), std::string::npos) << c.what << ": " << msg;
+            EXPECT_EQ(e.where(), "/data/scene.toml:" + std::to_string(lineOf(c.text, "quadrature =")))
+                << c.what << ": " << msg;
+            EXPECT_NE(e.fix().find("node"), std::string::npos) << c.what << ": " << msg;
+        }
+    }
+}
+
 TEST(SceneFile, MissingFileIsNamed)
 {
     try {

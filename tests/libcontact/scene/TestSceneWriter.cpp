@@ -66,6 +66,7 @@ void expectSameScene(const Scene& a, const Scene& b)
         EXPECT_EQ(x.materialB, y.materialB);
         EXPECT_EQ(x.model.formulation, y.model.formulation) << "contact " << i;
         EXPECT_EQ(x.model.testing, y.model.testing);
+        EXPECT_EQ(x.model.quadrature, y.model.quadrature) << "contact " << i;
         EXPECT_EQ(x.model.normalStiffness, y.model.normalStiffness);
         EXPECT_EQ(x.model.shearStiffness, y.model.shearStiffness);
         EXPECT_EQ(x.model.friction, y.model.friction);
@@ -302,6 +303,28 @@ TEST(SceneWriter, EveryFeatureReadsBackTheSame)
     const std::string text = sceneToToml(scene, dir.path().string(), "a header");
     EXPECT_NE(text.find("file = 'grain file.vdb'"), std::string::npos) << text;
     EXPECT_EQ(text.rfind("# a header\n", 0), 0u) << text;
+}
+
+// quadrature = "patch" is written where a contact has it and reads back; node quadrature, the
+// default, is not written at all (so scenes written before it existed read back the same).
+TEST(SceneWriter, PatchQuadratureIsWrittenAndReadBack)
+{
+    const ScratchDir dir;
+    Scene scene = everyFeature(dir);
+    const std::string plain = sceneToToml(scene, dir.path().string());
+    EXPECT_EQ(plain.find("quadrature"), std::string::npos) << plain;
+    ASSERT_EQ(scene.contacts[4].model.formulation, Formulation::Adapted);
+    scene.contacts[4].model.quadrature = NodeQuadrature::Patch;
+    const std::string text = sceneToToml(scene, dir.path().string());
+    const size_t at = text.find("quadrature = 'patch'");
+    ASSERT_NE(at, std::string::npos) << text;
+    EXPECT_EQ(text.find("quadrature", at + 1), std::string::npos) << text;  // that contact only
+    const Scene back = roundTrip(scene, dir);
+    expectSameScene(scene, back);
+    EXPECT_EQ(back.contacts[4].model.quadrature, NodeQuadrature::Patch);
+    EXPECT_EQ(back.contacts[0].model.quadrature, NodeQuadrature::Point);
+    // Written again, the same text.
+    EXPECT_EQ(sceneToToml(back, dir.path().string()), text);
 }
 
 TEST(SceneWriter, NumbersAreShortAndExact)

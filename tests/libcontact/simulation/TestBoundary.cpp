@@ -1,9 +1,11 @@
 // Rigid boundaries: the reference point and the cheap "may touch" test of each shape (plane,
-// finite patch, sphere, level-set obstacle), moved by their displacement; and the penetrating
-// nodes findBoundaryContacts reports for each shape, against distances worked out here.
+// finite patch, sphere, level-set obstacle), moved by their displacement; the penetrating
+// nodes findBoundaryContacts reports for each shape, against distances worked out here; and a
+// sphere's contacts with patch quadrature against the cap integral.
 #include "lsdem/simulation/Boundary.h"
 #include "lsdem/contact/CandidateBlocks.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/ls/NodeShape.h"
 #include "lsdem/core/Constants.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <random>
 
 using namespace lsdem;
 
@@ -504,4 +507,65 @@ TEST(Boundary, OrificeBlockCullingKeepsEveryContact)
     }
     EXPECT_TRUE(face && wall);  // the box straddles the rim
     EXPECT_GT(blockedStats.nodesCulled, scannedStats.nodesCulled);
+}
+
+// A ball grain (R₁ = 2, ~2000 nodes, spacing ~0.16) pressed by δ into a sphere boundary
+// (R₂ = 3): the depth at a point of the ball's surface at polar angle θ from the axis is
+// R₂ − √(a − b·cos θ), a = R₁² + D², b = 2R₁D, D = R₁ + R₂ − δ the centres' distance, so the
+// integral of the depth over the ball's surface is, with u = cos θ from u₀ (where the depth is
+// 0: a − b·u₀ = R₂²) to 1 (where √(a − b) = D − R₁),
+//   2πR₁²·[R₂(1 − u₀) − (2/3b)(R₂³ − (D − R₁)³)]   (≈ π·δ²·R₁R₂/(R₁ + R₂) for small δ),
+// what k·area·depth summed over the contacts should give. The nodes as points see a cap
+// narrower than two spacings (radius √(2δR₁R₂/(R₁ + R₂)) = 0.11 to 0.22) as a handful of
+// depths; the patches integrate the depth (the sphere's bend included) over each node's patch.
+// Over 64 random turns, the patches' RMS error is below 0.3 of the nodes' (measured 0.13, 0.15
+// and 0.14 at δ = 0.005, 0.01, 0.02; the nodes' own 34 % to 4.4 %; with the cells scaled to
+// the nodes' tributary areas 0.16 to 0.31, with disks of the nodes' areas 0.21 to 0.64), below
+// a quarter at the narrowest cap (0.13), and their mean within 1 % (measured ≤ 0.54 %).
+TEST(Boundary, SpherePatchesFollowTheCapIntegralMoreCloselyThanNodes)
+{
+    const double R1 = 2.0, R2 = 3.0;
+    BakeOptions o;
+    o.voxelSize = 0.05;
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = 2000;
+    std::vector<std::string> warnings;
+    const GrainAsset ball = withNodeShapes(bakeAnalytic(AnalyticShape::sphere(R1), o, warnings));
+    std::mt19937 rng(5);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    for (double delta : {0.005, 0.01, 0.02}) {
+        const double D = R1 + R2 - delta, a = R1 * R1 + D * D, b = 2.0 * R1 * D;
+        const double u0 = (a - R2 * R2) / b;
+        const double exact = 2.0 * kPi * R1 * R1 *
+                             (R2 * (1.0 - u0) - 2.0 / (3.0 * b) * (std::pow(R2, 3) - std::pow(D - R1, 3)));
+        Boundary indenter;
+        indenter.shape = BoundaryShape::Sphere;
+        indenter.center = Vec3(0, 0, D);
+        indenter.radius = R2;
+        double nodeSquares = 0.0, patchSquares = 0.0, patchSum = 0.0;
+        const int turns = 64;
+        for (int k = 0; k < turns; ++k) {
+            RigidPose pose;
+            pose.orientation = Quat(Eigen::Vector4d(normal(rng), normal(rng), normal(rng),
+                                                    normal(rng)).normalized());
+            double error[2];
+            for (int patches = 0; patches < 2; ++patches) {
+                std::vector<NodeContact> contacts;
+                NodeCheckStats stats;
+                findBoundaryContacts(ball, pose, indenter, contacts, stats, nullptr, patches == 1);
+                double sum = 0.0;
+                for (const NodeContact& c : contacts) sum += c.area * c.depth;
+                error[patches] = sum / exact - 1.0;
+            }
+            nodeSquares += error[0] * error[0];
+            patchSquares += error[1] * error[1];
+            patchSum += error[1];
+        }
+        const double nodeRms = std::sqrt(nodeSquares / turns), patchRms = std::sqrt(patchSquares / turns);
+        EXPECT_LT(patchRms, 0.3 * nodeRms) << "delta " << delta << ": patches " << patchRms;
+        if (delta == 0.005) {
+            EXPECT_LT(patchRms, 0.25 * nodeRms) << "patches " << patchRms << ", nodes " << nodeRms;
+        }
+        EXPECT_LT(std::abs(patchSum / turns), 0.01) << "delta " << delta;
+    }
 }

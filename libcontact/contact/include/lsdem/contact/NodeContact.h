@@ -16,6 +16,10 @@ struct CandidateBlocks;
 struct NodeContact
 {
     int node = 0;                  ///< index into A's nodes
+    /// Patch quadrature only (below): the deepest point of the patch, length. A float, so it
+    /// fits beside @a node where the double after it would leave a gap (the narrow phase
+    /// writes and reads these by the hundred thousand).
+    float peakDepth = 0.0f;
     double depth = 0.0;            ///< d = -φ_B(node) > 0, length
     Vec3 normal = Vec3::Zero();    ///< unit ∇φ_B at the node: pushes A out of B
     Vec3 point = Vec3::Zero();     ///< contact point: the node moved d/2 toward B's surface
@@ -24,13 +28,12 @@ struct NodeContact
     /// @a area is the part of the node's patch in contact, @a depth the mean depth over that
     /// part (so k·area·depth is the traction's integral) and @a point its centre.
     double squareDepth = 0.0;      ///< mean of d² over the part in contact, length²
-    double peakDepth = 0.0;        ///< the deepest point of the patch, length
 
     /// The mean of d² over the contact (the elastic energy is ½·k·area·this).
     double meanSquareDepth() const { return squareDepth > 0.0 ? squareDepth : depth * depth; }
     /// The deepest point of the contact: the node, or the deepest point of its patch.
-    double deepest() const { return peakDepth > 0.0 ? peakDepth : depth; }
-    bool isPatch() const { return peakDepth > 0.0; }
+    double deepest() const { return peakDepth > 0.0f ? double(peakDepth) : depth; }
+    bool isPatch() const { return peakDepth > 0.0f; }
 };
 
 /// Counters of the narrow phase, to report node checks per second and culling efficiency.

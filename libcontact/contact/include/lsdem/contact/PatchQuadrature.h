@@ -45,7 +45,9 @@ struct PatchIntegral
     double depth = 0.0;        ///< ∫d⁺ dA, length³
     double squareDepth = 0.0;  ///< ∫(d⁺)² dA, length⁴
     double moment1 = 0.0, moment2 = 0.0;  ///< ∫d⁺·u dA, length⁴
-    double peak = 0.0;         ///< max d⁺ over the disk, length
+    /// The deepest d⁺ along the rays (each ray's own maximum, at an end or its vertex): the
+    /// patch's deepest point when it lies on a ray, a little less between them, length.
+    double peak = 0.0;
 };
 
 /// The integrals of @a d⁺ over the disk of radius @a radius, along kPatchRays rays

@@ -45,8 +45,9 @@ struct NodeShape
 /// its exact distance); a node where ∇φ vanishes gets a flat patch facing away from the
 /// centroid. From the nodes: each patch is the node's Voronoi cell in its tangent plane among
 /// the nodes near it on the same side (normals less than 90° apart, so a thin plate's far
-/// face does not cut it), at most twice the radius of the disk of the node's area. The cells
-/// tile the surface, so a cell's area (not the node's tributary area) weighs its node.
+/// face does not cut it), at most twice the radius of the disk of the node's area; its extents
+/// are scaled so that the rays' rule gives the cell's exact area. The cells tile the surface,
+/// so a cell's area (not the node's tributary area) weighs its node.
 std::vector<NodeShape> nodeShapesOf(const GrainAsset& asset);
 
 /// How far beyond its node, toward a body it faces, a node's patch can reach: its largest

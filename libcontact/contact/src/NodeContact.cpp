@@ -107,12 +107,11 @@ public:
 private:
     /// How far from B a node of A may be and still have its patch touch B: A's patches' own
     /// reach (NodeShape.h) at B's steepest slope, and B's surface bending toward the patch by
-    /// at most what one voxel of its level set resolves (the Hessian is taken a voxel apart).
+    /// at most B's largest concavity at its nodes (twice it, for the bends between them).
     static double patchReach(const GrainAsset& a, const GrainAsset& b)
     {
         const double slope = std::isfinite(b.levelSetSlope) ? std::max(1.0, b.levelSetSlope) : 1.0;
-        return a.patchReach * slope +
-               0.5 * a.patchReach * a.patchReach * slope / b.levelSet->voxelSize;
+        return a.patchReach * slope + a.patchReach * a.patchReach * slope * b.patchConcavity;
     }
 
     /// Whether a ball of A's frame (a cluster, a block; a node is a ball of radius 0) misses
@@ -246,13 +245,22 @@ private:
         const double gradientLength = s.gradient.norm();
         if (gradientLength == 0.0) return;
         const NodeShape& shape = mA.nodeShapes[static_cast<size_t>(i)];
+        // Out of reach whatever the patch's tilt: the depth grows by at most |∇φ| a unit of
+        // distance over the patch, its own bend and B's (twice B's largest concavity).
+        const double e = shape.reach;
+        if (s.phi >= (e + shape.lift + e * e * mB.patchConcavity) * gradientLength) return;
         const PatchFrame frame = patchFrame(shape, mRotation);
         const double radius = shape.reach;
         const double h = mB.levelSet->voxelSize;
-        // First without B's bend, allowing for the most a voxel's Hessian can give it.
+        // First without B's bend, allowing for the most B's concavity can take from C (twice
+        // its largest at B's nodes, for the bends between them): a bound, so no Hessian is
+        // sampled for a node whose patch cannot reach B.
         PatchDepth depth = patchDepth(frame, s.phi, s.gradient, 0.0, 0.0, 0.0);
-        if (patchPeakBound(depth, radius) + 0.5 * radius * radius * gradientLength / h <= 0.0)
-            return;
+        const double bend = 2.0 * mB.patchConcavity * gradientLength;
+        PatchDepth bound = depth;
+        bound.c11 -= bend;
+        bound.c22 -= bend;
+        if (patchPeakBound(bound, radius) <= 0.0) return;
         auto change = [&](const Vec3& t) {
             return Vec3((sampler().sample(inB + h * t).gradient -
                          sampler().sample(inB - h * t).gradient) /

@@ -132,15 +132,19 @@ PatchIntegral integrateRays(const PatchDepth& d, ExtentOf extentOf)
 
 double patchPeakBound(const PatchDepth& d, double radius)
 {
-    const double slope = std::hypot(d.g1, d.g2);
+    const double slope2 = d.g1 * d.g1 + d.g2 * d.g2, slope = std::sqrt(slope2);
     const double lowest = eigenRange(d.c11, d.c12, d.c22).first;
-    return d.d0 + slope * radius + 0.5 * radius * radius * std::max(0.0, -lowest);
+    const double rim = d.d0 + slope * radius + 0.5 * radius * radius * std::max(0.0, -lowest);
+    // A patch bending away from the body everywhere (C positive definite) peaks at most at
+    // the vertex of d0 + |g|·r − ½·λ_min·r², which is far lower for a tilted patch of a curved
+    // contact (most nodes near it, which so need no integral).
+    return lowest > 0.0 ? std::min(rim, d.d0 + 0.5 * slope2 / lowest) : rim;
 }
 
 PatchIntegral integratePatch(const PatchDepth& d, double radius)
 {
     const double rho = radius, rho2 = rho * rho;
-    const double slope = std::hypot(d.g1, d.g2);
+    const double slope = std::sqrt(d.g1 * d.g1 + d.g2 * d.g2);
     const double highest = eigenRange(d.c11, d.c12, d.c22).second;
     if (patchPeakBound(d, radius) <= 0.0) return {};  // wholly clear
     if (!(d.d0 - slope * rho - 0.5 * rho2 * std::max(0.0, highest) > 0.0))

@@ -17,6 +17,7 @@ void addPatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation
                      NodeCheckStats& stats)
 {
     const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
+    if (distance >= double(shape.reach) + double(shape.lift)) return;  // out of its reach
     const PatchFrame frame = patchFrame(shape, rotation);
     // The plane's φ is the distance in front of it, ∇φ its normal, and it does not bend.
     const PatchDepth depth = patchDepth(frame, distance, plane.normal, 0.0, 0.0, 0.0);

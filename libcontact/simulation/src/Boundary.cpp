@@ -36,6 +36,8 @@ void addSpherePatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& ro
     if (distance == 0.0) return;
     const Vec3 n = offset / distance;
     const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
+    // The sphere is convex: out of the patch's reach beyond its extent and lift.
+    if (distance - r >= double(shape.reach) + double(shape.lift)) return;
     const PatchFrame frame = patchFrame(shape, rotation);
     auto hessian = [&](const Vec3& u, const Vec3& v) {
         return (u.dot(v) - u.dot(n) * v.dot(n)) / distance;

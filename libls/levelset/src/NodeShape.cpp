@@ -16,6 +16,13 @@ double patchRayAngle(int k) { return (k + 0.5) * 2.0 * kPi / kPatchRays; }
 
 namespace {
 
+/// The smaller principal curvature at a node.
+double lowestCurvature(const NodeShape& s)
+{
+    const double mean = 0.5 * (s.k11 + s.k22), half = 0.5 * (s.k11 - s.k22);
+    return mean - std::sqrt(half * half + s.k12 * s.k12);
+}
+
 /// A unit vector ⊥ @a m, from the axis least aligned with it (so never degenerate).
 Vec3 anyTangent(const Vec3& m)
 {
@@ -193,21 +200,29 @@ std::vector<NodeShape> nodeShapesOf(const GrainAsset& asset)
     for (size_t i = 0; i < shapes.size(); ++i)
         shapeFromLevelSet(sampler, asset.voxelSize, asset.nodes.positions[i], shapes[i]);
     const NodeNeighbours neighbours(asset.nodes);
-    for (size_t i = 0; i < shapes.size(); ++i)
-        cellOfNode(asset.nodes, shapes, neighbours, static_cast<int>(i), shapes[i]);
+    for (size_t i = 0; i < shapes.size(); ++i) {
+        NodeShape& s = shapes[i];
+        cellOfNode(asset.nodes, shapes, neighbours, static_cast<int>(i), s);
+        const double e = s.reach;
+        // Rounded up: a bound must not shrink in the float.
+        s.lift = std::nextafter(static_cast<float>(0.5 * e * e * std::max(0.0, -lowestCurvature(s))),
+                                std::numeric_limits<float>::max());
+    }
     return shapes;
 }
 
 double patchReachOf(const std::vector<NodeShape>& shapes)
 {
     double reach = 0.0;
-    for (const NodeShape& s : shapes) {
-        const double mean = 0.5 * (s.k11 + s.k22), half = 0.5 * (s.k11 - s.k22);
-        const double lowest = mean - std::sqrt(half * half + s.k12 * s.k12);
-        const double e = s.reach;
-        reach = std::max(reach, e + 0.5 * e * e * std::max(0.0, -lowest));
-    }
+    for (const NodeShape& s : shapes) reach = std::max(reach, double(s.reach) + double(s.lift));
     return reach;
+}
+
+double concavityOf(const std::vector<NodeShape>& shapes)
+{
+    double concavity = 0.0;
+    for (const NodeShape& s : shapes) concavity = std::max(concavity, -lowestCurvature(s));
+    return concavity;
 }
 
 GrainAsset withNodeShapes(const GrainAsset& asset)
@@ -215,6 +230,7 @@ GrainAsset withNodeShapes(const GrainAsset& asset)
     GrainAsset out = asset;
     out.nodeShapes = nodeShapesOf(asset);
     out.patchReach = patchReachOf(out.nodeShapes);
+    out.patchConcavity = concavityOf(out.nodeShapes);
     return out;
 }
 

@@ -312,7 +312,7 @@ TEST(PatchQuadrature, PatchWhollyClearGivesNothingAndThePeakBoundIsAnUpperBound)
     } clear[] = {
         {quadratic(-0.5, 0.1, 0.2, 0.0, 0.0, 0.0), 1.0},
         {quadratic(-0.5, 0.1, 0.2, -0.3, 0.1, -0.2), 1.0},  // bends toward the body, not enough
-        {quadratic(-0.1, 0.3, 0.0, 1.0, 0.0, 1.0), 1.0},    // max −0.055 at (0.3, 0); bound 0.2
+        {quadratic(-0.1, 0.3, 0.0, 1.0, 0.0, 1.0), 1.0},    // max −0.055 at (0.3, 0): the vertex
         {quadratic(-1e-3, 0.0, 0.0, 5.0, 0.0, 5.0), 0.01},
     };
     for (const auto& c : clear) {
@@ -327,7 +327,8 @@ TEST(PatchQuadrature, PatchWhollyClearGivesNothingAndThePeakBoundIsAnUpperBound)
     }
     EXPECT_LE(patchPeakBound(clear[0].d, 1.0), 0.0);
     EXPECT_LE(patchPeakBound(clear[1].d, 1.0), 0.0);
-    EXPECT_GT(patchPeakBound(clear[2].d, 1.0), 0.0);  // so the rays decided that one
+    // C positive definite: the bound is the vertex's −0.055 itself (the rim's would be 0.2).
+    EXPECT_NEAR(patchPeakBound(clear[2].d, 1.0), -0.055, 1e-15);
 
     int negativeBounds = 0;
     for (const auto& [d, rho] : randomPatches(500, 5)) {

@@ -316,9 +316,10 @@ TEST(NodeShape, PatchesHaveTheShapeAndAreaOfTheNodesVoronoiCells)
     }
 }
 
-// patchReachOf: over the nodes, the largest of e + ½e²·max(0, −λ_min(S)), e the patch's reach
-// (along the surface e, plus the bend's rise over e where the patch bends toward the body).
-// Shapes made by hand, the eigenvalues by Eigen.
+// patchReachOf: over the nodes, the largest of e + lift, e the patch's largest extent and lift
+// = ½e²·max(0, −λ_min(S)) (the bend's rise over e where the patch bends toward the body; set
+// here as nodeShapesOf sets it, checked on a cavity below). Shapes made by hand, the
+// eigenvalues by Eigen.
 TEST(NodeShape, PatchReachOfHandMadeShapes)
 {
     std::vector<NodeShape> shapes(3);
@@ -335,13 +336,14 @@ TEST(NodeShape, PatchReachOfHandMadeShapes)
         S << ks[i][0], ks[i][1], ks[i][1], ks[i][2];
         const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S).eigenvalues()(0);
         const double e = reaches[i];
+        shapes[i].lift = static_cast<float>(0.5 * e * e * std::max(0.0, -lowest));
         expected = std::max(expected, e + 0.5 * e * e * std::max(0.0, -lowest));
     }
     // Node 0 is convex: 0.3; node 1 (λ_min = −0.25 − √(0.5625 + 0.09) ≈ −1.058): 0.2212;
     // node 2 (λ_min = −0.8): 0.25 + ½·0.0625·0.8 = 0.275. The largest, node 0's 0.3.
     EXPECT_NEAR(patchReachOf(shapes), expected, 1e-7);
     EXPECT_NEAR(patchReachOf(shapes), 0.3, 1e-7);  // (a float's 0.3)
-    shapes[0].k11 = -3.0;  // node 0 now bends toward the body: 0.3 + ½·0.09·3
+    shapes[0].lift = 0.5f * 0.09f * 3.0f;  // node 0 now bends toward the body: 0.3 + ½·0.09·3
     EXPECT_NEAR(patchReachOf(shapes), 0.3 + 0.5 * 0.09 * 3.0, 1e-7);
     EXPECT_EQ(patchReachOf({}), 0.0);
 }
@@ -368,7 +370,9 @@ TEST(NodeShape, PatchReachCoversTheLargestPatchAndItsBend)
         ASSERT_NEAR(s.k11, -k, 1e-12);
         ASSERT_NEAR(s.k22, -k, 1e-12);
     }
-    EXPECT_NEAR(cavity.patchReach, r + 0.5 * r * r * k, 1e-12 * r);
+    // The lift is kept as a float rounded up (a bound must not shrink): to 1e-7.
+    EXPECT_NEAR(cavity.patchReach, r + 0.5 * r * r * k, 1e-7 * r);
+    EXPECT_GE(cavity.patchReach, r + 0.5 * r * r * k * (1.0 - 1e-7));
 
     const GrainAsset box = withNodeShapes(bakeBox());
     double boxLargest = 0.0;

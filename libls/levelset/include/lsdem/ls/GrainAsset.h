@@ -59,6 +59,9 @@ struct GrainAsset
     /// stored in the file, and at 144 bytes a node not kept where no law reads it.
     std::vector<NodeShape> nodeShapes;
     double patchReach = 0.0;  ///< patchReachOf(nodeShapes), length; 0 without them
+    /// concavityOf(nodeShapes), 1/length: how sharply the surface bends toward a patch that
+    /// faces it (0 for a convex grain); 0 without them
+    double patchConcavity = 0.0;
     AreaRule areaRule = AreaRule::Mesh;
     NodeSpacing spacing;                 ///< nearest-neighbour node spacing (SDP statistics)
 

@@ -35,6 +35,10 @@ struct NodeShape
     double k11 = 0.0, k12 = 0.0, k22 = 0.0;  ///< the shape operator, 1/length
     std::array<float, kPatchRays> extents{};  ///< the patch along each ray, length
     float reach = 0.0f;                        ///< the largest extent
+    /// How far the patch bends toward a body it faces beyond its extents: ½·reach²·(the
+    /// surface's concavity here, 0 where convex). A node farther than reach + lift from a
+    /// plane (at a unit slope) cannot touch it.
+    float lift = 0.0f;
 
     Vec3 secondTangent() const { return normal.cross(tangent); }
 };
@@ -51,11 +55,16 @@ struct NodeShape
 std::vector<NodeShape> nodeShapesOf(const GrainAsset& asset);
 
 /// How far beyond its node, toward a body it faces, a node's patch can reach: its largest
-/// extent e plus ½e²·(the surface's concavity there), the largest over the nodes. A node
-/// farther than this (plus the body's own bend) from a body cannot touch it.
+/// extent plus its lift, the largest over the nodes. A node farther than this (plus the body's
+/// own bend) from a body cannot touch it.
 double patchReachOf(const std::vector<NodeShape>& shapes);
 
-/// A copy of @a asset with its node shapes and patch reach (GrainAsset::nodeShapes).
+/// The surface's largest concavity at the nodes, max(0, −λ_min(S)) over them, 1/length: how
+/// much another body's patch facing this surface can find it bending toward it (0 for a convex
+/// surface), which tells how far from it such a patch may touch it.
+double concavityOf(const std::vector<NodeShape>& shapes);
+
+/// A copy of @a asset with its node shapes, patch reach and concavity (GrainAsset::nodeShapes).
 GrainAsset withNodeShapes(const GrainAsset& asset);
 
 } // namespace lsdem

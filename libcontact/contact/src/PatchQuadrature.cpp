@@ -212,4 +212,20 @@ bool fillPatchContact(const PatchIntegral& integral, const PatchFrame& frame,
     return true;
 }
 
+void addPatchContact(int node, const NodeShape& shape, const PatchFrame& frame,
+                     const PatchDepth& depth, const Vec3& nodePosition, const Vec3& normal,
+                     std::vector<NodeContact>& out, long long& inContact)
+{
+    if (patchPeakBound(depth, shape.reach) <= 0.0) return;
+    NodeContact c;
+    Vec3 offset;
+    if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, c, offset))
+        return;
+    ++inContact;
+    c.node = node;
+    c.normal = normal;
+    c.point = nodePosition + offset + 0.5 * c.depth * normal;
+    out.push_back(c);
+}
+
 } // namespace lsdem

@@ -12,24 +12,16 @@ namespace {
 
 /// The patch of node @a i of @a a (at @a rotation, world position @a x, @a distance in front
 /// of @a plane) against the plane: appended to @a out if any of it is behind.
-void addPatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation, const Vec3& x,
-                     double distance, const Plane& plane, std::vector<NodeContact>& out,
-                     NodeCheckStats& stats)
+void addPlanePatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& rotation,
+                          const Vec3& x, double distance, const Plane& plane,
+                          std::vector<NodeContact>& out, NodeCheckStats& stats)
 {
     const NodeShape& shape = a.nodeShapes[static_cast<size_t>(i)];
     if (distance >= double(shape.reach) + double(shape.lift)) return;  // out of its reach
     const PatchFrame frame = patchFrame(shape, rotation);
     // The plane's φ is the distance in front of it, ∇φ its normal, and it does not bend.
     const PatchDepth depth = patchDepth(frame, distance, plane.normal, 0.0, 0.0, 0.0);
-    if (patchPeakBound(depth, shape.reach) <= 0.0) return;
-    NodeContact c;
-    Vec3 offset;
-    if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, c, offset)) return;
-    ++stats.nodesInContact;
-    c.node = i;
-    c.normal = plane.normal;
-    c.point = x + offset + 0.5 * c.depth * plane.normal;
-    out.push_back(c);
+    addPatchContact(i, shape, frame, depth, x, plane.normal, out, stats.nodesInContact);
 }
 
 } // namespace
@@ -67,7 +59,7 @@ void findPlaneContacts(const GrainAsset& a, const RigidPose& pose, const Plane& 
             const double distance = plane.signedDistance(x);
             if (patches) {
                 if (distance < reach && plane.withinPatch(x, distance))
-                    addPatchContact(a, i, rotation, x, distance, plane, out, stats);
+                    addPlanePatchContact(a, i, rotation, x, distance, plane, out, stats);
                 continue;
             }
             if (!(distance < 0.0) || !plane.withinPatch(x, distance)) continue;

@@ -45,15 +45,7 @@ void addSpherePatchContact(const GrainAsset& a, int i, const Eigen::Matrix3d& ro
     const PatchDepth depth = patchDepth(
         frame, distance - r, n, hessian(frame.tangent1, frame.tangent1),
         hessian(frame.tangent1, frame.tangent2), hessian(frame.tangent2, frame.tangent2));
-    if (patchPeakBound(depth, shape.reach) <= 0.0) return;
-    NodeContact nc;
-    Vec3 shift;
-    if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, nc, shift)) return;
-    ++stats.nodesInContact;
-    nc.node = i;
-    nc.normal = n;
-    nc.point = x + shift + 0.5 * nc.depth * n;
-    out.push_back(nc);
+    addPatchContact(i, shape, frame, depth, x, n, out, stats.nodesInContact);
 }
 
 /// Nodes of @a a inside the sphere (centre @a c, radius @a r): depth r - |x - c|. With

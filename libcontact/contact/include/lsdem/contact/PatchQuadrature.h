@@ -15,6 +15,7 @@
 #include "lsdem/ls/NodeShape.h"
 
 #include <string>
+#include <vector>
 
 namespace lsdem {
 
@@ -87,6 +88,14 @@ PatchFrame patchFrame(const NodeShape& shape, const Eigen::Matrix3d& rotation);
 /// body's surface bends away from the patch as its own does).
 PatchDepth patchDepth(const PatchFrame& frame, double phi, const Vec3& gradient, double h11,
                       double h12, double h22);
+
+/// The contact of node @a node (shape @a shape, its frame @a frame in the world) with a body
+/// whose depth over its patch is @a depth and whose normal there is @a normal: appended to
+/// @a out, at the patch's centre moved half its depth along the normal, if any of the patch
+/// is in contact (and counted in @a inContact).
+void addPatchContact(int node, const NodeShape& shape, const PatchFrame& frame,
+                     const PatchDepth& depth, const Vec3& nodePosition, const Vec3& normal,
+                     std::vector<NodeContact>& out, long long& inContact);
 
 /// Fill the depth, area, mean square depth and peak of @a contact from @a integral (its node,
 /// normal and point are the caller's), and return the offset of the force's centre (the

@@ -59,10 +59,12 @@ void bindSceneContents(py::class_<Scene>& scene)
                          throw Error("", "there is already a contact law between materials '" +
                                              a + "' and '" + b + "'",
                                      "give each pair of materials one law");
-                 c.model.formulation = parseFormulation(formulation);
-                 c.model.testing = parseNodeTesting(testing);
-                 c.model.quadrature = parseNodeQuadrature(quadrature);
-                 // The contact library's schema checks the numbers, as the scene reader does.
+                 // The contact library's schema sets the words and checks the numbers, as the
+                 // scene reader does.
+                 const std::pair<const char*, const std::string*> words[] = {
+                     {"formulation", &formulation}, {"testing", &testing},
+                     {"quadrature", &quadrature}};
+                 for (const auto& [key, value] : words) contactChoice(key).set(c.model, *value);
                  const std::pair<const char*, double> given[] = {
                      {"normal_stiffness", normalStiffness}, {"shear_stiffness", shearStiffness},
                      {"friction", friction}, {"restitution", restitution}};
@@ -79,11 +81,13 @@ void bindSceneContents(py::class_<Scene>& scene)
                  s.contacts.push_back(c);
              },
              py::arg("material_a"), py::arg("material_b"), py::kw_only(),
-             py::arg("formulation") = "adapted", py::arg("normal_stiffness"),
+             py::arg("formulation") = contactChoice("formulation").defaultValue(),
+             py::arg("normal_stiffness"),
              py::arg("shear_stiffness") = contactCoefficientDefault("shear_stiffness"),
              py::arg("friction") = contactCoefficientDefault("friction"),
              py::arg("restitution") = contactCoefficientDefault("restitution"),
-             py::arg("testing") = "symmetric", py::arg("quadrature") = "node",
+             py::arg("testing") = contactChoice("testing").defaultValue(),
+             py::arg("quadrature") = contactChoice("quadrature").defaultValue(),
              "The contact law between two materials: formulation ('adapted', 'original', "
              "'single-node', 'volume'), normal_stiffness (kn or kn*, see docs/contact.md), "
              "shear springs, friction, restitution in (0, 1] (1: no damping), node testing "

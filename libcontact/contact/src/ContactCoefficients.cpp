@@ -80,6 +80,34 @@ bool ContactCoefficient::written(const ContactModel& model) const
     return !defaultValue || get(model) != *defaultValue;
 }
 
+const std::vector<ContactChoice>& contactChoices()
+{
+    static const std::vector<ContactChoice> all = [] {
+        std::vector<std::string> formulations;
+        for (Formulation f : allFormulations()) formulations.push_back(formulationName(f));
+        return std::vector<ContactChoice>{
+            {"formulation", formulations,
+             [](const ContactModel& m) { return formulationName(m.formulation); },
+             [](ContactModel& m, const std::string& v) { m.formulation = parseFormulation(v); }},
+            {"testing", {nodeTestingName(NodeTesting::OneWay), nodeTestingName(NodeTesting::Symmetric)},
+             [](const ContactModel& m) { return nodeTestingName(m.testing); },
+             [](ContactModel& m, const std::string& v) { m.testing = parseNodeTesting(v); }},
+            {"quadrature",
+             {nodeQuadratureName(NodeQuadrature::Point), nodeQuadratureName(NodeQuadrature::Patch)},
+             [](const ContactModel& m) { return nodeQuadratureName(m.quadrature); },
+             [](ContactModel& m, const std::string& v) { m.quadrature = parseNodeQuadrature(v); },
+             false}};
+    }();
+    return all;
+}
+
+const ContactChoice& contactChoice(const std::string& key)
+{
+    for (const ContactChoice& c : contactChoices())
+        if (c.key == key) return c;
+    throw std::out_of_range("no contact choice named " + key);
+}
+
 const std::vector<ContactCoefficient>& contactCoefficients()
 {
     static const std::vector<ContactCoefficient> all = [] {

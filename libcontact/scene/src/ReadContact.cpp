@@ -23,15 +23,10 @@ ContactSpec readContact(TableReader& t, const Scene& scene)
     c.materialA = idx[0];
     c.materialB = idx[1];
     ContactModel& model = c.model;
-    std::vector<std::string> formulations;
-    for (Formulation f : allFormulations()) formulations.push_back(formulationName(f));
-    model.formulation =
-        parseFormulation(t.choice("formulation", formulations, formulationName(model.formulation)));
-    model.testing = parseNodeTesting(
-        t.choice("testing", {"one-way", "symmetric"}, nodeTestingName(model.testing)));
-    model.quadrature = parseNodeQuadrature(
-        t.choice("quadrature", {"node", "patch"}, nodeQuadratureName(model.quadrature)));
-    // The numbers, as the contact library's schema lists them (ContactCoefficients.h).
+    // The words and the numbers, as the contact library's schema lists them
+    // (ContactCoefficients.h).
+    for (const ContactChoice& k : contactChoices())
+        k.set(model, t.choice(k.key, k.values, k.defaultValue()));
     for (const ContactCoefficient& k : contactCoefficients()) {
         const double v = k.defaultValue ? t.number(k.key, *k.defaultValue) : t.number(k.key);
         if (std::optional<ContactProblem> p = k.rangeProblem(v)) t.fail(p->key, p->problem, p->fix);

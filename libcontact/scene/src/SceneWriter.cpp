@@ -181,11 +181,11 @@ void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
     const ContactModel& m = c.model;
     t.arrayTable("contacts");
     t.strings("materials", scene.materials[c.materialA].name, scene.materials[c.materialB].name);
-    t.string("formulation", formulationName(m.formulation));
-    t.string("testing", nodeTestingName(m.testing));
-    if (m.quadrature != NodeQuadrature::Point) t.string("quadrature", nodeQuadratureName(m.quadrature));
-    // The contact library's schema (ContactCoefficients.h): what is required or not at its
-    // default, with its unit where the formulation decides it.
+    // The contact library's schema (ContactCoefficients.h): its words, then its numbers, each
+    // what is required or not at its default, a number with its unit where the formulation
+    // decides it.
+    for (const ContactChoice& k : contactChoices())
+        if (k.written(m)) t.string(k.key, k.get(m));
     for (const ContactCoefficient& k : contactCoefficients())
         if (k.written(m)) t.number(k.key, k.get(m), k.unit ? k.unit(m) : "");
 }

@@ -2,6 +2,7 @@
 // should and nothing else, the rules between sub-models name the key at fault, a written scene
 // carries what is not at its default, and docs/scenes.md's table says what the schema says.
 #include "lsdem/contact/ContactCoefficients.h"
+#include "lsdem/core/Error.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 using namespace lsdem;
 
@@ -155,11 +157,50 @@ TEST(ContactCoefficients, ScenesMdTableAgreesWithTheSchema)
             expected << "required, " << k.rangeText();
         EXPECT_EQ(defaults[k.key], expected.str()) << k.key;
     }
-    // The other rows are the keys that are not numbers of a sub-model.
+    // The words: each choice's row gives its default as a name in backticks.
+    for (const ContactChoice& k : contactChoices()) {
+        schemaKeys.insert(k.key);
+        ASSERT_TRUE(defaults.count(k.key)) << k.key << " is not in docs/scenes.md";
+        EXPECT_EQ(defaults[k.key], "`" + k.defaultValue() + "`") << k.key;
+    }
+    // The other row is the pair of materials.
     for (const auto& [key, value] : defaults) {
         if (schemaKeys.count(key)) continue;
-        EXPECT_TRUE(key == "materials = [\"a\", \"b\"]" || key == "formulation" || key == "testing" ||
-                    key == "quadrature")
+        EXPECT_EQ(key, "materials = [\"a\", \"b\"]")
             << "docs/scenes.md lists '" << key << "', which the schema does not know";
     }
+}
+
+// Each choice takes each of its names and gives it back, refuses any other naming the ones it
+// takes, and its default is what a ContactModel{} holds; only the quadrature is left out of a
+// written scene at its default.
+TEST(ContactCoefficients, ChoicesTakeTheirNamesAndRefuseOthers)
+{
+    std::vector<std::string> keys;
+    for (const ContactChoice& k : contactChoices()) {
+        keys.push_back(k.key);
+        for (const std::string& value : k.values) {
+            ContactModel m;
+            k.set(m, value);
+            EXPECT_EQ(k.get(m), value) << k.key;
+        }
+        ContactModel m;
+        try {
+            k.set(m, "magic");
+            ADD_FAILURE() << k.key << " took 'magic'";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            for (const std::string& value : k.values)
+                EXPECT_NE(what.find(value), std::string::npos) << k.key << ": " << what;
+        }
+        EXPECT_TRUE(k.written(ContactModel{}) == (k.key != "quadrature")) << k.key;
+    }
+    EXPECT_EQ(keys, (std::vector<std::string>{"formulation", "testing", "quadrature"}));
+    EXPECT_EQ(contactChoice("formulation").defaultValue(), formulationName(ContactModel{}.formulation));
+    EXPECT_EQ(contactChoice("testing").defaultValue(), "symmetric");
+    EXPECT_EQ(contactChoice("quadrature").defaultValue(), "node");
+    ContactModel patch;
+    contactChoice("quadrature").set(patch, "patch");
+    EXPECT_TRUE(contactChoice("quadrature").written(patch));
+    EXPECT_THROW(contactChoice("colour"), std::out_of_range);
 }

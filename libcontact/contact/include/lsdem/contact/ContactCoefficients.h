@@ -46,6 +46,34 @@ struct ContactCoefficient
     bool written(const ContactModel& model) const;
 };
 
+/// One named choice of a contact law (its formulation, node testing, quadrature): the schema of
+/// a [[contacts]] entry's words, which the scene reader, the scene writer and Python's
+/// add_contact share as they share the coefficients.
+struct ContactChoice
+{
+    std::string key;                  ///< as scenes and Python's add_contact name it
+    std::vector<std::string> values;  ///< the names it accepts, in the order messages list them
+    std::string (*get)(const ContactModel&);
+    /// Set on @a model the choice named @a value. @throw Error naming the accepted values.
+    void (*set)(ContactModel&, const std::string& value);
+    /// Whether a scene writes it always (the formulation, the testing: what a reader most
+    /// needs to see) or only when not at its default (the quadrature).
+    bool alwaysWritten = true;
+
+    /// The default's name: what a ContactModel{} holds.
+    std::string defaultValue() const { return get(ContactModel{}); }
+    bool written(const ContactModel& model) const
+    {
+        return alwaysWritten || get(model) != defaultValue();
+    }
+};
+
+/// Every choice, in the order a scene writes them: formulation, testing, quadrature.
+const std::vector<ContactChoice>& contactChoices();
+
+/// The choice named @a key. @throw std::out_of_range if there is none (a program error).
+const ContactChoice& contactChoice(const std::string& key);
+
 /// Every coefficient, sub-model by sub-model (normal, tangential, damping): the order a scene
 /// writes them in.
 const std::vector<ContactCoefficient>& contactCoefficients();

@@ -81,6 +81,16 @@ PatchIntegral integrateRays(const PatchDepth& d, ExtentOf extentOf)
         const double cs = r.cos[k], sn = r.sin[k];
         const double a = d.g1 * cs + d.g2 * sn;
         const double b = -0.5 * (d.c11 * cs * cs + 2 * d.c12 * cs * sn + d.c22 * sn * sn);
+        // The deepest point along the ray: an end, or the vertex of a concave d. A ray that
+        // never goes in adds nothing (most of a patch at a contact's edge).
+        double peak = std::max(d.d0, d.d0 + rho * (a + rho * b));
+        if (b < 0.0) {
+            const double vertex = -a / (2 * b);
+            if (vertex > 0.0 && vertex < rho)
+                peak = std::max(peak, d.d0 + vertex * (a + vertex * b));
+        }
+        if (!(peak > 0.0)) continue;
+        out.peak = std::max(out.peak, peak);
         // d along the ray is positive between its roots in (0, ρ) and the ends.
         std::array<double, 4> cuts{0.0, rho, rho, rho};
         int count = 1;
@@ -116,14 +126,6 @@ PatchIntegral integrateRays(const PatchDepth& d, ExtentOf extentOf)
         out.squareDepth += weight * ray.squareDepth;
         out.moment1 += weight * ray.moment * cs;
         out.moment2 += weight * ray.moment * sn;
-        // The deepest point along the ray: an end, or the vertex of a concave d.
-        double peak = std::max(d.d0, d.d0 + rho * (a + rho * b));
-        if (b < 0.0) {
-            const double vertex = -a / (2 * b);
-            if (vertex > 0.0 && vertex < rho)
-                peak = std::max(peak, d.d0 + vertex * (a + vertex * b));
-        }
-        out.peak = std::max(out.peak, peak);
     }
     return out;
 }

@@ -142,6 +142,15 @@ double levelSetSlopeBound(const LevelSetGrid& levelSet)
     return largest / levelSet.voxelSize;
 }
 
+GrainAsset withExactDistance(GrainAsset asset, std::shared_ptr<const ExactDistance> distance)
+{
+    auto levelSet = std::make_shared<LevelSetGrid>(*asset.levelSet);
+    levelSet->exact = std::move(distance);
+    asset.levelSet = levelSet;
+    deriveContactBounds(asset);
+    return asset;
+}
+
 void deriveContactBounds(GrainAsset& asset)
 {
     asset.nodeBlocks = groupNodesIntoBlocks(asset.nodes);

@@ -35,18 +35,6 @@ bool isGrainPair(const Case& c) { return c.kind.rfind("grain-grain", 0) == 0; }
 
 namespace {
 
-/// @a asset with its level set sampled as @a shape's exact distance (ExactDistance.h): what the
-/// fixtures expect then depends on neither the voxel size nor how the voxels are stored (the
-/// voxels still bound where φ < 0 can be, for culling).
-GrainAsset sampledExactly(GrainAsset asset, const AnalyticShape& shape)
-{
-    auto levelSet = std::make_shared<LevelSetGrid>(*asset.levelSet);
-    levelSet->exact = shape.exactDistance();
-    asset.levelSet = levelSet;
-    deriveContactBounds(asset);
-    return asset;
-}
-
 /// A unit sphere: its exact distance (voxels of 0.1 for the culling bounds); the nodes the
 /// 642 vertices of an icosahedron subdivided three times (built in TestMeshes.h, not by the
 /// remesher, so they depend on nothing but arithmetic), with mesh areas and exact normals.
@@ -66,7 +54,7 @@ GrainAsset bakeSphere()
     a.spacing = nodeSpacing(a.nodes);
     a.boundingRadius = 0.0;
     for (const Vec3& p : a.nodes.positions) a.boundingRadius = std::max(a.boundingRadius, p.norm());
-    return sampledExactly(a, AnalyticShape::sphere(1.0));
+    return withExactDistance(a, AnalyticShape::sphere(1.0).exactDistance());
 }
 
 /// A 2 × 1.6 × 1.2 box: its exact distance (voxels of 0.1 for the culling bounds), structured
@@ -79,7 +67,7 @@ GrainAsset bakeBox()
     o.exteriorBandVoxels = 3;
     std::vector<std::string> warnings;
     const AnalyticShape box = AnalyticShape::box(2.0, 1.6, 1.2);
-    return sampledExactly(bakeAnalytic(box, o, warnings), box);
+    return withExactDistance(bakeAnalytic(box, o, warnings), box.exactDistance());
 }
 
 } // namespace

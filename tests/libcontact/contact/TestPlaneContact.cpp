@@ -213,12 +213,8 @@ TEST(PlaneContact, FlatFacePressedWhollyInGivesTheSameForceWithPatchesAsWithNode
     o.nodeSpacing = 0.2;
     std::vector<std::string> warnings;
     const AnalyticShape box = AnalyticShape::box(2.0, 1.6, 1.2);
-    GrainAsset baked = bakeAnalytic(box, o, warnings);
-    auto levelSet = std::make_shared<LevelSetGrid>(*baked.levelSet);
-    levelSet->exact = box.exactDistance();
-    baked.levelSet = levelSet;
-    deriveContactBounds(baked);
-    const GrainAsset a = withNodeShapes(baked);
+    const GrainAsset a =
+        withNodeShapes(withExactDistance(bakeAnalytic(box, o, warnings), box.exactDistance()));
     Plane floor;
     floor.halfU = floor.halfV = 0.5;  // within the face however it turns about z
     for (double delta : {0.01, 0.05}) {

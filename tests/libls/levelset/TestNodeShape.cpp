@@ -52,16 +52,6 @@ GrainAsset bakeBox()
     return bakeAnalytic(boxShape(), o, warnings);
 }
 
-/// @a asset with its level set sampled as @a shape's closed-form distance (LevelSetGrid::exact).
-GrainAsset sampledExactly(GrainAsset asset, const AnalyticShape& shape)
-{
-    auto levelSet = std::make_shared<LevelSetGrid>(*asset.levelSet);
-    levelSet->exact = shape.exactDistance();
-    asset.levelSet = levelSet;
-    deriveContactBounds(asset);
-    return asset;
-}
-
 /// A sphere's distance with its gradient in closed form, x/|x| (or −x/|x| for the space outside
 /// it, a spherical cavity, @a inverted): unlike AnalyticShape's (x − closest point)/φ, well
 /// conditioned at the surface.
@@ -114,7 +104,7 @@ std::pair<int, double> faceOf(const Vec3& p)
 // surface: the normal there must not depend on which.)
 TEST(NodeShape, SphereWithItsExactDistanceIsRoundWithCurvatureOneOverR)
 {
-    const GrainAsset a = sampledExactly(bakeSphere(), AnalyticShape::sphere(kRadius));
+    const GrainAsset a = withExactDistance(bakeSphere(), AnalyticShape::sphere(kRadius).exactDistance());
     const std::vector<NodeShape> shapes = nodeShapesOf(a);
     ASSERT_EQ(shapes.size(), a.nodes.size());
     ASSERT_GT(shapes.size(), 100u);
@@ -213,7 +203,7 @@ TEST(NodeShape, BoxFacesAreFlatAwayFromTheEdges)
 {
     for (const bool exact : {true, false}) {
         const GrainAsset voxels = bakeBox();
-        const GrainAsset a = exact ? sampledExactly(voxels, boxShape()) : voxels;
+        const GrainAsset a = exact ? withExactDistance(voxels, boxShape().exactDistance()) : voxels;
         const std::vector<NodeShape> shapes = nodeShapesOf(a);
         ASSERT_EQ(shapes.size(), a.nodes.size());
         const double margin = exact ? 1.0001 * kVoxel : 3.0 * kVoxel;

@@ -60,6 +60,12 @@ struct GrainAsset;
 /// once an asset is baked or loaded.
 void deriveContactBounds(GrainAsset& asset);
 
+/// @a asset with its level set answering with @a distance (an analytic shape's exact distance,
+/// AnalyticShape::exactDistance) instead of its voxels, and its contact bounds derived again
+/// (the voxels still bound where φ < 0 can be, for culling). For references that must depend
+/// on neither the voxel size nor how the voxels are stored.
+GrainAsset withExactDistance(GrainAsset asset, std::shared_ptr<const ExactDistance> distance);
+
 /// A linear transform with the given voxel size whose index (0,0,0) sits at @a origin.
 openvdb::math::Transform::Ptr makeGridTransform(double voxelSize, const Vec3& origin);
 

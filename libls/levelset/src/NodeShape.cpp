@@ -4,11 +4,12 @@
 #include "lsdem/ls/GrainAsset.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
+#include "NodeHashGrid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <unordered_map>
 
 namespace lsdem {
 
@@ -62,46 +63,36 @@ void shapeFromLevelSet(LevelSetSampler& sampler, double h, const Vec3& x, NodeSh
 class NodeNeighbours
 {
 public:
-    explicit NodeNeighbours(const SurfaceNodes& nodes) : mNodes(nodes)
+    explicit NodeNeighbours(const SurfaceNodes& nodes)
+        : mPositions(nodes.positions), mGrid(nodes.positions, searchRadius(nodes))
     {
-        double largest = 0.0;
-        for (const double a : nodes.areas) largest = std::max(largest, a);
-        mCell = std::max(3.0 * std::sqrt(largest / kPi), 1e-300);
-        for (size_t i = 0; i < nodes.size(); ++i)
-            mGrid[key(cellOf(nodes.positions[i]))].push_back(static_cast<int>(i));
     }
 
     /// Call @a visit(j) for every other node j in the 27 cells around node @a i.
     template <typename Visit>
     void around(int i, Visit&& visit) const
     {
-        const Eigen::Vector3i c = cellOf(mNodes.positions[static_cast<size_t>(i)]);
+        const Eigen::Vector3i c = mGrid.cellOf(mPositions[static_cast<size_t>(i)]);
         for (int dx = -1; dx <= 1; ++dx)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = mGrid.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-                    if (it == mGrid.end()) continue;
-                    for (const int j : it->second)
+                    const std::vector<int>* inCell = mGrid.nodesIn(c + Eigen::Vector3i(dx, dy, dz));
+                    if (!inCell) continue;
+                    for (const int j : *inCell)
                         if (j != i) visit(j);
                 }
     }
 
 private:
-    Eigen::Vector3i cellOf(const Vec3& p) const
+    static double searchRadius(const SurfaceNodes& nodes)
     {
-        return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / mCell)),
-                               static_cast<int>(std::floor(p.y() / mCell)),
-                               static_cast<int>(std::floor(p.z() / mCell)));
-    }
-    static int64_t key(const Eigen::Vector3i& c)
-    {
-        const auto field = [](int v) { return (uint64_t(int64_t(v)) & 0x1FFFFFu); };
-        return int64_t((field(c.x()) << 42) | (field(c.y()) << 21) | field(c.z()));
+        double largest = 0.0;
+        for (const double a : nodes.areas) largest = std::max(largest, a);
+        return std::max(3.0 * std::sqrt(largest / kPi), 1e-300);
     }
 
-    const SurfaceNodes& mNodes;
-    double mCell = 1.0;
-    std::unordered_map<int64_t, std::vector<int>> mGrid;
+    const std::vector<Vec3>& mPositions;
+    NodeHashGrid mGrid;
 };
 
 /// A convex polygon in a node's tangent plane (u₁, u₂), cut by half-planes.

@@ -1,5 +1,7 @@
 #include "lsdem/ls/SurfaceNodes.h"
 
+#include "NodeHashGrid.h"
+
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
@@ -114,27 +116,15 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
     }
     const double cell = std::max(std::sqrt(std::max(nodes.totalArea(), 1e-300) / n),
                                  1e-9 * (hi - lo).norm());
-    auto cellOf = [&](const Vec3& p) {
-        return Eigen::Vector3i(static_cast<int>((p.x() - lo.x()) / cell),
-                               static_cast<int>((p.y() - lo.y()) / cell),
-                               static_cast<int>((p.z() - lo.z()) / cell));
-    };
-    // Pack three cell coordinates (each offset by one so the -1 neighbours of the first
-    // cell stay non-negative) into 21 bits apiece; shifting unsigned values is well defined.
-    auto key = [](const Eigen::Vector3i& c) {
-        const auto field = [](int v) { return uint64_t(int64_t(v) + 1) & 0x1FFFFFu; };
-        return int64_t((field(c.x()) << 42) | (field(c.y()) << 21) | field(c.z()));
-    };
-    std::unordered_map<int64_t, std::vector<int>> grid;
-    for (size_t i = 0; i < n; ++i) grid[key(cellOf(nodes.positions[i]))].push_back(int(i));
-    const int maxShell = static_cast<int>(((hi - lo) / cell).maxCoeff()) + 2;
+    const NodeHashGrid grid(nodes.positions, cell);
+    const int maxShell = grid.cellsAcross() + 1;
 
     // Each node's nearest neighbour in parallel (the grid is only read), then the sums in
     // node order: the same numbers on any thread count.
     std::vector<double> nearest(n);
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
         const Vec3& p = nodes.positions[i];
-        const Eigen::Vector3i c = cellOf(p);
+        const Eigen::Vector3i c = grid.cellOf(p);
         double best = std::numeric_limits<double>::infinity();
         for (int shell = 0; shell <= maxShell; ++shell) {
             if ((shell - 1) * cell > best) break;
@@ -143,9 +133,9 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
                     for (int dz = -shell; dz <= shell; ++dz) {
                         if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != shell)
                             continue;
-                        auto it = grid.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-                        if (it == grid.end()) continue;
-                        for (int j : it->second)
+                        const std::vector<int>* inCell = grid.nodesIn(c + Eigen::Vector3i(dx, dy, dz));
+                        if (!inCell) continue;
+                        for (int j : *inCell)
                             if (j != int(i)) best = std::min(best, (nodes.positions[j] - p).norm());
                     }
         }

@@ -2,14 +2,18 @@
 
 #include "lsdem/core/Constants.h"
 #include "lsdem/ls/GrainAsset.h"
+#include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
 #include "NodeHashGrid.h"
+
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace lsdem {
 
@@ -33,30 +37,6 @@ Vec3 anyTangent(const Vec3& m)
     return t.normalized();
 }
 
-/// Normal, tangent and shape operator of the node at @a x from the level set.
-void shapeFromLevelSet(LevelSetSampler& sampler, double h, const Vec3& x, NodeShape& s)
-{
-    const Vec3 gradient = sampler.sample(x).gradient;
-    const double length = gradient.norm();
-    if (!(length > 0.0)) {
-        s.normal = x.norm() > 0.0 ? Vec3(x.normalized()) : Vec3::UnitZ();
-        s.tangent = anyTangent(s.normal);
-        return;  // flat: no curvature known
-    }
-    s.normal = gradient / length;
-    s.tangent = anyTangent(s.normal);
-    const Vec3 t2 = s.secondTangent();
-    // ∇φ's change along each tangent: the Hessian's columns H·t (central differences).
-    auto change = [&](const Vec3& t) {
-        return Vec3((sampler.sample(x + h * t).gradient - sampler.sample(x - h * t).gradient) /
-                    (2.0 * h));
-    };
-    const Vec3 along1 = change(s.tangent), along2 = change(t2);
-    s.k11 = s.tangent.dot(along1);
-    s.k22 = t2.dot(along2);
-    s.k12 = 0.5 * (t2.dot(along1) + s.tangent.dot(along2));
-}
-
 /// The nodes near each node: a hash grid of cells as wide as the search radius, which is
 /// three times the largest node's equal-area disk (a Voronoi neighbour of a node is rarely
 /// farther than two spacings).
@@ -64,9 +44,12 @@ class NodeNeighbours
 {
 public:
     explicit NodeNeighbours(const SurfaceNodes& nodes)
-        : mPositions(nodes.positions), mGrid(nodes.positions, searchRadius(nodes))
+        : mPositions(nodes.positions), mRadius(searchRadius(nodes)), mGrid(nodes.positions, mRadius)
     {
     }
+
+    /// Every node within this distance of a node is among those around() visits.
+    double radius() const { return mRadius; }
 
     /// Call @a visit(j) for every other node j in the 27 cells around node @a i.
     template <typename Visit>
@@ -92,8 +75,94 @@ private:
     }
 
     const std::vector<Vec3>& mPositions;
+    double mRadius;
     NodeHashGrid mGrid;
 };
+
+/// Normal, tangent and shape operator of the node at @a x from the level set.
+void shapeFromLevelSet(LevelSetSampler& sampler, double h, const Vec3& x, NodeShape& s)
+{
+    const Vec3 gradient = sampler.sample(x).gradient;
+    const double length = gradient.norm();
+    if (!(length > 0.0)) {
+        s.normal = x.norm() > 0.0 ? Vec3(x.normalized()) : Vec3::UnitZ();
+        s.tangent = anyTangent(s.normal);
+        return;  // flat: no curvature known
+    }
+    s.normal = gradient / length;
+    s.tangent = anyTangent(s.normal);
+    const Vec3 t2 = s.secondTangent();
+    // ∇φ's change along each tangent: the Hessian's columns H·t (central differences).
+    auto change = [&](const Vec3& t) {
+        return Vec3((sampler.sample(x + h * t).gradient - sampler.sample(x - h * t).gradient) /
+                    (2.0 * h));
+    };
+    const Vec3 along1 = change(s.tangent), along2 = change(t2);
+    s.k11 = s.tangent.dot(along1);
+    s.k22 = t2.dot(along2);
+    s.k12 = 0.5 * (t2.dot(along1) + s.tangent.dot(along2));
+}
+
+/// The surface through node @a i fitted to its neighbours on the same sheet: in the frame
+/// (t₁, t₂, m) of @a s, their heights w over the tangent plane by the jet
+/// w = a·u₁ + b·u₂ − ½(k11·u₁² + 2·k12·u₁u₂ + k22·u₂²), least squares through the node itself;
+/// then the normal turned by (a, b) and the jet fitted again in the turned frame. Why: the
+/// nodes lie on the surface, and a fit over a dozen of them is good to O((ρ/R)²), where the
+/// level set's voxels give curvatures wrong by O(1/R) node by node (its trilinear gradient
+/// jumps across cell faces) and normals by O(h/R). Neighbours within @a radius whose first
+/// normals are within 40° of this one's (so a box's other face or a plate's far side stays
+/// out). Returns false, leaving @a s as it was, where fewer than 7 neighbours qualify or they
+/// do not fix a jet (all on a line, or the turn beyond 40°).
+bool shapeFromNeighbours(const SurfaceNodes& nodes, const std::vector<NodeShape>& first,
+                         const NodeNeighbours& neighbours, int i, double radius, NodeShape& s)
+{
+    constexpr double kSameSheet = 0.766;  // cos 40°
+    constexpr int kFewest = 7, kNearest = 12;
+    const Vec3& x = nodes.positions[static_cast<size_t>(i)];
+    const Vec3 m0 = first[static_cast<size_t>(i)].normal;
+    std::vector<Vec3> offsets;
+    neighbours.around(i, [&](int j) {
+        const Vec3 q = nodes.positions[static_cast<size_t>(j)] - x;
+        if (q.squaredNorm() <= radius * radius &&
+            first[static_cast<size_t>(j)].normal.dot(m0) >= kSameSheet)
+            offsets.push_back(q);
+    });
+    if (static_cast<int>(offsets.size()) < kFewest) return false;
+    if (offsets.size() > static_cast<size_t>(kNearest)) {
+        std::nth_element(offsets.begin(), offsets.begin() + kNearest, offsets.end(),
+                         [](const Vec3& p, const Vec3& q) { return p.squaredNorm() < q.squaredNorm(); });
+        offsets.resize(static_cast<size_t>(kNearest));
+    }
+    NodeShape fitted = s;
+    fitted.normal = m0;
+    fitted.tangent = anyTangent(m0);
+    Eigen::Matrix<double, 5, 1> jet;
+    for (int pass = 0; pass < 2; ++pass) {
+        const Vec3 t2 = fitted.secondTangent();
+        Eigen::MatrixXd design(offsets.size(), 5);
+        Eigen::VectorXd heights(offsets.size());
+        for (size_t r = 0; r < offsets.size(); ++r) {
+            const double u1 = offsets[r].dot(fitted.tangent), u2 = offsets[r].dot(t2);
+            design.row(static_cast<Eigen::Index>(r)) << u1, u2, -0.5 * u1 * u1, -u1 * u2,
+                -0.5 * u2 * u2;
+            heights[static_cast<Eigen::Index>(r)] = offsets[r].dot(fitted.normal);
+        }
+        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+        if (qr.rank() < 5) return false;
+        jet = qr.solve(heights);
+        if (pass == 0) {
+            const Vec3 turned = fitted.normal - jet[0] * fitted.tangent - jet[1] * t2;
+            fitted.normal = turned.normalized();
+            if (fitted.normal.dot(m0) < kSameSheet) return false;
+            fitted.tangent = anyTangent(fitted.normal);
+        }
+    }
+    fitted.k11 = jet[2];
+    fitted.k12 = jet[3];
+    fitted.k22 = jet[4];
+    s = fitted;
+    return true;
+}
 
 /// A convex polygon in a node's tangent plane (u₁, u₂), cut by half-planes.
 class PlanePolygon
@@ -191,6 +260,12 @@ std::vector<NodeShape> nodeShapesOf(const GrainAsset& asset)
     for (size_t i = 0; i < shapes.size(); ++i)
         shapeFromLevelSet(sampler, asset.voxelSize, asset.nodes.positions[i], shapes[i]);
     const NodeNeighbours neighbours(asset.nodes);
+    const std::vector<NodeShape> fromLevelSet = shapes;
+    // An exact distance gives the exact shape; voxels give the nodes' fit a better one.
+    const bool exactDistance = asset.levelSet && asset.levelSet->exact;
+    for (size_t i = 0; i < shapes.size() && !exactDistance; ++i)
+        shapeFromNeighbours(asset.nodes, fromLevelSet, neighbours, static_cast<int>(i),
+                            neighbours.radius(), shapes[i]);
     for (size_t i = 0; i < shapes.size(); ++i) {
         NodeShape& s = shapes[i];
         cellOfNode(asset.nodes, shapes, neighbours, static_cast<int>(i), s);

@@ -166,15 +166,6 @@ void slideToRollOnAFloor(Context& c)
                     hop.basis = "not judged: the original law's stiffness follows its node count "
                                 "in the cap, which varies as the ball rolls; undamped, that shakes";
                     c.report.add(hop);
-                } else if (patches && restitution == 1.0) {
-                    // Not met: the patches' areas vary by ±22 % as the nodes' do, so the cap's
-                    // stiffness still varies a little as the ball rolls, and with nothing to
-                    // damp it the roll's energy pumps the bounce (judged on the finer ball).
-                    hop.informative = true;
-                    hop.basis = "not judged (not met): undamped, the patches' residual variation "
-                                "as the ball rolls pumps a bounce; judged on the ball of " +
-                                std::to_string(resolving) + " nodes";
-                    c.report.add(hop);
                 } else {
                     add(hop);
                 }

@@ -43,12 +43,17 @@ struct NodeShape
     Vec3 secondTangent() const { return normal.cross(tangent); }
 };
 
-/// The shape at every node of @a asset. From its level set: m the unit gradient of φ at the
-/// node, S the tangential part of φ's Hessian (for a signed distance, the shape operator),
-/// the Hessian by central differences of ∇φ one voxel apart (exact where the asset carries
-/// its exact distance); a node where ∇φ vanishes gets a flat patch facing away from the
-/// centroid. From the nodes: each patch is the node's Voronoi cell in its tangent plane among
-/// the nodes near it on the same side (normals less than 90° apart, so a thin plate's far
+/// The shape at every node of @a asset. From the nodes themselves, which lie on the surface: a
+/// jet w = a·u₁ + b·u₂ − ½uᵀSu fitted through the node to its 12 nearest neighbours on the same
+/// sheet (first normals within 40°), the normal turned by (a, b) and the jet fitted again; good
+/// to O((ρ/R)²) for neighbours out to ρ (0.3 % in curvature for a 4000-node ball). Where fewer
+/// than 7 neighbours qualify (an edge, a corner, a lone node), and for an asset that carries its
+/// exact distance (references), from its level set instead: m the unit gradient of φ at the
+/// node, S the tangential part of φ's Hessian by central differences of ∇φ one voxel apart
+/// (exact for an exact distance; from voxels each curvature errs by O(1/R), which is why the
+/// nodes are preferred); a node where ∇φ vanishes gets a flat patch facing away from the
+/// centroid. From the nodes too: each patch is the node's Voronoi cell in its tangent plane
+/// among the nodes near it on the same side (normals less than 90° apart, so a thin plate's far
 /// face does not cut it), at most twice the radius of the disk of the node's area; its extents
 /// are scaled so that the rays' rule gives the cell's exact area. The cells tile the surface,
 /// so a cell's area (not the node's tributary area) weighs its node.

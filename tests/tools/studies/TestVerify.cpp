@@ -228,6 +228,19 @@ TEST(VerifyOptions, BadOptionsAreRefusedNamingTheFix)
     EXPECT_THROW(checkVerifyOptions(o), std::exception);
     o.siloOrifices = {1.0};
     EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    // A wider silo takes wider orifices (12 mm needs a radius of 15); its size within [4, 100].
+    o.siloRadius = 15.0;
+    o.siloOrifices = {5.0, 12.0};
+    EXPECT_NO_THROW(checkVerifyOptions(o));
+    o.siloRadius = 14.0;
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.siloRadius = 3.0;
+    o.siloOrifices = {2.0};
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.siloRadius = 0.0;
+    o.siloHeight = -1.0;
+    EXPECT_THROW(checkVerifyOptions(o), std::exception);
+    o.siloHeight = 0.0;
     o.quick = true;
     o.siloOrifices = {8.0};
     EXPECT_THROW(checkVerifyOptions(o), std::exception);

@@ -26,7 +26,9 @@ namespace {
 /// The silo, its grains' law and what is measured; lengths in grain sizes d ≈ 1 mm.
 struct SiloPlan
 {
-    double siloRadius = 10.0;      ///< mm: silo diameter ≥ 2.5 orifices (Beverloo's premise)
+    /// mm: Beverloo's premise wants the silo at least 2.5 orifices and D + 30 d wide (the
+    /// default's 20 d is not the second: see addBeverlooChecks)
+    double siloRadius = 10.0;
     double fillHeight = 12.0;      ///< mm above the floor
     double plateThickness = 0.5;   ///< mm: ≫ any overlap
     std::vector<double> orifices;  ///< D, mm
@@ -285,8 +287,19 @@ void addDischargeChecks(Context& c, const std::string& where, const SiloPlan& p,
 /// The checks over the orifices: Beverloo's C and k judged (from three orifices on), the
 /// line's R² and the flows' own exponent shown.
 void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Discharge>& flows,
-                       double rho, double grainSize)
+                       double rho, double grainSize, double siloWidth)
 {
+    // Beverloo's law holds where the silo's walls do not reach the flow: at least 2.5 orifices
+    // and D + 30 d wide (Nedderman 1992; Mankoc et al., Granular Matter 9 (2007) 407). Shown
+    // for the largest orifice: the default silo, 20 d wide, is not D + 30 d wide for any D.
+    const double largest = flows.back().diameter;
+    Check premise{name, "adapted", "silo width over Beverloo's least", "", 1.0,
+                  siloWidth / std::max(2.5 * largest, largest + 30.0 * grainSize), 1.0, 0.0,
+                  "shown: the width over max(2.5·D, D + 30·d) at the largest D; Beverloo's premise "
+                  "wants ≥ 1 (walls clear of the flow); below it the "
+                  "walls slow the flow and C and k are not Beverloo's"};
+    premise.informative = true;
+    c.report.add(premise);
     const BeverlooFit fit = fitBeverloo(flows, rho, 9810.0, grainSize);
     // Two orifices (the quick version) fix the line exactly: its fit is shown, not judged.
     const bool judged = flows.size() >= 3;
@@ -368,7 +381,7 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     for (const Discharge& f : flows) rates.rows.push_back({f.diameter, f.massFlow, rho, kind.size});
     c.report.series.push_back(rates);
     c.report.series.push_back(curves);
-    if (flows.size() >= 2) addBeverlooChecks(c, name, flows, rho, kind.size);
+    if (flows.size() >= 2) addBeverlooChecks(c, name, flows, rho, kind.size, 2.0 * p.siloRadius);
 }
 
 } // namespace
@@ -376,6 +389,13 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
 void siloDischarge(Context& c)
 {
     SiloPlan p = planFor(c.quick);
+    // A wider or taller silo holds grains in proportion to its fill's volume.
+    const double radius = c.siloRadius > 0.0 ? c.siloRadius : p.siloRadius;
+    const double height = c.siloHeight > 0.0 ? c.siloHeight : p.fillHeight;
+    p.grains = std::llround(double(p.grains) * (radius * radius * height) /
+                            (p.siloRadius * p.siloRadius * p.fillHeight));
+    p.siloRadius = radius;
+    p.fillHeight = height;
     if (!c.siloOrifices.empty()) {
         p.orifices = c.siloOrifices;
         std::sort(p.orifices.begin(), p.orifices.end());

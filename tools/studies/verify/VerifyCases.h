@@ -22,6 +22,8 @@ struct Context
     std::string sandMeshes;                 ///< the sand grains' meshes (the silo)
     std::vector<std::string> siloGrains;    ///< "spheres", "sand": the silo's grain kinds
     std::vector<double> siloOrifices;       ///< D, mm (empty: the plan's)
+    double siloRadius = 0.0;                ///< mm (0: the plan's)
+    double siloHeight = 0.0;                ///< the fill's height, mm (0: the plan's)
     /// Where a long case says how far it has got (may be empty).
     std::function<void(const std::string&)> progress;
 

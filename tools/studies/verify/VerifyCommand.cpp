@@ -102,6 +102,15 @@ VerifyCommand::VerifyCommand(CLI::App& study)
                     "to run some of them, each from the same settled fill")
         ->type_name("D")
         ->group(bodies);
+    cli::addNumber(*mCommand, "--silo-radius", o.siloRadius,
+                   "the silo's radius, mm (0: 10; 4 in --quick); the grains follow the fill's "
+                   "volume (4300 at 10 and 12 mm)")
+        ->type_name("R")
+        ->group(bodies);
+    cli::addNumber(*mCommand, "--silo-height", o.siloHeight,
+                   "the silo's fill height, mm (0: 12; 8 in --quick)")
+        ->type_name("H")
+        ->group(bodies);
     mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
     cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the failures and the tally");

@@ -49,14 +49,21 @@ void checkVerifyOptions(const VerifyOptions& o)
     }
     if (o.formulations.empty())
         throw Error("", "--formulation: no formulation given", "name at least one");
-    // The silo is 20 mm wide (8 mm in --quick): Beverloo's premise wants it 2.5 orifices wide;
-    // an orifice under two grain sizes (1 mm grains) clogs at once.
-    const double widest = o.quick ? 5.0 : 8.0;
+    for (const auto& [option, value] : {std::make_pair("--silo-radius", o.siloRadius),
+                                        std::make_pair("--silo-height", o.siloHeight)})
+        if (!(value == 0.0 || (value >= 4.0 && value <= 100.0)))
+            throw Error("", std::string(option) + ": " + numberText(value) +
+                                " mm is outside [4, 100] mm (the grains are 1 mm)",
+                        "e.g. --silo-radius 20 --silo-height 40");
+    // The silo is 20 mm wide (8 mm in --quick) unless told: Beverloo's premise wants it at
+    // least 2.5 orifices wide; an orifice under two grain sizes (1 mm grains) clogs at once.
+    const double width = 2.0 * (o.siloRadius > 0.0 ? o.siloRadius : o.quick ? 4.0 : 10.0);
+    const double widest = std::floor(width / 2.5 * 1e6) / 1e6;
     for (double d : o.siloOrifices)
         if (!(d >= 2.0 && d <= widest))
             throw Error("", "--silo-orifices: " + numberText(d) + " mm is outside [2, " +
                                 numberText(widest) + "] mm",
-                        "the silo is " + std::string(o.quick ? "8" : "20") +
+                        "the silo is " + numberText(width) +
                             " mm wide and its grains 1 mm; e.g. --silo-orifices 5 6");
     if (!(o.setup.sphereNodes >= 100))
         throw Error("", "--nodes must be at least 100 (got " + std::to_string(o.setup.sphereNodes) + ")",
@@ -72,7 +79,8 @@ Report runVerification(const VerifyOptions& o,
     Report report;
     Bodies bodies(o.setup);
     Context context{bodies,       o.formulations, o.quick,          report,
-                    o.sandMeshes, o.siloGrains,    o.siloOrifices, progress};
+                    o.sandMeshes, o.siloGrains,    o.siloOrifices, o.siloRadius,
+                    o.siloHeight, progress};
     for (const CaseEntry& e : caseList()) {
         if (o.cases.empty() ? e.onlyWhenNamed && !o.quick
                             : std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())

@@ -25,6 +25,9 @@ struct VerifyOptions
     std::vector<std::string> siloGrains = {"spheres", "sand"};
     /// The silo's orifice diameters, mm (empty: the plan's, 5 … 8 mm; 4 and 5 in --quick).
     std::vector<double> siloOrifices;
+    /// The silo's radius and fill height, mm (0: 10 and 12; 4 and 8 in --quick); the grain
+    /// count follows the fill's volume.
+    double siloRadius = 0.0, siloHeight = 0.0;
     std::string outDir = "results/verify";
     bool plots = true, quiet = false;
 };

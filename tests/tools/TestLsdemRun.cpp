@@ -162,6 +162,31 @@ TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
     EXPECT_EQ(readFile(dir.file("a/frames_grains_4.vtu")), readFile(dir.file("b/frames_grains_4.vtu")));
 }
 
+// [output] micromechanics = true adds micromechanics.csv, a row at each history row, the same
+// bytes on 1 and 2 threads, and whole after a stop and a restart (its rows are kept in the
+// checkpoint, as energy.csv's are).
+TEST(LsdemRun, MicromechanicsHistoryIsWholeAfterARestart)
+{
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, smallScene(400) + "micromechanics = true\n");
+    const CommandResult straight = runCommand(kRun + " " + scene + " -q --out " + dir.file("a"));
+    ASSERT_EQ(straight.exitCode, 0) << straight.output;
+    const std::string rows = readFile(dir.file("a/micromechanics.csv"));
+    EXPECT_EQ(countLines(dir.file("a/micromechanics.csv")), 1 + 41);
+    EXPECT_EQ(rows.rfind("step,time,mxx,", 0), 0u) << rows.substr(0, 80);
+    const CommandResult twoThreads =
+        runCommand(kRun + " " + scene + " -q --threads 2 --out " + dir.file("t2"));
+    ASSERT_EQ(twoThreads.exitCode, 0) << twoThreads.output;
+    EXPECT_EQ(readFile(dir.file("t2/micromechanics.csv")), rows);
+    const CommandResult first =
+        runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b"));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    const CommandResult second = runCommand(kRun + " -q --restart " + dir.file("b/checkpoint.lsdem"));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    EXPECT_EQ(readFile(dir.file("b/micromechanics.csv")), rows);
+    expectSameOutputs(dir, "a", "b");
+}
+
 // A restart from the checkpoint of a run that had already finished has nothing to add: it
 // says so and leaves every file as it was (it used to write the last frame and the checkpoint
 // again, so frames.pvd listed two frames at the same time and grew with each restart).

@@ -632,6 +632,17 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     EXPECT_EQ(count(one.output, "lsdem-run: error:"), 1u) << one.output;
     EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
+
+    // The micromechanics history is written by one process: refused on two, before any output.
+    const std::string micro =
+        writeScene(dir, "micro.toml", column(2, 0.01) + "micromechanics = true\n");
+    const CommandResult split = runCommand(onRanks(2, "-q " + micro + " --out " + dir.file("micro")));
+    EXPECT_EQ(split.exitCode, 1) << split.output;
+    EXPECT_EQ(count(split.output, "lsdem-run: error:"), 1u) << split.output;
+    EXPECT_NE(split.output.find("micromechanics = true is written by one process only"),
+              std::string::npos)
+        << split.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("micro")));
 }
 
 // kill -9 at a random moment (seeded: LSDEM_KILL_SEED=N for other moments), for every pair of

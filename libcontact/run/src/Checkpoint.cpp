@@ -25,7 +25,8 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 5: the assets' fingerprints take the level set's slope bound where φ ≥ 0
 ///    (levelSetSlopeBound since 2026-11-27); those of a version 3 or 4 file took the earlier
 ///    bound over the whole grid, so its assets are not compared (its grains still are).
-const uint32_t kVersion = 5;
+/// 6: the record ends with the micromechanics rows (none in an earlier file's).
+const uint32_t kVersion = 6;
 const uint32_t kOldestVersion = 1;
 
 using Writer = ByteWriter<std::string>;
@@ -105,9 +106,11 @@ void writeRecord(Writer& w, const RunRecord& r)
         for (const auto& row : rows) w.numbers(row);
     }
     w.numbers(r.vtkFrameTimes);
+    w.value<uint64_t>(r.micromechanicsRows.size());
+    for (const auto& row : r.micromechanicsRows) w.numbers(row);
 }
 
-RunRecord readRecord(Reader& r)
+RunRecord readRecord(Reader& r, uint32_t version)
 {
     RunRecord rec;
     const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
@@ -119,6 +122,10 @@ RunRecord readRecord(Reader& r)
         for (auto& row : rows) row = r.numbers();
     }
     rec.vtkFrameTimes = r.numbers();
+    if (version >= 6) {
+        rec.micromechanicsRows.resize(r.count(rowBytes));
+        for (auto& row : rec.micromechanicsRows) row = r.numbers();
+    }
     return rec;
 }
 
@@ -149,7 +156,7 @@ void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint
     checkpoint.scenePath = r.text();
     checkpoint.sceneText = r.text();
     checkpoint.timeStep = r.value<double>();
-    checkpoint.record = readRecord(r);
+    checkpoint.record = readRecord(r, version);
     if (version >= 3) {
         fingerprint.grains = r.list<uint64_t>();
         fingerprint.grainAssets = r.list<uint64_t>();

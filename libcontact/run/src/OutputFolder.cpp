@@ -28,6 +28,7 @@ bool endsWith(const std::string& s, const std::string& end)
 bool isRunOutputName(const std::string& name)
 {
     if (name == kEnergyFileName || name == kGrainsFileName || name == kCheckpointFileName ||
+        name == kMicromechanicsFileName ||
         name == kFramesBaseName + ".pvd" || isBoundaryHistoryFileName(name))
         return true;
     // The frames and, split over ranks, their pieces: frames_grains_3.vtu, ..._3.pvtu, ..._3_1.vtu

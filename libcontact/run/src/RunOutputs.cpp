@@ -2,6 +2,7 @@
 
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/CsvText.h"
+#include "lsdem/simulation/Micromechanics.h"
 
 #include <cctype>
 #include <cstdio>
@@ -21,6 +22,9 @@ const std::string kBoundaryHeader = "step,time,ux,uy,uz,fx,fy,fz";
 const std::string kServoBoundaryHeader =
     "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed";
 const std::string kGrainsHeader = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved";
+const std::string kMicromechanicsHeader =
+    "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,fabric_anisotropy,"
+    "grain_contacts,boundary_contacts,free_grains,rattlers,mechanical_coordination";
 
 void appendNumber(std::string& line, double v)
 {
@@ -66,6 +70,19 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
         }
         record.boundaryRows[b].push_back(std::move(row));
     }
+    if (record.micromechanics) {
+        const Micromechanics m = micromechanicsOf(w, sim.contactRecords());
+        std::vector<double> row = {static_cast<double>(w.step), w.time};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) row.push_back(m.stressMoment(i, j));
+        row.insert(row.end(), {m.fabric(0, 0), m.fabric(1, 1), m.fabric(2, 2), m.fabric(0, 1),
+                               m.fabric(0, 2), m.fabric(1, 2), m.fabricAnisotropy,
+                               static_cast<double>(m.grainContacts),
+                               static_cast<double>(m.boundaryContacts),
+                               static_cast<double>(m.freeGrains), static_cast<double>(m.rattlers),
+                               m.mechanicalCoordination});
+        record.micromechanicsRows.push_back(std::move(row));
+    }
 }
 
 std::string boundaryHistoryFileName(const std::string& name)
@@ -82,7 +99,7 @@ bool isRunTextOutput(const std::string& path)
     std::string first;
     if (!std::getline(in, first)) return false;
     return first == kEnergyHeader || first == kGrainsHeader || first == kBoundaryHeader ||
-           first == kServoBoundaryHeader;
+           first == kServoBoundaryHeader || first == kMicromechanicsHeader;
 }
 
 bool isBoundaryHistoryFileName(const std::string& fileName)
@@ -105,6 +122,9 @@ void writeHistoryFiles(const std::string& directory, const World& world,
             (dir / boundaryHistoryFileName(world.boundaries[b].name)).string(),
             rowsToCsv(world.boundaries[b].servo.active() ? kServoBoundaryHeader : kBoundaryHeader,
                       record.boundaryRows[b]));
+    if (record.micromechanics)
+        writeTextFileAtomically((dir / kMicromechanicsFileName).string(),
+                                rowsToCsv(kMicromechanicsHeader, record.micromechanicsRows));
 }
 
 void writeGrainsFile(const std::string& path, const World& world,

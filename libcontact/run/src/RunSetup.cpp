@@ -108,8 +108,14 @@ std::vector<std::string> Run::checkOutputFolder(const RunOptions& options, bool 
 double Run::makeSimulation(const RunOptions& options)
 {
     // One rank evaluates every contact: nothing to split, nothing to exchange.
-    if (options.ranks && options.ranks->ranks() > 1)
+    if (options.ranks && options.ranks->ranks() > 1) {
+        // (Its sums need every contact of a grain on one process.)
+        if (mScene.output.micromechanics)
+            throw Error(mScene.path, "[output] micromechanics = true is written by one process only",
+                        "run it without mpirun (lsdem-run --threads N shares the work), or "
+                        "leave micromechanics out");
         mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
+    }
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
@@ -183,6 +189,7 @@ void Run::planOutputs(double firstEvaluationSeconds)
         mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }
+    mCheckpoint.record.micromechanics = out.micromechanics;
     if (!mRestart) {
         recordHistoryRow(*mSim, mCheckpoint.record);
         if (mFrames) mFrames->write(*mSim);

@@ -70,6 +70,11 @@ std::vector<SceneSetting> outputSettings()
         {"output", "contact_forces", "Whether the ParaView frames hold the contact force points.",
          NumberRange::Finite, SettingForm::Value, "true or false",
          LSDEM_SETTING_FIELD(bool, output.contactForces)},
+        {"output", "micromechanics",
+         "Whether the run writes micromechanics.csv: at each history row the sample's "
+         "Love–Weber stress moment, its contact fabric and mechanical coordination.",
+         NumberRange::Finite, SettingForm::Value, "true or false",
+         LSDEM_SETTING_FIELD(bool, output.micromechanics)},
     };
 }
 

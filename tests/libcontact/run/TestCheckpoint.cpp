@@ -216,6 +216,7 @@ Checkpoint sampleHeader()
     c.record.energyRows = {{0.0, 0.0, 1.5}, {10.0, 2e-5, 1.25}};
     c.record.boundaryRows = {{{0.0, 1.0}}, {{0.0, 2.0}, {10.0, 3.0}}};
     c.record.vtkFrameTimes = {0.0, 1e-4};
+    c.record.micromechanicsRows = {{0.0, 0.0, -2.5}, {10.0, 2e-5, -2.25}};
     return c;
 }
 
@@ -261,6 +262,7 @@ TEST(Checkpoint, RestartContinuesBitIdentically)
     EXPECT_EQ(back.record.energyRows, header.record.energyRows);
     EXPECT_EQ(back.record.boundaryRows, header.record.boundaryRows);
     EXPECT_EQ(back.record.vtkFrameTimes, header.record.vtkFrameTimes);
+    EXPECT_EQ(back.record.micromechanicsRows, header.record.micromechanicsRows);
 
     World fresh = build(scene);
     restoreWorldState(path, fresh);
@@ -537,7 +539,9 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
 {
     lsdem::test::ScratchDir dir;
     const std::string path = dir.file("c.lsdem");
-    saveCheckpoint(path, steppedWorld(10), sampleHeader());
+    Checkpoint plain = sampleHeader();  // (no micromechanics rows: see format 4 below)
+    plain.record.micromechanicsRows.clear();
+    saveCheckpoint(path, steppedWorld(10), plain);
     auto refusal = [&](World w) {
         const World before = w;
         try {
@@ -575,6 +579,18 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     // set passes), its grains still are.
     {
         std::string bytes = readBytes(path);
+        // Format 4 had no micromechanics rows (format 6 put their count after the frame
+        // times): found by saving one row of a value seen nowhere else, its count and the
+        // rows' count 16 bytes before it.
+        Checkpoint marked = plain;
+        const double marker = 12345.678901;
+        marked.record.micromechanicsRows = {{marker}};
+        saveCheckpoint(dir.file("marked.lsdem"), steppedWorld(10), marked);
+        const std::string markedBytes = readBytes(dir.file("marked.lsdem"));
+        const size_t at = markedBytes.find(std::string(reinterpret_cast<const char*>(&marker),
+                                                       sizeof marker));
+        ASSERT_NE(at, std::string::npos);
+        bytes.erase(at - 16, 8);
         const uint32_t four = 4;
         std::memcpy(bytes.data() + 8, &four, sizeof four);  // after the magic
         const std::string older = dir.file("format4.lsdem");

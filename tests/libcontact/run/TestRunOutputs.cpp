@@ -4,6 +4,7 @@
 #include "lsdem/run/RunOutputs.h"
 
 #include "lsdem/core/CsvText.h"
+#include "lsdem/simulation/Micromechanics.h"
 
 #include "support/TestSupport.h"
 
@@ -146,6 +147,52 @@ TEST(RunOutputs, HistoryRowsAreTheSimulationsStateNow)
     // The floor holds the ball up (reaction down), the wall moved 5 steps at 0.25.
     EXPECT_LT(record.boundaryRows[0][1][7], 0.0);
     EXPECT_DOUBLE_EQ(record.boundaryRows[1][1][2], 5 * 1e-4 * 0.25);
+}
+
+// With record.micromechanics, each history row also takes Micromechanics.h's measures of the
+// state then (the ball on the floor: one boundary contact, no grain contact, so the ball is a
+// rattler and the stress moment is the floor contact's lever times its force); written to
+// micromechanics.csv and read back exactly. Without it, no row and no file.
+TEST(RunOutputs, MicromechanicsRowsAreTheSimulationsMeasuresNow)
+{
+    Simulation sim(smallWorld(), 1e-4);
+    RunRecord plain, record;
+    record.micromechanics = true;
+    for (int k = 0; k < 3; ++k) sim.step();
+    recordHistoryRow(sim, plain);
+    recordHistoryRow(sim, record);
+    EXPECT_TRUE(plain.micromechanicsRows.empty());
+    ASSERT_EQ(record.micromechanicsRows.size(), 1u);
+    const std::vector<ContactRecord> contacts = sim.contactRecords();
+    const Micromechanics m = micromechanicsOf(sim.world(), contacts);
+    std::vector<double> expected = {3.0, sim.world().time};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) expected.push_back(m.stressMoment(i, j));
+    expected.insert(expected.end(),
+                    {m.fabric(0, 0), m.fabric(1, 1), m.fabric(2, 2), m.fabric(0, 1), m.fabric(0, 2),
+                     m.fabric(1, 2), m.fabricAnisotropy, double(m.grainContacts),
+                     double(m.boundaryContacts), double(m.freeGrains), double(m.rattlers),
+                     m.mechanicalCoordination});
+    EXPECT_EQ(record.micromechanicsRows[0], expected);
+    // The closed form of this state: the one floor contact's (x_c − x_p) ⊗ f.
+    ASSERT_EQ(contacts.size(), 1u);
+    const Vec3 lever = contacts[0].centre - sim.world().grains[0].body.pose.position;
+    const Mat3 moment = lever * contacts[0].force.transpose();
+    EXPECT_LT((m.stressMoment - moment).norm(), 1e-12 * moment.norm());
+    EXPECT_EQ(m.boundaryContacts, 1);
+    EXPECT_EQ(m.grainContacts, 0);
+    EXPECT_EQ(m.rattlers, 1);
+
+    lsdem::test::ScratchDir dir;
+    writeHistoryFiles(dir.path().string(), sim.world(), plain);
+    EXPECT_FALSE(std::filesystem::exists(dir.file(kMicromechanicsFileName)));
+    writeHistoryFiles(dir.path().string(), sim.world(), record);
+    const std::string header =
+        "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,"
+        "fabric_anisotropy,grain_contacts,boundary_contacts,free_grains,rattlers,"
+        "mechanical_coordination";
+    expectRowsReadBack(dir.file(kMicromechanicsFileName), header, record.micromechanicsRows);
+    EXPECT_TRUE(isRunTextOutput(dir.file(kMicromechanicsFileName)));
 }
 
 TEST(RunOutputs, HistoryFilesReadBackExactly)

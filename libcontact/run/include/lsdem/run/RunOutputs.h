@@ -2,7 +2,8 @@
 /// @brief The text outputs of a run, each written whole and atomically: `energy.csv` (global
 ///        energies per history step), `boundary_<name>.csv` (displacement and reaction force of
 ///        each boundary; for a servo wall also the current point of its plane, its area, stress,
-///        target stress and speed along its normal) and `grains.csv` (every grain's final state and displacement).
+///        target stress and speed along its normal), `grains.csv` (every grain's final state and
+///        displacement) and, when asked, `micromechanics.csv`.
 ///        Numbers are printed with 17 significant digits so they read back exactly.
 #pragma once
 
@@ -17,11 +18,16 @@ namespace lsdem {
 /// The names of the text outputs in a run's folder.
 inline const std::string kEnergyFileName = "energy.csv";
 inline const std::string kGrainsFileName = "grains.csv";
+inline const std::string kMicromechanicsFileName = "micromechanics.csv";
 
-/// Append the rows of the current state to @a record (one energy row, one row per boundary).
+/// Append the rows of the current state to @a record (one energy row, one row per boundary,
+/// and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
+/// nine entries row by row, the fabric's six, its anisotropy, the contact and grain counts and
+/// the mechanical coordination number).
 void recordHistoryRow(const Simulation& sim, RunRecord& record);
 
-/// Write energy.csv and boundary_<name>.csv in @a directory from @a record.
+/// Write energy.csv, boundary_<name>.csv and (with record.micromechanics) micromechanics.csv in
+/// @a directory from @a record.
 void writeHistoryFiles(const std::string& directory, const World& world,
                        const RunRecord& record);
 

@@ -14,6 +14,9 @@ struct RunRecord
     std::vector<std::vector<double>> energyRows;
     std::vector<std::vector<std::vector<double>>> boundaryRows;  ///< per boundary
     std::vector<double> vtkFrameTimes;
+    /// Whether each history row also records the micromechanics ([output] micromechanics).
+    bool micromechanics = false;
+    std::vector<std::vector<double>> micromechanicsRows;
 };
 
 } // namespace lsdem

@@ -156,6 +156,7 @@ struct OutputSpec
     double vtkPeriod = 0.0;         ///< time between ParaView frames (0: none)
     double checkpointPeriod = 0.0;  ///< time between checkpoints (0: only at the end / signal)
     bool contactForces = true;      ///< write contact force points in the VTK frames
+    bool micromechanics = false;    ///< write micromechanics.csv at each history row
 };
 
 struct Scene

@@ -164,7 +164,7 @@ TEST(LsdemRun, StopAndRestartContinuesBitIdentically)
 
 // [output] micromechanics = true adds micromechanics.csv, a row at each history row, the same
 // bytes on 1 and 2 threads, and whole after a stop and a restart (its rows are kept in the
-// checkpoint, as energy.csv's are).
+// checkpoint, as energy.csv's are); and each frame's grains carry their measures.
 TEST(LsdemRun, MicromechanicsHistoryIsWholeAfterARestart)
 {
     ScratchDir dir;
@@ -178,13 +178,19 @@ TEST(LsdemRun, MicromechanicsHistoryIsWholeAfterARestart)
         runCommand(kRun + " " + scene + " -q --threads 2 --out " + dir.file("t2"));
     ASSERT_EQ(twoThreads.exitCode, 0) << twoThreads.output;
     EXPECT_EQ(readFile(dir.file("t2/micromechanics.csv")), rows);
+    expectSameOutputs(dir, "a", "t2");
     const CommandResult first =
         runCommand(kRun + " " + scene + " -q --stop-at-step 200 --out " + dir.file("b"));
     ASSERT_EQ(first.exitCode, 130) << first.output;
     const CommandResult second = runCommand(kRun + " -q --restart " + dir.file("b/checkpoint.lsdem"));
     ASSERT_EQ(second.exitCode, 0) << second.output;
     EXPECT_EQ(readFile(dir.file("b/micromechanics.csv")), rows);
+    // The frames carry each grain's measures since the run's start, the restart's too.
     expectSameOutputs(dir, "a", "b");
+    const std::string frame = readFile(dir.file("a/frames_grains_4.vtu"));
+    for (const char* name : {"displacement", "rotation", "d2min", "stress"})
+        EXPECT_NE(frame.find("Name=\"" + std::string(name) + "\""), std::string::npos) << name;
+    EXPECT_EQ(readFile(dir.file("b/frames_grains_4.vtu")), frame);
 }
 
 // A restart from the checkpoint of a run that had already finished has nothing to add: it

@@ -120,7 +120,10 @@ double Run::makeSimulation(const RunOptions& options)
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
     if (mWrites)  // for grains.csv's displacements
-        for (const Grain& g : world.grains) mInitialPositions.push_back(g.body.pose.position);
+        for (const Grain& g : world.grains) {
+            mInitialPositions.push_back(g.body.pose.position);
+            mStartPoses.push_back(g.body.pose);
+        }
 
     double dt = mScene.timeStep.fixed;
     if (mRestart) {
@@ -186,7 +189,8 @@ void Run::planOutputs(double firstEvaluationSeconds)
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
     // Split over ranks, every rank writes its piece of each frame.
     if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
-        mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world());
+        mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world(),
+                                                out.micromechanics ? &mStartPoses : nullptr);
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }
     mCheckpoint.record.micromechanics = out.micromechanics;

@@ -6,6 +6,7 @@
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/Error.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -132,9 +133,14 @@ void appendXyz(std::vector<double>& out, const Vec3& v)
 }
 
 /// Every grain's surface triangles in world coordinates, each vertex carrying its rigid-body
-/// velocity and each triangle the id of its grain.
-std::string grainsFile(const std::vector<VtkGrain>& grains)
+/// velocity (and, @a withMeasures and every grain measured, its grain's measures) and each
+/// triangle the id of its grain.
+std::string grainsFile(const std::vector<VtkGrain>& grains, bool withMeasures)
 {
+    const bool measured =
+        withMeasures && !grains.empty() && std::all_of(grains.begin(), grains.end(),
+                                       [](const VtkGrain& g) { return g.measures != nullptr; });
+    std::vector<double> displacements, rotations, d2mins, stresses;
     std::vector<double> points, velocities;
     std::vector<std::int64_t> connectivity, offsets;
     std::vector<std::int32_t> grainIds;
@@ -146,6 +152,13 @@ std::string grainsFile(const std::vector<VtkGrain>& grains)
             appendXyz(points, x);
             appendXyz(velocities,
                       grain.velocity + grain.angularVelocity.cross(x - grain.pose.position));
+            if (!measured) continue;
+            const VtkGrainMeasures& m = *grain.measures;
+            appendXyz(displacements, m.displacement);
+            rotations.push_back(m.rotation);
+            d2mins.push_back(m.d2min);
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) stresses.push_back(m.stress(i, j));
         }
         for (const auto& triangle : grain.surface->triangles) {
             for (int corner : triangle) connectivity.push_back(first + corner);
@@ -159,6 +172,12 @@ std::string grainsFile(const std::vector<VtkGrain>& grains)
     file.setSectionAttributes(UnstructuredGridFile::PointData, "Vectors=\"velocity\"");
     file.setSectionAttributes(UnstructuredGridFile::CellData, "Scalars=\"grain\"");
     file.addArray(UnstructuredGridFile::PointData, "velocity", 3, velocities);
+    if (measured) {
+        file.addArray(UnstructuredGridFile::PointData, "displacement", 3, displacements);
+        file.addArray(UnstructuredGridFile::PointData, "rotation", 1, rotations);
+        file.addArray(UnstructuredGridFile::PointData, "d2min", 1, d2mins);
+        file.addArray(UnstructuredGridFile::PointData, "stress", 9, stresses);
+    }
     file.addArray(UnstructuredGridFile::CellData, "grain", 1, grainIds);
     file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
     file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
@@ -278,7 +297,8 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
                                     " is not in 0.." + std::to_string(framesWritten()));
     const std::filesystem::path dir(mDirectory);
     const size_t k = static_cast<size_t>(frame);
-    writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(), grainsFile(grains));
+    writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(),
+                            grainsFile(grains, true));
     writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
     list(frame, time, false, true);
 }
@@ -296,7 +316,7 @@ void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces
     const std::filesystem::path dir(mDirectory);
     const size_t k = static_cast<size_t>(frame);
     writeTextFileAtomically((dir / pieceFileName(mBaseName, "grains", k, piece)).string(),
-                            grainsFile(grains));
+                            grainsFile(grains, false));
     writeTextFileAtomically((dir / pieceFileName(mBaseName, "contacts", k, piece)).string(),
                             contactsFile(forces));
     if (piece == 0)

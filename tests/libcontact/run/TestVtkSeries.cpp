@@ -277,6 +277,46 @@ TEST(VtkSeries, GrainFramesHoldPosedSurfacesRigidVelocitiesAndIds)
     EXPECT_EQ(series.framesWritten(), 2);
 }
 
+// A grain's micromechanics, when every grain of a frame carries them, are point data over its
+// surface: displacement, rotation, d2min and the stress's nine entries row by row, each the
+// grain's at each of its vertices. A frame whose grains do not all carry them has none.
+TEST(VtkSeries, GrainMeasuresArePointDataOverEachGrain)
+{
+    ScratchDir dir;
+    const TriangleMesh tet = tetrahedron(), block = box();
+    VtkSeries series(dir.path().string(), "run");
+    VtkGrainMeasures first, second;
+    first.displacement = {0.1, -0.2, 0.3};
+    first.rotation = 0.25;
+    first.d2min = 1.5e-4;
+    first.stress << 1, 2, 3, 4, 5, 6, 7, 8, 9;
+    second.displacement = {-1.0, 0.0, 2.0};
+    second.rotation = 3.0;
+    second.d2min = 0.0;
+    second.stress = -Mat3::Identity();
+    std::vector<VtkGrain> grains(2);
+    grains[0] = {&tet, pose(0.7, {1, 2, 3}, {1.5, -2.0, 0.25}), 3, {0, 0, 0}, {0, 0, 0}, &first};
+    grains[1] = {&block, pose(-1.9, {0, 1, -1}, {-4.0, 3.5, 1e-3}), 7, {0, 0, 0}, {0, 0, 0}, &second};
+    series.writeFrame(0, 0.0, grains, {});
+    const ParsedGrid grid = parseVtu(dir.file("run_grains_0.vtu"));
+    expectGrains(grid, grains);
+    size_t point = 0;
+    for (const VtkGrain& g : grains)
+        for (size_t v = 0; v < g.surface->vertices.size(); ++v, ++point) {
+            EXPECT_EQ(grid.vec3("PointData/displacement", point), g.measures->displacement);
+            EXPECT_EQ(grid.at("PointData/rotation").reals[point], g.measures->rotation);
+            EXPECT_EQ(grid.at("PointData/d2min").reals[point], g.measures->d2min);
+            for (int k = 0; k < 9; ++k)
+                EXPECT_EQ(grid.at("PointData/stress").reals[9 * point + size_t(k)],
+                          g.measures->stress(k / 3, k % 3));
+        }
+    grains[1].measures = nullptr;
+    series.writeFrame(1, 0.01, grains, {});
+    const ParsedGrid without = parseVtu(dir.file("run_grains_1.vtu"));
+    EXPECT_EQ(without.arrays.count("PointData/d2min"), 0u);
+    expectGrains(without, grains);
+}
+
 TEST(VtkSeries, ContactFramesHoldOneVertexPerForcePoint)
 {
     ScratchDir dir;

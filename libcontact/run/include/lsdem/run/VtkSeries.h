@@ -20,6 +20,15 @@
 
 namespace lsdem {
 
+/// A grain's micromechanics in a frame (micromechanics.md), written over its surface.
+struct VtkGrainMeasures
+{
+    Vec3 displacement = Vec3::Zero();  ///< since the run's start
+    double rotation = 0.0;             ///< the angle turned since the run's start, rad
+    double d2min = 0.0;                ///< non-affine displacement since then (NonAffineMotion.h)
+    Mat3 stress = Mat3::Zero();        ///< its Love–Weber stress (Micromechanics.h)
+};
+
 /// One grain in a frame: its surface in the asset frame (shared by all grains of the asset)
 /// and where it is.
 struct VtkGrain
@@ -29,6 +38,9 @@ struct VtkGrain
     int id = 0;
     Vec3 velocity = Vec3::Zero();
     Vec3 angularVelocity = Vec3::Zero();
+    /// Written as point data (displacement, rotation, d2min, stress) when the frame's grains
+    /// carry them (every grain or none; not in a parallel frame's pieces).
+    const VtkGrainMeasures* measures = nullptr;
 };
 
 /// One contact force, as it acts on grain @a grain (boundaries: -1 - boundary index).

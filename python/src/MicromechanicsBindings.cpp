@@ -79,6 +79,11 @@ void bindMicromechanics(py::module_& m)
             d["grain_stresses"] = grains;
             d["fabric"] = matrixOf(mm.fabric);
             d["fabric_anisotropy"] = mm.fabricAnisotropy;
+            d["branch_fabric"] = matrixOf(mm.branchFabric);
+            d["branch_anisotropy"] = mm.branchAnisotropy;
+            d["force_fabric"] = matrixOf(mm.forceFabric);
+            d["force_anisotropy"] = mm.forceAnisotropy;
+            d["mean_normal_force"] = mm.meanNormalForce;
             d["grain_contacts"] = mm.grainContacts;
             d["boundary_contacts"] = mm.boundaryContacts;
             d["free_grains"] = mm.freeGrains;
@@ -90,7 +95,10 @@ void bindMicromechanics(py::module_& m)
         "grains being the sample: stress_moment (3, 3) Σ (x_c − x_p) ⊗ f_c, the Love–Weber "
         "stress times the sample's volume (divide by your sample's volume); grain_stresses "
         "(N, 3, 3) each free grain's mean stress; fabric (3, 3) of the grain contacts' normals "
-        "and fabric_anisotropy sqrt(3/2 a:a), a = 15/2 (fabric − I/3); grain_contacts, "
+        "and fabric_anisotropy sqrt(3/2 a:a), a = 15/2 (fabric − I/3); branch_fabric and "
+        "branch_anisotropy the same of the unit branch vectors between the grains' centroids; "
+        "force_fabric Σ f_n n⊗n / Σ f_n (the normals weighted by their normal force) and "
+        "force_anisotropy; mean_normal_force; grain_contacts, "
         "boundary_contacts, free_grains, rattlers (free grains with fewer than two grain "
         "contacts) and Thornton's mechanical_coordination (2C − N1)/(N − N0 − N1).");
 }

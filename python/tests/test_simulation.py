@@ -267,8 +267,8 @@ def test_a_checkpoint_keeps_the_histories_it_was_restarted_with(lsdem_run, tmp_p
 
 def test_contact_pairs_and_micromechanics_agree_with_the_walls_and_numpy():
     """After 300 steps of the 27-sphere stack: each wall's contacts sum to the opposite of its
-    reaction (two separate sums in the simulation), normals are unit, the fabric from the
-    grain pairs' normals in numpy is micromechanics()'s, and the free grains' stresses add up
+    reaction (two separate sums in the simulation), normals are unit, the fabrics from the
+    grain pairs' normals, branch vectors and normal forces in numpy are micromechanics()'s, and the free grains' stresses add up
     to the stress moment (Σ V_p σ_p, V_p = m_p / ρ)."""
     scene = lsdem.Scene.from_toml(str(SCENES / "cube27.toml"))
     scene.end_time = 0.0
@@ -290,6 +290,14 @@ def test_contact_pairs_and_micromechanics_agree_with_the_walls_and_numpy():
     assert m["grain_contacts"] == int(grain.sum()) and m["free_grains"] == 27
     assert np.allclose(m["fabric"], n.T @ n / len(n), rtol=1e-12, atol=1e-15)
     assert m["fabric"].trace() == pytest.approx(1.0, abs=1e-12)
+    # The branch vectors' and the normal forces' fabrics, again in numpy.
+    x = sim.grains.positions
+    branch = x[pairs.second[grain]] - x[pairs.first[grain]]
+    branch /= np.linalg.norm(branch, axis=1)[:, None]
+    assert np.allclose(m["branch_fabric"], branch.T @ branch / len(n), rtol=1e-12, atol=1e-15)
+    fn = np.abs(np.einsum("ki,ki->k", pairs.forces[grain], n))
+    assert np.allclose(m["force_fabric"], (n * fn[:, None]).T @ n / fn.sum(), rtol=1e-12, atol=1e-15)
+    assert m["mean_normal_force"] == pytest.approx(fn.mean(), rel=1e-12)
     volumes = sim.grains.masses / 7.85e-9  # cube27.toml's steel
     summed = np.einsum("p,pij->ij", volumes, m["grain_stresses"])
     assert np.allclose(summed, m["stress_moment"], rtol=1e-9, atol=1e-9 * np.abs(summed).max())

@@ -24,7 +24,9 @@ const std::string kServoBoundaryHeader =
 const std::string kGrainsHeader = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved";
 const std::string kMicromechanicsHeader =
     "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,fabric_anisotropy,"
-    "grain_contacts,boundary_contacts,free_grains,rattlers,mechanical_coordination";
+    "bxx,byy,bzz,bxy,bxz,byz,branch_anisotropy,nxx,nyy,nzz,nxy,nxz,nyz,force_anisotropy,"
+    "mean_normal_force,grain_contacts,boundary_contacts,free_grains,rattlers,"
+    "mechanical_coordination";
 
 void appendNumber(std::string& line, double v)
 {
@@ -75,9 +77,14 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
         std::vector<double> row = {static_cast<double>(w.step), w.time};
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) row.push_back(m.stressMoment(i, j));
-        row.insert(row.end(), {m.fabric(0, 0), m.fabric(1, 1), m.fabric(2, 2), m.fabric(0, 1),
-                               m.fabric(0, 2), m.fabric(1, 2), m.fabricAnisotropy,
-                               static_cast<double>(m.grainContacts),
+        for (const auto& [fabric, anisotropy] :
+             {std::make_pair(&m.fabric, m.fabricAnisotropy),
+              std::make_pair(&m.branchFabric, m.branchAnisotropy),
+              std::make_pair(&m.forceFabric, m.forceAnisotropy)}) {
+            const Mat3& f = *fabric;
+            row.insert(row.end(), {f(0, 0), f(1, 1), f(2, 2), f(0, 1), f(0, 2), f(1, 2), anisotropy});
+        }
+        row.insert(row.end(), {m.meanNormalForce, static_cast<double>(m.grainContacts),
                                static_cast<double>(m.boundaryContacts),
                                static_cast<double>(m.freeGrains), static_cast<double>(m.rattlers),
                                m.mechanicalCoordination});

@@ -21,6 +21,13 @@ void forEachSampleGrain(const World& world, const ContactRecord& r, Act&& act)
     if (inSample(world, r.second)) act(r.second, Vec3(-r.force));
 }
 
+/// sqrt(3/2·a:a) of a = 15/2·(@a fabric − I/3): 0 for an isotropic fabric.
+double anisotropyOf(const Mat3& fabric)
+{
+    const Mat3 a = 7.5 * (fabric - Mat3::Identity() / 3.0);
+    return std::sqrt(1.5 * (a.array() * a.array()).sum());
+}
+
 } // namespace
 
 Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRecord>& records)
@@ -36,6 +43,13 @@ Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRec
             ++contacts[size_t(r.first)];
             ++contacts[size_t(r.second)];
             m.fabric += r.normal * r.normal.transpose();
+            const Vec3 branch = world.grains[size_t(r.second)].body.pose.position -
+                                world.grains[size_t(r.first)].body.pose.position;
+            if (branch.squaredNorm() > 0.0)
+                m.branchFabric += branch * branch.transpose() / branch.squaredNorm();
+            const double normalForce = std::abs(r.force.dot(r.normal));
+            m.forceFabric += normalForce * r.normal * r.normal.transpose();
+            m.meanNormalForce += normalForce;
         } else if (inSample(world, r.first) || inSample(world, r.second)) {
             ++m.boundaryContacts;
         }
@@ -53,8 +67,14 @@ Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRec
             double(2 * m.grainContacts - one) / double(m.freeGrains - m.rattlers);
     if (m.grainContacts > 0) {
         m.fabric /= double(m.grainContacts);
-        const Mat3 a = 7.5 * (m.fabric - Mat3::Identity() / 3.0);
-        m.fabricAnisotropy = std::sqrt(1.5 * (a.array() * a.array()).sum());
+        m.fabricAnisotropy = anisotropyOf(m.fabric);
+        m.branchFabric /= double(m.grainContacts);
+        m.branchAnisotropy = anisotropyOf(m.branchFabric);
+        if (m.meanNormalForce > 0.0) {
+            m.forceFabric /= m.meanNormalForce;
+            m.forceAnisotropy = anisotropyOf(m.forceFabric);
+        }
+        m.meanNormalForce /= double(m.grainContacts);
     }
     return m;
 }

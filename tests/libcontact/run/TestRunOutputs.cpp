@@ -168,9 +168,14 @@ TEST(RunOutputs, MicromechanicsRowsAreTheSimulationsMeasuresNow)
     std::vector<double> expected = {3.0, sim.world().time};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) expected.push_back(m.stressMoment(i, j));
+    for (const Mat3* f : {&m.fabric, &m.branchFabric, &m.forceFabric})
+        expected.insert(expected.end(), {(*f)(0, 0), (*f)(1, 1), (*f)(2, 2), (*f)(0, 1),
+                                         (*f)(0, 2), (*f)(1, 2),
+                                         f == &m.fabric         ? m.fabricAnisotropy
+                                         : f == &m.branchFabric ? m.branchAnisotropy
+                                                                : m.forceAnisotropy});
     expected.insert(expected.end(),
-                    {m.fabric(0, 0), m.fabric(1, 1), m.fabric(2, 2), m.fabric(0, 1), m.fabric(0, 2),
-                     m.fabric(1, 2), m.fabricAnisotropy, double(m.grainContacts),
+                    {m.meanNormalForce, double(m.grainContacts),
                      double(m.boundaryContacts), double(m.freeGrains), double(m.rattlers),
                      m.mechanicalCoordination});
     EXPECT_EQ(record.micromechanicsRows[0], expected);
@@ -189,8 +194,9 @@ TEST(RunOutputs, MicromechanicsRowsAreTheSimulationsMeasuresNow)
     writeHistoryFiles(dir.path().string(), sim.world(), record);
     const std::string header =
         "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,"
-        "fabric_anisotropy,grain_contacts,boundary_contacts,free_grains,rattlers,"
-        "mechanical_coordination";
+        "fabric_anisotropy,bxx,byy,bzz,bxy,bxz,byz,branch_anisotropy,nxx,nyy,nzz,nxy,nxz,nyz,"
+        "force_anisotropy,mean_normal_force,grain_contacts,boundary_contacts,free_grains,"
+        "rattlers,mechanical_coordination";
     expectRowsReadBack(dir.file(kMicromechanicsFileName), header, record.micromechanicsRows);
     EXPECT_TRUE(isRunTextOutput(dir.file(kMicromechanicsFileName)));
 }

@@ -4,7 +4,8 @@
 // (coordination 3) and a lone ball is a rattler; and the Love–Weber stress moment obeys the
 // virial identity Σ_p M_p + Σ_p x_p ⊗ F_p = Σ over wall contacts of x_c ⊗ f_c (F_p the ball's
 // net force as the simulation summed it), so in equilibrium it is the walls' force times the
-// distance between them.
+// distance between them; and the branch vectors' and the normal forces' fabrics of contacts
+// made by hand against their closed forms.
 #include "lsdem/simulation/Micromechanics.h"
 
 #include "lsdem/scene/BuildWorld.h"
@@ -150,4 +151,40 @@ TEST(Micromechanics, StressMomentObeysTheVirialIdentityAndMatchesTheWalls)
     Mat3 summed = Mat3::Zero();
     for (size_t p = 0; p < w.grains.size(); ++p) summed += w.grains[p].asset->mass.volume * perGrain[p];
     EXPECT_LE((summed - m.stressMoment).cwiseAbs().maxCoeff(), 1e-12 * scale * 8.0);
+}
+
+// The branch vectors' and the forces' fabrics, on contacts made by hand: grain 0 at the
+// origin touches grain 1 above it (normal and branch along z, normal force 2) and grain 2 at
+// (1, 0, 1) along x (a normal along x, as an elongated grain's side would give, with its
+// branch at 45°; normal force 1, and a tangential part that does not count). Then
+// branch fabric = ½·e_z e_z + ½·l̂ l̂ with l̂ = (1, 0, 1)/√2, that is [[¼, 0, ¼], [0, 0, 0],
+// [¼, 0, ¾]]; force fabric = (2·e_z e_z + 1·e_x e_x)/3 = diag(⅓, 0, ⅔); mean normal force 3/2;
+// each anisotropy sqrt(3/2·a:a) of a = 15/2·(F − I/3), worked out here by hand.
+TEST(Micromechanics, BranchAndForceFabricsOfContactsMadeByHand)
+{
+    World w;
+    for (const Vec3& x : {Vec3(0, 0, 0), Vec3(0, 0, 2), Vec3(1, 0, 1)}) {
+        Grain g;
+        g.body.pose.position = x;
+        w.grains.push_back(g);
+    }
+    ContactRecord up, side;
+    up.first = 0, up.second = 1, up.normal = Vec3(0, 0, -1), up.force = Vec3(0, 0, -2);
+    side.first = 2, side.second = 0, side.normal = Vec3(1, 0, 0), side.force = Vec3(1, 0, 0.3);
+    const Micromechanics m = micromechanicsOf(w, {up, side});
+    ASSERT_EQ(m.grainContacts, 2);
+    Mat3 branch;
+    branch << 0.25, 0, 0.25, 0, 0, 0, 0.25, 0, 0.75;
+    EXPECT_LT((m.branchFabric - branch).norm(), 1e-15);
+    const Mat3 force = Vec3(1.0 / 3, 0, 2.0 / 3).asDiagonal();
+    EXPECT_LT((m.forceFabric - force).norm(), 1e-15);
+    EXPECT_DOUBLE_EQ(m.meanNormalForce, 1.5);
+    // a = 15/2·(F − I/3). Force: diag(0, −5/2, 5/2), a:a = 25/2, sqrt(3/2·25/2) = 5·√3/2.
+    EXPECT_NEAR(m.forceAnisotropy, 2.5 * std::sqrt(3.0), 1e-13);
+    // Branch: 15/2·diag(−1/12, −1/3, 5/12) and 15/8 off the diagonal (twice):
+    // a:a = (225/4)·(1/144 + 1/9 + 25/144) + 2·(15/8)² = 225/4·(42/144) + 225/32.
+    const double aa = 225.0 / 4.0 * 42.0 / 144.0 + 225.0 / 32.0;
+    EXPECT_NEAR(m.branchAnisotropy, std::sqrt(1.5 * aa), 1e-13);
+    // The normals' own fabric: diag(½, 0, ½), anisotropy 15/4.
+    EXPECT_NEAR(m.fabricAnisotropy, 3.75, 1e-13);
 }

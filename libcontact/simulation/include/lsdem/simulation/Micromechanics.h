@@ -27,6 +27,18 @@ struct Micromechanics
     /// sqrt(3/2 · a:a) of the deviatoric fabric a = 15/2 · (fabric − I/3) (Satake; Rothenburg
     /// & Bathurst): 0 for isotropic normals.
     double fabricAnisotropy = 0.0;
+    /// (1/C) Σ l̂ ⊗ l̂ over the same contacts, l̂ the unit branch vector between the two grains'
+    /// centroids (for round grains the normal's fabric; elongated grains tilt one from the
+    /// other), and its anisotropy as above.
+    Mat3 branchFabric = Mat3::Zero();
+    double branchAnisotropy = 0.0;
+    /// Σ f_n n ⊗ n / Σ f_n over the same contacts, f_n = |f·n| the normal force: the normals'
+    /// fabric weighted by how hard each contact presses (trace 1), and its anisotropy as above,
+    /// which adds the forces' own anisotropy to the normals' (a_c + a_n of Ouadfel &
+    /// Rothenburg, to first order).
+    Mat3 forceFabric = Mat3::Zero();
+    double forceAnisotropy = 0.0;
+    double meanNormalForce = 0.0;    ///< Σ f_n / C
     long long grainContacts = 0;     ///< C: contacts between free grains
     long long boundaryContacts = 0;  ///< contacts of free grains with boundaries and fixed grains
     int freeGrains = 0;              ///< N

@@ -22,14 +22,15 @@ from ._lsdem import (  # noqa: F401  (re-exported)
     bake_mesh,
     bake_sphere,
     load,
+    nonaffine_displacement,
     run_scene,
     study,
 )
 
 __all__ = [
     "Asset", "Boundaries", "Boundary", "Error", "Grains", "Nodes", "Scene", "Simulation",
-    "bake_box", "bake_ellipsoid", "bake_mesh", "bake_sphere", "load", "every", "run_scene",
-    "study",
+    "bake_box", "bake_ellipsoid", "bake_mesh", "bake_sphere", "load", "every",
+    "nonaffine_displacement", "run_scene", "study",
 ]
 
 # Show the public classes as lsdem.X (not lsdem._lsdem.X) in help() and reprs.

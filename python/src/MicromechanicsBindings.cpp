@@ -4,6 +4,9 @@
 #include "PySimulation.h"
 
 #include "lsdem/simulation/Micromechanics.h"
+#include "lsdem/simulation/NonAffineMotion.h"
+
+#include <cmath>
 
 namespace lsdem::python {
 
@@ -35,10 +38,58 @@ py::array_t<double> matrixOf(const Mat3& m)
     return a;
 }
 
+/// The rows of an (N, 3) array of finite numbers, named @a what in errors.
+std::vector<Vec3> pointsOf(const py::array_t<double, py::array::c_style | py::array::forcecast>& a,
+                           const std::string& what)
+{
+    if (a.ndim() != 2 || a.shape(1) != 3)
+        throw Error("", what + " must have shape (N, 3)", "pass an array of N points");
+    std::vector<Vec3> points;
+    auto r = a.unchecked<2>();
+    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+        const Vec3 p(r(i, 0), r(i, 1), r(i, 2));
+        if (!p.allFinite())
+            throw Error("", what + " row " + std::to_string(i) + " is not finite", "give numbers");
+        points.push_back(p);
+    }
+    return points;
+}
+
 } // namespace
 
 void bindMicromechanics(py::module_& m)
 {
+    m.def(
+        "nonaffine_displacement",
+        [](const py::array_t<double, py::array::c_style | py::array::forcecast>& reference,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& current,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& radii,
+           double reach) {
+            const std::vector<Vec3> was = pointsOf(reference, "reference");
+            const std::vector<Vec3> now = pointsOf(current, "current");
+            if (now.size() != was.size())
+                throw Error("", "current has " + std::to_string(now.size()) + " rows, reference " +
+                                    std::to_string(was.size()),
+                            "give the same grains in both");
+            if (radii.ndim() != 1 || size_t(radii.shape(0)) != was.size())
+                throw Error("", "radii must have shape (N,), one per grain", "e.g. bounding radii");
+            std::vector<double> r(radii.data(), radii.data() + radii.shape(0));
+            for (const double v : r)
+                if (!(v > 0.0 && std::isfinite(v)))
+                    throw Error("", "radii must be finite and > 0", "e.g. the grains' bounding radii");
+            if (!(reach > 0.0 && std::isfinite(reach)))
+                throw Error("", "reach must be finite and > 0", "e.g. 1.1");
+            const std::vector<double> d2 =
+                nonAffineDisplacement(was, now, neighboursWithin(was, r, reach));
+            return py::array_t<double>(static_cast<py::ssize_t>(d2.size()), d2.data());
+        },
+        py::arg("reference"), py::arg("current"), py::arg("radii"), py::arg("reach") = 1.1,
+        "D²min of Falk & Langer for each grain (docs/micromechanics.md): its neighbours in the "
+        "reference (centres within reach·(r_i + r_j), radii (N,)), the best local affine "
+        "deformation of their offsets taken out, what is left of their motion relative to it, "
+        "length². reference and current (N, 3) positions, e.g. sim.grains.positions at two "
+        "times.");
+
     auto simulation = py::reinterpret_borrow<py::class_<PySimulation>>(m.attr("Simulation"));
     simulation.def_property_readonly(
         "contact_pairs",

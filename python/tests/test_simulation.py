@@ -301,3 +301,34 @@ def test_contact_pairs_and_micromechanics_agree_with_the_walls_and_numpy():
     volumes = sim.grains.masses / 7.85e-9  # cube27.toml's steel
     summed = np.einsum("p,pij->ij", volumes, m["grain_stresses"])
     assert np.allclose(summed, m["stress_moment"], rtol=1e-9, atol=1e-9 * np.abs(summed).max())
+
+
+def test_nonaffine_displacement_is_falk_and_langers_computed_in_numpy():
+    """lsdem.nonaffine_displacement against the definition in numpy on the 27-sphere stack
+    between its start and 300 steps later (neighbours within 1.1 of the radii's sum), nil for
+    an affine map of the start, and bad shapes refused in lsdem's words."""
+    scene = lsdem.Scene.from_toml(str(SCENES / "cube27.toml"))
+    scene.end_time = 0.0
+    scene.end_steps = 300
+    sim = lsdem.Simulation(scene, threads=2)
+    start = sim.grains.positions.copy()
+    sim.run()
+    now = sim.grains.positions
+    radii = np.full(len(start), 5.0)  # cube27's spheres
+    d2 = lsdem.nonaffine_displacement(start, now, radii)
+    expected = []
+    for i in range(len(start)):
+        near = [j for j in range(len(start))
+                if j != i and np.linalg.norm(start[j] - start[i]) < 1.1 * (radii[i] + radii[j])]
+        was, is_ = start[near] - start[i], now[near] - now[i]
+        j_best = (is_.T @ was) @ np.linalg.pinv(was.T @ was)
+        expected.append(((is_ - was @ j_best.T) ** 2).sum() if near else 0.0)
+    scale = max(np.max(expected), 1e-300)
+    assert np.allclose(d2, expected, rtol=1e-9, atol=1e-9 * scale)
+    assert np.max(d2) > 0.0
+    a = np.array([[1.01, 0.2, 0.0], [0.0, 0.98, 0.05], [0.03, 0.0, 1.02]])
+    assert np.max(lsdem.nonaffine_displacement(start, start @ a.T + 3.0, radii)) < 1e-18
+    with pytest.raises(lsdem.Error, match="shape"):
+        lsdem.nonaffine_displacement(start[:, :2], now, radii)
+    with pytest.raises(lsdem.Error, match="radii"):
+        lsdem.nonaffine_displacement(start, now, radii[:-1])

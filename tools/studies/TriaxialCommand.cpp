@@ -221,14 +221,19 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     auto onRun = [&](const TriaxialRun& r) {
         if (o.quiet) return;
         std::printf("  done: %s: %.0f nodes/grain, peak phi %.2f deg, critical phi "
-                    "%.2f deg, %.0f s\n",
+                    "%.2f deg, %.0f s (shearing %.0f s, estimated %.0f s)\n",
                     runName(r.formulation, r.sdp, r.seed).c_str(), r.nodesPerGrain,
-                    r.test.peakFrictionAngle, r.test.criticalFrictionAngle, r.runSeconds);
+                    r.test.peakFrictionAngle, r.test.criticalFrictionAngle, r.runSeconds,
+                    r.test.shearSeconds, r.test.shearSecondsEstimate);
         std::fflush(stdout);
     };
     int shearingRows = 0;
     auto progress = [&](Formulation f, double sdp, long long seed, const TriaxialRow& row) {
         if (o.quiet) return;
+        if (row.shearSecondsEstimate >= 0.0)
+            std::printf("  %s: consolidated at step %lld; the shearing, at the consolidation's "
+                        "last pace: about %.0f s\n",
+                        runName(f, sdp, seed).c_str(), row.step, row.shearSecondsEstimate);
         if (row.stage == 1 && ++shearingRows % 20 != 0) return;  // every tenth of the shearing
         std::printf("  %s: %s step %lld, eps_a %.3f, p %.4g, q %.4g, e %.3f\n",
                     runName(f, sdp, seed).c_str(),

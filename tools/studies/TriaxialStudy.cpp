@@ -70,6 +70,7 @@ std::string encodeRun(const TriaxialRun& r)
     const TriaxialTestResult& t = r.test;
     w.integer(t.consolidatedWithinTolerance ? 1 : 0);
     w.integer(t.consolidationSteps).integer(t.shearSteps);
+    w.number(t.shearSeconds).number(t.shearSecondsEstimate);
     std::vector<double> consolidated, rows;
     packRow(TriaxialRow{1, 0, 0.0, t.consolidated}, consolidated);
     for (const TriaxialRow& row : t.rows) packRow(row, rows);
@@ -105,6 +106,8 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
     r.test.consolidatedWithinTolerance = in.integer() != 0;
     r.test.consolidationSteps = in.integer();
     r.test.shearSteps = in.integer();
+    r.test.shearSeconds = in.number();
+    r.test.shearSecondsEstimate = in.number();
     r.test.consolidated = unpackRow(in.numbers().data()).state;
     const std::vector<double> rows = in.numbers();
     for (size_t k = 0; k + kRowFields <= rows.size(); k += kRowFields)

@@ -3,6 +3,7 @@
 #include "studies/StudyLimits.h"
 
 #include "lsdem/core/Error.h"
+#include "lsdem/core/Stopwatch.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <algorithm>
@@ -107,6 +108,11 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
     const long long firstStep = w.step;
     long long settledSince = -1;
     constexpr long long kCheckEvery = 100, kRecordEvery = 1000;
+    // The pace of the last thousand steps (at most) of the consolidation, for the estimate.
+    Stopwatch paceClock;
+    long long paceFrom = w.step;
+    double paceSeconds = 0.0;
+    long long paceSteps = 0;
     while (w.step - firstStep < p.maxConsolidationSteps) {
         for (long long k = 0; k < kCheckEvery; ++k) sim.step();
         const TriaxialState now = measureTriaxialCell(w, walls, {});
@@ -120,7 +126,17 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
         } else {
             settledSince = -1;
         }
-        if ((w.step - firstStep) % kRecordEvery == 0) record(measureRow(sim, walls, 0, nullptr, p));
+        if ((w.step - firstStep) % kRecordEvery == 0) {
+            paceSeconds = paceClock.seconds();
+            paceSteps = w.step - paceFrom;
+            paceClock.restart();
+            paceFrom = w.step;
+            record(measureRow(sim, walls, 0, nullptr, p));
+        }
+    }
+    if (w.step - paceFrom >= kRecordEvery / 2 || paceSteps == 0) {  // a later, long enough stretch
+        paceSeconds = paceClock.seconds();
+        paceSteps = w.step - paceFrom;
     }
     result.consolidationSteps = w.step - firstStep;
 
@@ -134,6 +150,9 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
     }
     const TriaxialState& reference = result.consolidated;
     TriaxialRow first = measureRow(sim, walls, 1, &reference, p);
+    if (paceSteps > 0) first.shearSecondsEstimate = double(shearSteps) * paceSeconds / double(paceSteps);
+    result.shearSecondsEstimate = first.shearSecondsEstimate;
+    const Stopwatch shearClock;
     record(first);
     grainFriction(w) = p.friction;
     const double endSpeed = 0.5 * p.strainRate * reference.size.z();
@@ -153,6 +172,7 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
             record(measureRow(sim, walls, 1, &reference, p));
     }
     result.shearSteps = w.step - shearStart;
+    result.shearSeconds = shearClock.seconds();
     summariseTriaxialShearing(result, p.maxAxialStrain);
     return result;
 }

@@ -48,6 +48,9 @@ struct TriaxialRow
     double frictionAngle = 0.0;    ///< mobilised, degrees
     double inertialNumber = 0.0;   ///< ε̇·d·sqrt(ρ/p)
     double kinetic = 0.0;          ///< kinetic energy
+    /// On the first shearing row: the shearing's steps times the pace of the consolidation's
+    /// last thousand steps (the sample dense by then), s; −1 on every other row.
+    double shearSecondsEstimate = -1.0;
 };
 
 struct TriaxialTestResult
@@ -58,6 +61,8 @@ struct TriaxialTestResult
     std::array<Vec3, 6> consolidatedWallPoints;  ///< each wall's point then (walls' order)
     bool consolidatedWithinTolerance = false;
     long long consolidationSteps = 0, shearSteps = 0;
+    /// The shearing's wall time, s, and what was estimated for it when it began (−1: none).
+    double shearSeconds = 0.0, shearSecondsEstimate = -1.0;
     double peakFrictionAngle = 0.0, peakAxialStrain = 0.0;
     /// Critical state: means over the last quarter of the axial strain.
     double criticalFrictionAngle = 0.0, criticalVoidRatio = 0.0;

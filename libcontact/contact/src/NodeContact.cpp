@@ -261,15 +261,9 @@ private:
         bound.c11 -= bend;
         bound.c22 -= bend;
         if (patchPeakBound(bound, radius) <= 0.0) return;
-        auto change = [&](const Vec3& t) {
-            return Vec3((sampler().sample(inB + h * t).gradient -
-                         sampler().sample(inB - h * t).gradient) /
-                        (2.0 * h));
-        };
-        const Vec3 along1 = change(frame.tangent1), along2 = change(frame.tangent2);
-        depth = patchDepth(frame, s.phi, s.gradient, frame.tangent1.dot(along1),
-                           0.5 * (frame.tangent2.dot(along1) + frame.tangent1.dot(along2)),
-                           frame.tangent2.dot(along2));
+        const auto [h11, h12, h22] =
+            sampler().tangentialHessian(inB, frame.tangent1, frame.tangent2, h);
+        depth = patchDepth(frame, s.phi, s.gradient, h11, h12, h22);
         NodeContact c;
         Vec3 offset;
         if (!fillPatchContact(integratePatch(depth, shape.extents, shape.reach), frame, c, offset)) return;

@@ -76,8 +76,8 @@ private:
     std::string mOutDir, mCheckpointPath;
     /// The output folder, locked by the process that writes it for as long as the run lasts.
     FolderLock mOutLock;
-    std::vector<Vec3> mInitialPositions;
-    /// Each grain's pose at the run's start (the scene's), for the frames' micromechanics.
+    /// Each grain's pose at the run's start (the scene's): grains.csv's displacements, the
+    /// frames' micromechanics.
     std::vector<RigidPose> mStartPoses;
     /// Split over ranks: this rank's part of the grains; only rank 0 writes.
     std::unique_ptr<GhostDecomposition> mDecomposition;

@@ -119,11 +119,8 @@ double Run::makeSimulation(const RunOptions& options)
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
-    if (mWrites)  // for grains.csv's displacements
-        for (const Grain& g : world.grains) {
-            mInitialPositions.push_back(g.body.pose.position);
-            mStartPoses.push_back(g.body.pose);
-        }
+    if (mWrites)  // for grains.csv's displacements and the frames' micromechanics
+        for (const Grain& g : world.grains) mStartPoses.push_back(g.body.pose);
 
     double dt = mScene.timeStep.fixed;
     if (mRestart) {

@@ -50,7 +50,9 @@ const World& Run::wholeWorld(World& gathered)
 void Run::writeFiles(const World& whole)
 {
     writeHistoryFiles(mOutDir, whole, mCheckpoint.record);
-    writeGrainsFile((fs::path(mOutDir) / kGrainsFileName).string(), whole, mInitialPositions);
+    std::vector<Vec3> startPositions;
+    for (const RigidPose& p : mStartPoses) startPositions.push_back(p.position);
+    writeGrainsFile((fs::path(mOutDir) / kGrainsFileName).string(), whole, startPositions);
 }
 
 void Run::writeTextOutputs(bool withGrains)

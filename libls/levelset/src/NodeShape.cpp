@@ -1,11 +1,11 @@
 #include "lsdem/ls/NodeShape.h"
 
 #include "lsdem/core/Constants.h"
+#include "lsdem/core/PointHashGrid.h"
 #include "lsdem/ls/GrainAsset.h"
 #include "lsdem/ls/LevelSetGrid.h"
 #include "lsdem/ls/LevelSetSampler.h"
 
-#include "NodeHashGrid.h"
 
 #include <Eigen/QR>
 
@@ -55,15 +55,9 @@ public:
     template <typename Visit>
     void around(int i, Visit&& visit) const
     {
-        const Eigen::Vector3i c = mGrid.cellOf(mPositions[static_cast<size_t>(i)]);
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const std::vector<int>* inCell = mGrid.nodesIn(c + Eigen::Vector3i(dx, dy, dz));
-                    if (!inCell) continue;
-                    for (const int j : *inCell)
-                        if (j != i) visit(j);
-                }
+        mGrid.around(mGrid.cellOf(mPositions[static_cast<size_t>(i)]), [&](int j) {
+            if (j != i) visit(j);
+        });
     }
 
 private:
@@ -76,7 +70,7 @@ private:
 
     const std::vector<Vec3>& mPositions;
     double mRadius;
-    NodeHashGrid mGrid;
+    PointHashGrid mGrid;
 };
 
 /// Normal, tangent and shape operator of the node at @a x from the level set.
@@ -91,16 +85,10 @@ void shapeFromLevelSet(LevelSetSampler& sampler, double h, const Vec3& x, NodeSh
     }
     s.normal = gradient / length;
     s.tangent = anyTangent(s.normal);
-    const Vec3 t2 = s.secondTangent();
-    // ∇φ's change along each tangent: the Hessian's columns H·t (central differences).
-    auto change = [&](const Vec3& t) {
-        return Vec3((sampler.sample(x + h * t).gradient - sampler.sample(x - h * t).gradient) /
-                    (2.0 * h));
-    };
-    const Vec3 along1 = change(s.tangent), along2 = change(t2);
-    s.k11 = s.tangent.dot(along1);
-    s.k22 = t2.dot(along2);
-    s.k12 = 0.5 * (t2.dot(along1) + s.tangent.dot(along2));
+    const auto [k11, k12, k22] = sampler.tangentialHessian(x, s.tangent, s.secondTangent(), h);
+    s.k11 = k11;
+    s.k12 = k12;
+    s.k22 = k22;
 }
 
 /// The surface through node @a i fitted to its neighbours on the same sheet: in the frame

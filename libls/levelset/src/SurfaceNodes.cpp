@@ -1,6 +1,6 @@
 #include "lsdem/ls/SurfaceNodes.h"
 
-#include "NodeHashGrid.h"
+#include "lsdem/core/PointHashGrid.h"
 
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
@@ -116,7 +116,7 @@ NodeSpacing nodeSpacing(const SurfaceNodes& nodes)
     }
     const double cell = std::max(std::sqrt(std::max(nodes.totalArea(), 1e-300) / n),
                                  1e-9 * (hi - lo).norm());
-    const NodeHashGrid grid(nodes.positions, cell);
+    const PointHashGrid grid(nodes.positions, cell);
     const int maxShell = grid.cellsAcross() + 1;
 
     // Each node's nearest neighbour in parallel (the grid is only read), then the sums in

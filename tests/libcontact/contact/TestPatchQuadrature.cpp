@@ -167,19 +167,17 @@ TEST(PatchQuadrature, PatchWhollyInContactGivesTheDiskIntegralsInClosedForm)
         // The scale: the largest |d| over the disk bounds every integrand.
         const double largest = std::abs(d.d0) + std::hypot(d.g1, d.g2) * rho +
                                0.5 * rho2 * std::max(std::abs(lowest), std::abs(highest));
-        const PatchIntegral p = integratePatch(d, rho);
-        EXPECT_NEAR(p.area, area, 1e-12 * disk);
-        EXPECT_NEAR(p.depth, depth, 1e-12 * disk * largest);
-        EXPECT_NEAR(p.moment1, moment1, 1e-12 * disk * largest * rho);
-        EXPECT_NEAR(p.moment2, moment2, 1e-12 * disk * largest * rho);
-        EXPECT_NEAR(p.squareDepth, square, 1e-12 * disk * largest * largest);
+        // Each integral to @a relative of its scale (the disk times the largest |d| to its power).
+        auto expectClosedForms = [&](const auto& got, double relative) {
+            EXPECT_NEAR(got.area, area, relative * disk);
+            EXPECT_NEAR(got.depth, depth, relative * disk * largest);
+            EXPECT_NEAR(got.moment1, moment1, relative * disk * largest * rho);
+            EXPECT_NEAR(got.moment2, moment2, relative * disk * largest * rho);
+            EXPECT_NEAR(got.squareDepth, square, relative * disk * largest * largest);
+        };
+        expectClosedForms(integratePatch(d, rho), 1e-12);
         // The formulas themselves, against the grid.
-        const GridIntegrals g = gridIntegrals(d, rho);
-        EXPECT_NEAR(g.area, area, 1e-5 * disk);
-        EXPECT_NEAR(g.depth, depth, 1e-5 * disk * largest);
-        EXPECT_NEAR(g.moment1, moment1, 1e-5 * disk * largest * rho);
-        EXPECT_NEAR(g.moment2, moment2, 1e-5 * disk * largest * rho);
-        EXPECT_NEAR(g.squareDepth, square, 1e-5 * disk * largest * largest);
+        expectClosedForms(gridIntegrals(d, rho), 1e-5);
     }
 }
 

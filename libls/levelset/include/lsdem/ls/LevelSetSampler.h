@@ -69,6 +69,20 @@ public:
         return s;
     }
 
+    /// The tangential part of φ's Hessian at @a p in the frame (@a t1, @a t2): ∇φ's change
+    /// along each tangent by central differences @a h apart, H·t = (∇φ(p + h·t) − ∇φ(p −
+    /// h·t))/2h, then {t₁·H·t₁, ½(t₂·H·t₁ + t₁·H·t₂), t₂·H·t₂} (four samples). Exact for an
+    /// exact distance up to O(h²); from voxels each entry errs by O(1/R) node by node (the
+    /// trilinear gradient jumps across cell faces).
+    std::array<double, 3> tangentialHessian(const Vec3& p, const Vec3& t1, const Vec3& t2, double h)
+    {
+        auto change = [&](const Vec3& t) {
+            return Vec3((sample(p + h * t).gradient - sample(p - h * t).gradient) / (2.0 * h));
+        };
+        const Vec3 along1 = change(t1), along2 = change(t2);
+        return {t1.dot(along1), 0.5 * (t2.dot(along1) + t1.dot(along2)), t2.dot(along2)};
+    }
+
     /// φ alone (same interpolant as sample()).
     double phi(const Vec3& p)
     {

@@ -1,6 +1,7 @@
-// A hash grid of node positions (internal to lsdem_ls): the nodes in each cube of a given side,
-// for searches among a node's neighbours (nodeSpacing's nearest node, NodeShape's Voronoi
-// cells).
+/// @file PointHashGrid.h
+/// @brief A hash grid of points: the points in each cube of a given side, for searches among a
+///        point's neighbours (nodeSpacing's nearest node, NodeShape's neighbours, the grains near
+///        each grain of NonAffineMotion).
 #pragma once
 
 #include "lsdem/core/Vec3.h"
@@ -13,11 +14,11 @@
 
 namespace lsdem {
 
-class NodeHashGrid
+class PointHashGrid
 {
 public:
     /// Cells of side @a cell from the positions' lowest corner.
-    NodeHashGrid(const std::vector<Vec3>& positions, double cell) : mCell(cell)
+    PointHashGrid(const std::vector<Vec3>& positions, double cell) : mCell(cell)
     {
         mLow = Vec3::Constant(std::numeric_limits<double>::infinity());
         mHigh = -mLow;
@@ -40,6 +41,19 @@ public:
     {
         const auto it = mCells.find(key(c));
         return it == mCells.end() ? nullptr : &it->second;
+    }
+    /// Call @a visit(j) for every point j in the 27 cells around cell @a c (cell by cell, each
+    /// in the order its points were given): every point within one cell side of a point of c.
+    template <typename Visit>
+    void around(const Eigen::Vector3i& c, Visit&& visit) const
+    {
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const std::vector<int>* inCell = nodesIn(c + Eigen::Vector3i(dx, dy, dz));
+                    if (!inCell) continue;
+                    for (const int j : *inCell) visit(j);
+                }
     }
     /// The most cells the positions span along an axis.
     int cellsAcross() const { return static_cast<int>(((mHigh - mLow) / mCell).maxCoeff()) + 1; }

@@ -99,9 +99,15 @@ void bindSimulation(py::module_& m)
                 d["potential"] = e.potential;
                 d["boundary_work"] = e.boundaryWork;
                 d["dissipated"] = e.dissipated;
+                d["dissipated_friction"] = e.friction;
+                d["dissipated_dashpot"] = e.dashpot;
+                d["dissipated_global_damping"] = e.globalDamping;
                 return d;
             },
-            "The energy balance now: kinetic, elastic, potential, boundary_work, dissipated.")
+            "The energy balance now: kinetic, elastic, potential, boundary_work, dissipated (what "
+            "the balance leaves), and that split by mechanism: dissipated_friction, "
+            "dissipated_dashpot, dissipated_global_damping (what they leave of it is the "
+            "integrator's error).")
         .def_property_readonly("scene", &PySimulation::scene, py::return_value_policy::copy,
                                "A copy of the scene it runs.")
         .def_property_readonly(

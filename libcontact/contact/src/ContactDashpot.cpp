@@ -115,6 +115,7 @@ Dashpot contactDashpot(const ContactSide* sides, int sideCount, const ContactMod
     const double viscous =
         std::max(-d.coefficient * relative.dot(d.axis.normal), -std::max(d.axis.force, 0.0));
     d.force = viscous * d.axis.normal;
+    d.power = -viscous * relative.dot(d.axis.normal);  // viscous opposes the normal rate: ≥ 0
     double total = 0.0;
     for (int s = 0; s < sideCount; ++s)
         for (const PointForce& f : normal[s]) total += f.stiffness;

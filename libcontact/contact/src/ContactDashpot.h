@@ -41,6 +41,7 @@ struct Dashpot
     ContactAxis axis;
     Vec3 force = Vec3::Zero();         ///< on first
     double viscousPerStiffness = 0.0;  ///< its normal force over Σ k of the point forces
+    double power = 0.0;                ///< what it dissipates: −force·(v_first − v_second) ≥ 0
 };
 
 /// The dashpot of the contact whose elastic point forces of the @a sideCount sides are

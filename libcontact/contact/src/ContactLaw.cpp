@@ -221,7 +221,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
 
     // Shear springs, elastic energy and stiffness, point force by point force; sums in locals
     // (registers), as in addSideForces.
-    double elasticEnergy = 0.0;
+    double elasticEnergy = 0.0, frictionWork = 0.0;
     StiffnessSum stiffness(first, second);
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
@@ -252,7 +252,8 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                     stored.of(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
                     shearStiffness,
                     shearSprings.friction *
-                        std::max(0.0, size + dashpot.viscousPerStiffness * f.stiffness));
+                        std::max(0.0, size + dashpot.viscousPerStiffness * f.stiffness),
+                    &frictionWork);
                 nextHistory.push_back({c->node, shear});
                 f.force += shear;
                 elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
@@ -278,6 +279,8 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     }
     if (result.dashpot > 0.0) addDashpot(dashpot, first, second, result);
     result.elasticEnergy = elasticEnergy;
+    result.frictionWork = dt > 0.0 ? frictionWork : 0.0;
+    result.dashpotWork = dashpot.power * dt;
     stiffness.store(result);
     return result;
 }

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 namespace lsdem {
 
@@ -26,7 +27,9 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 ///    (levelSetSlopeBound since 2026-11-27); those of a version 3 or 4 file took the earlier
 ///    bound over the whole grid, so its assets are not compared (its grains still are).
 /// 6: the record ends with the micromechanics rows (none in an earlier file's).
-const uint32_t kVersion = 6;
+/// 7: each grain also keeps the energy dissipated by mechanism (DissipatedEnergy); an earlier
+///    file's grains restart from none, and its energy rows gain empty (NaN) columns for it.
+const uint32_t kVersion = 7;
 const uint32_t kOldestVersion = 1;
 
 using Writer = ByteWriter<std::string>;
@@ -115,7 +118,11 @@ RunRecord readRecord(Reader& r, uint32_t version)
     RunRecord rec;
     const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
     rec.energyRows.resize(r.count(rowBytes));
-    for (auto& row : rec.energyRows) row = r.numbers();
+    for (auto& row : rec.energyRows) {
+        row = r.numbers();
+        // Written before the dissipation was split by mechanism: those columns unknown.
+        if (version < 7) row.insert(row.end(), 3, std::numeric_limits<double>::quiet_NaN());
+    }
     rec.boundaryRows.resize(r.count(rowBytes));
     for (auto& rows : rec.boundaryRows) {
         rows.resize(r.count(rowBytes));
@@ -221,6 +228,8 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
             putVec(w, g.body.angularMomentum);
             putVec(w, g.force);
             putVec(w, g.torque);
+            w.number(g.dissipated.friction).number(g.dissipated.dashpot).number(
+                g.dissipated.globalDamping);
         }
         w.value<uint64_t>(world.boundaries.size());
         for (const Boundary& b : world.boundaries)
@@ -313,7 +322,8 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     if (!std::isfinite(w.time) || w.step < 0 || !std::isfinite(w.energy.boundaryWork) ||
         !std::isfinite(w.energy.initialTotal))
         r.fail();
-    const uint64_t grainBytes = 19 * sizeof(double);  // position, orientation, 4 vectors
+    // position, orientation, 4 vectors (and from version 7, 3 dissipated energies)
+    const uint64_t grainBytes = (version >= 7 ? 22 : 19) * sizeof(double);
     if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
                     "the scene's assets may have changed; start the run again");
@@ -324,10 +334,18 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         g.body.angularMomentum = r.vec();
         g.force = r.vec();
         g.torque = r.vec();
+        g.dissipated = DissipatedEnergy();
+        if (version >= 7) {
+            g.dissipated.friction = r.number();
+            g.dissipated.dashpot = r.number();
+            g.dissipated.globalDamping = r.number();
+        }
         // A damaged state must not start a run: every number finite, the rotation a rotation.
         const bool sane = allFinite(g.body.pose.position) && allFinite(g.body.velocity) &&
                           allFinite(g.body.angularMomentum) && allFinite(g.force) &&
-                          allFinite(g.torque) &&
+                          allFinite(g.torque) && std::isfinite(g.dissipated.friction) &&
+                          std::isfinite(g.dissipated.dashpot) &&
+                          std::isfinite(g.dissipated.globalDamping) &&
                           std::abs(g.body.pose.orientation.norm() - 1.0) < 1e-6;
         if (!sane) r.fail();
     }

@@ -17,7 +17,8 @@ const std::string kBoundaryHistoryPrefix = "boundary_", kBoundaryHistorySuffix =
 
 /// The first lines of the text outputs (isRunTextOutput knows a run's files by them).
 const std::string kEnergyHeader =
-    "step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes";
+    "step,time,kinetic,elastic,potential,boundary_work,dissipated,contact_nodes,"
+    "dissipated_friction,dissipated_dashpot,dissipated_global_damping";
 const std::string kBoundaryHeader = "step,time,ux,uy,uz,fx,fy,fz";
 const std::string kServoBoundaryHeader =
     "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed";
@@ -55,7 +56,8 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
     const Energies e = sim.energies();
     record.energyRows.push_back({static_cast<double>(w.step), w.time, e.kinetic, e.elastic,
                                  e.potential, e.boundaryWork, e.dissipated,
-                                 static_cast<double>(sim.contactNodes())});
+                                 static_cast<double>(sim.contactNodes()), e.friction,
+                                 e.dashpot, e.globalDamping});
     record.boundaryRows.resize(w.boundaries.size());
     for (size_t b = 0; b < w.boundaries.size(); ++b) {
         const Boundary& bd = w.boundaries[b];

@@ -22,6 +22,20 @@ void getBody(Reader& in, RigidBody& b)
     in.values(b.angularMomentum.data(), 3);
 }
 
+void putDissipated(Writer& out, const DissipatedEnergy& d)
+{
+    out.number(d.friction).number(d.dashpot).number(d.globalDamping);
+}
+
+DissipatedEnergy getDissipated(Reader& in)
+{
+    DissipatedEnergy d;
+    d.friction = in.number();
+    d.dashpot = in.number();
+    d.globalDamping = in.number();
+    return d;
+}
+
 } // namespace
 
 void putGrain(Writer& out, const Grain& g, int assetIndex)
@@ -36,6 +50,7 @@ void putGrain(Writer& out, const Grain& g, int assetIndex)
     out.values(g.prescribedAngularVelocity.data(), 3);
     out.values(g.force.data(), 3);
     out.values(g.torque.data(), 3);
+    putDissipated(out, g.dissipated);
 }
 
 Grain getGrain(Reader& in, const World& world)
@@ -54,6 +69,7 @@ Grain getGrain(Reader& in, const World& world)
     in.values(g.prescribedAngularVelocity.data(), 3);
     in.values(g.force.data(), 3);
     in.values(g.torque.data(), 3);
+    g.dissipated = getDissipated(in);
     return g;
 }
 

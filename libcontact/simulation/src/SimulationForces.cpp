@@ -50,6 +50,13 @@ Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
     return damped;
 }
 
+/// What dampComponents takes from a body moving at @a velocity over @a dt: each component's
+/// λ·|F_k| against the motion, λ·Σ|F_k·v_k|·dt.
+double dampedWork(const Vec3& force, const Vec3& velocity, double lambda, double dt)
+{
+    return lambda * force.cwiseProduct(velocity).cwiseAbs().sum() * dt;
+}
+
 /// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,
 /// which added to a sum that starts at +0 changes nothing.
 bool isEmpty(const PairForces& r)
@@ -63,7 +70,8 @@ bool isEmpty(const PairForces& r)
            zero(r.forceOnSecond.data(), 3) && zero(r.torqueOnSecond.data(), 3) &&
            zero(&r.elasticEnergy, 1) && zero(r.translationalStiffness.data(), 9) &&
            zero(r.rotationalStiffnessOfFirst.data(), 9) &&
-           zero(r.rotationalStiffnessOfSecond.data(), 9) && zero(&r.dashpot, 1);
+           zero(r.rotationalStiffnessOfSecond.data(), 9) && zero(&r.dashpot, 1) &&
+           zero(&r.frictionWork, 1) && zero(&r.dashpotWork, 1);
 }
 
 /// What a grain–boundary slot adds to its boundary: the reaction and, for a plane, the
@@ -112,7 +120,7 @@ void Simulation::evaluateForces(double slipStep)
 
     const auto reduceStart = SteadyClock::now();
     const double reduceExchanged = exchangedSeconds();
-    sumGrainForces();
+    sumGrainForces(slipStep);
     sumContactCounts();
     collectReactionsAndPointForces();
     mCounters.integrateSeconds +=
@@ -162,10 +170,11 @@ void Simulation::computeContacts(double slipStep)
                                      mSlotTotals, slipStep, mRecordForces});
 }
 
-void Simulation::sumGrainForces()
+void Simulation::sumGrainForces(double dt)
 {
     // Sum each grain's slots in list order, grains in parallel: the same numbers whatever the
-    // thread count (and the same as one pass over the slots in order).
+    // thread count (and the same as one pass over the slots in order). A contact's dissipation
+    // goes to its first grain, summed in the same order.
     World& w = mWorld;
     const std::vector<ContactSlot>& slots = mContacts.slots();
     const int n = static_cast<int>(w.grains.size());
@@ -175,12 +184,14 @@ void Simulation::sumGrainForces()
         Grain& g = w.grains[size_t(i)];
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
         GrainStiffness stiffness;
+        double friction = 0.0, dashpot = 0.0;
         for (const GrainSlotRef* r = mContacts.grainSlotsBegin(size_t(i));
              r != mContacts.grainSlotsBegin(size_t(i) + 1); ++r) {
             const ContactSlot& s = slots[size_t(r->slot)];
             const PairForces& f = s.result;
             force += r->first ? f.forceOnFirst : f.forceOnSecond;
             torque += r->first ? f.torqueOnFirst : f.torqueOnSecond;
+            if (r->first) friction += f.frictionWork, dashpot += f.dashpotWork;
             // The partner moves too: its share 1 + m_i/m_j (1 for a boundary or a grain that
             // forces do not move) makes the stability check a bound for every grain's
             // translation at once (stepLimitOf).
@@ -194,10 +205,15 @@ void Simulation::sumGrainForces()
         if (g.isFree()) {
             force += g.body.mass * w.gravity;
             if (w.globalDamping > 0.0) {
+                g.dissipated.globalDamping +=
+                    dampedWork(force, g.body.velocity, w.globalDamping, dt) +
+                    dampedWork(torque, g.body.angularVelocity(), w.globalDamping, dt);
                 force = dampComponents(force, g.body.velocity, w.globalDamping);
                 torque = dampComponents(torque, g.body.angularVelocity(), w.globalDamping);
             }
         }
+        g.dissipated.friction += friction;
+        g.dissipated.dashpot += dashpot;
         g.force = force;
         g.torque = torque;
         mGrainStiffness[size_t(i)] = stiffness;

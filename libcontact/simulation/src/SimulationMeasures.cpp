@@ -82,13 +82,20 @@ Energies Simulation::energies() const
         // contacts (each counted by the owner of its first grain).
         const std::vector<int>& ids = mGhosts->globalIds();
         std::vector<OrderedTerm> terms;
+        // (Every grain for its dissipation, a free one for its energies too: key[2] says which.)
         for (size_t i = 0; i < mWorld.grains.size(); ++i) {
             const Grain& g = mWorld.grains[i];
-            if (!g.isFree() || !integratesGrain(i)) continue;
+            if (!integratesGrain(i)) continue;
             OrderedTerm t;
             t.key[1] = ids[i];
-            t.value[0] = g.body.kineticEnergy();
-            t.value[1] = g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            t.key[2] = g.isFree() ? 1 : 0;
+            if (g.isFree()) {
+                t.value[0] = g.body.kineticEnergy();
+                t.value[1] = g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            }
+            t.value[2] = g.dissipated.friction;
+            t.value[3] = g.dissipated.dashpot;
+            t.value[4] = g.dissipated.globalDamping;
             terms.push_back(t);
         }
         const std::vector<ContactSlot>& slots = mContacts.slots();
@@ -106,8 +113,13 @@ Energies Simulation::energies() const
         double elastic = 0.0;
         for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
             if (t.key[0] == 0) {
-                e.kinetic += t.value[0];
-                e.potential -= t.value[1];
+                if (t.key[2] == 1) {
+                    e.kinetic += t.value[0];
+                    e.potential -= t.value[1];
+                }
+                e.friction += t.value[2];
+                e.dashpot += t.value[3];
+                e.globalDamping += t.value[4];
             } else {
                 elastic += t.value[0];
             }
@@ -115,9 +127,13 @@ Energies Simulation::energies() const
         e.elastic = elastic;
     } else {
         for (const Grain& g : mWorld.grains) {
-            if (!g.isFree()) continue;
-            e.kinetic += g.body.kineticEnergy();
-            e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            if (g.isFree()) {
+                e.kinetic += g.body.kineticEnergy();
+                e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+            }
+            e.friction += g.dissipated.friction;
+            e.dashpot += g.dissipated.dashpot;
+            e.globalDamping += g.dissipated.globalDamping;
         }
         e.elastic = mElastic;
     }

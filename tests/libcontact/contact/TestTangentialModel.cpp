@@ -28,6 +28,27 @@ TEST(ShearSpring, ElasticBelowTheLimitAndSaturatesAtIt)
     EXPECT_NEAR(shear.x(), -9.9, 1e-12);
 }
 
+// What the cap takes, against the work-less-stored-energy of a force held at a cap that moves
+// linearly over the step. A node sliding at a steady limit 10, slipped 0.02 at k = 100: trial 12,
+// cut to 10, plastic slip 0.02 at force 10: 0.2. The limit rising to 10.5 meanwhile: the force
+// (at the cap throughout) does ∫ = (10 + 10.5)/2·0.02 = 0.205 of work and the spring gains
+// (10.5² − 10²)/200 = 0.05125: 0.15375. A limit falling from the stored 9 to 5 without slip
+// takes what the spring lost, (9² − 5²)/200 = 0.28. A step within the limit takes nothing.
+TEST(ShearSpring, CountsTheWorkOfItsSlip)
+{
+    const Vec3 n = Vec3::UnitZ(), slip(0.02, 0, 0);
+    const auto taken = [&](const Vec3& stored, const Vec3& slipped, double limit) {
+        double dissipated = 0.0;
+        const Vec3 shear = updateShearForce(stored, n, slipped, 0.0, 100.0, limit, &dissipated);
+        EXPECT_NEAR(shear.norm(), std::min(limit, (stored - 100.0 * slipped).norm()), 1e-12);
+        return dissipated;
+    };
+    EXPECT_NEAR(taken(Vec3(-10, 0, 0), slip, 10.0), 0.2, 1e-12);
+    EXPECT_NEAR(taken(Vec3(-10, 0, 0), slip, 10.5), 0.15375, 1e-12);
+    EXPECT_NEAR(taken(Vec3(-9, 0, 0), Vec3::Zero(), 5.0), 0.28, 1e-12);
+    EXPECT_EQ(taken(Vec3(-9, 0, 0), slip, 12.0), 0.0);
+}
+
 // No normal force, no shear: a limit of zero (or below, which a law should never give) leaves
 // nothing, whatever was stored or slipped; a limit exactly met is not cut.
 TEST(ShearSpring, ALimitOfZeroOrLessCarriesNoShear)

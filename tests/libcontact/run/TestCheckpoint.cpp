@@ -11,14 +11,13 @@
 
 #include <gtest/gtest.h>
 
-#include <limits>
-
-#include <type_traits>
-
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <random>
+#include <type_traits>
 
 using namespace lsdem;
 
@@ -149,6 +148,9 @@ void expectSameState(const World& a, const World& b)
         EXPECT_TRUE(sameBits(x.body.angularMomentum, y.body.angularMomentum)) << "grain " << i;
         EXPECT_TRUE(sameBits(x.force, y.force)) << "grain " << i;
         EXPECT_TRUE(sameBits(x.torque, y.torque)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.dissipated.friction, y.dissipated.friction)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.dissipated.dashpot, y.dissipated.dashpot)) << "grain " << i;
+        EXPECT_TRUE(sameBits(x.dissipated.globalDamping, y.dissipated.globalDamping)) << i;
     }
     ASSERT_EQ(a.boundaries.size(), b.boundaries.size());
     for (size_t k = 0; k < a.boundaries.size(); ++k) {
@@ -578,25 +580,43 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     // fingerprints of the earlier bound: its assets are not compared (the boundary's new level
     // set passes), its grains still are.
     {
-        std::string bytes = readBytes(path);
-        // Format 4 had no micromechanics rows (format 6 put their count after the frame
-        // times): found by saving one row of a value seen nowhere else, its count and the
-        // rows' count 16 bytes before it.
-        Checkpoint marked = plain;
+        // Format 4 had no micromechanics rows (format 6 put their count after the frame times)
+        // and no dissipated energies per grain (format 7 put three after each grain's torque):
+        // a checkpoint saved with marker values there (seen nowhere else) loses them.
+        World marked = steppedWorld(10);
+        for (size_t i = 0; i < marked.grains.size(); ++i)
+            marked.grains[i].dissipated = {1e5 + double(i), 2e5, 3e5};
+        Checkpoint markedHeader = plain;
         const double marker = 12345.678901;
-        marked.record.micromechanicsRows = {{marker}};
-        saveCheckpoint(dir.file("marked.lsdem"), steppedWorld(10), marked);
-        const std::string markedBytes = readBytes(dir.file("marked.lsdem"));
-        const size_t at = markedBytes.find(std::string(reinterpret_cast<const char*>(&marker),
-                                                       sizeof marker));
+        markedHeader.record.micromechanicsRows = {{marker}};
+        saveCheckpoint(dir.file("marked.lsdem"), marked, markedHeader);
+        std::string bytes = readBytes(dir.file("marked.lsdem"));
+        const auto find = [&](double value) {
+            return bytes.find(std::string(reinterpret_cast<const char*>(&value), sizeof value));
+        };
+        for (size_t i = marked.grains.size(); i-- > 0;) {
+            const size_t at = find(1e5 + double(i));
+            ASSERT_NE(at, std::string::npos);
+            bytes.erase(at, 3 * sizeof(double));
+        }
+        const size_t at = find(marker);
         ASSERT_NE(at, std::string::npos);
-        bytes.erase(at - 16, 8);
+        bytes.erase(at - 16, 24);  // the rows' count, the row's count and the row
         const uint32_t four = 4;
         std::memcpy(bytes.data() + 8, &four, sizeof four);  // after the magic
         const std::string older = dir.file("format4.lsdem");
         writeBytes(older, bytes);
         World w = obstacle;
         EXPECT_NO_THROW(restoreWorldState(older, w));
+        // Its grains restart with nothing dissipated, and its energy rows' split is unknown.
+        for (const Grain& g : w.grains) EXPECT_EQ(g.dissipated.friction + g.dissipated.dashpot, 0.0);
+        const Checkpoint olderHeader = readCheckpoint(older);
+        ASSERT_EQ(olderHeader.record.energyRows.size(), plain.record.energyRows.size());
+        for (size_t k = 0; k < plain.record.energyRows.size(); ++k) {
+            const std::vector<double>& row = olderHeader.record.energyRows[k];
+            ASSERT_EQ(row.size(), plain.record.energyRows[k].size() + 3);
+            EXPECT_TRUE(std::isnan(row.back()));
+        }
         World renamedToo = obstacle;
         renamedToo.grains[3].name = "other";
         EXPECT_THROW(restoreWorldState(older, renamedToo), Error);

@@ -128,7 +128,8 @@ TEST(RunOutputs, HistoryRowsAreTheSimulationsStateNow)
     const Energies e = sim.energies();
     const std::vector<double> expected = {5.0, sim.world().time, e.kinetic, e.elastic,
                                           e.potential, e.boundaryWork, e.dissipated,
-                                          static_cast<double>(sim.contactNodes())};
+                                          static_cast<double>(sim.contactNodes()), e.friction,
+                                          e.dashpot, e.globalDamping};
     EXPECT_EQ(record.energyRows[1], expected);
     EXPECT_EQ(record.energyRows[0][0], 0.0);
     EXPECT_EQ(record.energyRows[0][1], 0.0);
@@ -213,7 +214,8 @@ TEST(RunOutputs, HistoryFilesReadBackExactly)
     writeHistoryFiles(dir.path().string(), sim.world(), record);
     expectRowsReadBack(dir.file("energy.csv"),
                        "step,time,kinetic,elastic,potential,boundary_work,dissipated,"
-                       "contact_nodes",
+                       "contact_nodes,dissipated_friction,dissipated_dashpot,"
+                       "dissipated_global_damping",
                        record.energyRows);
     expectRowsReadBack(dir.file("boundary_floor.csv"), "step,time,ux,uy,uz,fx,fy,fz",
                        record.boundaryRows[0]);

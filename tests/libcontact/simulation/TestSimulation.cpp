@@ -526,6 +526,8 @@ void expectSameBits(const World& one, const World& two)
         EXPECT_TRUE(sameBits(a.body.angularMomentum, b.body.angularMomentum)) << i;
         EXPECT_TRUE(sameBits(a.force, b.force)) << i;
         EXPECT_TRUE(sameBits(a.torque, b.torque)) << i;
+        EXPECT_TRUE(sameBits(a.dissipated.friction, b.dissipated.friction)) << i;
+        EXPECT_TRUE(sameBits(a.dissipated.dashpot, b.dissipated.dashpot)) << i;
     }
     EXPECT_TRUE(sameBits(one.boundaries[0].force, two.boundaries[0].force));
     ASSERT_EQ(one.pairHistory.size(), two.pairHistory.size());
@@ -558,6 +560,12 @@ TEST(Simulation, ResultsAreBitIdenticalOnOneAndTwoThreads)
               << runOne.shearedOnFloor.size() << " grains on the floor carried shear\n";
     EXPECT_GE(runOne.shearedPairs.size(), 15u);
     EXPECT_EQ(runOne.shearedOnFloor.size(), 9u);  // the whole bottom layer landed
+    // Friction slipped and dashpots damped: the dissipation compared above is not all zeros.
+    double friction = 0.0, dashpot = 0.0;
+    for (const Grain& g : runOne.world.grains)
+        friction += g.dissipated.friction, dashpot += g.dissipated.dashpot;
+    EXPECT_GT(friction, 0.0);
+    EXPECT_GT(dashpot, 0.0);
 }
 
 // A world holds the assets it loads or bakes without their nodes' normals (no contact law

@@ -84,6 +84,7 @@ RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& bal
             const double fraction = previousSlip / (previousSlip - slip);
             run.slipEnd = t - dt + fraction * dt;
             run.speedAtSlipEnd = v;
+            run.frictionBySlipEnd = sim.energies().friction;
         }
         previousSlip = slip;
         const double rise = g.body.pose.position.z() - s.radius;
@@ -99,6 +100,8 @@ RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& bal
         run.finalSpeed = v;
     }
     if (n > 2) run.deceleration = -(n * stv - st * sv) / (n * stt - st * st);
+    run.mass = sim.world().grains[0].body.mass;
+    if (run.slipEnd >= 0.0) run.frictionWhileRolling = sim.energies().friction - run.frictionBySlipEnd;
     return run;
 }
 
@@ -150,6 +153,19 @@ void slideToRollOnAFloor(Context& c)
                 add({name, law, "speed after rolling " + numberText(rollTime) + " s", "mm/s",
                      theory.rollingSpeed, run.finalSpeed, theory.rollingSpeed, 0.01,
                      "rolling costs nothing: 5/7·v₀ still; 1 % (the goal)"});
+                // The kinetic energy the slide loses, ½mv₀²(1 − (5/7)² − (2/5)(5/7)²) = mv₀²/7,
+                // is friction's (dissipated_friction): μ·m·g times the slip's length, so 1 % as
+                // the slip's end. Rolling, the contact sticks: what friction takes then is shown.
+                const double slideLoss = run.mass * speed * speed / 7.0;
+                add({name, law, "friction's work over the slide", "N·mm", slideLoss,
+                     run.frictionBySlipEnd, slideLoss, 0.01,
+                     "rigid body: m·v₀²/7 of the kinetic energy; 1 % (as the slip's end)"});
+                Check rolling{name, law, "friction's work while rolling, of the slide's", "", 0.0,
+                              run.frictionWhileRolling / slideLoss, 1.0, 0.0,
+                              "shown: a rolling contact sticks (nodes entering and leaving it "
+                              "slip a little)"};
+                rolling.informative = true;
+                c.report.add(rolling);
                 // The apparent rolling resistance μ_r = (7/5)·a/g of a ball decelerating at a.
                 add({name, law, "rolling resistance μ_r", "", 0.0,
                      1.4 * run.deceleration / s.gravity, 1.0, 0.002,

@@ -16,6 +16,9 @@ struct RollingRun
     double deceleration = 0.0;    ///< of the centre while rolling (least squares over the roll)
     double finalSpeed = 0.0;      ///< at the end of the roll
     double highestRise = 0.0;     ///< of the centre above R while rolling (a hop if > 0)
+    double mass = 0.0;
+    double frictionBySlipEnd = 0.0;     ///< energy friction took by the slip's end
+    double frictionWhileRolling = 0.0;  ///< and after it, to the end
     double timeStep = 0.0;
     Series trace;                 ///< time, speed, slip, height − R
 };

@@ -77,6 +77,10 @@ struct PairForces
     Mat3 rotationalStiffnessOfFirst = Mat3::Zero(), rotationalStiffnessOfSecond = Mat3::Zero();
     /// The contact's dashpot c (force·time/length) along its mean normal; 0 without damping.
     double dashpot = 0.0;
+    /// Energy the contact dissipated over the step (force·length, ≥ 0; 0 when dt is 0): by
+    /// friction, what the Coulomb caps took from the shear springs (updateShearForce); by the
+    /// dashpot, its force against the bodies' approach times dt.
+    double frictionWork = 0.0, dashpotWork = 0.0;
     /// Where the contact is, for micromechanics (Micromechanics.h): the stiffness-weighted
     /// centre of its elastic point forces and their mean direction, unit, pushing first out of
     /// second (both zero for a contact without nodes).

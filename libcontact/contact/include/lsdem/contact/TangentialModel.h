@@ -11,6 +11,7 @@
 #include "lsdem/contact/NormalModel.h"
 #include "lsdem/core/Vec3.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lsdem {
@@ -24,10 +25,19 @@ namespace lsdem {
 /// @param twist    the angle the pair turned about @a normal in the step: (ω_A + ω_B)/2 · n·dt
 /// @param stiffness k_t of this node (force/length)
 /// @param limit    μ·|F_n|, the largest shear the node can carry
+/// @param dissipated if not null, gains the energy friction took in the step (≥ 0): the work of
+///                 the force the bodies felt along the slip, less the spring's energy gained,
+///                 for a force held at a cap that moves linearly from the stored force to the
+///                 new limit: (|trial| − |capped|)·(|capped| + |stored|)/(2·k_t). Exact for a
+///                 sliding node whatever its normal force does (μ·|F_n| times the slip at a
+///                 steady one; the spring's lost energy where the limit fell without slip); at
+///                 the step a sticking node starts to slide it counts (|trial| − cap)·(cap −
+///                 |stored|)/(2·k_t) too little, once.
 /// @return the new shear force (tangent to @a normal, at most @a limit long; zero if
 ///         @a limit ≤ 0)
 inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,
-                             double twist, double stiffness, double limit)
+                             double twist, double stiffness, double limit,
+                             double* dissipated = nullptr)
 {
     // Carry the stored force with the contact without changing its size: onto the new tangent
     // plane (the normal's own turn), then about the normal by the pair's mean spin (which a
@@ -41,8 +51,13 @@ inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3&
     const Vec3 tangentialSlip = slip - slip.dot(normal) * normal;
     shear -= stiffness * tangentialSlip;
     const double size2 = shear.squaredNorm();
-    if (limit < 0.0 || size2 > limit * limit)  // sliding: Coulomb cap
-        shear *= (limit > 0.0 ? limit / std::sqrt(size2) : 0.0);
+    if (limit < 0.0 || size2 > limit * limit) {  // sliding: Coulomb cap
+        const double trial = std::sqrt(size2), capped = limit > 0.0 ? limit : 0.0;
+        shear *= (limit > 0.0 ? limit / trial : 0.0);
+        if (dissipated)
+            *dissipated += (trial - capped) * 0.5 * (capped + std::min(std::sqrt(before2), trial)) /
+                           stiffness;
+    }
     return shear;
 }
 

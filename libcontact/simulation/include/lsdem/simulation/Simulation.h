@@ -17,10 +17,13 @@ namespace lsdem {
 class GhostDecomposition;
 
 /// Energies now (force·length). Dissipated energy is what the balance leaves over:
-/// boundary work − (kinetic + elastic + potential − their initial total).
+/// boundary work − (kinetic + elastic + potential − their initial total). The mechanisms'
+/// sums (the grains' DissipatedEnergy) split it; what they leave of it is the integrator's
+/// error, O(dt) over a run.
 struct Energies
 {
     double kinetic = 0.0, elastic = 0.0, potential = 0.0, boundaryWork = 0.0, dissipated = 0.0;
+    double friction = 0.0, dashpot = 0.0, globalDamping = 0.0;
 };
 
 /// Where the time of the force evaluations went, and how much was done.
@@ -128,8 +131,8 @@ private:
     /// The narrow phase and the contact law of every slot, in parallel.
     void computeContacts(double slipStep);
     /// Each grain's force, torque and stiffness from its slots in list order, plus gravity and
-    /// global damping.
-    void sumGrainForces();
+    /// global damping; what they dissipated over @a dt added to its DissipatedEnergy.
+    void sumGrainForces(double dt);
     /// Node-check statistics, nodes in contact and elastic energy over the slots.
     void sumContactCounts();
     /// The boundaries' reactions and, when recorded, the point forces, in slot order.

@@ -18,6 +18,17 @@
 
 namespace lsdem {
 
+/// Energy dissipated so far (force·length) by the contacts whose first body a grain is (each
+/// contact counts once, with its first grain: the owner of its sum on any rank) and by the
+/// global damping of its own motion. Summed over grains, it splits Energies::dissipated by
+/// mechanism; each grain's share also shows where the energy went.
+struct DissipatedEnergy
+{
+    double friction = 0.0;       ///< taken by the Coulomb caps of the shear springs
+    double dashpot = 0.0;        ///< by the contacts' dashpots
+    double globalDamping = 0.0;  ///< by World::globalDamping (numerical, not physical)
+};
+
 struct Grain
 {
     std::string name;
@@ -28,6 +39,7 @@ struct Grain
     Vec3 prescribedAngularVelocity = Vec3::Zero();  ///< Prescribed: ω (body.velocity is v)
     Vec3 force = Vec3::Zero();            ///< on it at the last force evaluation (damped)
     Vec3 torque = Vec3::Zero();           ///< about its centroid, likewise
+    DissipatedEnergy dissipated;
 
     bool isFree() const { return motion == GrainMotion::Free; }
     Vec3 angularVelocity() const

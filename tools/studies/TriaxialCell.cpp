@@ -102,10 +102,18 @@ double volumetricStrain(const TriaxialState& start, const TriaxialState& now)
 
 double mobilisedFrictionAngle(const TriaxialState& state)
 {
-    const double major = state.stress.z();
-    const double minor = 0.5 * (state.stress.x() + state.stress.y());
+    const double axial = state.stress.z();
+    const double lateral = 0.5 * (state.stress.x() + state.stress.y());
+    if (!(axial + lateral > 0.0)) return 0.0;
+    return std::asin(std::clamp(std::abs(axial - lateral) / (axial + lateral), 0.0, 1.0)) * 180.0 /
+           kPi;
+}
+
+double principalFrictionAngle(const TriaxialState& state)
+{
+    const double major = state.stress.maxCoeff(), minor = state.stress.minCoeff();
     if (!(major + minor > 0.0)) return 0.0;
-    return std::asin(std::clamp((major - minor) / (major + minor), -1.0, 1.0)) * 180.0 / kPi;
+    return std::asin(std::clamp((major - minor) / (major + minor), 0.0, 1.0)) * 180.0 / kPi;
 }
 
 } // namespace lsdem

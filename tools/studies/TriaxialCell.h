@@ -59,8 +59,12 @@ double solidVolume(const World& world);
 double axialStrain(const TriaxialState& start, const TriaxialState& now);
 double volumetricStrain(const TriaxialState& start, const TriaxialState& now);
 
-/// The mobilised friction angle (degrees) of a triaxial compression state, from Mohr–Coulomb:
-/// sin φ = (σ₁ − σ₃)/(σ₁ + σ₃) with σ₁ = σ_z and σ₃ the mean lateral stress.
+/// The mobilised friction angle (degrees) of an axisymmetric state, from Mohr–Coulomb:
+/// sin φ = |σ_z − σ_r|/(σ_z + σ_r) with σ_r the mean lateral stress (so compression and
+/// extension alike).
 double mobilisedFrictionAngle(const TriaxialState& state);
+/// The same from the largest and smallest of the three principal stresses (a true triaxial
+/// state, σ₁ > σ₂ > σ₃).
+double principalFrictionAngle(const TriaxialState& state);
 
 } // namespace lsdem

@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -69,9 +70,9 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
           "Triaxial compression of a granular sample, adapted against original\n\n"
           "A sample of --grains grains (the meshes of --meshes, in turn, on a loose lattice, "
           "random\norientations) in a cuboid of six walls: consolidated isotropically to "
-          "--confining-stress\nby servo walls, then compressed axially at the strain rate of "
-          "--inertial-number with the\nside walls holding the confining stress, to "
-          "--axial-strain. Once per formulation and node\nspacing (SDP), at one voxel size "
+          "--confining-stress\nby servo walls, then loaded along --path (by default compressed "
+          "axially at the strain\nrate of --inertial-number with the side walls holding the "
+          "confining stress) to\n--axial-strain. Once per formulation and node\nspacing (SDP), at one voxel size "
           "(VDP): q, p, strains, void ratio, coordination; peak and\ncritical-state friction "
           "angles (docs/triaxial.md)."))
 {
@@ -129,6 +130,33 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->group(test);
     addNumber(*mCommand, "--axial-strain", o.maxAxialStrain, "axial strain at the end")
         ->type_name("E")
+        ->group(test);
+    std::string pathNames;
+    for (TriaxialPath path : allTriaxialPaths())
+        pathNames += (pathNames.empty() ? "" : ", ") + triaxialPathName(path);
+    mCommand
+        ->add_option_function<std::string>(
+            "--path",
+            [&o](const std::string& name) {
+                const std::optional<TriaxialPath> path = triaxialPathNamed(name);
+                if (!path) throw CLI::ValidationError("--path", "no loading path '" + name + "'");
+                o.path = *path;
+            },
+            "the loading path after consolidation: " + pathNames +
+                "\n(docs/triaxial.md#loading-paths)")
+        ->type_name("PATH")
+        ->default_str(triaxialPathName(o.path))
+        ->group(test);
+    addNumber(*mCommand, "--b", o.b, "true-triaxial: b = (sigma_2 - sigma_3)/(sigma_1 - sigma_3)")
+        ->type_name("B")
+        ->group(test);
+    addNumber(*mCommand, "--unload-strain", o.unloadStrain,
+              "unload-reload: the axial strain where unloading starts (0: half --axial-strain)")
+        ->type_name("E")
+        ->group(test);
+    cli::addInteger(*mCommand, "--cycles", o.cycles,
+                    "cyclic: strain cycles 0 -> +A -> -A -> 0, A = --axial-strain")
+        ->type_name("N")
         ->group(test);
     addNumber(*mCommand, "--stress-tolerance", o.stressTolerance,
               "consolidated when every |sigma_i/sigma_3 - 1| is below this")
@@ -255,10 +283,16 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     const TriaxialRun* finest = nullptr;
     for (const TriaxialRun& r : result.runs)
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
-    const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
     std::printf("time %.0f s\nwrote %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str());
-    std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n", scene.c_str(),
-                runName(finest->formulation, finest->sdp, finest->seed).c_str());
+    if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
+        const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
+        std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",
+                    scene.c_str(), runName(finest->formulation, finest->sdp, finest->seed).c_str());
+    } else {
+        std::printf("no scene for lsdem-run: a scene's servo walls hold fixed stresses, and "
+                    "--path %s sets them as it goes\n",
+                    triaxialPathName(o.path).c_str());
+    }
     return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
 }
 

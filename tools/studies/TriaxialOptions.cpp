@@ -109,6 +109,15 @@ void checkTriaxialOptions(const TriaxialOptions& o)
     if (!(o.maxAxialStrain > 0.0 && o.maxAxialStrain < 0.5))
         throw Error("", "--axial-strain must be in (0, 0.5), got " +
                             roundedText(o.maxAxialStrain), "0.2 is the default");
+    if (!(o.b >= 0.0 && o.b <= 1.0))
+        throw Error("", "--b must be in [0, 1], got " + roundedText(o.b),
+                    "b = (σ₂ − σ₃)/(σ₁ − σ₃): 0 is compression, 1 extension-like, 0.5 between");
+    if (!(o.unloadStrain >= 0.0 && o.unloadStrain < o.maxAxialStrain))
+        throw Error("", "--unload-strain must be in [0, --axial-strain), got " +
+                            roundedText(o.unloadStrain),
+                    "0 unloads at half --axial-strain");
+    if (o.cycles < 1 || o.cycles > 1000)
+        throw Error("", "--cycles must be from 1 to 1000, got " + std::to_string(o.cycles));
     if (!(o.stressTolerance > 0.0 && o.stressTolerance < 0.5))
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             roundedText(o.stressTolerance));

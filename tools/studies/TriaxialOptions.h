@@ -5,6 +5,8 @@
 ///        N/mm² = MPa).
 #pragma once
 
+#include "studies/TriaxialPath.h"
+
 #include "lsdem/contact/ContactModel.h"
 
 #include <cstdint>
@@ -39,7 +41,11 @@ struct TriaxialOptions
     double globalDamping = 0.2;
     double confiningStress = 0.1;  ///< σ₃, MPa (100 kPa)
     double inertialNumber = 1e-3;  ///< I = ε̇·d·sqrt(ρ/σ₃): sets the axial strain rate
-    double maxAxialStrain = 0.2;
+    double maxAxialStrain = 0.2;   ///< the path's end (its amplitude for cycles)
+    TriaxialPath path = TriaxialPath::Compression;  ///< the loading path after consolidation
+    double b = 0.5;                ///< true triaxial: (σ₂ − σ₃)/(σ₁ − σ₃)
+    double unloadStrain = 0.0;     ///< unload–reload: where unloading starts (0: half the end)
+    int cycles = 2;                ///< cyclic: cycles of ±maxAxialStrain
     double stressTolerance = 0.02; ///< consolidated when every |σ_i/σ₃ − 1| is below this
     int records = 200;             ///< rows written over the shearing
     long long threads = 0;

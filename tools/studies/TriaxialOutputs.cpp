@@ -42,7 +42,8 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
     out << "formulation,sdp,seed,vdp,nodes_per_grain,grains,lattice_spacing,stiffness,time_step,stability_limit,strain_rate,"
            "consolidation_steps,consolidated,shear_steps,void_ratio_0,coordination_0,"
            "peak_friction_angle,peak_axial_strain,critical_friction_angle,critical_void_ratio,"
-           "max_inertial_number,secant_modulus_50,bake_seconds,run_seconds,ms_per_step\n";
+           "max_inertial_number,secant_modulus_50,bake_seconds,run_seconds,ms_per_step,path,"
+           "unload_reload_modulus\n";
     for (const TriaxialRun& run : r.runs) {
         const TriaxialTestResult& t = run.test;
         out << formulationName(run.formulation) << ',' << run.sdp << ',' << run.seed << ','
@@ -54,7 +55,8 @@ void writeTriaxialRunsCsv(const TriaxialStudyResult& r, const std::string& path)
             << t.peakFrictionAngle << ',' << t.peakAxialStrain << ','
             << t.criticalFrictionAngle << ',' << t.criticalVoidRatio << ','
             << t.maxInertialNumber << ',' << t.secantModulus50 << ',' << run.bakeSeconds << ',' << run.runSeconds << ','
-            << run.msPerStep << '\n';
+            << run.msPerStep << ',' << triaxialPathName(run.path) << ','
+            << t.unloadReloadModulus << '\n';
     }
     writeTextFileAtomically(path, out.str());
 }

@@ -52,7 +52,8 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
         b.point = t.consolidatedWallPoints[size_t(k)];
         const int axis = k / 2;
         if (axis == 2) {
-            b.velocity = 0.5 * run.strainRate * size.z() * b.normal;
+            const double opening = run.path == TriaxialPath::Extension ? -1.0 : 1.0;
+            b.velocity = opening * 0.5 * run.strainRate * size.z() * b.normal;
             continue;
         }
         b.servo.targetStress = o.confiningStress;

@@ -1,8 +1,9 @@
 /// @file TriaxialShearScene.h
 /// @brief The shearing stage of a triaxial run as a scene for lsdem-run, to edit and rerun:
 ///        the consolidated sample (grain poses from the run, walls where consolidation left
-///        them), the top and bottom walls closing at the run's strain rate, the side walls
-///        servo-controlled at σ₃, ParaView frames on. The grains start at rest with no contact
+///        them), the top and bottom walls closing (extension: opening) at the run's strain
+///        rate, the side walls servo-controlled at σ₃, ParaView frames on. (The other loading
+///        paths set their walls from the stresses step by step, which a scene cannot say.) The grains start at rest with no contact
 ///        history, so it is the same test, not the run's bytes.
 #pragma once
 

@@ -71,6 +71,7 @@ std::string encodeRun(const TriaxialRun& r)
     w.integer(t.consolidatedWithinTolerance ? 1 : 0);
     w.integer(t.consolidationSteps).integer(t.shearSteps);
     w.number(t.shearSeconds).number(t.shearSecondsEstimate);
+    w.text(triaxialPathName(r.path)).number(t.unloadReloadModulus);
     std::vector<double> consolidated, rows;
     packRow(TriaxialRow{1, 0, 0.0, t.consolidated}, consolidated);
     for (const TriaxialRow& row : t.rows) packRow(row, rows);
@@ -108,6 +109,8 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
     r.test.shearSteps = in.integer();
     r.test.shearSeconds = in.number();
     r.test.shearSecondsEstimate = in.number();
+    r.path = triaxialPathNamed(in.text()).value_or(TriaxialPath::Compression);
+    r.test.unloadReloadModulus = in.number();
     r.test.consolidated = unpackRow(in.numbers().data()).state;
     const std::vector<double> rows = in.numbers();
     for (size_t k = 0; k + kRowFields <= rows.size(); k += kRowFields)
@@ -195,6 +198,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     run.stiffness = kn;
     run.bakeSeconds = assets->bakeSeconds;
     run.strainRate = triaxialStrainRate(o, assets->meanDiameter);
+    run.path = o.path;
 
     TriaxialProtocol p;
     p.confiningStress = o.confiningStress;
@@ -207,6 +211,10 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     p.grainDiameter = assets->meanDiameter;
     p.density = o.density;
     p.records = o.records;
+    p.path = o.path;
+    p.b = o.b;
+    p.unloadStrain = o.unloadStrain;
+    p.cycles = o.cycles;
 
     if (!(spacing > 2.0 * assets->largestBoundingRadius))
         throw Error("", "the lattice spacing " + roundedText(spacing) + " mm is not more than "

@@ -27,6 +27,7 @@ struct TriaxialRun
     double dt = 0.0;
     double stabilityLimit = 0.0;   ///< the smallest stable step the simulation saw
     double strainRate = 0.0;       ///< ε̇ of the shearing, 1/s
+    TriaxialPath path = TriaxialPath::Compression;
     TriaxialTestResult test;
     double bakeSeconds = 0.0, runSeconds = 0.0;
     double msPerStep = 0.0;        ///< wall time per step of the whole test

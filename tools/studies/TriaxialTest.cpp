@@ -52,7 +52,8 @@ TriaxialRow measureRow(const Simulation& sim, const TriaxialWalls& walls, int st
         if (r.state.p > 0.0)
             r.inertialNumber = p.strainRate * p.grainDiameter * std::sqrt(p.density / r.state.p);
     }
-    r.frictionAngle = mobilisedFrictionAngle(r.state);
+    r.frictionAngle = p.path == TriaxialPath::TrueTriaxial ? principalFrictionAngle(r.state)
+                                                            : mobilisedFrictionAngle(r.state);
     r.kinetic = sim.energies().kinetic;
     return r;
 }
@@ -64,12 +65,143 @@ bool withinTolerance(const TriaxialState& s, const TriaxialProtocol& p)
     return true;
 }
 
+/// UnloadReload: where the unloading starts.
+double unloadStrainOf(const TriaxialProtocol& p)
+{
+    return p.unloadStrain > 0.0 ? p.unloadStrain : 0.5 * p.maxAxialStrain;
+}
+
+/// The axial strain the path travels at most.
+double axialTravel(const TriaxialProtocol& p)
+{
+    switch (p.path) {
+    case TriaxialPath::UnloadReload: return p.maxAxialStrain + 2.0 * unloadStrainOf(p);
+    case TriaxialPath::Cyclic: return 4.0 * p.maxAxialStrain * double(p.cycles);
+    default: return p.maxAxialStrain;
+    }
+}
+
+/// Whether the path runs a fixed count of steps (to maxAxialStrain, one way) or until its
+/// strain and stress say it is done.
+bool monotonic(TriaxialPath path)
+{
+    return path != TriaxialPath::UnloadReload && path != TriaxialPath::Cyclic;
+}
+
+/// The walls along the path, step by step: the end walls at ε̇·H₀/2 each, closing (or opening),
+/// the side walls by servo (fast enough for a dilation rate of 2ε̇) or, undrained, moved so the
+/// cell keeps its volume.
+class PathControl
+{
+public:
+    PathControl(World& w, const TriaxialWalls& walls, const TriaxialProtocol& p,
+                const TriaxialState& reference, double dt)
+        : mWorld(w), mWalls(walls), mP(p), mReference(reference), mDt(dt),
+          mEndSpeed(0.5 * p.strainRate * reference.size.z())
+    {
+        for (int axis = 0; axis < 2; ++axis)
+            holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
+        for (int side = 0; side < 2; ++side) wallOf(w, walls, 4 + side).servo.targetStress = 0.0;
+        if (p.path == TriaxialPath::Undrained)
+            for (int k = 0; k < 4; ++k) wallOf(w, walls, k).servo.targetStress = 0.0;
+        mDirection = p.path == TriaxialPath::Extension ? -1.0 : 1.0;
+        setWalls(reference);
+    }
+
+    /// After a step, with the cell now in @a now at axial strain @a strain: the walls for the
+    /// next step. False once a path that ends by its strain has ended.
+    bool update(const TriaxialState& now, double strain)
+    {
+        const double direction = mDirection;
+        const bool going = turn(now, strain);
+        turned = mDirection != direction;
+        if (going) setWalls(now);
+        return going;
+    }
+
+    double unloadModulus = 0.0;
+    bool turned = false;  ///< the last update reversed the ends
+
+private:
+    /// The path's phase after a step; false once it has ended.
+    bool turn(const TriaxialState& now, double strain)
+    {
+        const double amplitude = mP.maxAxialStrain;
+        switch (mP.path) {
+        case TriaxialPath::UnloadReload:
+            if (mPhase == 0 && strain >= unloadStrainOf(mP)) {
+                mPhase = 1, mDirection = -1.0, mReversalQ = now.q, mReversalStrain = strain;
+            } else if (mPhase == 1 && (now.q <= 0.1 * mReversalQ || strain <= 0.0)) {
+                if (mReversalStrain > strain)
+                    unloadModulus = (mReversalQ - now.q) / (mReversalStrain - strain);
+                mPhase = 2, mDirection = 1.0;
+            } else if (mPhase == 2 && strain >= amplitude) {
+                return false;
+            }
+            break;
+        case TriaxialPath::Cyclic:
+            if (mDirection > 0.0 && mTurnsAtBottom == mP.cycles && strain >= 0.0) return false;
+            if (mDirection > 0.0 && strain >= amplitude) mDirection = -1.0;
+            if (mDirection < 0.0 && strain <= -amplitude) mDirection = 1.0, ++mTurnsAtBottom;
+            break;
+        default: break;
+        }
+        return true;
+    }
+
+    void setWalls(const TriaxialState& now)
+    {
+        for (int side = 0; side < 2; ++side) {
+            Boundary& b = wallOf(mWorld, mWalls, 4 + side);
+            b.velocity = mDirection * mEndSpeed * b.plane.normal;
+        }
+        const double sigma3 = mP.confiningStress, axial = now.stress.z();
+        switch (mP.path) {
+        case TriaxialPath::ConstantP:
+            // p = (σ_a + 2σ_r)/3 = σ₃; a servo needs a positive target (0 turns it off).
+            for (int k = 0; k < 4; ++k)
+                wallOf(mWorld, mWalls, k).servo.targetStress =
+                    std::max(0.5 * (3.0 * sigma3 - axial), 1e-3 * sigma3);
+            break;
+        case TriaxialPath::TrueTriaxial:
+            for (int k = 2; k < 4; ++k)
+                wallOf(mWorld, mWalls, k).servo.targetStress = sigma3 + mP.b * (axial - sigma3);
+            break;
+        case TriaxialPath::Undrained: {
+            // The height after the next step, and the sides' sizes that keep L_x·L_y·H (each in
+            // proportion to its consolidated size): each side wall moves half the difference.
+            const double height = now.size.z() - 2.0 * mDirection * mEndSpeed * mDt;
+            const double scale = std::sqrt(mReference.size.z() / height);
+            for (int axis = 0; axis < 2; ++axis) {
+                const double inward = (now.size[axis] - scale * mReference.size[axis]) / (2.0 * mDt);
+                for (int side = 0; side < 2; ++side) {
+                    Boundary& b = wallOf(mWorld, mWalls, 2 * axis + side);
+                    b.velocity = inward * b.plane.normal;
+                }
+            }
+            break;
+        }
+        default: break;
+        }
+    }
+
+    World& mWorld;
+    const TriaxialWalls& mWalls;
+    const TriaxialProtocol& mP;
+    const TriaxialState& mReference;
+    double mDt, mEndSpeed;
+    double mDirection = 1.0;
+    int mPhase = 0;           ///< UnloadReload: 0 loading, 1 unloading, 2 reloading
+    int mTurnsAtBottom = 0;   ///< Cyclic: turns at −A so far
+    double mReversalQ = 0.0, mReversalStrain = 0.0;
+};
+
 } // namespace
 
 long long triaxialShearSteps(const TriaxialProtocol& p, double dt)
 {
     // In double until it is known to fit: a tiny rate or step needs more than any integer holds.
-    const double steps = std::ceil(p.maxAxialStrain / (p.strainRate * dt));
+    const double steps = std::ceil(axialTravel(p) / (p.strainRate * dt));
     if (!(steps >= 1.0 && steps <= double(kMaxStudySteps))) {
         char text[200];
         std::snprintf(text, sizeof text,
@@ -87,13 +219,21 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
                                    const TriaxialProtocol& p,
                                    const std::function<void(const TriaxialRow&)>& progress)
 {
-    const long long shearSteps = triaxialShearSteps(p, sim.timeStep());  // before consolidating
+    triaxialShearSteps(p, sim.timeStep());  // refused before consolidating
+    TriaxialTestResult result = consolidateTriaxial(sim, walls, p, progress);
+    shearTriaxial(sim, walls, p, result, progress);
+    return result;
+}
+
+TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& walls,
+                                       const TriaxialProtocol& p,
+                                       const std::function<void(const TriaxialRow&)>& progress)
+{
     TriaxialTestResult result;
     auto record = [&](TriaxialRow row) {
         if (progress) progress(row);
         result.rows.push_back(std::move(row));
     };
-
     // Isotropic consolidation: six servo walls close in on the cloud until every stress is
     // within the tolerance of σ₃ for settledSteps.
     World& w = sim.world();
@@ -139,42 +279,62 @@ TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
         paceSteps = w.step - paceFrom;
     }
     result.consolidationSteps = w.step - firstStep;
-
-    // Shearing: the reference is the consolidated cell; the end walls move towards each other
-    // at ε̇·H₀/2 each, the side walls keep σ₃ (fast enough for a dilation rate of 2ε̇).
+    result.paceSteps = paceSteps;
+    result.paceSeconds = paceSeconds;
     result.consolidated = measureTriaxialCell(w, walls, sim.contactRecords());
     for (const Grain& g : w.grains) result.consolidatedPoses.push_back(g.body.pose);
     for (int k = 0; k < 6; ++k) {
         const Boundary& b = wallOf(w, walls, k);
         result.consolidatedWallPoints[size_t(k)] = b.plane.point + b.displacement;
     }
+    return result;
+}
+
+
+void shearTriaxial(Simulation& sim, const TriaxialWalls& walls, const TriaxialProtocol& p,
+                   TriaxialTestResult& result,
+                   const std::function<void(const TriaxialRow&)>& progress)
+{
+    const long long shearSteps = triaxialShearSteps(p, sim.timeStep());
+    auto record = [&](TriaxialRow row) {
+        if (progress) progress(row);
+        result.rows.push_back(std::move(row));
+    };
+    World& w = sim.world();
     const TriaxialState& reference = result.consolidated;
     TriaxialRow first = measureRow(sim, walls, 1, &reference, p);
-    if (paceSteps > 0) first.shearSecondsEstimate = double(shearSteps) * paceSeconds / double(paceSteps);
+    if (result.paceSteps > 0)
+        first.shearSecondsEstimate =
+            double(shearSteps) * result.paceSeconds / double(result.paceSteps);
     result.shearSecondsEstimate = first.shearSecondsEstimate;
     const Stopwatch shearClock;
     record(first);
     grainFriction(w) = p.friction;
-    const double endSpeed = 0.5 * p.strainRate * reference.size.z();
-    for (int side = 0; side < 2; ++side) {
-        Boundary& b = wallOf(w, walls, 4 + side);
-        b.servo.targetStress = 0.0;
-        b.velocity = endSpeed * b.plane.normal;
-    }
-    for (int axis = 0; axis < 2; ++axis)
-        holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
+    PathControl control(w, walls, p, reference, sim.timeStep());
     const long long recordEvery = std::max(1LL, shearSteps / p.records);
     const long long shearStart = w.step;
-    while (w.step - shearStart < shearSteps) {
+    // A monotonic path runs its steps; the others until their strain says they are done (at
+    // most the steps of their longest travel).
+    const bool counted = monotonic(p.path);
+    // (Each turn overshoots its strain by up to a step: a few steps of slack for the turns.)
+    const long long limit = counted ? shearSteps : shearSteps + 4LL * (p.cycles + 2);
+    bool going = true;
+    while (going && w.step - shearStart < limit) {
         sim.step();
         const long long done = w.step - shearStart;
-        if (done % recordEvery == 0 || done == shearSteps)
+        if (!counted) {
+            const TriaxialState now = measureTriaxialCell(w, walls, {});
+            going = control.update(now, axialStrain(reference, now));
+        } else if (p.path != TriaxialPath::Compression && p.path != TriaxialPath::Extension) {
+            control.update(measureTriaxialCell(w, walls, {}), 0.0);
+        }
+        if (done % recordEvery == 0 || done == shearSteps || !going || control.turned)
             record(measureRow(sim, walls, 1, &reference, p));
     }
     result.shearSteps = w.step - shearStart;
     result.shearSeconds = shearClock.seconds();
+    result.unloadReloadModulus = control.unloadModulus;
     summariseTriaxialShearing(result, p.maxAxialStrain);
-    return result;
 }
 
 void summariseTriaxialShearing(TriaxialTestResult& r, double maxAxialStrain)
@@ -189,7 +349,7 @@ void summariseTriaxialShearing(TriaxialTestResult& r, double maxAxialStrain)
             r.peakAxialStrain = row.axialStrain;
         }
         r.maxInertialNumber = std::max(r.maxInertialNumber, row.inertialNumber);
-        if (row.axialStrain >= 0.75 * maxAxialStrain) {
+        if (std::abs(row.axialStrain) >= 0.75 * maxAxialStrain) {
             phiSum += row.frictionAngle;
             eSum += row.state.voidRatio;
             ++critical;

@@ -1,12 +1,13 @@
 /// @file TriaxialTest.h
 /// @brief The triaxial test on a cell of six plane walls (TriaxialCell.h): isotropic
-///        consolidation to σ₃ by six servo walls, then axial compression at a constant rate
-///        (the top and bottom walls move towards each other) while the four side walls keep σ₃,
-///        to a given axial strain. Records q, p, strains, void ratio, coordination and the
-///        inertial number along the way.
+///        consolidation to σ₃ by six servo walls, then a loading path (TriaxialPath.h) at a
+///        constant axial strain rate, by default drained compression (the top and bottom walls
+///        move towards each other while the four side walls keep σ₃), to a given axial strain.
+///        Records q, p, strains, void ratio, coordination and the inertial number along the way.
 #pragma once
 
 #include "studies/TriaxialCell.h"
+#include "studies/TriaxialPath.h"
 
 #include <functional>
 #include <vector>
@@ -36,6 +37,11 @@ struct TriaxialProtocol
     double grainDiameter = 1.0;    ///< mean equivalent diameter, for the inertial number
     double density = 1.0;          ///< grain density, for the inertial number
     int records = 200;             ///< rows over the shearing
+    TriaxialPath path = TriaxialPath::Compression;
+    double b = 0.5;                ///< TrueTriaxial: (σ₂ − σ₃)/(σ₁ − σ₃), in [0, 1]
+    /// UnloadReload: the axial strain where the unloading starts (0: half maxAxialStrain)
+    double unloadStrain = 0.0;
+    int cycles = 2;                ///< Cyclic: cycles of amplitude maxAxialStrain
 };
 
 struct TriaxialRow
@@ -70,17 +76,38 @@ struct TriaxialTestResult
     /// E₅₀: the secant modulus q/ε_a where q first reaches half its peak (between rows:
     /// linear), the stiffness of the sample; force/length².
     double secantModulus50 = 0.0;
+    /// UnloadReload: E_ur, the secant Δq/Δε_a of the unloading (from the reversal to where q
+    /// fell to a tenth of its value there); 0 on the other paths.
+    double unloadReloadModulus = 0.0;
+    /// The consolidation's last stretch, for the shearing's time estimate: steps and seconds.
+    long long paceSteps = 0;
+    double paceSeconds = 0.0;
 };
 
-/// Run the test on @a sim, whose world holds grains of material 0 inside @a walls (fixed
-/// planes, perpendicular pairs). @a progress, if set, is told each recorded row.
+/// The first stage alone: consolidate @a sim's grains to σ₃ (the rows of stage 0, the
+/// consolidated state and poses). shearTriaxial continues from it, on this simulation or on a
+/// copy of it (each path from the same consolidated sample).
+TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& walls,
+                                       const TriaxialProtocol& protocol,
+                                       const std::function<void(const TriaxialRow&)>& progress = {});
+
+/// The second stage: protocol.path from @a result's consolidated state, which @a sim is in,
+/// its rows (stage 1) and summary added to @a result.
+/// @throw Error as triaxialShearSteps, before any step.
+void shearTriaxial(Simulation& sim, const TriaxialWalls& walls, const TriaxialProtocol& protocol,
+                   TriaxialTestResult& result,
+                   const std::function<void(const TriaxialRow&)>& progress = {});
+
+/// Both stages. Run the test on @a sim, whose world holds grains of material 0 inside @a walls
+/// (fixed planes, perpendicular pairs). @a progress, if set, is told each recorded row.
 /// @throw Error from the simulation (e.g. a time step too large for the contacts), or as
 ///        triaxialShearSteps before the consolidation.
 TriaxialTestResult runTriaxialTest(Simulation& sim, const TriaxialWalls& walls,
                                    const TriaxialProtocol& protocol,
                                    const std::function<void(const TriaxialRow&)>& progress = {});
 
-/// The shearing's steps at time step @a dt: to the axial strain at the strain rate.
+/// The shearing's steps at time step @a dt: the axial strain the path travels at most (to
+/// maxAxialStrain; and back and forth for unload–reload and cycles) at the strain rate.
 /// @throw Error naming the study's options that set them if they are not from 1 to
 ///        kMaxStudySteps (StudyLimits.h).
 long long triaxialShearSteps(const TriaxialProtocol& protocol, double dt);

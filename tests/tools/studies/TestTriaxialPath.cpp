@@ -1,0 +1,231 @@
+// The triaxial test's loading paths (TriaxialPath.h), each from one consolidated sample of about
+// a hundred sand grains (as a laboratory runs each path on a like specimen): the walls do what
+// the path says, measured from the walls themselves (their stresses and positions).
+#include "studies/TriaxialPath.h"
+#include "studies/TriaxialSample.h"
+#include "studies/TriaxialShearScene.h"
+#include "studies/TriaxialTest.h"
+
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/simulation/Simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+using namespace lsdem;
+
+namespace {
+
+struct Consolidated
+{
+    World world;
+    double dt = 1.5e-6;
+    TriaxialProtocol protocol;
+    TriaxialTestResult result;
+};
+
+/// The sample of TestTriaxialTest, consolidated to 100 kPa once for every path.
+const Consolidated& consolidated()
+{
+    static const Consolidated c = [] {
+        TriaxialOptions o;
+        o.meshes = {std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand"};
+        o.sdps = {0.15};
+        o.grains = 100;
+        const std::vector<std::string> files = triaxialMeshFiles(o);
+        const TriaxialAssets assets = bakeTriaxialAssets(files, o.vdp, o.sdps[0]);
+        const TriaxialCloud cloud =
+            makeTriaxialCloud(o.grains, int(files.size()), triaxialCloudSpacing(assets), 1);
+        std::vector<std::string> warnings;
+        Consolidated out;
+        TriaxialProtocol& p = out.protocol;
+        p.confiningStress = o.confiningStress;
+        p.strainRate = triaxialStrainRate(o, assets.meanDiameter);
+        p.consolidationRate = 10.0 * p.strainRate;
+        p.maxAxialStrain = 0.02;
+        p.grainDiameter = assets.meanDiameter;
+        p.density = o.density;
+        p.records = 100;
+        Simulation sim(buildWorld(triaxialScene(o, assets, cloud, Formulation::Adapted, o.knStar),
+                                  warnings),
+                       out.dt);
+        out.result = consolidateTriaxial(sim, triaxialWalls(), p);
+        out.world = sim.world();
+        return out;
+    }();
+    return c;
+}
+
+/// @a path (with @a adjust applied to the protocol) from the consolidated sample.
+TriaxialTestResult sheared(TriaxialPath path,
+                           const std::function<void(TriaxialProtocol&)>& adjust = {})
+{
+    const Consolidated& c = consolidated();
+    TriaxialProtocol p = c.protocol;
+    p.path = path;
+    if (adjust) adjust(p);
+    Simulation sim(World(c.world), c.dt);
+    TriaxialTestResult r = c.result;
+    shearTriaxial(sim, triaxialWalls(), p, r);
+    return r;
+}
+
+std::vector<TriaxialRow> shearingRows(const TriaxialTestResult& r)
+{
+    std::vector<TriaxialRow> rows;
+    for (const TriaxialRow& row : r.rows)
+        if (row.stage == 1) rows.push_back(row);
+    return rows;
+}
+
+double lateral(const TriaxialRow& row)
+{
+    return 0.5 * (row.state.stress.x() + row.state.stress.y());
+}
+
+} // namespace
+
+TEST(TriaxialPath, NamesRoundTrip)
+{
+    for (TriaxialPath path : allTriaxialPaths())
+        EXPECT_EQ(triaxialPathNamed(triaxialPathName(path)), path);
+    EXPECT_EQ(allTriaxialPaths().size(), 7u);
+    EXPECT_FALSE(triaxialPathNamed("shear").has_value());
+}
+
+// Extension: the ends open at the same rate, the sides hold σ₃ (the servo's lag, as in
+// compression, within 10 %), so the axial stress falls below σ₃: q < 0, and the mobilised
+// friction angle is measured from |q| as in compression.
+TEST(TriaxialPath, ExtensionOpensTheEndsAndUnloadsTheAxis)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::Extension);
+    const std::vector<TriaxialRow> rows = shearingRows(r);
+    const double sigma3 = consolidated().protocol.confiningStress;
+    const double rate = consolidated().protocol.strainRate;
+    EXPECT_NEAR(rows.back().axialStrain, -0.02, rate * consolidated().dt + 1e-12);
+    for (const TriaxialRow& row : rows) {
+        if (row.axialStrain > -0.005) continue;
+        EXPECT_NEAR(lateral(row), sigma3, 0.1 * sigma3) << row.step;
+        EXPECT_LT(row.state.q, 0.0) << row.step;
+    }
+    std::printf("[ measured ] extension: q at the end %.4g MPa (σ₃ %.3g), friction angle %.3g°\n",
+                rows.back().state.q, sigma3, r.peakFrictionAngle);
+    EXPECT_GT(r.peakFrictionAngle, 10.0);
+}
+
+// Constant p: the sides follow σ_r = (3σ₃ − σ_a)/2, so p = (σ_a + 2σ_r)/3 stays at σ₃ while q
+// grows. The servo corrects half its error per step and its target moves with σ_a, so p lags by
+// what q gains in a step or two; 5 % of σ₃ holds that (drained compression's p rises by q/3, ~20 %
+// here, so the bound tells the paths apart).
+TEST(TriaxialPath, ConstantPKeepsTheMeanStress)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::ConstantP);
+    const double sigma3 = consolidated().protocol.confiningStress;
+    double worst = 0.0, qEnd = 0.0;
+    for (const TriaxialRow& row : shearingRows(r)) {
+        if (row.axialStrain < 0.002) continue;
+        worst = std::max(worst, std::abs(row.state.p / sigma3 - 1.0));
+        qEnd = row.state.q;
+    }
+    std::printf("[ measured ] constant p: |p/σ₃ − 1| at most %.3g, q at the end %.4g MPa\n", worst,
+                qEnd);
+    EXPECT_LT(worst, 0.05);
+    EXPECT_GT(qEnd, 0.2 * sigma3);
+}
+
+// True triaxial at b = 0.5: σ₂ (the y sides) sits halfway between σ₃ (x) and σ₁ (the axis), as
+// b = (σ₂ − σ₃)/(σ₁ − σ₃) measured from the walls once the deviator is worth measuring.
+TEST(TriaxialPath, TrueTriaxialHoldsB)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::TrueTriaxial, [](TriaxialProtocol& p) { p.b = 0.5; });
+    const double sigma3 = consolidated().protocol.confiningStress;
+    double worst = 0.0;
+    int measured = 0;
+    for (const TriaxialRow& row : shearingRows(r)) {
+        const Vec3& s = row.state.stress;
+        if (s.z() - s.x() < 0.3 * sigma3) continue;
+        worst = std::max(worst, std::abs((s.y() - s.x()) / (s.z() - s.x()) - 0.5));
+        ++measured;
+        EXPECT_NEAR(s.x(), sigma3, 0.1 * sigma3) << row.step;
+    }
+    std::printf("[ measured ] true triaxial b 0.5: |b − 0.5| at most %.3g over %d rows\n", worst,
+                measured);
+    EXPECT_GT(measured, 10);
+    EXPECT_LT(worst, 0.1);
+}
+
+// Undrained (constant volume): the sides open as the ends close so that L_x·L_y·H stays as it
+// was; the volume is the walls' positions, so it holds to the rounding of their displacements.
+TEST(TriaxialPath, UndrainedKeepsTheVolume)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::Undrained);
+    const std::vector<TriaxialRow> rows = shearingRows(r);
+    for (const TriaxialRow& row : rows) EXPECT_LT(std::abs(row.volumetricStrain), 1e-9) << row.step;
+    EXPECT_NEAR(rows.back().axialStrain, 0.02,
+                consolidated().protocol.strainRate * consolidated().dt + 1e-12);
+    // Each side opened by half the axial strain (to first order): L ∝ 1/sqrt(H).
+    const TriaxialState& start = r.consolidated;
+    const double expected = std::sqrt(1.0 / (1.0 - rows.back().axialStrain)) - 1.0;
+    EXPECT_NEAR(rows.back().state.size.x() / start.size.x() - 1.0, expected, 1e-9);
+    std::printf("[ measured ] undrained: p from %.4g to %.4g MPa, q %.4g MPa\n", rows.front().state.p,
+                rows.back().state.p, rows.back().state.q);
+}
+
+// Unload–reload: loaded to half the end strain, unloaded until q falls to a tenth of its value
+// there, reloaded to the end strain. The unloading's secant modulus E_ur is measured from it;
+// a granular sample unloads stiffer than it first loaded (E_ur > E₅₀, as sands do).
+TEST(TriaxialPath, UnloadReloadTurnsTwiceAndMeasuresItsModulus)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::UnloadReload);
+    const std::vector<TriaxialRow> rows = shearingRows(r);
+    // The reversal: the last row before the strain first falls (a row is taken at each turn).
+    size_t reversal = 0;
+    while (reversal + 1 < rows.size() && rows[reversal + 1].axialStrain >= rows[reversal].axialStrain)
+        ++reversal;
+    const double qTop = rows[reversal].state.q;
+    double qLow = qTop;
+    for (size_t k = reversal; k < rows.size(); ++k) qLow = std::min(qLow, rows[k].state.q);
+    size_t top = 0;
+    for (size_t k = 0; k < rows.size(); ++k)
+        if (rows[k].axialStrain > rows[top].axialStrain) top = k;
+    std::printf("[ measured ] unload-reload: q %.4g at ε %.4g, down to %.4g; E_ur %.4g, E50 %.4g "
+                "MPa; end ε %.5g\n",
+                qTop, rows[reversal].axialStrain, qLow, r.unloadReloadModulus, r.secantModulus50,
+                rows.back().axialStrain);
+    EXPECT_NEAR(rows[reversal].axialStrain, 0.01, 1e-4);
+    EXPECT_EQ(top + 1, rows.size());  // the last row is the furthest
+    EXPECT_NEAR(rows.back().axialStrain, 0.02, 2e-4);
+    EXPECT_LT(qLow, 0.12 * qTop);  // unloaded (one step past a tenth at most)
+    EXPECT_GT(r.unloadReloadModulus, r.secantModulus50);
+}
+
+// Cycles of ±A (A = 1 % here, two cycles): the axial strain reaches +A and −A twice each and
+// ends back at zero, the sides holding σ₃ throughout.
+TEST(TriaxialPath, CyclesReachTheAmplitudeBothWays)
+{
+    const TriaxialTestResult r = sheared(TriaxialPath::Cyclic, [](TriaxialProtocol& p) {
+        p.maxAxialStrain = 0.01;
+        p.cycles = 2;
+    });
+    const std::vector<TriaxialRow> rows = shearingRows(r);
+    const double step = consolidated().protocol.strainRate * consolidated().dt;
+    int peaks = 0, troughs = 0;
+    for (size_t k = 1; k + 1 < rows.size(); ++k) {
+        const double e = rows[k].axialStrain;
+        if (e >= rows[k - 1].axialStrain && e >= rows[k + 1].axialStrain && e > 0.009) ++peaks;
+        if (e <= rows[k - 1].axialStrain && e <= rows[k + 1].axialStrain && e < -0.009) ++troughs;
+    }
+    double high = -1.0, low = 1.0;
+    for (const TriaxialRow& row : rows) high = std::max(high, row.axialStrain), low = std::min(low, row.axialStrain);
+    std::printf("[ measured ] cycles: %d peaks, %d troughs, strain from %.5g to %.5g, end %.3g\n",
+                peaks, troughs, low, high, rows.back().axialStrain);
+    EXPECT_EQ(peaks, 2);
+    EXPECT_EQ(troughs, 2);
+    EXPECT_NEAR(high, 0.01, 2.0 * step + 1e-4);
+    EXPECT_NEAR(low, -0.01, 2.0 * step + 1e-4);
+    EXPECT_NEAR(rows.back().axialStrain, 0.0, 2.0 * step + 1e-6);
+}

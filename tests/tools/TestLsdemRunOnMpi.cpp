@@ -26,9 +26,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -62,6 +64,25 @@ std::pair<long long, long long> pointsAndCells(const std::string& path)
     const std::string head = text.substr(0, text.find("<AppendedData"));
     if (!std::regex_search(head, m, piece)) return {-1, -1};
     return {std::stoll(m[1]), std::stoll(m[2])};
+}
+
+/// A Float64 array @a name of a .vtu written with raw appended data (VtkSeries.cpp): its
+/// values, read from the byte count and numbers at its offset past the '_' that starts the data.
+std::vector<double> float64Array(const std::string& path, const std::string& name)
+{
+    const std::string text = readFile(path);
+    const size_t appended = text.find("<AppendedData");
+    const std::regex array("<DataArray type=\"Float64\" Name=\"" + name +
+                           "\" NumberOfComponents=\"\\d+\" format=\"appended\" offset=\"(\\d+)\"");
+    std::smatch m;
+    const std::string head = text.substr(0, appended);
+    if (appended == std::string::npos || !std::regex_search(head, m, array)) return {};
+    const size_t at = text.find('_', appended) + 1 + std::stoull(m[1]);
+    std::uint64_t bytes = 0;
+    std::memcpy(&bytes, text.data() + at, sizeof bytes);
+    std::vector<double> values(bytes / sizeof(double));
+    std::memcpy(values.data(), text.data() + at + sizeof bytes, values.size() * sizeof(double));
+    return values;
 }
 
 /// The files a parallel frame's .pvtu names as its pieces.
@@ -637,16 +658,53 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
 
-    // The micromechanics history is written by one process: refused on two, before any output.
-    const std::string micro =
-        writeScene(dir, "micro.toml", column(2, 0.01) + "micromechanics = true\n");
-    const CommandResult split = runCommand(onRanks(2, "-q " + micro + " --out " + dir.file("micro")));
-    EXPECT_EQ(split.exitCode, 1) << split.output;
-    EXPECT_EQ(count(split.output, "lsdem-run: error:"), 1u) << split.output;
-    EXPECT_NE(split.output.find("micromechanics = true is written by one process only"),
-              std::string::npos)
-        << split.output;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("micro")));
+}
+
+// Micromechanics under MPI: rank 0 sums the whole simulation in one process's order, so
+// micromechanics.csv has the single process's bytes on 2 and 3 ranks; each rank's piece of a
+// frame carries its grains' measures (worked out for the whole simulation: D²min needs
+// neighbours that may live on other ranks).
+TEST(LsdemRunOnMpi, MicromechanicsGiveTheSerialBytesOnTwoAndThreeRanks)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene =
+        writeScene(dir, "micro.toml", column(5, 0.03) + "micromechanics = true\n");
+    const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    // The grains touch each other and the walls: the rows measure contacts, not an empty sample.
+    const auto rows = lsdem::readCsvRecords(readFile(dir.file("serial/micromechanics.csv")), "");
+    const auto most = [&](const std::string& name) {
+        const size_t at = size_t(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+        double m = 0.0;
+        for (size_t k = 1; k < rows.size(); ++k) m = std::max(m, std::stod(rows[k].at(at)));
+        return m;
+    };
+    EXPECT_GE(most("grain_contacts"), 2.0);     // measured: 5
+    EXPECT_GE(most("boundary_contacts"), 2.0);  // measured: 3
+    for (int ranks : {2, 3}) {
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(onRanks(ranks, "-q " + scene + " --out " + out));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
+        const std::vector<std::string> pieces = piecesOf(out + "/frames_grains_2.pvtu");
+        ASSERT_EQ(pieces.size(), size_t(ranks));
+        // The pieces' values together are the single frame's, each exactly (as multisets:
+        // the pieces order the grains by rank).
+        for (const char* measure : {"displacement", "rotation", "d2min", "stress"}) {
+            std::vector<double> whole = float64Array(dir.file("serial/frames_grains_2.vtu"), measure);
+            std::vector<double> split;
+            for (const std::string& piece : pieces) {
+                const std::vector<double> part = float64Array(out + "/" + piece, measure);
+                split.insert(split.end(), part.begin(), part.end());
+            }
+            std::sort(whole.begin(), whole.end());
+            std::sort(split.begin(), split.end());
+            EXPECT_FALSE(whole.empty()) << measure;
+            EXPECT_GT(std::abs(whole.back()) + std::abs(whole.front()), 0.0) << measure;
+            EXPECT_TRUE(whole == split) << ranks << " ranks: " << measure << " differs";
+        }
+    }
 }
 
 // kill -9 at a random moment (seeded: LSDEM_KILL_SEED=N for other moments), for every pair of

@@ -28,7 +28,8 @@ namespace {
 
 /// What the study writes into --out: its CSVs, triaxial.py's plots and the shearing scene
 /// (its assets: removeEarlierSceneAssets).
-const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv", "triaxial_curves.png",
+const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv",
+                                   "triaxial_convergence.csv", "triaxial_curves.png",
                                    "triaxial_friction_angles.png", "scene/triaxial_shear.toml",
                                    "scene/grains.csv"};
 
@@ -210,6 +211,15 @@ void printTriaxialSummary(const TriaxialOptions& o, const TriaxialStudyResult& r
                         formulationName(m.formulation).c_str(), m.sdp, m.seeds,
                         m.peakFrictionAngle, m.peakFrictionAngleSpread, m.secantModulus50,
                         m.secantModulus50Spread);
+    // Successive SDPs seed by seed (the same samples at both): the change and its standard
+    // error, beside how many nodes the mean contact held.
+    for (const TriaxialPairedChange& c : triaxialPairedChanges(result))
+        std::printf("%s SDP %g -> %g, paired over %d seed%s: peak friction angle %+.2f deg "
+                    "(standard error %.2f), E50 %+.1f %% (%.1f); nodes per contact %.1f -> %.1f\n",
+                    formulationName(c.formulation).c_str(), c.coarseSdp, c.fineSdp, c.seeds,
+                    c.seeds == 1 ? "" : "s", c.peakFrictionAngle, c.peakFrictionAngleError,
+                    100.0 * c.secantModulus50, 100.0 * c.secantModulus50Error,
+                    c.coarseNodesPerContact, c.fineNodesPerContact);
     for (Formulation f : o.formulations) {
         const double change = finestPeakChange(result, f);
         if (std::isfinite(change))
@@ -276,6 +286,8 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     const std::string runsCsv = o.outDir + "/triaxial_runs.csv";
     writeTriaxialCsv(result, csv);
     writeTriaxialRunsCsv(result, runsCsv);
+    const std::string convergenceCsv = o.outDir + "/triaxial_convergence.csv";
+    writeTriaxialConvergenceCsv(result, convergenceCsv);
 
     printTriaxialSummary(o, result);
     // The first formulation's finest run (of the first seed), as a scene to rerun the
@@ -283,7 +295,8 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     const TriaxialRun* finest = nullptr;
     for (const TriaxialRun& r : result.runs)
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
-    std::printf("time %.0f s\nwrote %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str());
+    std::printf("time %.0f s\nwrote %s, %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str(),
+                convergenceCsv.c_str());
     if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
         const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
         std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -94,6 +95,87 @@ std::vector<TriaxialSeedMean> triaxialSeedMeans(const TriaxialStudyResult& r)
         means.push_back(m);
     }
     return means;
+}
+
+namespace {
+
+/// The mean, sample standard deviation and standard error of @a v (spreads NaN below two).
+void meanSpreadError(const std::vector<double>& v, double& mean, double& spread, double& error)
+{
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    mean = v.empty() ? 0.0 : sum / double(v.size());
+    if (v.size() < 2) return;
+    double squares = 0.0;
+    for (double x : v) squares += (x - mean) * (x - mean);
+    spread = std::sqrt(squares / double(v.size() - 1));
+    error = spread / std::sqrt(double(v.size()));
+}
+
+} // namespace
+
+std::vector<TriaxialPairedChange> triaxialPairedChanges(const TriaxialStudyResult& r)
+{
+    // Each formulation's SDPs, coarsest first, in the order the runs give them.
+    std::vector<std::pair<Formulation, std::vector<double>>> sdps;
+    for (const TriaxialRun& run : r.runs) {
+        auto it = std::find_if(sdps.begin(), sdps.end(),
+                               [&](const auto& f) { return f.first == run.formulation; });
+        if (it == sdps.end()) it = sdps.insert(sdps.end(), {run.formulation, {}});
+        if (std::find(it->second.begin(), it->second.end(), run.sdp) == it->second.end())
+            it->second.push_back(run.sdp);
+    }
+    std::vector<TriaxialPairedChange> changes;
+    for (auto& [formulation, list] : sdps) {
+        std::sort(list.begin(), list.end(), std::greater<double>());
+        for (size_t k = 0; k + 1 < list.size(); ++k) {
+            TriaxialPairedChange c;
+            c.formulation = formulation;
+            c.coarseSdp = list[k];
+            c.fineSdp = list[k + 1];
+            std::vector<double> phi, modulus;
+            double coarseNodes = 0.0, fineNodes = 0.0;
+            for (const TriaxialRun& coarse : r.runs) {
+                if (coarse.formulation != formulation || coarse.sdp != c.coarseSdp) continue;
+                for (const TriaxialRun& fine : r.runs) {
+                    if (fine.formulation != formulation || fine.sdp != c.fineSdp ||
+                        fine.seed != coarse.seed)
+                        continue;
+                    phi.push_back(fine.test.peakFrictionAngle - coarse.test.peakFrictionAngle);
+                    modulus.push_back(fine.test.secantModulus50 / coarse.test.secantModulus50 - 1.0);
+                    coarseNodes += coarse.test.consolidated.nodesPerContact;
+                    fineNodes += fine.test.consolidated.nodesPerContact;
+                }
+            }
+            c.seeds = int(phi.size());
+            if (c.seeds == 0) continue;
+            c.coarseNodesPerContact = coarseNodes / c.seeds;
+            c.fineNodesPerContact = fineNodes / c.seeds;
+            meanSpreadError(phi, c.peakFrictionAngle, c.peakFrictionAngleSpread,
+                            c.peakFrictionAngleError);
+            meanSpreadError(modulus, c.secantModulus50, c.secantModulus50Spread,
+                            c.secantModulus50Error);
+            changes.push_back(c);
+        }
+    }
+    return changes;
+}
+
+void writeTriaxialConvergenceCsv(const TriaxialStudyResult& r, const std::string& path)
+{
+    std::ostringstream out;
+    out.precision(17);
+    out << "formulation,coarse_sdp,fine_sdp,seeds,coarse_nodes_per_contact,"
+           "fine_nodes_per_contact,peak_friction_angle_change,peak_friction_angle_change_sd,"
+           "peak_friction_angle_change_se,secant_modulus_50_change,secant_modulus_50_change_sd,"
+           "secant_modulus_50_change_se\n";
+    for (const TriaxialPairedChange& c : triaxialPairedChanges(r))
+        out << formulationName(c.formulation) << ',' << c.coarseSdp << ',' << c.fineSdp << ','
+            << c.seeds << ',' << c.coarseNodesPerContact << ',' << c.fineNodesPerContact << ','
+            << c.peakFrictionAngle << ',' << c.peakFrictionAngleSpread << ','
+            << c.peakFrictionAngleError << ',' << c.secantModulus50 << ','
+            << c.secantModulus50Spread << ',' << c.secantModulus50Error << '\n';
+    writeTextFileAtomically(path, out.str());
 }
 
 namespace {

@@ -7,23 +7,18 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lsdem {
 
 FrameWriter::FrameWriter(const std::string& dir, const World& world,
                          const std::vector<RigidPose>* start)
-    : mSeries(dir, kFramesBaseName)
+    : mSeries(dir, kFramesBaseName), mMeasures(start != nullptr)
 {
     if (start) {
         mStart = *start;
-        std::vector<double> radii;
-        for (size_t i = 0; i < mStart.size(); ++i) {
-            mStartPositions.push_back(mStart[i].position);
-            radii.push_back(world.grains[i].asset->boundingRadius);
-        }
-        // Touching, or nearly, at the start.
-        mStartNeighbours = neighboursWithin(mStartPositions, radii, 1.1);
+        for (const RigidPose& pose : mStart) mStartPositions.push_back(pose.position);
     }
     // Surfaces at about the node spacing: as fine as the contact sees them, and light enough
     // for many grains and frames (at the level set's own voxels a frame of 27 spheres of 100
@@ -33,6 +28,51 @@ FrameWriter::FrameWriter(const std::string& dir, const World& world,
             mSurfaces[asset.get()] = zeroIsosurface(*asset->levelSet, asset->spacing.mean);
 }
 
+std::vector<VtkGrainMeasures> FrameWriter::grainMeasures(const Simulation& sim)
+{
+    const GhostDecomposition* split = sim.ghosts();
+    World gathered;
+    if (split) gathered = sim.wholeWorld();
+    const std::vector<ContactRecord> records = sim.wholeContactRecords();
+    const World& whole = split ? gathered : sim.world();
+    constexpr size_t kNumbers = 14;  // displacement, rotation, D²min, stress
+    std::vector<double> packed;
+    if (!split || split->rank() == 0) {
+        if (!mNeighboursFound) {  // touching, or nearly, at the start
+            std::vector<double> radii;
+            for (const Grain& g : whole.grains) radii.push_back(g.asset->boundingRadius);
+            mStartNeighbours = neighboursWithin(mStartPositions, radii, 1.1);
+            mNeighboursFound = true;
+        }
+        std::vector<Vec3> now;
+        for (const Grain& g : whole.grains) now.push_back(g.body.pose.position);
+        const std::vector<double> d2 = nonAffineDisplacement(mStartPositions, now, mStartNeighbours);
+        const std::vector<Mat3> stress = grainStresses(whole, records);
+        for (size_t i = 0; i < whole.grains.size(); ++i) {
+            const RigidPose& p = whole.grains[i].body.pose;
+            const Eigen::AngleAxisd turned(p.orientation * mStart[i].orientation.conjugate());
+            const Vec3 moved = p.position - mStart[i].position;
+            packed.insert(packed.end(), {moved.x(), moved.y(), moved.z(), std::abs(turned.angle()),
+                                         d2[i]});
+            packed.insert(packed.end(), stress[i].data(), stress[i].data() + 9);
+        }
+    }
+    packed = sim.numbersFromRankZero(packed);
+    const World& w = sim.world();
+    std::vector<VtkGrainMeasures> measures(w.grains.size());
+    for (size_t i = 0; i < w.grains.size(); ++i) {
+        const size_t id = split ? size_t(split->globalIds()[i]) : i;
+        if ((id + 1) * kNumbers > packed.size()) continue;  // (never: every grain was measured)
+        const double* m = packed.data() + id * kNumbers;
+        VtkGrainMeasures& out = measures[i];
+        out.displacement = Vec3(m[0], m[1], m[2]);
+        out.rotation = m[3];
+        out.d2min = m[4];
+        std::copy(m + 5, m + 14, out.stress.data());
+    }
+    return measures;
+}
+
 void FrameWriter::write(const Simulation& sim)
 {
     const World& w = sim.world();
@@ -40,18 +80,7 @@ void FrameWriter::write(const Simulation& sim)
     // piece of a parallel frame; otherwise the whole frame is written here.
     const GhostDecomposition* split = sim.ghosts();
     std::vector<VtkGrainMeasures> measures;
-    if (!mStart.empty() && !split) {
-        std::vector<Vec3> now;
-        for (const Grain& g : w.grains) now.push_back(g.body.pose.position);
-        const std::vector<double> d2 = nonAffineDisplacement(mStartPositions, now, mStartNeighbours);
-        const std::vector<Mat3> stress = grainStresses(w, sim.contactRecords());
-        for (size_t i = 0; i < w.grains.size(); ++i) {
-            const RigidPose& p = w.grains[i].body.pose;
-            const Eigen::AngleAxisd turned(p.orientation * mStart[i].orientation.conjugate());
-            measures.push_back({p.position - mStart[i].position, std::abs(turned.angle()), d2[i],
-                                stress[i]});
-        }
-    }
+    if (mMeasures) measures = grainMeasures(sim);
     std::vector<VtkGrain> grains;
     for (size_t i = 0; i < w.grains.size(); ++i) {
         const Grain& g = w.grains[i];
@@ -67,7 +96,7 @@ void FrameWriter::write(const Simulation& sim)
         forces.push_back({f.point, f.force, f.grain});
     if (split)
         mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, split->rank(),
-                                   split->rankCount(), grains, forces);
+                                   split->rankCount(), grains, forces, mMeasures);
     else
         mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces);
 }

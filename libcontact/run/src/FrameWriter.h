@@ -17,20 +17,30 @@ inline const std::string kFramesBaseName = "frames";
 class FrameWriter
 {
 public:
-    /// With @a start (each grain's pose at the run's start), every frame also carries each
-    /// grain's micromechanics: displacement and rotation since then, D²min among the grains
-    /// near it then (centres within 1.1 times the sum of their bounding radii), its stress.
+    /// With @a start (each grain's pose at the run's start, by global index; split by space,
+    /// on rank 0: the other ranks give an empty list), every frame also carries each grain's
+    /// micromechanics: displacement and rotation since then, D²min among the grains near it
+    /// then (centres within 1.1 times the sum of their bounding radii), its stress.
     FrameWriter(const std::string& dir, const World& world,
                 const std::vector<RigidPose>* start = nullptr);
     VtkSeries& series() { return mSeries; }
+    /// Collective when @a sim is split by space (each rank writes its piece; the measures
+    /// need the whole simulation).
     void write(const Simulation& sim);
 
 private:
+    /// Each grain's measures, by this rank's grain index: worked out for the whole simulation
+    /// on rank 0 (here, in one process) and shared.
+    std::vector<VtkGrainMeasures> grainMeasures(const Simulation& sim);
+
     VtkSeries mSeries;
     std::map<const GrainAsset*, TriangleMesh> mSurfaces;
-    std::vector<RigidPose> mStart;                   ///< empty: no measures
+    bool mMeasures = false;
+    std::vector<RigidPose> mStart;
     std::vector<Vec3> mStartPositions;
-    std::vector<std::vector<int>> mStartNeighbours;  ///< for D²min
+    /// For D²min, found at the first frame (from the whole simulation's bounding radii).
+    std::vector<std::vector<int>> mStartNeighbours;
+    bool mNeighboursFound = false;
 };
 
 } // namespace lsdem

@@ -2,6 +2,7 @@
 
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/CsvText.h"
+#include "lsdem/simulation/GhostDecomposition.h"
 #include "lsdem/simulation/Micromechanics.h"
 
 #include <cctype>
@@ -74,9 +75,22 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
         }
         record.boundaryRows[b].push_back(std::move(row));
     }
-    if (record.micromechanics) {
-        const Micromechanics m = micromechanicsOf(w, sim.contactRecords());
-        std::vector<double> row = {static_cast<double>(w.step), w.time};
+    if (record.micromechanics) record.micromechanicsRows.push_back(micromechanicsRow(sim));
+}
+
+std::vector<double> micromechanicsRow(const Simulation& sim)
+{
+    // Split by space, rank 0 sums the whole simulation in one process's order (so the row has
+    // its bytes) and every rank takes its row.
+    const GhostDecomposition* split = sim.ghosts();
+    World gathered;
+    if (split) gathered = sim.wholeWorld();
+    const std::vector<ContactRecord> records = sim.wholeContactRecords();
+    const World& w = split ? gathered : sim.world();
+    std::vector<double> row;
+    if (!split || split->rank() == 0) {
+        const Micromechanics m = micromechanicsOf(w, records);
+        row = {static_cast<double>(w.step), w.time};
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) row.push_back(m.stressMoment(i, j));
         for (const auto& [fabric, anisotropy] :
@@ -90,8 +104,8 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
                                static_cast<double>(m.boundaryContacts),
                                static_cast<double>(m.freeGrains), static_cast<double>(m.rattlers),
                                m.mechanicalCoordination});
-        record.micromechanicsRows.push_back(std::move(row));
     }
+    return sim.numbersFromRankZero(row);
 }
 
 std::string boundaryHistoryFileName(const std::string& name)

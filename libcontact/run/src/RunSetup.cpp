@@ -109,11 +109,6 @@ double Run::makeSimulation(const RunOptions& options)
 {
     // One rank evaluates every contact: nothing to split, nothing to exchange.
     if (options.ranks && options.ranks->ranks() > 1) {
-        // (Its sums need every contact of a grain on one process.)
-        if (mScene.output.micromechanics)
-            throw Error(mScene.path, "[output] micromechanics = true is written by one process only",
-                        "run it without mpirun (lsdem-run --threads N shares the work), or "
-                        "leave micromechanics out");
         mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
     }
     std::vector<std::string> warnings;

@@ -132,14 +132,18 @@ void appendXyz(std::vector<double>& out, const Vec3& v)
     out.push_back(v.z());
 }
 
-/// Every grain's surface triangles in world coordinates, each vertex carrying its rigid-body
-/// velocity (and, @a withMeasures and every grain measured, its grain's measures) and each
-/// triangle the id of its grain.
-std::string grainsFile(const std::vector<VtkGrain>& grains, bool withMeasures)
+/// Whether every one of @a grains (at least one) carries its measures.
+bool allMeasured(const std::vector<VtkGrain>& grains)
 {
-    const bool measured =
-        withMeasures && !grains.empty() && std::all_of(grains.begin(), grains.end(),
-                                       [](const VtkGrain& g) { return g.measures != nullptr; });
+    return !grains.empty() && std::all_of(grains.begin(), grains.end(), [](const VtkGrain& g) {
+        return g.measures != nullptr;
+    });
+}
+
+/// Every grain's surface triangles in world coordinates, each vertex carrying its rigid-body
+/// velocity (and, @a measured, its grain's measures) and each triangle the id of its grain.
+std::string grainsFile(const std::vector<VtkGrain>& grains, bool measured)
+{
     std::vector<double> displacements, rotations, d2mins, stresses;
     std::vector<double> points, velocities;
     std::vector<std::int64_t> connectivity, offsets;
@@ -228,27 +232,34 @@ std::string pieceFileName(const std::string& baseName, const char* kind, size_t 
 
 /// A parallel frame's `.pvtu` of one kind: the arrays its pieces hold (as grainsFile and
 /// contactsFile write them) and the pieces' files, relative to it.
-std::string parallelFile(const std::string& baseName, const char* kind, size_t frame, int pieces)
+std::string parallelFile(const std::string& baseName, const char* kind, size_t frame, int pieces,
+                         bool measured)
 {
     const bool grains = std::string(kind) == "grains";
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" "
                       "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
                       "  <PUnstructuredGrid GhostLevel=\"0\">\n";
-    if (grains)
+    if (grains) {
         xml += "    <PPointData Vectors=\"velocity\">\n"
-               "      <PDataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n"
-               "    </PPointData>\n"
+               "      <PDataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\"/>\n";
+        if (measured)
+            for (const auto& [name, components] : {std::pair{"displacement", 3}, {"rotation", 1},
+                                                   {"d2min", 1}, {"stress", 9}})
+                xml += "      <PDataArray type=\"Float64\" Name=\"" + std::string(name) +
+                       "\" NumberOfComponents=\"" + std::to_string(components) + "\"/>\n";
+        xml += "    </PPointData>\n"
                "    <PCellData Scalars=\"grain\">\n"
                "      <PDataArray type=\"Int32\" Name=\"grain\" NumberOfComponents=\"1\"/>\n"
                "    </PCellData>\n";
-    else
+    } else {
         xml += "    <PPointData Vectors=\"force\" Scalars=\"grain\">\n"
                "      <PDataArray type=\"Float64\" Name=\"force\" NumberOfComponents=\"3\"/>\n"
                "      <PDataArray type=\"Int32\" Name=\"grain\" NumberOfComponents=\"1\"/>\n"
                "    </PPointData>\n"
                "    <PCellData>\n"
                "    </PCellData>\n";
+    }
     xml += "    <PPoints>\n"
            "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
            "    </PPoints>\n";
@@ -298,15 +309,17 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
     const std::filesystem::path dir(mDirectory);
     const size_t k = static_cast<size_t>(frame);
     writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(),
-                            grainsFile(grains, true));
+                            grainsFile(grains, allMeasured(grains)));
     writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
     list(frame, time, false, true);
 }
 
 void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces,
                                    const std::vector<VtkGrain>& grains,
-                                   const std::vector<VtkForcePoint>& forces)
+                                   const std::vector<VtkForcePoint>& forces, bool measured)
 {
+    if (measured && !grains.empty() && !allMeasured(grains))
+        throw std::invalid_argument("VtkSeries::writeParallelFrame: a grain without measures");
     if (frame < 0 || frame > framesWritten() || piece < 0 || piece >= pieces)
         throw std::invalid_argument("VtkSeries::writeParallelFrame: frame " +
                                     std::to_string(frame) + " is not in 0.." +
@@ -316,13 +329,13 @@ void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces
     const std::filesystem::path dir(mDirectory);
     const size_t k = static_cast<size_t>(frame);
     writeTextFileAtomically((dir / pieceFileName(mBaseName, "grains", k, piece)).string(),
-                            grainsFile(grains, false));
+                            grainsFile(grains, measured));
     writeTextFileAtomically((dir / pieceFileName(mBaseName, "contacts", k, piece)).string(),
                             contactsFile(forces));
     if (piece == 0)
         for (const char* kind : {"grains", "contacts"})
             writeTextFileAtomically((dir / frameFileName(mBaseName, kind, k, true)).string(),
-                                    parallelFile(mBaseName, kind, k, pieces));
+                                    parallelFile(mBaseName, kind, k, pieces, measured));
     list(frame, time, true, piece == 0);
 }
 

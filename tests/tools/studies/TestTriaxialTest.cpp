@@ -507,3 +507,50 @@ TEST(TriaxialSummary, PeakCriticalStateAndSecantModulusOfAKnownCurve)
     // Critical state: the plateau q = 0.6 over the last quarter (ε ≥ 13.5 %).
     EXPECT_NEAR(r.criticalFrictionAngle, std::asin(0.6 / 0.8) * 180.0 / kPi, 1e-9);
 }
+
+// Successive SDPs compared seed by seed. Three seeds whose peak angles rise by 1.0, 1.2 and 1.4°
+// from SDP 0.1 to 0.07 although the seeds themselves spread by 5°: the paired change is 1.2° with
+// a standard deviation of 0.2 and a standard error of 0.2/√3 (the difference of the means would
+// carry the seeds' 5° spread). E₅₀ 10, 20, 40 MPa becoming 11, 22, 40: +10 %, +10 %, 0 %. A seed
+// run at one SDP only is left out; the nodes per contact are the paired runs' means.
+TEST(TriaxialSummary, SuccessiveSpacingsArePairedSeedBySeed)
+{
+    TriaxialStudyResult r;
+    const auto add = [&](double sdp, long long seed, double phi, double modulus, double nodes) {
+        TriaxialRun run;
+        run.formulation = Formulation::Adapted;
+        run.sdp = sdp;
+        run.seed = seed;
+        run.test.peakFrictionAngle = phi;
+        run.test.secantModulus50 = modulus;
+        run.test.consolidated.nodesPerContact = nodes;
+        r.runs.push_back(run);
+    };
+    add(0.1, 1, 30.0, 10.0, 2.0);
+    add(0.1, 2, 35.0, 20.0, 2.5);
+    add(0.1, 3, 40.0, 40.0, 3.0);
+    add(0.1, 4, 99.0, 99.0, 9.0);  // not run at 0.07
+    add(0.07, 1, 31.0, 11.0, 4.0);
+    add(0.07, 2, 36.2, 22.0, 5.0);
+    add(0.07, 3, 41.4, 40.0, 6.0);
+    const std::vector<TriaxialPairedChange> changes = triaxialPairedChanges(r);
+    ASSERT_EQ(changes.size(), 1u);
+    const TriaxialPairedChange& c = changes[0];
+    EXPECT_EQ(c.coarseSdp, 0.1);
+    EXPECT_EQ(c.fineSdp, 0.07);
+    EXPECT_EQ(c.seeds, 3);
+    EXPECT_NEAR(c.peakFrictionAngle, 1.2, 1e-12);
+    EXPECT_NEAR(c.peakFrictionAngleSpread, 0.2, 1e-12);
+    EXPECT_NEAR(c.peakFrictionAngleError, 0.2 / std::sqrt(3.0), 1e-12);
+    EXPECT_NEAR(c.secantModulus50, 0.2 / 3.0, 1e-12);
+    // sd of (0.1, 0.1, 0): sqrt(((1/30)² · 2 + (2/30)²) / 2) = sqrt(6/900 / 2) = 1/√300
+    EXPECT_NEAR(c.secantModulus50Spread, 1.0 / std::sqrt(300.0), 1e-12);
+    EXPECT_NEAR(c.coarseNodesPerContact, 2.5, 1e-12);
+    EXPECT_NEAR(c.fineNodesPerContact, 5.0, 1e-12);
+
+    // One seed: the change, and no spread.
+    r.runs = {r.runs[0], r.runs[4]};
+    const TriaxialPairedChange one = triaxialPairedChanges(r).at(0);
+    EXPECT_NEAR(one.peakFrictionAngle, 1.0, 1e-12);
+    EXPECT_TRUE(std::isnan(one.peakFrictionAngleError));
+}

@@ -24,7 +24,13 @@ inline const std::string kMicromechanicsFileName = "micromechanics.csv";
 /// and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
 /// nine entries row by row, the fabric's six, its anisotropy, the contact and grain counts and
 /// the mechanical coordination number).
+/// Collective when the simulation is split by space (its energies and micromechanics are sums
+/// over every rank, in one process's order: the same rows on every rank).
 void recordHistoryRow(const Simulation& sim, RunRecord& record);
+
+/// The micromechanics row of the current state (step, time, then as above). Collective when
+/// split by space: computed on rank 0 from the whole simulation, the same on every rank.
+std::vector<double> micromechanicsRow(const Simulation& sim);
 
 /// Write energy.csv, boundary_<name>.csv and (with record.micromechanics) micromechanics.csv in
 /// @a directory from @a record.

@@ -66,10 +66,12 @@ public:
 
     /// Write frame @a frame as a parallel one of @a pieces pieces: this rank's piece
     /// @a piece (its grains and forces); piece 0 also writes the `.pvtu` files and rewrites
-    /// the .pvd, as writeFrame does. Every rank calls it for every frame.
+    /// the .pvd, as writeFrame does. Every rank calls it for every frame, with the same
+    /// @a measured: whether the grains carry their measures (each grain must then have them;
+    /// a piece without grains gets the arrays empty, as the `.pvtu` declares them).
     void writeParallelFrame(int frame, double time, int piece, int pieces,
                             const std::vector<VtkGrain>& grains,
-                            const std::vector<VtkForcePoint>& forces);
+                            const std::vector<VtkForcePoint>& forces, bool measured = false);
 
     int framesWritten() const { return static_cast<int>(mTimes.size()); }
 

@@ -108,6 +108,16 @@ public:
     /// contact list's order (the same on any thread count). Split by space: this rank's, by the
     /// index of its world (not collective).
     std::vector<ContactRecord> contactRecords() const;
+    /// Collective when split by space: every contact of the whole simulation as one process
+    /// lists it (contactRecords(): grains by their global index, in its list order), on every
+    /// rank. Otherwise contactRecords().
+    std::vector<ContactRecord> wholeContactRecords() const;
+    /// Collective when split by space: the whole world as one process holds it, on rank 0 (the
+    /// others get an empty one; GhostDecomposition::gatherWorld). Otherwise a copy.
+    World wholeWorld() const;
+    /// Collective when split by space: rank 0's @a numbers on every rank (the others' are not
+    /// read). Otherwise @a numbers.
+    std::vector<double> numbersFromRankZero(const std::vector<double>& numbers) const;
     /// The largest stable step seen so far for the stiffest grain contact (infinite if none).
     double stabilityLimitSeen() const { return mStabilityLimit; }
     /// Compute the contacts with @a backend from the next step on (ContactBackend.h; the CPU's

@@ -104,6 +104,7 @@ void bindMicromechanics(py::module_& m)
             d["centres"] = rowsOf(records, &ContactRecord::centre);
             d["normals"] = rowsOf(records, &ContactRecord::normal);
             d["nodes"] = columnOf(records, &ContactRecord::nodes);
+            d["shifts"] = rowsOf(records, &ContactRecord::shift);
             return py::module_::import("types").attr("SimpleNamespace")(**d);
         },
         "Every contact of the last evaluation as a whole (copies; K contacts, grain pairs "
@@ -111,7 +112,8 @@ void bindMicromechanics(py::module_& m)
         ".boundary (K,) the boundary's index (else -1); .forces (K, 3) the resultant on the "
         "first grain (the other body gets the opposite); .centres (K, 3) where it acts (the "
         "stiffness-weighted centre of its point forces); .normals (K, 3) unit, pushing the first "
-        "grain out; .nodes (K,) its penetrating nodes.");
+        "grain out; .nodes (K,) its penetrating nodes; .shifts (K, 3) in a periodic cell the "
+        "periods added to the second grain's position (it touches that image; zero otherwise).");
     simulation.def(
         "micromechanics",
         [](const PySimulation& s) {

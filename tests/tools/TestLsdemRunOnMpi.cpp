@@ -658,6 +658,17 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
 
+    // A periodic cell is not split by space yet: refused on two ranks, before any output.
+    std::string periodic = column(2, 0.01);
+    periodic.replace(periodic.find("[output]"), 8, "periodic_cell = [12, 12, 0]\n\n[output]");
+    const std::string cell = writeScene(dir, "cell.toml", periodic);
+    const CommandResult split = runCommand(onRanks(2, "-q " + cell + " --out " + dir.file("cell")));
+    EXPECT_EQ(split.exitCode, 1) << split.output;
+    EXPECT_EQ(count(split.output, "lsdem-run: error:"), 1u) << split.output;
+    EXPECT_NE(split.output.find("a periodic cell runs on one process"), std::string::npos)
+        << split.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("cell")));
+
 }
 
 // Micromechanics under MPI: rank 0 sums the whole simulation in one process's order, so

@@ -27,8 +27,11 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 ///    (levelSetSlopeBound since 2026-11-27); those of a version 3 or 4 file took the earlier
 ///    bound over the whole grid, so its assets are not compared (its grains still are).
 /// 6: the record ends with the micromechanics rows (none in an earlier file's).
-/// 7: each grain also keeps the energy dissipated by mechanism (DissipatedEnergy); an earlier
-///    file's grains restart from none, and its energy rows gain empty (NaN) columns for it.
+/// 7: each grain also keeps the energy dissipated by mechanism (DissipatedEnergy) and the
+///    periods a periodic cell moved it by (Grain::wrapShift); the world its periodic cell's
+///    size, strain rates and stress and the moment its power comes from. An earlier file's
+///    grains restart from none, and its energy rows gain empty (NaN) columns for the
+///    dissipation.
 const uint32_t kVersion = 7;
 const uint32_t kOldestVersion = 1;
 
@@ -220,6 +223,10 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         w.value<int64_t>(world.step);
         w.value(world.energy.boundaryWork);
         w.value(world.energy.initialTotal);
+        putVec(w, world.periodic.size);
+        putVec(w, world.periodic.strainRate);  // a stress-controlled axis's changes
+        putVec(w, world.periodic.stress);
+        putVec(w, world.energy.cellMoment);
         w.value<uint64_t>(world.grains.size());
         for (const Grain& g : world.grains) {
             putVec(w, g.body.pose.position);
@@ -230,6 +237,7 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
             putVec(w, g.torque);
             w.number(g.dissipated.friction).number(g.dissipated.dashpot).number(
                 g.dissipated.globalDamping);
+            putVec(w, g.wrapShift);
         }
         w.value<uint64_t>(world.boundaries.size());
         for (const Boundary& b : world.boundaries)
@@ -322,8 +330,24 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     if (!std::isfinite(w.time) || w.step < 0 || !std::isfinite(w.energy.boundaryWork) ||
         !std::isfinite(w.energy.initialTotal))
         r.fail();
-    // position, orientation, 4 vectors (and from version 7, 3 dissipated energies)
-    const uint64_t grainBytes = (version >= 7 ? 22 : 19) * sizeof(double);
+    if (version >= 7) {
+        // The cell as the run left it: periodic along the axes the scene makes periodic.
+        const Vec3 size = r.vec();
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(size[a]) || size[a] < 0.0 || (size[a] > 0.0) != w.periodic.periodic(a))
+                throw Error(path, "the checkpoint's periodic cell does not match its scene's",
+                            "the scene's periodic_cell may have changed; start the run again");
+        w.periodic.size = size;
+        w.periodic.strainRate = r.vec();
+        w.periodic.stress = r.vec();
+        w.energy.cellMoment = r.vec();
+        if (!allFinite(w.periodic.strainRate) || !allFinite(w.periodic.stress) ||
+            !allFinite(w.energy.cellMoment))
+            r.fail();
+    }
+    // position, orientation, 4 vectors (and from version 7, 3 dissipated energies and the
+    // periods moved by)
+    const uint64_t grainBytes = (version >= 7 ? 25 : 19) * sizeof(double);
     if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
                     "the scene's assets may have changed; start the run again");
@@ -335,17 +359,19 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         g.force = r.vec();
         g.torque = r.vec();
         g.dissipated = DissipatedEnergy();
+        g.wrapShift = Vec3::Zero();
         if (version >= 7) {
             g.dissipated.friction = r.number();
             g.dissipated.dashpot = r.number();
             g.dissipated.globalDamping = r.number();
+            g.wrapShift = r.vec();
         }
         // A damaged state must not start a run: every number finite, the rotation a rotation.
         const bool sane = allFinite(g.body.pose.position) && allFinite(g.body.velocity) &&
                           allFinite(g.body.angularMomentum) && allFinite(g.force) &&
                           allFinite(g.torque) && std::isfinite(g.dissipated.friction) &&
                           std::isfinite(g.dissipated.dashpot) &&
-                          std::isfinite(g.dissipated.globalDamping) &&
+                          std::isfinite(g.dissipated.globalDamping) && allFinite(g.wrapShift) &&
                           std::abs(g.body.pose.orientation.norm() - 1.0) < 1e-6;
         if (!sane) r.fail();
     }

@@ -44,14 +44,14 @@ std::vector<VtkGrainMeasures> FrameWriter::grainMeasures(const Simulation& sim)
             mStartNeighbours = neighboursWithin(mStartPositions, radii, 1.1);
             mNeighboursFound = true;
         }
-        std::vector<Vec3> now;
-        for (const Grain& g : whole.grains) now.push_back(g.body.pose.position);
+        std::vector<Vec3> now;  // (in a periodic cell, where the motion took them)
+        for (const Grain& g : whole.grains) now.push_back(g.unwrappedPosition());
         const std::vector<double> d2 = nonAffineDisplacement(mStartPositions, now, mStartNeighbours);
         const std::vector<Mat3> stress = grainStresses(whole, records);
         for (size_t i = 0; i < whole.grains.size(); ++i) {
             const RigidPose& p = whole.grains[i].body.pose;
             const Eigen::AngleAxisd turned(p.orientation * mStart[i].orientation.conjugate());
-            const Vec3 moved = p.position - mStart[i].position;
+            const Vec3 moved = whole.grains[i].unwrappedPosition() - mStart[i].position;
             packed.insert(packed.end(), {moved.x(), moved.y(), moved.z(), std::abs(turned.angle()),
                                          d2[i]});
             packed.insert(packed.end(), stress[i].data(), stress[i].data() + 9);

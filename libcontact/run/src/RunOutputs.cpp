@@ -163,7 +163,7 @@ void writeGrainsFile(const std::string& path, const World& world,
                          p.orientation.x(), p.orientation.y(), p.orientation.z(),
                          g.body.velocity.x(), g.body.velocity.y(), g.body.velocity.z(),
                          omega.x(), omega.y(), omega.z(),
-                         (p.position - initialPositions[i]).norm()})
+                         (g.unwrappedPosition() - initialPositions[i]).norm()})
             appendNumber(line, v);
         text += line + "\n";
     }

@@ -5,6 +5,7 @@
 
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 #include "lsdem/core/RunInParallel.h"
 #include "lsdem/simulation/GrainOverlaps.h"
 
@@ -185,6 +186,62 @@ Boundary makeBoundary(const BoundarySpec& spec, std::shared_ptr<const GrainAsset
     return b;
 }
 
+namespace {
+
+/// The scene's periodic cell, if any: checked against the grains (a pair must not reach two
+/// images of each other) and every grain moved into it by whole periods (where it starts).
+void placeInPeriodicCell(const Scene& scene, World& w)
+{
+    w.periodic.size = scene.periodicCell;
+    w.periodic.origin = scene.periodicOrigin;
+    w.periodic.strainRate = scene.periodicStrainRate;
+    w.periodic.targetStress = scene.periodicStress;
+    w.periodic.maxStrainRate = scene.periodicMaxStrainRate;
+    for (int a = 0; a < 3; ++a) {
+        const std::string axis(1, "xyz"[a]);
+        const auto refuse = [&](const std::string& key, const std::string& what,
+                                const std::string& fix) {
+            throw Error(scene.path, "[simulation] " + key + ": " + what, fix);
+        };
+        const bool controlled = scene.periodicStress[a] > 0.0;
+        if ((scene.periodicStrainRate[a] != 0.0 || controlled) && !w.periodic.periodic(a))
+            refuse(controlled ? "periodic_stress" : "periodic_strain_rate",
+                   "the cell is not periodic along " + axis + ", so it cannot deform along it",
+                   "give periodic_cell a period along " + axis + ", or 0 there");
+        if (controlled && scene.periodicStrainRate[a] != 0.0)
+            refuse("periodic_strain_rate", "along " + axis + " the stress is controlled",
+                   "give " + axis + " a strain rate of 0 (periodic_stress drives it)");
+        if (controlled && !(scene.periodicMaxStrainRate[a] > 0.0))
+            refuse("periodic_max_strain_rate",
+                   "along " + axis + " the stress is controlled, but the servo may not strain it",
+                   "give periodic_max_strain_rate > 0 along " + axis +
+                       " (e.g. 10 × the strain rates you want quasi-static)");
+        if (controlled && !(scene.periodicCell.minCoeff() > 0.0))
+            refuse("periodic_stress", "stress control needs the cell's volume",
+                   "make the cell periodic along all three axes, or drive " + axis +
+                       " by periodic_strain_rate");
+        if (!controlled && scene.periodicMaxStrainRate[a] > 0.0)
+            refuse("periodic_max_strain_rate", "along " + axis + " no stress is controlled",
+                   "give periodic_stress along " + axis + ", or leave this 0");
+    }
+    if (!w.periodic.active()) return;
+    double largest = 0.0;
+    for (const Grain& g : w.grains) largest = std::max(largest, g.asset->boundingRadius);
+    // Two grains reach 2·r + the contact list's skin (at most r/4): twice that fits the cell.
+    const double least = 4.5 * largest;
+    for (int a = 0; a < 3; ++a)
+        if (w.periodic.periodic(a) && w.periodic.size[a] < least)
+            throw Error(scene.path,
+                        std::string("[simulation] periodic_cell: the period along ") + "xyz"[a] +
+                            " (" + numberText(w.periodic.size[a]) +
+                            ") is less than 4.5 times the largest grain's bounding radius (" +
+                            numberText(largest) + "): a grain could touch two images of another",
+                        "make the cell at least " + numberText(least) + " along " + "xyz"[a]);
+    for (Grain& g : w.grains) g.body.pose.position += w.periodic.shiftInto(g.body.pose.position);
+}
+
+} // namespace
+
 World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
 {
     // A scene built in code has not been through the file reader's checks: a pair of materials
@@ -215,6 +272,7 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
     addNodeShapesWherePatchesAre(scene, w);
     w.gravity = scene.gravity;
     w.globalDamping = scene.globalDamping;
+    placeInPeriodicCell(scene, w);
     return w;
 }
 

@@ -37,6 +37,33 @@ std::vector<SceneSetting> simulationSettings()
          "With the automatic step: the share of the stiffest contact's stable step taken.",
          NumberRange::PositiveFraction, SettingForm::OwnForm, "0.1–0.3 is usual",
          LSDEM_SETTING_FIELD(double, timeStep.safety)},
+        {"simulation", "periodic_cell",
+         "A periodic cell's period along x, y and z (0: not periodic along that axis), length; "
+         "grains across a face touch the images of those at the other.",
+         NumberRange::NonNegative, SettingForm::OmittedWhenDefault,
+         "give each period ≥ 0 (0 for an axis that is not periodic), length",
+         LSDEM_SETTING_FIELD(Vec3, periodicCell)},
+        {"simulation", "periodic_origin", "The periodic cell's lowest corner (3,), length.",
+         NumberRange::Finite, SettingForm::OmittedWhenDefault, "give three finite numbers, length",
+         LSDEM_SETTING_FIELD(Vec3, periodicOrigin)},
+        {"simulation", "periodic_strain_rate",
+         "How fast the periodic cell stretches along each periodic axis, 1/time (< 0 "
+         "compresses): the cell and the grains' positions in it deform affinely.",
+         NumberRange::Finite, SettingForm::OmittedWhenDefault,
+         "give three finite numbers, 1/time (0 along an axis that is not periodic)",
+         LSDEM_SETTING_FIELD(Vec3, periodicStrainRate)},
+        {"simulation", "periodic_stress",
+         "Stress control of the periodic cell: the compressive stress each periodic axis is "
+         "strained to reach, force/length² (0: that axis keeps periodic_strain_rate).",
+         NumberRange::NonNegative, SettingForm::OmittedWhenDefault,
+         "give each target ≥ 0 (0 for an axis the strain rate drives), force/length²",
+         LSDEM_SETTING_FIELD(Vec3, periodicStress)},
+        {"simulation", "periodic_max_strain_rate",
+         "With periodic_stress: the fastest each stress-controlled axis strains, 1/time (at "
+         "10 % off its target and beyond).",
+         NumberRange::NonNegative, SettingForm::OmittedWhenDefault,
+         "give each > 0 where periodic_stress is, 1/time",
+         LSDEM_SETTING_FIELD(Vec3, periodicMaxStrainRate)},
         {"simulation", "end_time", "Stop at this simulated time (0: no time limit).",
          NumberRange::NonNegative, SettingForm::OmittedWhenZero, "0 for no time limit",
          LSDEM_SETTING_FIELD(double, end.time)},
@@ -89,9 +116,13 @@ std::optional<std::string> SceneSetting::problem(const SettingValue& value) cons
     if (const long long* n = std::get_if<long long>(&value))
         return outOfRange(range, static_cast<double>(*n));
     if (const Vec3* v = std::get_if<Vec3>(&value)) {
-        if (std::isfinite(v->x()) && std::isfinite(v->y()) && std::isfinite(v->z()))
-            return std::nullopt;
-        return "must be finite (got " + settingText(*v) + ")";
+        if (!(std::isfinite(v->x()) && std::isfinite(v->y()) && std::isfinite(v->z())))
+            return "must be finite (got " + settingText(*v) + ")";
+        for (int k = 0; k < 3; ++k)
+            if (!inNumberRange(range, (*v)[k]))
+                return "must be " + numberRangeText(range) + " in every component (got " +
+                       settingText(*v) + ")";
+        return std::nullopt;
     }
     return std::nullopt;  // a flag
 }
@@ -105,6 +136,7 @@ SettingValue SceneSetting::defaultValue() const
 bool SceneSetting::written(const Scene& scene) const
 {
     const SettingValue value = get(scene);
+    if (form == SettingForm::OmittedWhenDefault) return value != defaultValue();
     return std::holds_alternative<Vec3>(value) || std::holds_alternative<bool>(value) ||
            value != defaultValue();
 }

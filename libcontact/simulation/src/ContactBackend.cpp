@@ -19,8 +19,18 @@ void computeContactSlot(const ContactBatch& batch, size_t k, ContactScratch& scr
     const int material = w.grains[s.first].material;
     if (s.boundary < 0) {
         const ContactModel& m = w.model(material, w.grains[s.second].material);
-        s.result = computePairContact(batch.grains[s.first], batch.grains[s.second], m,
-                                      batch.slipStep, s.pairHistory, s.stats, out, &scratch,
+        // Across a periodic cell's face, the second grain's image.
+        ContactGrain image;
+        const bool shifted = !s.periods.isZero(0.0);
+        if (shifted) {
+            const Vec3 shift = s.periods.cwiseProduct(w.periodic.size);
+            image = batch.grains[s.second];
+            image.pose.position += shift;
+            // (A deforming cell carries its images along: they move with its faces.)
+            image.velocity += w.periodic.strainRate.cwiseProduct(shift);
+        }
+        s.result = computePairContact(batch.grains[s.first], shifted ? image : batch.grains[s.second],
+                                      m, batch.slipStep, s.pairHistory, s.stats, out, &scratch,
                                       &s.candidates);
     } else {
         const Boundary& b = w.boundaries[s.boundary];

@@ -7,6 +7,8 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <stdexcept>
+#include <tuple>
 
 namespace lsdem {
 
@@ -98,23 +100,116 @@ void inheritKnowledge(ContactSlot& s, std::vector<ContactSlot>& previous, size_t
     }
 }
 
+/// A candidate grain pair and the periods by which its second grain's image is moved (a
+/// periodic cell's; zero inside).
+struct ShiftedPair
+{
+    GrainPair pair;
+    Vec3 periods = Vec3::Zero();
+};
+
+/// A grain's copy one period away along some periodic axes: which grain, and how many periods
+/// (−1, 0 or 1) along each axis.
+struct Image
+{
+    int grain = 0;
+    Vec3 periods = Vec3::Zero();
+};
+
+/// The images of @a centers that come within @a reach of the cell: for each grain, its copies
+/// shifted by ±1 period along each periodic axis and their combinations (edges, corners), in
+/// grain order.
+std::vector<Image> imagesNear(const PeriodicCell& cell, const std::vector<Vec3>& centers,
+                              double reach)
+{
+    std::vector<Image> images;
+    for (size_t i = 0; i < centers.size(); ++i)
+        for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy)
+                for (int sz = -1; sz <= 1; ++sz) {
+                    const Vec3 steps(sx, sy, sz);
+                    if (steps.isZero()) continue;
+                    bool near = true;
+                    for (int a = 0; a < 3 && near; ++a) {
+                        if (steps[a] == 0.0) continue;
+                        if (!cell.periodic(a)) near = false;
+                        const double x = centers[i][a] + steps[a] * cell.size[a];
+                        near = near && x >= cell.origin[a] - reach &&
+                               x <= cell.origin[a] + cell.size[a] + reach;
+                    }
+                    if (near) images.push_back({int(i), steps});
+                }
+    return images;
+}
+
+/// The candidate pairs of @a w's grains (centres @a centers, bounding radii @a radii) within
+/// @a skin, sorted; in a periodic cell with their images too, each pair once, touching the
+/// nearest image (the cell is at least twice any pair's reach: BuildWorld checks it).
+std::vector<ShiftedPair> candidatePairs(const World& w, const std::vector<Vec3>& centers,
+                                        const std::vector<double>& radii, double skin)
+{
+    std::vector<ShiftedPair> pairs;
+    if (!w.periodic.active()) {
+        for (const GrainPair& p : findCandidatePairs(centers, radii, skin)) pairs.push_back({p});
+        return pairs;
+    }
+    const int n = static_cast<int>(centers.size());
+    double largest = 0.0;
+    for (double r : radii) largest = std::max(largest, r);
+    const std::vector<Image> images = imagesNear(w.periodic, centers, 2.0 * largest + skin);
+    std::vector<Vec3> all = centers;
+    std::vector<double> allRadii = radii;
+    for (const Image& image : images) {
+        all.push_back(centers[size_t(image.grain)] + image.periods.cwiseProduct(w.periodic.size));
+        allRadii.push_back(radii[size_t(image.grain)]);
+    }
+    for (const GrainPair& p : findCandidatePairs(all, allRadii, skin)) {
+        if (p.first >= n) continue;  // two images: their grains meet as a grain and an image
+        if (p.second < n) {
+            pairs.push_back({p});
+            continue;
+        }
+        const Image& image = images[size_t(p.second - n)];
+        if (image.grain == p.first) continue;  // a grain and its own image: the cell is too small
+        if (p.first < image.grain)
+            pairs.push_back({{p.first, image.grain}, image.periods});
+        else
+            pairs.push_back({{image.grain, p.first}, Vec3(-image.periods)});
+    }
+    // A pair across a face is found from both of its grains' images: once.
+    const auto key = [](const ShiftedPair& p) {
+        return std::make_tuple(p.pair.first, p.pair.second, p.periods.x(), p.periods.y(), p.periods.z());
+    };
+    std::sort(pairs.begin(), pairs.end(),
+              [&](const ShiftedPair& a, const ShiftedPair& b) { return key(a) < key(b); });
+    pairs.erase(std::unique(pairs.begin(), pairs.end(),
+                            [&](const ShiftedPair& a, const ShiftedPair& b) { return key(a) == key(b); }),
+                pairs.end());
+    for (size_t k = 1; k < pairs.size(); ++k)
+        if (pairs[k].pair == pairs[k - 1].pair)
+            throw std::logic_error("ContactList: a pair touches two images (the periodic cell is "
+                                   "smaller than twice a pair's reach)");
+    return pairs;
+}
+
 /// Append a slot per pair of @a pairs (sorted) to @a slots, walking the sorted histories along:
 /// histories of pairs no longer listed are dropped, new pairs start empty. std::map nodes do
 /// not move, so the slots can point into the map until the next rebuild. A pair still listed
 /// keeps what it knew from previous[0, previousPairs).
-void makePairSlots(World& w, const std::vector<GrainPair>& pairs, std::vector<ContactSlot>& slots,
+void makePairSlots(World& w, const std::vector<ShiftedPair>& pairs, std::vector<ContactSlot>& slots,
                    std::vector<ContactSlot>& previous, size_t previousPairs)
 {
     const auto pairOf = [](const ContactSlot& o) { return GrainPair(o.first, o.second); };
     size_t kept = 0;
     auto it = w.pairHistory.begin();
-    for (const GrainPair& p : pairs) {
+    for (const auto& [p, periods] : pairs) {
         while (it != w.pairHistory.end() && it->first < p) it = w.pairHistory.erase(it);
         if (it == w.pairHistory.end() || it->first != p)
             it = w.pairHistory.emplace_hint(it, p, PairHistory{});
         ContactSlot& s = slots.emplace_back();
         s.first = p.first;
         s.second = p.second;
+        s.periods = periods;
         s.pairHistory = &it->second;
         inheritKnowledge(s, previous, kept, previousPairs, p, pairOf);
         ++it;
@@ -187,12 +282,13 @@ void ContactList::rebuild(World& w, bool keepPairKnowledge)
     // Grain pairs whose spheres come within the skin (kinematic pairs too, so their forces
     // are recorded), and the boundaries each grain may touch within the skin, found in
     // parallel and joined in grain order (sorted as if found serially).
-    std::vector<GrainPair> pairs = findCandidatePairs(centers, radii, mSkin);
+    std::vector<ShiftedPair> pairs = candidatePairs(w, centers, radii, mSkin);
     if (mOwned) {  // only the pairs this rank evaluates
         const std::vector<char>& owned = *mOwned;
         pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                                   [&](const GrainPair& p) {
-                                       return !owned[size_t(p.first)] && !owned[size_t(p.second)];
+                                   [&](const ShiftedPair& p) {
+                                       return !owned[size_t(p.pair.first)] &&
+                                              !owned[size_t(p.pair.second)];
                                    }),
                     pairs.end());
     }

@@ -79,6 +79,9 @@ int GhostDecomposition::localOf(int id) const
 
 void GhostDecomposition::distribute(World& world, double skin)
 {
+    // (Its sub-domains do not wrap around, and ghosts are not yet sent as images.)
+    if (world.periodic.active())
+        throw std::invalid_argument("GhostDecomposition: a periodic cell is not split by space");
     const size_t n = world.grains.size();
     mGlobalCount = static_cast<int>(n);
     mAssetIndex.clear();

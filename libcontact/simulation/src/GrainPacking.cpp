@@ -51,6 +51,7 @@ void putGrain(Writer& out, const Grain& g, int assetIndex)
     out.values(g.force.data(), 3);
     out.values(g.torque.data(), 3);
     putDissipated(out, g.dissipated);
+    out.values(g.wrapShift.data(), 3);
 }
 
 Grain getGrain(Reader& in, const World& world)
@@ -70,6 +71,7 @@ Grain getGrain(Reader& in, const World& world)
     in.values(g.force.data(), 3);
     in.values(g.torque.data(), 3);
     g.dissipated = getDissipated(in);
+    in.values(g.wrapShift.data(), 3);
     return g;
 }
 

@@ -12,13 +12,17 @@ bool inSample(const World& world, int index)
     return index >= 0 && world.grains[size_t(index)].isFree();
 }
 
-/// Calls @a act(grain, force) for each free grain that contact @a r acts on: @a r.force on
-/// its first grain, the opposite on its second.
+/// Calls @a act(grain, position, force) for each free grain that contact @a r acts on: @a
+/// r.force on its first grain, the opposite on its second, each at its position as the contact
+/// sees it (second's image across a periodic cell's face).
 template <typename Act>
 void forEachSampleGrain(const World& world, const ContactRecord& r, Act&& act)
 {
-    if (inSample(world, r.first)) act(r.first, r.force);
-    if (inSample(world, r.second)) act(r.second, Vec3(-r.force));
+    if (inSample(world, r.first))
+        act(r.first, world.grains[size_t(r.first)].body.pose.position, r.force);
+    if (inSample(world, r.second))
+        act(r.second, Vec3(world.grains[size_t(r.second)].body.pose.position + r.shift),
+            Vec3(-r.force));
 }
 
 /// sqrt(3/2·a:a) of a = 15/2·(@a fabric − I/3): 0 for an isotropic fabric.
@@ -35,15 +39,15 @@ Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRec
     Micromechanics m;
     std::vector<int> contacts(world.grains.size(), 0);
     for (const ContactRecord& r : records) {
-        forEachSampleGrain(world, r, [&](int p, const Vec3& f) {
-            m.stressMoment += (r.centre - world.grains[size_t(p)].body.pose.position) * f.transpose();
+        forEachSampleGrain(world, r, [&](int, const Vec3& x, const Vec3& f) {
+            m.stressMoment += (r.centre - x) * f.transpose();
         });
         if (inSample(world, r.first) && inSample(world, r.second)) {
             ++m.grainContacts;
             ++contacts[size_t(r.first)];
             ++contacts[size_t(r.second)];
             m.fabric += r.normal * r.normal.transpose();
-            const Vec3 branch = world.grains[size_t(r.second)].body.pose.position -
+            const Vec3 branch = world.grains[size_t(r.second)].body.pose.position + r.shift -
                                 world.grains[size_t(r.first)].body.pose.position;
             if (branch.squaredNorm() > 0.0)
                 m.branchFabric += branch * branch.transpose() / branch.squaredNorm();
@@ -83,8 +87,8 @@ std::vector<Mat3> grainStresses(const World& world, const std::vector<ContactRec
 {
     std::vector<Mat3> stress(world.grains.size(), Mat3::Zero());
     for (const ContactRecord& r : records)
-        forEachSampleGrain(world, r, [&](int p, const Vec3& f) {
-            stress[size_t(p)] += (r.centre - world.grains[size_t(p)].body.pose.position) * f.transpose();
+        forEachSampleGrain(world, r, [&](int p, const Vec3& x, const Vec3& f) {
+            stress[size_t(p)] += (r.centre - x) * f.transpose();
         });
     for (size_t p = 0; p < world.grains.size(); ++p) {
         const Grain& g = world.grains[p];

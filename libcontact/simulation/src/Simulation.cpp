@@ -86,9 +86,16 @@ void Simulation::step()
     // Servo walls choose this step's velocity from the state it starts from.
     updateServoVelocities(mWorld, dt);
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
-    double workBefore = 0.0;
+    // A deforming periodic cell stretches by 1 + ε̇·dt along each axis in this step (its
+    // stress-controlled axes at the rate their stress asks), and the grains' positions in it
+    // with it (their velocities are what they have on top of that).
+    PeriodicCell& cell = mWorld.periodic;
+    if (cell.servoed()) cell.steer();
+    double workBefore = cell.strainRate.dot(mWorld.energy.cellMoment);
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
     subtractPrescribedPower(workBefore);
+    const Vec3 stretch = Vec3::Ones() + dt * cell.strainRate;
+    if (cell.deforming()) cell.size = cell.size.cwiseProduct(stretch);
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
     // A ghost is moved by its owner (and brought here before the forces).
@@ -105,6 +112,18 @@ void Simulation::step()
             rotateBy(g.body.pose.orientation, g.prescribedAngularVelocity, dt);
             break;
         case GrainMotion::Fixed: break;
+        }
+        // In a periodic cell a grain leaving through a face comes back through the other.
+        if (cell.active() && g.motion != GrainMotion::Fixed) {
+            if (cell.deforming()) {
+                g.body.pose.position = cell.origin + (g.body.pose.position - cell.origin).cwiseProduct(stretch);
+                g.wrapShift = g.wrapShift.cwiseProduct(stretch);
+            }
+            const Vec3 shift = cell.shiftInto(g.body.pose.position);
+            if (!shift.isZero(0.0)) {
+                g.body.pose.position += shift;
+                g.wrapShift += shift;
+            }
         }
     });
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
@@ -124,7 +143,7 @@ void Simulation::step()
         if (g.isFree() && integratesGrain(i)) kick(g.body, g.force, g.torque, 0.5 * dt);
         mStepLimits[i] = stepLimitOf(i);
     });
-    double workAfter = 0.0;
+    double workAfter = cell.strainRate.dot(mWorld.energy.cellMoment);
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
     subtractPrescribedPower(workAfter);
     mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;

@@ -123,6 +123,7 @@ void Simulation::evaluateForces(double slipStep)
     sumGrainForces(slipStep);
     sumContactCounts();
     collectReactionsAndPointForces();
+    measureCell();
     mCounters.integrateSeconds +=
         secondsSince(reduceStart) - (exchangedSeconds() - reduceExchanged);
 }
@@ -154,7 +155,11 @@ void Simulation::updateContactList()
     // (Split by space, a grain's index is its global one: the contact laws break ties by it.)
     const std::vector<int>* ids = mGhosts ? &mGhosts->globalIds() : nullptr;
     tbb::parallel_for(0, n, [&](int i) {
-        mViews[size_t(i)] = contactView(w.grains[size_t(i)], ids ? (*ids)[size_t(i)] : i);
+        const Grain& g = w.grains[size_t(i)];
+        mViews[size_t(i)] = contactView(g, ids ? (*ids)[size_t(i)] : i);
+        // In a deforming periodic cell a grain moves with the cell's affine motion too.
+        if (w.periodic.deforming() && g.motion != GrainMotion::Fixed)
+            mViews[size_t(i)].velocity += w.periodic.affineVelocity(g.body.pose.position);
     });
     mBoundaryViews.clear();
     for (const Boundary& b : w.boundaries) mBoundaryViews.push_back(contactView(b));

@@ -28,6 +28,36 @@ void Simulation::subtractPrescribedPower(double& work)
     for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) work -= t.value[0];
 }
 
+void Simulation::measureCell()
+{
+    PeriodicCell& cell = mWorld.periodic;
+    if (!cell.deforming()) return;
+    // The contacts against the affine motion: a pair's first grain feels f while its partner's
+    // image moves away at ε̇ ∘ (branch vector); a grain on a boundary moves at the affine
+    // velocity of its place. And the Love–Weber moment of the same contacts along each axis.
+    // In list order (the same sums on any thread count).
+    Vec3 moment = Vec3::Zero(), loveWeber = Vec3::Zero();
+    const std::vector<ContactSlot>& slots = mContacts.slots();
+    for (size_t k = 0; k < slots.size(); ++k) {
+        const ContactSlot& s = slots[k];
+        if (s.result.contactNodes <= 0) continue;
+        const Vec3& f = s.result.forceOnFirst;
+        const Vec3& first = mWorld.grains[size_t(s.first)].body.pose.position;
+        if (s.boundary < 0) {
+            const Vec3 branch = mWorld.grains[size_t(s.second)].body.pose.position +
+                                s.periods.cwiseProduct(cell.size) - first;
+            moment += branch.cwiseProduct(f);
+            loveWeber += branch.cwiseProduct(f);
+        } else {
+            moment -= (first - cell.origin).cwiseProduct(f);
+            loveWeber += (s.result.centre - first).cwiseProduct(f);
+        }
+    }
+    mWorld.energy.cellMoment = moment;
+    // (A stress needs the sample's volume: a cell periodic along all three axes.)
+    cell.stress = cell.volume() > 0.0 ? Vec3(-loveWeber / cell.volume()) : Vec3::Zero();
+}
+
 long long Simulation::contactNodes() const
 {
     if (!mGhosts) return mContactNodes;
@@ -61,9 +91,10 @@ std::vector<ContactRecord> Simulation::contactRecords() const
         if (s.result.contactNodes <= 0) continue;
         ContactRecord r;
         r.first = s.first;
-        if (k < mContacts.pairSlotCount())
+        if (k < mContacts.pairSlotCount()) {
             r.second = s.second;
-        else
+            r.shift = s.periods.cwiseProduct(mWorld.periodic.size);
+        } else
             r.boundary = s.boundary;
         r.force = s.result.forceOnFirst;
         r.centre = s.result.centre;
@@ -91,7 +122,7 @@ Energies Simulation::energies() const
             t.key[2] = g.isFree() ? 1 : 0;
             if (g.isFree()) {
                 t.value[0] = g.body.kineticEnergy();
-                t.value[1] = g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+                t.value[1] = g.body.mass * mWorld.gravity.dot(g.unwrappedPosition());
             }
             t.value[2] = g.dissipated.friction;
             t.value[3] = g.dissipated.dashpot;
@@ -129,7 +160,7 @@ Energies Simulation::energies() const
         for (const Grain& g : mWorld.grains) {
             if (g.isFree()) {
                 e.kinetic += g.body.kineticEnergy();
-                e.potential -= g.body.mass * mWorld.gravity.dot(g.body.pose.position);
+                e.potential -= g.body.mass * mWorld.gravity.dot(g.unwrappedPosition());
             }
             e.friction += g.dissipated.friction;
             e.dashpot += g.dissipated.dashpot;

@@ -37,6 +37,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         if (r.second >= 0) r.second = ids[size_t(r.second)];
         out.value(r.first).value(r.second).value(r.boundary).value(r.nodes);
         out.values(r.force.data(), 3).values(r.centre.data(), 3).values(r.normal.data(), 3);
+        out.values(r.shift.data(), 3);
     }
     std::vector<char> all;
     std::vector<size_t> starts;
@@ -52,6 +53,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         in.values(r.force.data(), 3);
         in.values(r.centre.data(), 3);
         in.values(r.normal.data(), 3);
+        in.values(r.shift.data(), 3);
         records.push_back(r);
     }
     std::sort(records.begin(), records.end(),

@@ -235,6 +235,48 @@ World steppedWorld(int steps)
 // N steps straight against N/2 steps, a checkpoint, a fresh world built from the same scene with
 // the checkpoint restored into it (no force evaluation: the forces come from the file), and N/2
 // more steps: the same bits everywhere, shear history included.
+// The stack again in a cell periodic along x and y, compressed along x: the checkpoint carries
+// the cell as the run left it and the periods each grain was moved by.
+TEST(Checkpoint, ADeformingPeriodicCellRestartsBitIdentically)
+{
+    const int n = 300;
+    Scene scene = stackScene(2);
+    const double pitch = 2.0 * kRadius + 0.01;
+    scene.periodicCell = Vec3(2.3 * pitch, 2.3 * pitch, 0.0);  // at least 4.5 radii
+    scene.periodicOrigin = Vec3(-0.5 * pitch, -0.5 * pitch, 0.0);
+    scene.periodicStrainRate = Vec3(-2.0, 0.0, 0.0);
+    Simulation straight(build(scene), kDt);
+    for (int k = 0; k < n; ++k) straight.step();
+    Simulation first(build(scene), kDt);
+    for (int k = 0; k < n / 2; ++k) first.step();
+    ASSERT_NE(first.world().periodic.size.x(), scene.periodicCell.x());
+    lsdem::test::ScratchDir dir;
+    const std::string path = dir.file("run.lsdem");
+    saveCheckpoint(path, first.world(), sampleHeader());
+    World fresh = build(scene);
+    restoreWorldState(path, fresh);
+    expectSameState(fresh, first.world());
+    EXPECT_TRUE(sameBits(fresh.periodic.size, first.world().periodic.size));
+    Simulation second(std::move(fresh), kDt, /*evaluateInitialForces=*/false);
+    for (int k = 0; k < n / 2; ++k) second.step();
+    expectSameState(second.world(), straight.world());
+    EXPECT_TRUE(sameBits(second.world().periodic.size, straight.world().periodic.size));
+    bool wrapped = false;
+    for (size_t i = 0; i < straight.world().grains.size(); ++i) {
+        EXPECT_TRUE(sameBits(second.world().grains[i].wrapShift, straight.world().grains[i].wrapShift));
+        wrapped |= !straight.world().grains[i].wrapShift.isZero(0.0);
+    }
+    EXPECT_TRUE(sameBits(straight.energies().boundaryWork, second.energies().boundaryWork));
+    // A scene whose cell is periodic along other axes is refused.
+    Scene other = scene;
+    other.periodicCell = Vec3(2.3 * pitch, 0.0, 0.0);
+    other.periodicStrainRate = Vec3(-2.0, 0.0, 0.0);
+    World mismatched = build(other);
+    EXPECT_THROW(restoreWorldState(path, mismatched), Error);
+    std::printf("[ measured ] periodic restart: %s grain wrapped through a face\n",
+                wrapped ? "a" : "no");
+}
+
 TEST(Checkpoint, RestartContinuesBitIdentically)
 {
     const int n = 300;
@@ -581,11 +623,14 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
     // set passes), its grains still are.
     {
         // Format 4 had no micromechanics rows (format 6 put their count after the frame times)
-        // and no dissipated energies per grain (format 7 put three after each grain's torque):
-        // a checkpoint saved with marker values there (seen nowhere else) loses them.
+        // and no periodic cell nor dissipated energies or periods per grain (format 7 put the
+        // cell's four vectors after the energies and six numbers after each grain's torque): a
+        // checkpoint saved with marker values there (seen nowhere else) loses them.
         World marked = steppedWorld(10);
         for (size_t i = 0; i < marked.grains.size(); ++i)
             marked.grains[i].dissipated = {1e5 + double(i), 2e5, 3e5};
+        const Vec3 markedCell(7.25e5, 7.5e5, 7.75e5);  // format 7's cell size, also cut out
+        marked.periodic.size = markedCell;
         Checkpoint markedHeader = plain;
         const double marker = 12345.678901;
         markedHeader.record.micromechanicsRows = {{marker}};
@@ -597,8 +642,11 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         for (size_t i = marked.grains.size(); i-- > 0;) {
             const size_t at = find(1e5 + double(i));
             ASSERT_NE(at, std::string::npos);
-            bytes.erase(at, 3 * sizeof(double));
+            bytes.erase(at, 6 * sizeof(double));
         }
+        const size_t cellAt = find(markedCell.x());
+        ASSERT_NE(cellAt, std::string::npos);
+        bytes.erase(cellAt, 12 * sizeof(double));  // its size, strain rate, stress, moment
         const size_t at = find(marker);
         ASSERT_NE(at, std::string::npos);
         bytes.erase(at - 16, 24);  // the rows' count, the row's count and the row

@@ -60,7 +60,8 @@ std::string withLine(const std::string& section, const std::string& line)
 SettingValue outOfRange(const SceneSetting& s)
 {
     const SettingValue kind = s.defaultValue();
-    if (std::holds_alternative<Vec3>(kind)) return Vec3(0.0, 0.0, std::nan(""));
+    if (std::holds_alternative<Vec3>(kind))  // a component below a vector's range, or NaN
+        return s.range == NumberRange::NonNegative ? Vec3(0.0, -1.0, 0.0) : Vec3(0.0, 0.0, std::nan(""));
     if (std::holds_alternative<long long>(kind)) return -1LL;
     switch (s.range) {
     case NumberRange::Fraction: return 1.0;
@@ -73,7 +74,8 @@ SettingValue outOfRange(const SceneSetting& s)
 SettingValue inRangeNotDefault(const SceneSetting& s)
 {
     const SettingValue kind = s.defaultValue();
-    if (std::holds_alternative<Vec3>(kind)) return Vec3(0.5, -1.0, -9810.0);
+    if (std::holds_alternative<Vec3>(kind))
+        return s.range == NumberRange::NonNegative ? Vec3(0.5, 1.0, 9810.0) : Vec3(0.5, -1.0, -9810.0);
     if (std::holds_alternative<long long>(kind)) return 7LL;
     if (const bool* b = std::get_if<bool>(&kind)) return !*b;
     return s.range == NumberRange::Fraction ? 0.25 : 0.3;

@@ -176,6 +176,16 @@ struct Scene
     /// Global non-viscous damping λ in [0, 1): each force component on a free grain is
     /// reduced by λ·|F| against the velocity (as YADE's NewtonIntegrator).
     double globalDamping = 0.0;
+    /// A periodic cell (PeriodicCell.h): its period along each axis (0: not periodic along
+    /// it) and its corner; every grain is moved into it by whole periods.
+    Vec3 periodicCell = Vec3::Zero();
+    Vec3 periodicOrigin = Vec3::Zero();
+    /// The periodic cell's stretching rate along each periodic axis (1/time; < 0 compresses).
+    Vec3 periodicStrainRate = Vec3::Zero();
+    /// Stress control of periodic axes: a target stress (compressive, > 0; 0: the axis keeps
+    /// its strain rate) and the fastest the servo may strain it (1/time).
+    Vec3 periodicStress = Vec3::Zero();
+    Vec3 periodicMaxStrainRate = Vec3::Zero();
     TimeStepSpec timeStep;
     EndCondition end;
     OutputSpec output;

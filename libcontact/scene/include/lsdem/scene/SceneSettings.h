@@ -23,6 +23,9 @@ using SettingValue = std::variant<double, long long, bool, Vec3>;
 enum class SettingForm {
     Value,            ///< as its value
     OmittedWhenZero,  ///< 0 means "not given" (an end condition): > 0, or left out
+    /// Any value in range; a written scene gives it only where it is not the default (a
+    /// vector that most scenes leave at zero: the periodic cell).
+    OmittedWhenDefault,
     /// In a form of its own that its section's code reads and writes (time_step = "auto",
     /// safety only with it); checked and offered to Python like the rest.
     OwnForm,

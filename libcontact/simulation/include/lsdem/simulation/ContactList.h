@@ -23,6 +23,9 @@ namespace lsdem {
 struct ContactSlot
 {
     int first = 0, second = -1, boundary = -1;
+    /// In a periodic cell, the periods (−1, 0 or 1 per axis) by which the pair touches across
+    /// its faces: first touches second's image at second + periods ∘ the cell's size.
+    Vec3 periods = Vec3::Zero();
     PairHistory* pairHistory = nullptr;
     ShearHistory* boundaryHistory = nullptr;
     PairForces result;

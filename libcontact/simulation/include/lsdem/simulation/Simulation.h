@@ -57,6 +57,9 @@ struct ContactRecord
     Vec3 centre = Vec3::Zero();  ///< stiffness-weighted centre of its point forces
     Vec3 normal = Vec3::Zero();  ///< unit, pushing first out of the other body
     int nodes = 0;               ///< penetrating nodes, both sides
+    /// In a periodic cell, the periods added to second's position: it touches first as that
+    /// image (where centre and the branch vector are measured).
+    Vec3 shift = Vec3::Zero();
 };
 
 class Simulation
@@ -143,6 +146,9 @@ private:
     /// Each grain's force, torque and stiffness from its slots in list order, plus gravity and
     /// global damping; what they dissipated over @a dt added to its DissipatedEnergy.
     void sumGrainForces(double dt);
+    /// A deforming periodic cell's measures at this evaluation: the moment its strain rates
+    /// put power in through (EnergyBook::cellMoment) and the stress on it (PeriodicCell::stress).
+    void measureCell();
     /// Node-check statistics, nodes in contact and elastic energy over the slots.
     void sumContactCounts();
     /// The boundaries' reactions and, when recorded, the point forces, in slot order.

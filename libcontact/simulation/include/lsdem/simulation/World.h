@@ -9,6 +9,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/simulation/RigidBody.h"
 #include "lsdem/simulation/GrainMotion.h"
+#include "lsdem/simulation/PeriodicCell.h"
 
 #include <map>
 #include <memory>
@@ -40,8 +41,12 @@ struct Grain
     Vec3 force = Vec3::Zero();            ///< on it at the last force evaluation (damped)
     Vec3 torque = Vec3::Zero();           ///< about its centroid, likewise
     DissipatedEnergy dissipated;
+    /// In a periodic cell: the whole periods the grain was moved by to stay in the cell, so
+    /// unwrappedPosition() is where its motion took it (displacements, potential energy).
+    Vec3 wrapShift = Vec3::Zero();
 
     bool isFree() const { return motion == GrainMotion::Free; }
+    Vec3 unwrappedPosition() const { return body.pose.position - wrapShift; }
     Vec3 angularVelocity() const
     {
         return motion == GrainMotion::Prescribed ? prescribedAngularVelocity
@@ -55,6 +60,11 @@ struct EnergyBook
 {
     double boundaryWork = 0.0;  ///< work done on the grains by moving boundaries and prescribed grains
     double initialTotal = 0.0;  ///< kinetic + elastic + potential at time 0
+    /// What a deforming periodic cell's strain rates multiply into the power it puts into the
+    /// grains through their contacts, at the last evaluation: per axis, Σ over pairs of the
+    /// branch vector times the force on the first grain, less Σ over grains on boundaries of
+    /// their place (from the cell's origin) times the force on them (power = ε̇ · this).
+    Vec3 cellMoment = Vec3::Zero();
 };
 
 struct World
@@ -67,6 +77,7 @@ struct World
     std::vector<std::string> materialNames;
     Vec3 gravity = Vec3::Zero();
     double globalDamping = 0.0;
+    PeriodicCell periodic;  ///< inactive unless the scene gives one
 
     double time = 0.0;
     long long step = 0;

@@ -1,0 +1,72 @@
+/// @file PeriodicCell.h
+/// @brief A periodic cell: along each axis given a period, space repeats with it, so a grain
+///        near one face touches the images of the grains near the opposite face, and a grain
+///        leaving through a face comes back through the other. Axes without a period are
+///        ordinary (walls may bound them).
+#pragma once
+
+#include "lsdem/core/Vec3.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lsdem {
+
+struct PeriodicCell
+{
+    Vec3 origin = Vec3::Zero();
+    Vec3 size = Vec3::Zero();  ///< the period along each axis; 0: not periodic along it
+    /// How fast the cell stretches along each periodic axis (1/time, > 0 stretching): each
+    /// step the cell and every grain's position in it are scaled from the origin by 1 + ε̇·dt
+    /// (an affine deformation), the grains' velocities being what they have on top of it.
+    Vec3 strainRate = Vec3::Zero();
+    /// Stress control (a servo) along each periodic axis given a target > 0 (compressive,
+    /// force/length²): each step the axis strains at maxStrainRate times the stress's relative
+    /// error over `band` (clamped to ±1), stretching when the grains press harder than the
+    /// target. Axes with target 0 keep strainRate as given.
+    Vec3 targetStress = Vec3::Zero();
+    Vec3 maxStrainRate = Vec3::Zero();
+    static constexpr double band = 0.1;
+    /// The stress the grains put on the cell at the last evaluation, along each axis
+    /// (compressive positive): −M_kk / volume, M the Love–Weber stress moment of the contacts
+    /// (zero unless the cell is periodic along all three axes, which gives the volume).
+    Vec3 stress = Vec3::Zero();
+
+    bool active() const { return size.maxCoeff() > 0.0; }
+    bool periodic(int axis) const { return size[axis] > 0.0; }
+    bool deforming() const { return !strainRate.isZero(0.0) || servoed(); }
+    /// The velocity of the cell's affine deformation at @a x (zero in a fixed cell).
+    Vec3 affineVelocity(const Vec3& x) const { return strainRate.cwiseProduct(x - origin); }
+    /// Its volume (zero unless periodic along all three axes).
+    double volume() const { return size.x() * size.y() * size.z(); }
+    bool servoed() const { return targetStress.maxCoeff() > 0.0; }
+    /// Set the strain rate of each stress-controlled axis from the stress now.
+    void steer()
+    {
+        for (int a = 0; a < 3; ++a) {
+            if (!(targetStress[a] > 0.0)) continue;
+            const double error = (stress[a] - targetStress[a]) / (targetStress[a] * band);
+            strainRate[a] = maxStrainRate[a] * std::clamp(error, -1.0, 1.0);
+        }
+    }
+
+    /// The whole periods that bring @a x into [origin, origin + size) along each periodic axis
+    /// (zero along the others): x + shiftInto(x) is inside.
+    Vec3 shiftInto(const Vec3& x) const
+    {
+        Vec3 shift = Vec3::Zero();
+        for (int a = 0; a < 3; ++a) {
+            if (!periodic(a)) continue;
+            const double periods = std::floor((x[a] - origin[a]) / size[a]);
+            double inside = x[a] - periods * size[a];
+            double s = -periods * size[a];
+            // (Rounding can leave it at origin + size exactly, or a hair below the origin.)
+            if (inside >= origin[a] + size[a]) s -= size[a], inside -= size[a];
+            if (inside < origin[a]) s += size[a];
+            shift[a] = s;
+        }
+        return shift;
+    }
+};
+
+} // namespace lsdem

@@ -1,10 +1,9 @@
 #include "lsdem/run/Checkpoint.h"
 
+#include "CheckpointBytes.h"
 #include "WorldFingerprint.h"
 
 #include "lsdem/core/AtomicFile.h"
-#include "lsdem/core/ByteReader.h"
-#include "lsdem/core/ByteWriter.h"
 #include "lsdem/core/Error.h"
 
 #include <cmath>
@@ -35,72 +34,7 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 const uint32_t kVersion = 7;
 const uint32_t kOldestVersion = 1;
 
-using Writer = ByteWriter<std::string>;
-
-bool allFinite(const Vec3& v)
-{
-    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
-
-void putVec(Writer& w, const Vec3& v)
-{
-    w.values(v.data(), 3);
-}
-
-void putQuat(Writer& w, const Quat& q)
-{
-    w.number(q.w()).number(q.x()).number(q.y()).number(q.z());
-}
-
-/// Shear entries as (node, force), in the history's (sorted) order.
-void putShear(Writer& w, const ShearHistory& h)
-{
-    w.count(h.size());
-    for (const ShearHistory::Entry& e : h.entries()) w.value<int32_t>(e.node), putVec(w, e.force);
-}
-
-/// Reads a checkpoint's bytes in memory, in the order saveCheckpoint wrote them. Anything short,
-/// out of range or out of order is an Error naming the file: ByteReader's DamagedBytes, and
-/// fail() for what only the checkpoint knows to be wrong.
-class Reader : public ByteReader
-{
-public:
-    Reader(const std::string& bytes, std::string path) : ByteReader(bytes), mPath(std::move(path)) {}
-
-    Vec3 vec()
-    {
-        Vec3 v;
-        values(v.data(), 3);
-        return v;
-    }
-    Quat quat()
-    {
-        const double w = number(), x = number(), y = number(), z = number();
-        return Quat(w, x, y, z);
-    }
-    ShearHistory shear()
-    {
-        ShearHistory h;
-        const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
-        for (uint64_t k = 0; k < n; ++k) {
-            const int node = value<int32_t>();
-            const Vec3 force = vec();
-            if (!h.empty() && node <= h.entries().back().node) fail();  // written sorted
-            if (!allFinite(force)) fail();
-            h.append(node, force);
-        }
-        return h;
-    }
-    bool magic() { return skipIfNext(kMagic, sizeof kMagic); }
-    [[noreturn]] void fail() const
-    {
-        throw Error(mPath, "the checkpoint is truncated or corrupt",
-                    "use an earlier checkpoint or start the run again");
-    }
-
-private:
-    std::string mPath;
-};
+using namespace checkpointbytes;
 
 void writeRecord(Writer& w, const RunRecord& r)
 {
@@ -157,7 +91,7 @@ std::string readFileBytes(const std::string& path)
 void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint32_t& version,
                 WorldFingerprint& fingerprint)
 {
-    if (!r.magic())
+    if (!r.magic(kMagic))
         throw Error(path, "not an lsdem checkpoint", "give a file written by lsdem-run");
     version = r.value<uint32_t>();
     if (version < kOldestVersion || version > kVersion)
@@ -406,7 +340,7 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
         w.boundaryHistory[{i, b}] = r.shear();
     }
-    if (!r.magic()) r.fail();  // the trailer: a complete file ends with the magic
+    if (!r.magic(kMagic)) r.fail();  // the trailer: a complete file ends with the magic
     return w;
 }
 

@@ -10,7 +10,7 @@ import sys
 
 from plotting import plt, read_numbers, save
 
-TEXT = ("formulation", "stage", "consolidated")
+TEXT = ("formulation", "stage", "consolidated", "path")
 
 
 def shearing(rows, formulation, sdp, seed):

@@ -30,12 +30,9 @@ const Boundary& wall(const World& world, const TriaxialWalls& walls, int which)
     return b;
 }
 
-} // namespace
-
-TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
-                                  const std::vector<ContactRecord>& contacts)
+/// The cell's size and principal stresses from @a walls' positions and forces.
+void measureWalls(const World& world, const TriaxialWalls& walls, TriaxialState& s)
 {
-    TriaxialState s;
     double force[6];
     for (int axis = 0; axis < 3; ++axis) {
         const Boundary& low = wall(world, walls, 2 * axis);
@@ -54,11 +51,29 @@ TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls
         force[2 * axis] = -low.force.dot(n);
         force[2 * axis + 1] = -high.force.dot(high.plane.normal);
     }
-    s.volume = s.size.prod();
+    const double volume = s.size.prod();
     for (int axis = 0; axis < 3; ++axis) {
-        const double area = s.volume / s.size[axis];
+        const double area = volume / s.size[axis];
         s.stress[axis] = 0.5 * (force[2 * axis] + force[2 * axis + 1]) / area;
     }
+}
+
+} // namespace
+
+TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
+                                  const std::vector<ContactRecord>& contacts)
+{
+    TriaxialState s;
+    if (walls.periodic) {
+        if (!(world.periodic.size.minCoeff() > 0.0))
+            throw Error("triaxial cell", "the world has no periodic cell along every axis",
+                        "give the scene periodic_cell = [Lx, Ly, Lz]");
+        s.size = world.periodic.size;
+        s.stress = world.periodic.stress;  // the contacts' Love–Weber stress, as the cell measures it
+    } else {
+        measureWalls(world, walls, s);
+    }
+    s.volume = s.size.prod();
     s.p = s.stress.sum() / 3.0;
     s.q = s.stress.z() - 0.5 * (s.stress.x() + s.stress.y());
     const double solid = solidVolume(world);

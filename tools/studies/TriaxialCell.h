@@ -15,11 +15,22 @@
 namespace lsdem {
 
 /// The boundary indices of the six walls, each a plane whose normal points into the cell:
-/// x min, x max, y min, y max, z min (bottom), z max (top).
+/// x min, x max, y min, y max, z min (bottom), z max (top). Or none: a periodic cell
+/// (PeriodicCell.h, periodic along all three axes) bounds the sample, its size and stress the
+/// cell's.
 struct TriaxialWalls
 {
     std::array<int, 6> index = {-1, -1, -1, -1, -1, -1};
+    bool periodic = false;
 };
+
+/// The sample in the world's periodic cell: no walls.
+inline TriaxialWalls periodicTriaxialCell()
+{
+    TriaxialWalls w;
+    w.periodic = true;
+    return w;
+}
 
 /// The two other pairs of walls around the walls of @a axis (0 x, 1 y, 2 z): the rectangle
 /// between them is the area those walls push on (StressServo::areaWalls).

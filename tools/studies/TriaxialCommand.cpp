@@ -148,6 +148,16 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->type_name("PATH")
         ->default_str(triaxialPathName(o.path))
         ->group(test);
+    mCommand
+        ->add_option_function<std::string>(
+            "--boundary",
+            [&o](const std::string& name) { o.periodic = name == "periodic"; },
+            "what bounds the sample: walls (six servo walls) or periodic (a periodic cell, "
+            "no walls)")
+        ->check(CLI::IsMember({"walls", "periodic"}))
+        ->type_name("B")
+        ->default_str("walls")
+        ->group(test);
     addNumber(*mCommand, "--b", o.b, "true-triaxial: b = (sigma_2 - sigma_3)/(sigma_1 - sigma_3)")
         ->type_name("B")
         ->group(test);
@@ -297,14 +307,16 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
     std::printf("time %.0f s\nwrote %s, %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str(),
                 convergenceCsv.c_str());
-    if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
+    if (!o.periodic && (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension)) {
         const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
         std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",
                     scene.c_str(), runName(finest->formulation, finest->sdp, finest->seed).c_str());
     } else {
-        std::printf("no scene for lsdem-run: a scene's servo walls hold fixed stresses, and "
-                    "--path %s sets them as it goes\n",
-                    triaxialPathName(o.path).c_str());
+        std::printf("no scene for lsdem-run: %s\n",
+                    o.periodic ? "it is written for walls only (--boundary walls)"
+                               : ("a scene's servo walls hold fixed stresses, and --path " +
+                                  triaxialPathName(o.path) + " sets them as it goes")
+                                     .c_str());
     }
     return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
 }

@@ -43,6 +43,9 @@ struct TriaxialOptions
     double inertialNumber = 1e-3;  ///< I = ε̇·d·sqrt(ρ/σ₃): sets the axial strain rate
     double maxAxialStrain = 0.2;   ///< the path's end (its amplitude for cycles)
     TriaxialPath path = TriaxialPath::Compression;  ///< the loading path after consolidation
+    /// What bounds the sample: six servo walls, or a periodic cell (no walls: its axes are
+    /// strained and stress-controlled as the walls would be).
+    bool periodic = false;
     double b = 0.5;                ///< true triaxial: (σ₂ − σ₃)/(σ₁ − σ₃)
     double unloadStrain = 0.0;     ///< unload–reload: where unloading starts (0: half the end)
     int cycles = 2;                ///< cyclic: cycles of ±maxAxialStrain

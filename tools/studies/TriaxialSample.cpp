@@ -144,6 +144,12 @@ Scene triaxialScene(const TriaxialOptions& o, const TriaxialAssets& assets,
         g.pose = cloud.pose[k];
         s.grains.push_back(g);
     }
+    s.globalDamping = o.globalDamping;
+    if (o.periodic) {  // the lattice's box repeats: no walls
+        s.periodicOrigin = cloud.boxMin;
+        s.periodicCell = cloud.boxMax - cloud.boxMin;
+        return s;
+    }
     const char* names[6] = {"x0", "x1", "y0", "y1", "z0", "z1"};
     for (int w = 0; w < 6; ++w) {
         const int axis = w / 2;
@@ -155,7 +161,6 @@ Scene triaxialScene(const TriaxialOptions& o, const TriaxialAssets& assets,
         b.normal = (low ? 1.0 : -1.0) * Vec3::Unit(axis);
         s.boundaries.push_back(b);
     }
-    s.globalDamping = o.globalDamping;
     return s;
 }
 

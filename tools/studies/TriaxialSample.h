@@ -69,7 +69,8 @@ double triaxialCloudSpacing(const TriaxialAssets& assets);
 /// formulation @a f with normal stiffness @a kn (kn* or kn) and friction o.friction (the test
 /// switches it for consolidation), the grain–wall law with o.wallFriction, no gravity, global
 /// damping, the grains of @a cloud and six fixed plane walls named x0, x1, y0, y1, z0, z1,
-/// boundaries 0 to 5 in that order (triaxialWalls()).
+/// boundaries 0 to 5 in that order (triaxialWalls()); with o.periodic no walls but a periodic
+/// cell over the cloud's box (periodicTriaxialCell()).
 Scene triaxialScene(const TriaxialOptions& o, const TriaxialAssets& assets,
                     const TriaxialCloud& cloud, Formulation f, double kn);
 

@@ -234,7 +234,8 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     for (int attempt = 0;; ++attempt) {
         try {
             Simulation sim(world, dt);
-            run.test = runTriaxialTest(sim, triaxialWalls(), p, progress);
+            run.test = runTriaxialTest(sim, o.periodic ? periodicTriaxialCell() : triaxialWalls(),
+                                       p, progress);
             run.stabilityLimit = sim.stabilityLimitSeen();
             break;
         } catch (const Error&) {

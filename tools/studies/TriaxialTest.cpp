@@ -19,10 +19,16 @@ Boundary& wallOf(World& w, const TriaxialWalls& walls, int which)
     return w.boundaries[size_t(walls.index[size_t(which)])];
 }
 
-/// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed.
+/// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed (in a periodic cell: its
+/// axis, at most at the strain rate of two walls at that speed).
 void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialProtocol& p,
                 double maxSpeed)
 {
+    if (walls.periodic) {
+        w.periodic.targetStress[axis] = p.confiningStress;
+        w.periodic.maxStrainRate[axis] = 2.0 * maxSpeed / w.periodic.size[axis];
+        return;
+    }
     for (int side = 0; side < 2; ++side) {
         StressServo& s = wallOf(w, walls, 2 * axis + side).servo;
         s.targetStress = p.confiningStress;
@@ -31,6 +37,16 @@ void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialPr
         s.gain = p.servoGain;
         s.maxSpeed = maxSpeed;
     }
+}
+
+/// The stress the servo of @a axis's walls (or the periodic cell's @a axis) aims at.
+void setTargetStress(World& w, const TriaxialWalls& walls, int axis, double stress)
+{
+    if (walls.periodic) {
+        w.periodic.targetStress[axis] = stress;
+        return;
+    }
+    for (int side = 0; side < 2; ++side) wallOf(w, walls, 2 * axis + side).servo.targetStress = stress;
 }
 
 double& grainFriction(World& w)
@@ -101,9 +117,9 @@ public:
     {
         for (int axis = 0; axis < 2; ++axis)
             holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
-        for (int side = 0; side < 2; ++side) wallOf(w, walls, 4 + side).servo.targetStress = 0.0;
+        setTargetStress(w, walls, 2, 0.0);  // the axis is strained, not servoed
         if (p.path == TriaxialPath::Undrained)
-            for (int k = 0; k < 4; ++k) wallOf(w, walls, k).servo.targetStress = 0.0;
+            for (int axis = 0; axis < 2; ++axis) setTargetStress(w, walls, axis, 0.0);
         mDirection = p.path == TriaxialPath::Extension ? -1.0 : 1.0;
         setWalls(reference);
     }
@@ -151,37 +167,53 @@ private:
 
     void setWalls(const TriaxialState& now)
     {
-        for (int side = 0; side < 2; ++side) {
-            Boundary& b = wallOf(mWorld, mWalls, 4 + side);
-            b.velocity = mDirection * mEndSpeed * b.plane.normal;
+        PeriodicCell& cell = mWorld.periodic;
+        if (mWalls.periodic) {  // the height changes at 2·ε̇·H₀/2, as between two end walls
+            cell.strainRate.z() = -mDirection * 2.0 * mEndSpeed / now.size.z();
+        } else {
+            for (int side = 0; side < 2; ++side) {
+                Boundary& b = wallOf(mWorld, mWalls, 4 + side);
+                b.velocity = mDirection * mEndSpeed * b.plane.normal;
+            }
         }
         const double sigma3 = mP.confiningStress, axial = now.stress.z();
         switch (mP.path) {
         case TriaxialPath::ConstantP:
             // p = (σ_a + 2σ_r)/3 = σ₃; a servo needs a positive target (0 turns it off).
-            for (int k = 0; k < 4; ++k)
-                wallOf(mWorld, mWalls, k).servo.targetStress =
-                    std::max(0.5 * (3.0 * sigma3 - axial), 1e-3 * sigma3);
+            for (int axis = 0; axis < 2; ++axis)
+                setTargetStress(mWorld, mWalls, axis,
+                                std::max(0.5 * (3.0 * sigma3 - axial), 1e-3 * sigma3));
             break;
         case TriaxialPath::TrueTriaxial:
-            for (int k = 2; k < 4; ++k)
-                wallOf(mWorld, mWalls, k).servo.targetStress = sigma3 + mP.b * (axial - sigma3);
+            setTargetStress(mWorld, mWalls, 1, sigma3 + mP.b * (axial - sigma3));
             break;
-        case TriaxialPath::Undrained: {
-            // The height after the next step, and the sides' sizes that keep L_x·L_y·H (each in
-            // proportion to its consolidated size): each side wall moves half the difference.
-            const double height = now.size.z() - 2.0 * mDirection * mEndSpeed * mDt;
-            const double scale = std::sqrt(mReference.size.z() / height);
-            for (int axis = 0; axis < 2; ++axis) {
-                const double inward = (now.size[axis] - scale * mReference.size[axis]) / (2.0 * mDt);
-                for (int side = 0; side < 2; ++side) {
-                    Boundary& b = wallOf(mWorld, mWalls, 2 * axis + side);
-                    b.velocity = inward * b.plane.normal;
-                }
+        case TriaxialPath::Undrained:
+            if (mWalls.periodic) {
+                // The cell's next step scales z by 1 + ε̇_z·dt: x and y by its inverse root.
+                const double rate =
+                    (1.0 / std::sqrt(1.0 + cell.strainRate.z() * mDt) - 1.0) / mDt;
+                cell.strainRate.x() = cell.strainRate.y() = rate;
+                break;
             }
+            moveSidesKeepingTheVolume(now);
             break;
-        }
         default: break;
+        }
+    }
+
+    /// Undrained between walls: the height after the next step, and the sides' sizes that keep
+    /// L_x·L_y·H (each in proportion to its consolidated size): each side wall moves half the
+    /// difference.
+    void moveSidesKeepingTheVolume(const TriaxialState& now)
+    {
+        const double height = now.size.z() - 2.0 * mDirection * mEndSpeed * mDt;
+        const double scale = std::sqrt(mReference.size.z() / height);
+        for (int axis = 0; axis < 2; ++axis) {
+            const double inward = (now.size[axis] - scale * mReference.size[axis]) / (2.0 * mDt);
+            for (int side = 0; side < 2; ++side) {
+                Boundary& b = wallOf(mWorld, mWalls, 2 * axis + side);
+                b.velocity = inward * b.plane.normal;
+            }
         }
     }
 
@@ -283,7 +315,7 @@ TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& wal
     result.paceSeconds = paceSeconds;
     result.consolidated = measureTriaxialCell(w, walls, sim.contactRecords());
     for (const Grain& g : w.grains) result.consolidatedPoses.push_back(g.body.pose);
-    for (int k = 0; k < 6; ++k) {
+    for (int k = 0; k < 6 && !walls.periodic; ++k) {
         const Boundary& b = wallOf(w, walls, k);
         result.consolidatedWallPoints[size_t(k)] = b.plane.point + b.displacement;
     }

@@ -229,6 +229,7 @@ void placeInPeriodicCell(const Scene& scene, World& w)
     for (const Grain& g : w.grains) largest = std::max(largest, g.asset->boundingRadius);
     // Two grains reach 2·r + the contact list's skin (at most r/4): twice that fits the cell.
     const double least = 4.5 * largest;
+    w.periodic.leastSize = least;
     for (int a = 0; a < 3; ++a)
         if (w.periodic.periodic(a) && w.periodic.size[a] < least)
             throw Error(scene.path,

@@ -4,6 +4,7 @@
 #include "lsdem/simulation/Simulation.h"
 
 #include "lsdem/core/Error.h"
+#include "lsdem/core/NumberText.h"
 #include "lsdem/core/Stopwatch.h"
 #include "lsdem/simulation/GhostDecomposition.h"
 
@@ -95,7 +96,18 @@ void Simulation::step()
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
     subtractPrescribedPower(workBefore);
     const Vec3 stretch = Vec3::Ones() + dt * cell.strainRate;
-    if (cell.deforming()) cell.size = cell.size.cwiseProduct(stretch);
+    if (cell.deforming()) {
+        const Vec3 size = cell.size.cwiseProduct(stretch);
+        for (int a = 0; a < 3; ++a)
+            if (cell.periodic(a) && size[a] < cell.leastSize)
+                throw Error("", std::string("the periodic cell would be strained to ") +
+                                    numberText(size[a]) + " along " + "xyz"[a] +
+                                    ", less than 4.5 times the largest grain's bounding radius (" +
+                                    numberText(cell.leastSize) +
+                                    "): a grain could touch two images of another",
+                            "start from a larger cell (more grains), or strain it less");
+        cell.size = size;
+    }
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
     // A ghost is moved by its owner (and brought here before the forces).

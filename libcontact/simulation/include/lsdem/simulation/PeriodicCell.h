@@ -31,6 +31,9 @@ struct PeriodicCell
     /// (compressive positive): −M_kk / volume, M the Love–Weber stress moment of the contacts
     /// (zero unless the cell is periodic along all three axes, which gives the volume).
     Vec3 stress = Vec3::Zero();
+    /// The least period the grains allow (twice the reach of a pair: 4.5 times the largest
+    /// bounding radius, set when the world is built): a cell strained below it is refused.
+    double leastSize = 0.0;
 
     bool active() const { return size.maxCoeff() > 0.0; }
     bool periodic(int axis) const { return size[axis] > 0.0; }

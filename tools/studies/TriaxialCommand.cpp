@@ -307,16 +307,14 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
     std::printf("time %.0f s\nwrote %s, %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str(),
                 convergenceCsv.c_str());
-    if (!o.periodic && (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension)) {
+    if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
         const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
         std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",
                     scene.c_str(), runName(finest->formulation, finest->sdp, finest->seed).c_str());
     } else {
-        std::printf("no scene for lsdem-run: %s\n",
-                    o.periodic ? "it is written for walls only (--boundary walls)"
-                               : ("a scene's servo walls hold fixed stresses, and --path " +
-                                  triaxialPathName(o.path) + " sets them as it goes")
-                                     .c_str());
+        std::printf("no scene for lsdem-run: a scene's servo walls and cell hold fixed "
+                    "stresses, and --path %s sets them as it goes\n",
+                    triaxialPathName(o.path).c_str());
     }
     return o.plots ? cli::drawPlots("triaxial.py", {csv, runsCsv, o.outDir}) : 0;
 }

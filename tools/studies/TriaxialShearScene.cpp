@@ -47,12 +47,23 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
     s.grainFiles.push_back(table);
 
     const Vec3 size = t.consolidated.size;
-    for (int k = 0; k < 6; ++k) {
+    const double duration = o.maxAxialStrain / run.strainRate;
+    const double opening = run.path == TriaxialPath::Extension ? -1.0 : 1.0;
+    if (o.periodic) {
+        // The cell as consolidation left it (it shrinks towards its origin): z strained at the
+        // run's rate (a constant rate here, where the study keeps the height's speed), x and
+        // y held at σ₃ by stress control at up to twice that rate.
+        s.periodicCell = size;
+        s.periodicStress = Vec3(o.confiningStress, o.confiningStress, 0.0);
+        s.periodicMaxStrainRate = Vec3(2.0 * run.strainRate, 2.0 * run.strainRate, 0.0);
+        s.periodicStrainRate = Vec3(0.0, 0.0, -opening * run.strainRate);
+        s.end.time = duration;
+    }
+    for (int k = 0; k < 6 && !o.periodic; ++k) {
         BoundarySpec& b = s.boundaries[size_t(k)];
         b.point = t.consolidatedWallPoints[size_t(k)];
         const int axis = k / 2;
         if (axis == 2) {
-            const double opening = run.path == TriaxialPath::Extension ? -1.0 : 1.0;
             b.velocity = opening * 0.5 * run.strainRate * size.z() * b.normal;
             continue;
         }
@@ -62,9 +73,10 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
         b.servo.maxSpeed = run.strainRate * size[axis];
     }
     s.timeStep.fixed = run.dt;
-    s.end.boundary = 5;
-    s.end.displacement = 0.5 * o.maxAxialStrain * size.z();
-    const double duration = o.maxAxialStrain / run.strainRate;
+    if (!o.periodic) {
+        s.end.boundary = 5;
+        s.end.displacement = 0.5 * o.maxAxialStrain * size.z();
+    }
     s.output.historyPeriod = duration / o.records;
     s.output.vtkPeriod = duration / 20.0;
 
@@ -72,11 +84,12 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
     std::snprintf(header, sizeof header,
                   "The shearing stage of lsdem-study triaxial (%s, SDP %g mm, VDP %g mm): %lld "
                   "grains consolidated\nto sigma_3 = %g MPa, compressed to %g %% axial strain at "
-                  "%g /s with the side walls at sigma_3.\nThe grains start at rest with no "
+                  "%g /s with the sides at sigma_3%s.\nThe grains start at rest with no "
                   "contact history. Run with\n  lsdem-run triaxial_shear.toml --out shear\n"
                   "Units: mm, tonne, s, N (MPa). See docs/triaxial.md.",
                   formulationName(run.formulation).c_str(), run.sdp, run.vdp, study.grains,
-                  o.confiningStress, 100.0 * o.maxAxialStrain, run.strainRate);
+                  o.confiningStress, 100.0 * o.maxAxialStrain, run.strainRate,
+                  o.periodic ? " (a periodic cell, no walls)" : "");
     const std::string path = (fs::path(dir) / "triaxial_shear.toml").string();
     writeSceneFile(s, path, header);
     return path;

@@ -2,8 +2,10 @@
 /// @brief The shearing stage of a triaxial run as a scene for lsdem-run, to edit and rerun:
 ///        the consolidated sample (grain poses from the run, walls where consolidation left
 ///        them), the top and bottom walls closing (extension: opening) at the run's strain
-///        rate, the side walls servo-controlled at σ₃, ParaView frames on. (The other loading
-///        paths set their walls from the stresses step by step, which a scene cannot say.) The grains start at rest with no contact
+///        rate, the side walls servo-controlled at σ₃, ParaView frames on; on a periodic cell
+///        (--boundary periodic) the cell instead, x and y stress-controlled at σ₃, z strained.
+///        (The other loading paths set their walls from the stresses step by step, which a
+///        scene cannot say.) The grains start at rest with no contact
 ///        history, so it is the same test, not the run's bytes.
 #pragma once
 

@@ -554,3 +554,30 @@ TEST(TriaxialSummary, SuccessiveSpacingsArePairedSeedBySeed)
     EXPECT_NEAR(one.peakFrictionAngle, 1.0, 1e-12);
     EXPECT_TRUE(std::isnan(one.peakFrictionAngleError));
 }
+
+// On a periodic cell the shear scene is a periodic scene: no walls, the cell as consolidated
+// (the grains inside it), x and y at σ₃ by stress control, z strained at the run's rate, to the
+// end strain's time; lsdem-run builds its world.
+TEST(TriaxialStudy, APeriodicRunWritesAPeriodicShearScene)
+{
+    test::ScratchDir dir;
+    const test::CommandResult r = test::runCommand(
+        "timeout 120 " + kStudy + " triaxial --meshes " + std::string(LSDEM_SOURCE_DIR) +
+        "/assets/meshes/sand --grains 200 --sdps 0.2 --formulation adapted --axial-strain 0.005 "
+        "--records 2 --boundary periodic --no-plots --quiet --out " + dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const Scene scene = readSceneFile(dir.file("out/scene/triaxial_shear.toml"));
+    EXPECT_TRUE(scene.boundaries.empty());
+    EXPECT_GT(scene.periodicCell.minCoeff(), 0.0);
+    EXPECT_EQ(scene.periodicStress, Vec3(0.1, 0.1, 0.0));
+    EXPECT_LT(scene.periodicStrainRate.z(), 0.0);
+    EXPECT_GT(scene.end.time, 0.0);
+    std::vector<std::string> warnings;
+    const World w = buildWorld(scene, warnings);
+    EXPECT_EQ(w.grains.size(), 200u);
+    for (const Grain& g : w.grains)
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_GE(g.body.pose.position[a], w.periodic.origin[a]);
+            EXPECT_LT(g.body.pose.position[a], w.periodic.origin[a] + w.periodic.size[a]);
+        }
+}

@@ -58,7 +58,9 @@ struct Grain
 /// Running totals for the energy balance (all in force·length).
 struct EnergyBook
 {
-    double boundaryWork = 0.0;  ///< work done on the grains by moving boundaries and prescribed grains
+    /// Work done on the grains by moving boundaries, prescribed grains and a deforming periodic
+    /// cell.
+    double boundaryWork = 0.0;
     double initialTotal = 0.0;  ///< kinetic + elastic + potential at time 0
     /// What a deforming periodic cell's strain rates multiply into the power it puts into the
     /// grains through their contacts, at the last evaluation: per axis, Σ over pairs of the

@@ -196,7 +196,10 @@ void Simulation::sumGrainForces(double dt)
             const PairForces& f = s.result;
             force += r->first ? f.forceOnFirst : f.forceOnSecond;
             torque += r->first ? f.torqueOnFirst : f.torqueOnSecond;
-            if (r->first) friction += f.frictionWork, dashpot += f.dashpotWork;
+            if (r->first) {  // each contact's dissipation counts once, with its first grain
+                friction += f.frictionWork;
+                dashpot += f.dashpotWork;
+            }
             // The partner moves too: its share 1 + m_i/m_j (1 for a boundary or a grain that
             // forces do not move) makes the stability check a bound for every grain's
             // translation at once (stepLimitOf).

@@ -1,6 +1,8 @@
 // Building bench_scale's settled heaps (ScaleHeap.h).
 #include "ScaleHeap.h"
 
+#include "ProcessMemory.h"
+
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/scene/BuildWorld.h"
@@ -24,6 +26,9 @@
 
 namespace lsdem::scalebench {
 
+using bench::resetPeakRss;
+using bench::statusBytes;
+
 constexpr int kNodesPerAsset = 500;
 constexpr double kMeanSemiAxis = 0.5;     // mm
 constexpr double kGap = 0.02;             // mm, between bounding boxes of neighbours
@@ -31,23 +36,6 @@ const Eigen::Vector3i kTile(5, 5, 10);   // grains per row, rows and layers of t
 constexpr long long kTileSettleSteps = 8000;
 constexpr double kSettlingGravityFactor = 100.0;  // while the tile settles
 constexpr long long kPrefixSteps = 50;   // at full size, before anything is timed
-
-/// Kilobytes of a field of /proc/self/status ("VmRSS", "VmHWM"); -1 if unreadable.
-double statusKiB(const std::string& field)
-{
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.compare(0, field.size() + 1, field + ":") == 0)
-            return std::stod(line.substr(field.size() + 1));
-    return -1.0;
-}
-
-/// Start a new peak: VmHWM falls back to the current resident size (Linux >= 4.0).
-void resetPeakRss()
-{
-    std::ofstream("/proc/self/clear_refs") << "5";
-}
 
 /// The ten sand-like assets, baked once per process (a second each).
 const std::vector<std::shared_ptr<const GrainAsset>>& sandAssets()
@@ -250,16 +238,16 @@ const Settled& settled(int grains)
     settledTile();  // the assets and the tile are made before the memory is measured
     malloc_trim(0);
     resetPeakRss();
-    const double before = statusKiB("VmRSS");
+    const double before = statusBytes("VmRSS") / 1024.0;
     std::vector<std::string> warnings;
     World world = buildWorld(sandBoxScene(grains), warnings);
     const double dt = automaticTimeStep(world, 0.2);
     kept.sim = std::make_unique<Simulation>(std::move(world), dt);
     for (long long s = 0; s < kPrefixSteps; ++s) kept.sim->step();
     kept.grains = grains;
-    kept.peakMiB = statusKiB("VmHWM") / 1024.0;
+    kept.peakMiB = statusBytes("VmHWM") / 1024.0 / 1024.0;
     malloc_trim(0);  // hand freed memory (the scene, the first contact list) back first
-    kept.heldBytesPerGrain = (statusKiB("VmRSS") - before) * 1024.0 / grains;
+    kept.heldBytesPerGrain = (statusBytes("VmRSS") / 1024.0 - before) * 1024.0 / grains;
     return kept;
 }
 

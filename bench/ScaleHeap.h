@@ -14,10 +14,6 @@ namespace lsdem::scalebench {
 
 constexpr int kAssetCount = 10;
 
-/// Kilobytes of a field of /proc/self/status ("VmRSS", "VmHWM"); -1 if unreadable.
-double statusKiB(const std::string& field);
-/// Start a new peak: VmHWM falls back to the current resident size (Linux >= 4.0).
-void resetPeakRss();
 /// The ten sand-like assets, baked once per process (a second each).
 const std::vector<std::shared_ptr<const GrainAsset>>& sandAssets();
 /// Pairs (grain–grain and grain–wall) with at least one node in contact: exactly those with

@@ -10,6 +10,9 @@
 #include "lsdem/ls/MassProperties.h"
 #include "lsdem/ls/MeshLevelSet.h"
 
+#include "MeshFamily.h"
+#include "ProcessMemory.h"
+
 #include <benchmark/benchmark.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -17,31 +20,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <malloc.h>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 
 using namespace lsdem;
+using namespace lsdem::bench;
 
 namespace {
-
-/// A bumpy closed "pebble" of about 20·n² triangles: an icosphere with smooth radial bumps, so
-/// the mesh is not an analytic shape the code could shortcut.
-TriangleMesh pebble(int subdivisionsPerEdge)
-{
-    // The sphere's surface mesh at edge ~1.05·R/n is an icosphere with 20·n² triangles.
-    const double radius = 5.0;
-    TriangleMesh mesh = AnalyticShape::sphere(radius).surfaceMesh(1.05 * radius / subdivisionsPerEdge);
-    for (Vec3& v : mesh.vertices) {
-        const Vec3 u = v.normalized();
-        const double bump = 1.0 + 0.08 * std::sin(3 * u.x()) * std::cos(2 * u.y()) +
-                            0.05 * std::sin(5 * u.z() + 1.0);
-        v = u * radius * bump;
-    }
-    return mesh;
-}
 
 const GrainAsset& sphereAsset()
 {
@@ -56,30 +41,6 @@ const GrainAsset& sphereAsset()
     return asset;
 }
 
-/// A field of /proc/self/status in bytes (VmRSS: resident now, VmHWM: the high-water mark).
-double statusBytes(const std::string& field)
-{
-    std::ifstream status("/proc/self/status");
-    std::string line;
-    while (std::getline(status, line))
-        if (line.rfind(field + ":", 0) == 0) {
-            std::istringstream in(line.substr(field.size() + 1));
-            double kib = 0;
-            in >> kib;
-            return kib * 1024.0;
-        }
-    return 0.0;
-}
-
-/// Reset the high-water mark to the present resident size (Linux ≥ 4.0), so VmHWM afterwards
-/// is the peak of what runs in between.
-void resetPeakRss()
-{
-    malloc_trim(0);  // hand freed heap back, so memory reused from earlier runs counts too
-    std::ofstream("/proc/self/clear_refs") << "5";
-}
-
-constexpr double kMiB = 1024.0 * 1024.0;
 
 BakeOptions pebbleOptions()
 {
@@ -94,7 +55,7 @@ BakeOptions pebbleOptions()
 const TriangleMesh& framedPebble()
 {
     static const TriangleMesh mesh = [] {
-        TriangleMesh m = pebble(71);  // 100,820 triangles
+        TriangleMesh m = familyMesh(0).mesh;  // the pebble, 100,820 triangles
         const PrincipalFrame frame = principalFrame(computeMassProperties(m), m);
         transformMesh(m, frame.rotation, -(frame.rotation * frame.centroid));
         return m;
@@ -106,7 +67,7 @@ const TriangleMesh& framedPebble()
 /// was resident before, over the final grid's own memory.
 void BM_BakeMesh100kTriangles(benchmark::State& state)
 {
-    const TriangleMesh mesh = pebble(71);  // 100,820 triangles
+    const TriangleMesh mesh = familyMesh(0).mesh;  // the pebble, 100,820 triangles
     const BakeOptions o = pebbleOptions();
     size_t nodes = 0;
     double peak = 0, grid = 0;
@@ -132,7 +93,7 @@ BENCHMARK(BM_BakeMesh100kTriangles)->Unit(benchmark::kMillisecond)->Iterations(1
 
 void BM_BakeStageMass(benchmark::State& state)
 {
-    const TriangleMesh mesh = pebble(71);
+    const TriangleMesh mesh = familyMesh(0).mesh;
     for (auto _ : state) {
         const MassProperties props = computeMassProperties(mesh);
         const PrincipalFrame frame = principalFrame(props, mesh);

@@ -2,6 +2,7 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/ls/LevelSetGrid.h"
+#include "lsdem/mesh/CentroidalNodes.h"
 #include "lsdem/mesh/MeshIO.h"
 #include "lsdem/ls/MeshLevelSet.h"
 #include "lsdem/mesh/MeshRemesh.h"
@@ -102,6 +103,40 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
     }
 }
 
+/// The sharp-edge angle of the remesher's feature edges (RemeshOptions::featureAngleDeg).
+constexpr double kSharpEdgeDeg = 30.0;
+
+/// Nodes at the centroids of a centroidal Voronoi tessellation of @a mesh, each with its
+/// cell's area and mean normal; none if a cell reaches across a part thinner than the node
+/// spacing (its area would belong to the other side).
+SurfaceNodes centroidalNodes(const TriangleMesh& mesh, const BakeOptions& o)
+{
+    const double area = surfaceArea(mesh);
+    // As many nodes as equilateral triangles of edge SDP would have (each vertex owns two).
+    const size_t count =
+        o.nodePlacement == NodePlacement::Count
+            ? size_t(o.nodeCount)
+            : size_t(std::max(4.0, std::round(2.0 * area / (std::sqrt(3.0) * o.nodeSpacing *
+                                                              o.nodeSpacing))));
+    const CentroidalNodes placed = placeCentroidalNodes(mesh, count);
+    SurfaceNodes nodes;
+    double facingAway = 0.0;
+    for (size_t i = 0; i < placed.positions.size(); ++i) {
+        const RestrictedVoronoiCell& cell = placed.cells[i];
+        facingAway += cell.facingAway;
+        if (!(cell.area > 0.0)) continue;  // (two nodes at one point: the first owns it)
+        nodes.positions.push_back(placed.positions[i]);
+        nodes.normals.push_back(cell.normalArea.normalized());
+        nodes.areas.push_back(cell.area);
+    }
+    if (facingAway > 1e-9 * area) return {};
+    if (o.areaRule == AreaRule::Uniform) {
+        const double mean = nodes.totalArea() / double(nodes.size());
+        std::fill(nodes.areas.begin(), nodes.areas.end(), mean);
+    }
+    return nodes;
+}
+
 } // namespace
 
 TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool keepFineInput)
@@ -128,6 +163,17 @@ TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool
         remesh.targetEdgeLength *= std::sqrt(count / wanted);
     }
     return best;
+}
+
+SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o)
+{
+    if (o.nodePlacement == NodePlacement::MeshVertices) return nodesFromMesh(mesh, o.areaRule);
+    if (o.nodeLayout == NodeLayout::Centroidal ||
+        (o.nodeLayout == NodeLayout::Automatic && !hasSharpEdges(mesh, kSharpEdgeDeg))) {
+        SurfaceNodes nodes = centroidalNodes(mesh, o);
+        if (!nodes.positions.empty()) return nodes;
+    }
+    return nodesFromMesh(nodeSurface(mesh, o, /*keepFineInput=*/true), o.areaRule);
 }
 
 namespace {
@@ -212,18 +258,14 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
     levelSetTask.run([&] {
         levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
     });
-    TriangleMesh surface;
     try {
-        surface = options.nodePlacement == NodePlacement::MeshVertices
-                      ? mesh
-                      : nodeSurface(mesh, options, /*keepFineInput=*/true);
+        asset.nodes = placeNodesOnMesh(mesh, options);
     } catch (...) {
         levelSetTask.wait();
         throw;
     }
     levelSetTask.wait();  // rethrows what the level set threw
     asset.levelSet = std::move(levelSet);
-    asset.nodes = nodesFromMesh(surface, options.areaRule);
     finishAsset(asset, options, warnings);
     for (const Vec3& v : mesh.vertices)
         asset.boundingRadius = std::max(asset.boundingRadius, v.norm());

@@ -243,6 +243,38 @@ TEST(Bake, RotatedInputComesBackInTheSamePrincipalFrame)
     }
 }
 
+// A mesh without sharp edges gets the nodes of a centroidal tessellation (as many as
+// equilateral triangles of edge SDP would have, each owning exactly its cell of the mesh);
+// a box keeps the remesher's nodes on its corners.
+TEST(Bake, SmoothMeshesGetCentroidalNodesAndBoxesKeepTheirCorners)
+{
+    const TriangleMesh sphere = AnalyticShape::sphere(5.0).surfaceMesh(0.3);
+    std::vector<std::string> warnings;
+    const GrainAsset s = bakeMesh(sphere, "sphere", spacingOptions(0.2, 0.5), warnings);
+    const double area = surfaceArea(sphere);
+    EXPECT_EQ(double(s.nodes.size()), std::round(2.0 * area / (std::sqrt(3.0) * 0.25)));
+    EXPECT_NEAR(s.nodes.totalArea(), area, 1e-12 * area);
+    for (size_t i = 0; i < s.nodes.size(); ++i)  // cells' mean normals: radial within 2°
+        EXPECT_GT(s.nodes.normals[i].dot(s.nodes.positions[i].normalized()), std::cos(kPi / 90));
+
+    BakeOptions count = spacingOptions(0.2, 0.5);
+    count.nodePlacement = NodePlacement::Count;
+    count.nodeCount = 777;
+    EXPECT_EQ(bakeMesh(sphere, "sphere", count, warnings).nodes.size(), 777u);
+
+    const GrainAsset b =
+        bakeMesh(AnalyticShape::box(1, 2, 3).surfaceMesh(0.5), "box", spacingOptions(0.1, 0.2),
+                 warnings);
+    int corners = 0;
+    for (const Vec3& p : b.nodes.positions) {
+        std::array<double, 3> sorted{std::abs(p.x()), std::abs(p.y()), std::abs(p.z())};
+        std::sort(sorted.begin(), sorted.end());
+        corners += std::abs(sorted[0] - 0.5) + std::abs(sorted[1] - 1.0) +
+                       std::abs(sorted[2] - 1.5) < 1e-9;
+    }
+    EXPECT_EQ(corners, 8);
+}
+
 TEST(Bake, MeshVerticesPlacementKeepsTheInputVertices)
 {
     test::ScratchDir dir;

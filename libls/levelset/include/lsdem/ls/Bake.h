@@ -16,9 +16,18 @@ namespace lsdem {
 constexpr int kMaxNodeCount = 100000000;
 
 enum class NodePlacement {
-    Spacing,       ///< isotropic remeshing to nodeSpacing
-    Count,         ///< isotropic remeshing to about nodeCount nodes
+    Spacing,       ///< nodes about nodeSpacing apart (the SDP)
+    Count,         ///< about nodeCount nodes
     MeshVertices,  ///< the input mesh's own vertices
+};
+
+/// How a mesh's nodes are placed for NodePlacement::Spacing or Count.
+enum class NodeLayout {
+    /// Centroidal for a mesh without sharp edges, remeshing for one with them (and for a
+    /// mesh with a part thinner than the node spacing, which the centroidal cells misread).
+    Automatic,
+    Remesh,      ///< the vertices of the mesh remeshed isotropically (CGAL), sharp edges kept
+    Centroidal,  ///< a centroidal Voronoi tessellation of the mesh (CentroidalNodes.h)
 };
 
 struct BakeOptions
@@ -28,6 +37,7 @@ struct BakeOptions
     double nodeSpacing = 0.0;        ///< SDP for NodePlacement::Spacing
     int nodeCount = 0;               ///< for NodePlacement::Count
     AreaRule areaRule = AreaRule::Mesh;
+    NodeLayout nodeLayout = NodeLayout::Automatic;  ///< for meshes; analytic shapes remesh
     /// Exterior narrow band width, voxels (the interior is filled); at least the default.
     int exteriorBandVoxels = kMinExteriorBandVoxels;
     double memoryBudgetBytes = 4.0 * 1024 * 1024 * 1024;  ///< refuse grids estimated larger
@@ -49,6 +59,11 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
 /// which remeshes fine scans as they are (@a keepFineInput, see RemeshOptions).
 TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options,
                          bool keepFineInput);
+
+/// The nodes of a bake of @a mesh (in its principal frame), placed as @a options ask: its
+/// vertices, a remeshed surface's or a centroidal tessellation's (NodeLayout). One stage of
+/// bakeMesh.
+SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& options);
 
 /// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
 /// surface. NodePlacement::MeshVertices is refused (there is no input mesh).

@@ -1,0 +1,122 @@
+#include "lsdem/mesh/CentroidalNodes.h"
+
+#include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/core/PortableRandom.h"
+#include "lsdem/mesh/ClosestPointGrid.h"
+#include "lsdem/mesh/SampleElimination.h"
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <utility>
+
+namespace lsdem {
+
+namespace {
+
+/// Uniform in [0, 1) from draw @a k of the stream @a base (counter-based: no state to seed).
+double uniformDraw(uint64_t base, uint64_t k)
+{
+    return double(splitMix64(base + k) >> 11) * 0x1.0p-53;
+}
+
+/// About @a perArea random points per unit area, uniform over each triangle; triangle t's
+/// points come from its own stream, so they do not depend on any other triangle.
+std::vector<Vec3> randomSurfacePoints(const TriangleMesh& mesh, double perArea, uint64_t seed)
+{
+    std::vector<Vec3> points;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const double expected = triangleArea(mesh, int(t)) * perArea;
+        const uint64_t base = splitMix64(splitMix64(seed) ^ splitMix64(t + 1));
+        const int count = int(expected) + (uniformDraw(base, 0) < expected - std::floor(expected));
+        const auto& tri = mesh.triangles[t];
+        const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
+                   &c = mesh.vertices[size_t(tri[2])];
+        for (int k = 0; k < count; ++k) {
+            // Uniform over the triangle: the square root spreads the first draw by area.
+            const double r1 = std::sqrt(uniformDraw(base, 2 * uint64_t(k) + 1));
+            const double r2 = uniformDraw(base, 2 * uint64_t(k) + 2);
+            points.push_back((1.0 - r1) * a + r1 * (1.0 - r2) * b + r1 * r2 * c);
+        }
+    }
+    return points;
+}
+
+} // namespace
+
+CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
+                                     const CentroidalNodeOptions& options)
+{
+    if (count < 4) throw Error("", "node placement needs at least 4 nodes");
+    const double area = surfaceArea(mesh);
+    if (!(area > 0.0 && std::isfinite(area)))
+        throw Error("", "node placement: the mesh has no area");
+
+    // Candidates: a few times the nodes wanted (never fewer than the count), then thinned.
+    const double wanted = double(count) * std::max(options.candidatesPerNode, 2);
+    std::vector<Vec3> candidates = randomSurfacePoints(mesh, wanted / area, options.seed);
+    for (uint64_t extra = 1; candidates.size() < count; ++extra) {
+        const std::vector<Vec3> more = randomSurfacePoints(mesh, wanted / area, options.seed + extra);
+        candidates.insert(candidates.end(), more.begin(), more.end());
+    }
+    CentroidalNodes nodes;
+    for (int i : eliminateSamples(candidates, count, area))
+        nodes.positions.push_back(candidates[size_t(i)]);
+    std::vector<Vec3>().swap(candidates);
+
+    // Lloyd: each node to its cell's centroid, put back on the surface (the centroid of a
+    // curved cell lies slightly inside).
+    const ClosestPointGrid surface(mesh.vertices, mesh.triangles,
+                                   std::sqrt(area / double(count)));
+    for (int iteration = 0; iteration < options.lloydIterations; ++iteration) {
+        const std::vector<RestrictedVoronoiCell> cells =
+            restrictedVoronoiCells(mesh, nodes.positions);
+        tbb::parallel_for(size_t(0), count, [&](size_t i) {
+            if (cells[i].area > 0.0)
+                nodes.positions[i] = surface.closestPoint(cells[i].moment / cells[i].area);
+        });
+    }
+    nodes.cells = restrictedVoronoiCells(mesh, nodes.positions);
+    return nodes;
+}
+
+bool hasSharpEdges(const TriangleMesh& mesh, double angleDeg)
+{
+    // Each edge as (low vertex, high vertex, triangle); sorted, the two triangles of an edge
+    // are neighbours.
+    struct EdgeSide
+    {
+        int low, high, triangle;
+        bool operator<(const EdgeSide& o) const
+        {
+            return std::tie(low, high, triangle) < std::tie(o.low, o.high, o.triangle);
+        }
+    };
+    std::vector<EdgeSide> sides;
+    sides.reserve(3 * mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const int u = mesh.triangles[t][size_t(k)], v = mesh.triangles[t][size_t((k + 1) % 3)];
+            sides.push_back({std::min(u, v), std::max(u, v), int(t)});
+        }
+    std::sort(sides.begin(), sides.end());
+    auto normalOf = [&mesh](int t) {
+        const auto& tri = mesh.triangles[size_t(t)];
+        const Vec3& a = mesh.vertices[size_t(tri[0])];
+        return Vec3((mesh.vertices[size_t(tri[1])] - a).cross(mesh.vertices[size_t(tri[2])] - a));
+    };
+    const double cosAngle = std::cos(angleDeg * kPi / 180.0);
+    for (size_t k = 0; k + 1 < sides.size(); ++k) {
+        if (sides[k].low != sides[k + 1].low || sides[k].high != sides[k + 1].high) continue;
+        const Vec3 n1 = normalOf(sides[k].triangle), n2 = normalOf(sides[k + 1].triangle);
+        const double norms = n1.norm() * n2.norm();
+        if (norms > 0.0 && n1.dot(n2) < cosAngle * norms) return true;
+    }
+    return false;
+}
+
+} // namespace lsdem

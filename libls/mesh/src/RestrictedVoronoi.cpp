@@ -1,0 +1,250 @@
+#include "lsdem/mesh/RestrictedVoronoi.h"
+
+#include "lsdem/core/Error.h"
+#include "lsdem/core/OrderedCollect.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace lsdem {
+
+namespace {
+
+/// Seeds binned in a dense grid of cubic cells (compressed rows, in the seeds' order), over a
+/// box that holds the seeds and every point that will be asked about.
+class SeedGrid
+{
+public:
+    SeedGrid(const std::vector<Vec3>& seeds, Vec3 low, Vec3 high, double cell) : mSeeds(seeds)
+    {
+        for (const Vec3& p : seeds) {
+            low = low.cwiseMin(p);
+            high = high.cwiseMax(p);
+        }
+        // At most 128 cells a side: a flat or long mesh keeps the table small.
+        mCell = std::max(cell, (high - low).maxCoeff() / 128.0);
+        mLow = low;
+        for (int k = 0; k < 3; ++k)
+            mDims[k] = std::max(1, int(std::floor((high[k] - low[k]) / mCell)) + 1);
+        std::vector<int> cellOf(seeds.size());
+        mStart.assign(size_t(mDims[0]) * mDims[1] * mDims[2] + 1, 0);
+        for (size_t s = 0; s < seeds.size(); ++s) {
+            const Eigen::Vector3i c = cellIndex(seeds[s]);
+            cellOf[s] = flat(c.x(), c.y(), c.z());
+            ++mStart[size_t(cellOf[s]) + 1];
+        }
+        for (size_t c = 1; c < mStart.size(); ++c) mStart[c] += mStart[c - 1];
+        mItems.resize(seeds.size());
+        std::vector<int> fill(mStart.begin(), mStart.end() - 1);
+        for (size_t s = 0; s < seeds.size(); ++s) mItems[size_t(fill[size_t(cellOf[s])]++)] = int(s);
+    }
+
+    /// Calls @a visit(s) for every seed s within @a radius of @a p.
+    template <typename Visit>
+    void forEachWithin(const Vec3& p, double radius, Visit&& visit) const
+    {
+        const Eigen::Vector3i lo = cellIndex(p - Vec3::Constant(radius));
+        const Eigen::Vector3i hi = cellIndex(p + Vec3::Constant(radius));
+        const double r2 = radius * radius;
+        for (int z = lo.z(); z <= hi.z(); ++z)
+            for (int y = lo.y(); y <= hi.y(); ++y)
+                for (int x = lo.x(); x <= hi.x(); ++x) {
+                    const int c = flat(x, y, z);
+                    for (int k = mStart[size_t(c)]; k < mStart[size_t(c) + 1]; ++k) {
+                        const int s = mItems[size_t(k)];
+                        if ((mSeeds[size_t(s)] - p).squaredNorm() <= r2) visit(s);
+                    }
+                }
+    }
+
+    /// The distance from @a p (inside the grid's box) to its nearest seed: rings of cells
+    /// around p's cell, until the next ring can hold nothing nearer.
+    double nearestDistance(const Vec3& p) const
+    {
+        const Eigen::Vector3i c = cellIndex(p);
+        double best2 = std::numeric_limits<double>::infinity();
+        const int rings = std::max({mDims[0], mDims[1], mDims[2]});
+        for (int ring = 0; ring <= rings; ++ring) {
+            for (int z = c.z() - ring; z <= c.z() + ring; ++z)
+                for (int y = c.y() - ring; y <= c.y() + ring; ++y)
+                    for (int x = c.x() - ring; x <= c.x() + ring; ++x) {
+                        const bool shell = std::max({std::abs(x - c.x()), std::abs(y - c.y()),
+                                                     std::abs(z - c.z())}) == ring;
+                        if (!shell || x < 0 || y < 0 || z < 0 || x >= mDims[0] ||
+                            y >= mDims[1] || z >= mDims[2])
+                            continue;
+                        const int f = flat(x, y, z);
+                        for (int k = mStart[size_t(f)]; k < mStart[size_t(f) + 1]; ++k)
+                            best2 = std::min(best2, (mSeeds[size_t(mItems[size_t(k)])] - p)
+                                                        .squaredNorm());
+                    }
+            // Seeds beyond this ring are at least ring cells away from p.
+            if (best2 <= (ring * mCell) * (ring * mCell)) break;
+        }
+        return std::sqrt(best2);
+    }
+
+private:
+    Eigen::Vector3i cellIndex(const Vec3& p) const
+    {
+        Eigen::Vector3i c;
+        for (int k = 0; k < 3; ++k)
+            c[k] = std::clamp(int(std::floor((p[k] - mLow[k]) / mCell)), 0, mDims[k] - 1);
+        return c;
+    }
+    int flat(int x, int y, int z) const { return (z * mDims[1] + y) * mDims[0] + x; }
+
+    const std::vector<Vec3>& mSeeds;
+    Vec3 mLow = Vec3::Zero();
+    double mCell = 1.0;
+    int mDims[3] = {1, 1, 1};
+    std::vector<int> mStart, mItems;
+};
+
+/// A seed's part of one triangle.
+struct CellPiece
+{
+    int seed = 0;
+    int triangle = 0;
+    double area = 0.0;
+    Vec3 moment = Vec3::Zero();
+};
+
+/// Keep the part of the convex polygon @a poly where (x − @a mid)·@a axis ≤ 0; @a scratch is
+/// the caller's buffer. Returns false once nothing is left.
+bool clipPolygon(std::vector<Vec3>& poly, std::vector<Vec3>& scratch, const Vec3& mid,
+                 const Vec3& axis)
+{
+    scratch.clear();
+    const size_t n = poly.size();
+    bool cut = false;
+    double previous = (poly[n - 1] - mid).dot(axis);
+    for (size_t k = 0; k < n; ++k) {
+        const Vec3& from = poly[(k + n - 1) % n];
+        const Vec3& to = poly[k];
+        const double here = (to - mid).dot(axis);
+        if ((previous <= 0.0) != (here <= 0.0)) {
+            cut = true;
+            scratch.push_back(from + (previous / (previous - here)) * (to - from));
+        }
+        if (here <= 0.0) scratch.push_back(to);
+        else cut = true;
+        previous = here;
+    }
+    if (cut) poly.swap(scratch);
+    return poly.size() >= 3;
+}
+
+/// The pieces of triangle @a t owned by each seed that owns any of it.
+void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seeds,
+                  const SeedGrid& grid, std::vector<std::pair<double, int>>& candidates,
+                  std::vector<Vec3>& poly, std::vector<Vec3>& scratch, std::vector<CellPiece>& out)
+{
+    const auto& tri = mesh.triangles[size_t(t)];
+    const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
+               &c = mesh.vertices[size_t(tri[2])];
+    const Vec3 cross = (b - a).cross(c - a);
+    const double twiceArea = cross.norm();
+    if (!(twiceArea > 0.0)) return;
+    const Vec3 normal = cross / twiceArea;
+    const Vec3 centroid = (a + b + c) / 3.0;
+    const double reach = std::max({(a - centroid).norm(), (b - centroid).norm(),
+                                   (c - centroid).norm()});
+    // A point x of the triangle is owned by a seed no farther than the centroid's nearest
+    // seed s0 is from x: |x − s0| ≤ d0 + reach. So an owner is within d0 + 2·reach of the
+    // centroid, and no seed farther can own anything here.
+    const double radius = grid.nearestDistance(centroid) + 2.0 * reach;
+    candidates.clear();
+    grid.forEachWithin(centroid, radius * (1.0 + 1e-12), [&](int s) {
+        candidates.emplace_back((seeds[size_t(s)] - centroid).squaredNorm(), s);
+    });
+    std::sort(candidates.begin(), candidates.end());
+    for (const auto& [unused, i] : candidates) {
+        const Vec3& pi = seeds[size_t(i)];
+        poly.assign({a, b, c});
+        double reach2 = std::max({(a - pi).squaredNorm(), (b - pi).squaredNorm(),
+                                  (c - pi).squaredNorm()});
+        bool left = true;
+        for (const auto& [unused2, j] : candidates) {
+            if (j == i) continue;
+            const Vec3 axis = seeds[size_t(j)] - pi;
+            const double gap2 = axis.squaredNorm();
+            if (gap2 == 0.0) {
+                // Two seeds at one point: the first in index order owns what they share.
+                if (j < i) { left = false; break; }
+                continue;
+            }
+            if (gap2 > 4.0 * reach2) continue;  // the bisector is beyond every vertex
+            if (!clipPolygon(poly, scratch, 0.5 * (pi + seeds[size_t(j)]), axis)) {
+                left = false;
+                break;
+            }
+            reach2 = 0.0;
+            for (const Vec3& v : poly) reach2 = std::max(reach2, (v - pi).squaredNorm());
+        }
+        if (!left) continue;
+        CellPiece piece;
+        piece.seed = i;
+        piece.triangle = t;
+        for (size_t k = 1; k + 1 < poly.size(); ++k) {
+            const double part = 0.5 * (poly[k] - poly[0]).cross(poly[k + 1] - poly[0]).dot(normal);
+            piece.area += part;
+            piece.moment += part * (poly[0] + poly[k] + poly[k + 1]) / 3.0;
+        }
+        if (piece.area > 0.0) out.push_back(piece);
+    }
+}
+
+} // namespace
+
+std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& mesh,
+                                                          const std::vector<Vec3>& seeds)
+{
+    if (seeds.empty()) throw Error("", "restricted Voronoi cells need at least one seed");
+    const auto bounds = meshBounds(mesh);
+    // Cells about the seeds' spacing: a few seeds in each.
+    const double area = std::max(surfaceArea(mesh), std::numeric_limits<double>::min());
+    const SeedGrid grid(seeds, bounds[0], bounds[1], 1.5 * std::sqrt(area / double(seeds.size())));
+    const std::vector<CellPiece> pieces = collectInOrder<CellPiece>(
+        mesh.triangles.size(), 2048, [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
+            std::vector<std::pair<double, int>> candidates;
+            std::vector<Vec3> poly, scratch;
+            for (size_t t = begin; t < end; ++t)
+                clipTriangle(mesh, int(t), seeds, grid, candidates, poly, scratch, out);
+        });
+    std::vector<RestrictedVoronoiCell> cells(seeds.size());
+    auto normalOf = [&mesh](int t) {
+        const auto& tri = mesh.triangles[size_t(t)];
+        const Vec3& a = mesh.vertices[size_t(tri[0])];
+        return Vec3((mesh.vertices[size_t(tri[1])] - a)
+                        .cross(mesh.vertices[size_t(tri[2])] - a)
+                        .normalized());
+    };
+    // Each seed's own side of the surface: the normal of the triangle of its cell whose plane
+    // passes nearest to it (through it, for a seed on the surface).
+    std::vector<double> homeDistance(seeds.size(), std::numeric_limits<double>::infinity());
+    std::vector<Vec3> homeNormal(seeds.size(), Vec3::Zero());
+    for (const CellPiece& piece : pieces) {  // in triangle order: the same sums on any threads
+        const size_t s = size_t(piece.seed);
+        const Vec3 normal = normalOf(piece.triangle);
+        cells[s].area += piece.area;
+        cells[s].moment += piece.moment;
+        cells[s].normalArea += piece.area * normal;
+        const Vec3& corner = mesh.vertices[size_t(mesh.triangles[size_t(piece.triangle)][0])];
+        const double distance = std::abs((seeds[s] - corner).dot(normal));
+        if (distance < homeDistance[s]) {
+            homeDistance[s] = distance;
+            homeNormal[s] = normal;
+        }
+    }
+    for (const CellPiece& piece : pieces)
+        if (normalOf(piece.triangle).dot(homeNormal[size_t(piece.seed)]) < 0.0)
+            cells[size_t(piece.seed)].facingAway += piece.area;
+    return cells;
+}
+
+} // namespace lsdem

@@ -1,0 +1,115 @@
+#include "lsdem/mesh/SampleElimination.h"
+
+#include "lsdem/core/Error.h"
+#include "lsdem/core/PointHashGrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lsdem {
+
+namespace {
+
+/// A max-heap of point indices by weight (ties: the lower index on top) that can lower an
+/// entry's weight in place.
+class CrowdingHeap
+{
+public:
+    explicit CrowdingHeap(const std::vector<double>& weight) : mWeight(weight)
+    {
+        mHeap.resize(weight.size());
+        mPosition.resize(weight.size());
+        for (size_t k = 0; k < weight.size(); ++k) mHeap[k] = int(k);
+        for (size_t k = 0; k < mHeap.size(); ++k) mPosition[size_t(mHeap[k])] = int(k);
+        for (size_t k = mHeap.size() / 2; k-- > 0;) siftDown(k);
+    }
+    bool empty() const { return mHeap.empty(); }
+    int top() const { return mHeap.front(); }
+    void pop()
+    {
+        moveTo(0, mHeap.back());
+        mHeap.pop_back();
+        if (!mHeap.empty()) siftDown(0);
+    }
+    /// Point @a i's weight was lowered: move it down to its place.
+    void lowered(int i) { siftDown(size_t(mPosition[size_t(i)])); }
+
+private:
+    bool above(int a, int b) const
+    {
+        return mWeight[size_t(a)] > mWeight[size_t(b)] ||
+               (mWeight[size_t(a)] == mWeight[size_t(b)] && a < b);
+    }
+    void moveTo(size_t slot, int i)
+    {
+        mHeap[slot] = i;
+        mPosition[size_t(i)] = int(slot);
+    }
+    void siftDown(size_t k)
+    {
+        const int item = mHeap[k];
+        for (;;) {
+            size_t child = 2 * k + 1;
+            if (child >= mHeap.size()) break;
+            if (child + 1 < mHeap.size() && above(mHeap[child + 1], mHeap[child])) ++child;
+            if (!above(mHeap[child], item)) break;
+            moveTo(k, mHeap[child]);
+            k = child;
+        }
+        moveTo(k, item);
+    }
+
+    const std::vector<double>& mWeight;
+    std::vector<int> mHeap, mPosition;
+};
+
+} // namespace
+
+std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t count, double area)
+{
+    if (count == 0 || count > candidates.size())
+        throw Error("", "sample elimination: asked for " + std::to_string(count) + " of " +
+                            std::to_string(candidates.size()) + " points");
+    if (!(area > 0.0 && std::isfinite(area)))
+        throw Error("", "sample elimination: the surface area must be positive");
+    // The largest spacing count points can keep on the area (hexagonal packing), and the
+    // neighbourhood twice that; closer than rMin every neighbour weighs the same (Yuksel's
+    // β = 0.65, γ = 1.5), which keeps points from gathering in pairs.
+    const double rMax = std::sqrt(area / (2.0 * std::sqrt(3.0) * double(count)));
+    const double reach = 2.0 * rMax;
+    const double rMin =
+        reach * (1.0 - std::pow(double(count) / double(candidates.size()), 1.5)) * 0.65;
+    auto weightOf = [&](double d) { return std::pow(1.0 - std::max(d, rMin) / reach, 8.0); };
+
+    const PointHashGrid grid(candidates, reach);
+    std::vector<double> weight(candidates.size(), 0.0);
+    auto forNeighbours = [&](int i, auto&& visit) {
+        grid.around(grid.cellOf(candidates[size_t(i)]), [&](int j) {
+            if (j == i) return;
+            const double d = (candidates[size_t(j)] - candidates[size_t(i)]).norm();
+            if (d < reach) visit(j, d);
+        });
+    };
+    for (size_t i = 0; i < candidates.size(); ++i)
+        forNeighbours(int(i), [&](int, double d) { weight[i] += weightOf(d); });
+
+    CrowdingHeap heap(weight);
+    std::vector<char> removed(candidates.size(), 0);
+    for (size_t left = candidates.size(); left > count; --left) {
+        const int worst = heap.top();
+        heap.pop();
+        removed[size_t(worst)] = 1;
+        forNeighbours(worst, [&](int j, double d) {
+            if (removed[size_t(j)]) return;
+            weight[size_t(j)] -= weightOf(d);
+            heap.lowered(j);
+        });
+    }
+    std::vector<int> kept;
+    kept.reserve(count);
+    for (size_t i = 0; i < candidates.size(); ++i)
+        if (!removed[i]) kept.push_back(int(i));
+    return kept;
+}
+
+} // namespace lsdem

@@ -1,6 +1,7 @@
 #include "MeshFamily.h"
 
 #include "lsdem/core/Constants.h"
+#include "lsdem/core/PortableRandom.h"
 #include "lsdem/ls/AnalyticShape.h"
 #include "lsdem/ls/GrainGenerator.h"
 
@@ -101,6 +102,17 @@ FamilyMesh familyMesh(int index)
                     const double waist = 0.7 + 0.45 * (2.0 * u.z() * u.z() - 1.0);  // cos 2θ
                     return 5.0 * waist * (1.0 + 0.04 * std::sin(7 * u.x()) * std::cos(5 * u.y()));
                 })};
+    case 6: {
+        // A scan's noise: the grain's vertices moved at random along their radius by up to
+        // ±0.3 % of its size (0.03 on d = 10, half its edges' length): many edges turn sharp.
+        FamilyMesh member = familyMesh(2);
+        for (size_t i = 0; i < member.mesh.vertices.size(); ++i) {
+            const double draw = double(splitMix64(i + 1) >> 11) * 0x1.0p-53;  // [0, 1)
+            Vec3& v = member.mesh.vertices[i];
+            v *= 1.0 + 0.006 * (draw - 0.5) * 10.0 / v.norm();
+        }
+        return {"noisy", member.mesh};
+    }
     }
     throw std::out_of_range("familyMesh: no member " + std::to_string(index));
 }

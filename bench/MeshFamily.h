@@ -18,7 +18,7 @@ struct FamilyMesh
 };
 
 /// How many meshes meshFamily() has.
-constexpr int kFamilySize = 6;
+constexpr int kFamilySize = 7;
 
 /// Member @a index (0 .. kFamilySize-1) of the family:
 ///  0 pebble     — the original benchmark's icosphere with smooth bumps (100,820 triangles)
@@ -27,6 +27,8 @@ constexpr int kFamilySize = 6;
 ///  3 uv-sphere  — a latitude–longitude sphere (102,080 triangles): slivers at the poles
 ///  4 graded     — an icosphere bent by a conformal map so triangle areas vary 100× (81,920)
 ///  5 peanut     — two lobes and a concave waist, bumpy (81,920 triangles)
+///  6 noisy      — the grain with a scan's noise: vertices moved ±0.03 along their radius,
+///                 so thousands of edges are sharp (over 30°)
 FamilyMesh familyMesh(int index);
 
 } // namespace lsdem::bench

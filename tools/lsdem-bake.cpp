@@ -39,6 +39,7 @@ struct BakeCommandLine
     double memoryBudgetGb = options.memoryBudgetBytes / kGiB;
     long long nodeCount = 0;
     std::string areas = "mesh";
+    std::string nodeLayout = "auto";
     std::string outputPath;
     bool quiet = false;
     // Batch mode (--out-dir): many files, sizes relative to each grain.
@@ -95,18 +96,30 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
 
     const std::string nodes = "Surface nodes (one of)";
     c.spacingOption = addNumber(app, "--node-spacing", c.options.nodeSpacing,
-                                "by isotropic remeshing to edge length SDP")
+                                "about SDP apart (the edges of equilateral\n"
+                                "triangles holding as many nodes)")
                           ->type_name("SDP")
                           ->default_str("")
                           ->group(nodes);
-    c.countOption = addInteger(app, "--nodes", c.nodeCount, "by remeshing to about N nodes")
+    c.countOption = addInteger(app, "--nodes", c.nodeCount, "about N nodes (exactly N on a mesh\n"
+                                                            "laid out centroidally)")
                         ->type_name("N")
                         ->default_str("")
                         ->group(nodes);
     c.meshNodesOption = app.add_flag("--mesh-nodes", "at the input mesh's own vertices")
                             ->group(nodes);
+    app.add_option("--node-layout", c.nodeLayout,
+                   "how a mesh's nodes are placed: 'centroidal' (each node at the\n"
+                   "centroid of its Voronoi cell on the mesh; fast on fine scans),\n"
+                   "'remesh' (the vertices of the mesh remeshed, sharp edges kept),\n"
+                   "or 'auto': centroidal unless the mesh has sharp edges (over 30°);\n"
+                   "give centroidal for a noisy scan")
+        ->type_name("LAYOUT")
+        ->capture_default_str()
+        ->group(nodes);
     app.add_option("--areas", c.areas,
-                   "tributary areas: 'mesh' (1/3 of each incident triangle) or\n"
+                   "tributary areas: 'mesh' (each node's own share of the surface:\n"
+                   "its cell, or 1/3 of each incident triangle of a remeshed one) or\n"
                    "'uniform' (total area / N, as in Feldfogel et al. 2024)")
         ->type_name("RULE")
         ->capture_default_str()
@@ -193,6 +206,7 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
                                 std::to_string(c.nodeCount));
         o.nodeCount = int(c.nodeCount);
     }
+    o.nodeLayout = lsdem::nodeLayoutNamed(c.nodeLayout);
     if (c.areas == "mesh") o.areaRule = lsdem::AreaRule::Mesh;
     else if (c.areas == "uniform") o.areaRule = lsdem::AreaRule::Uniform;
     else throw Error("", "--areas wants 'mesh' or 'uniform', got '" + c.areas + "'");

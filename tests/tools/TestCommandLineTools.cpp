@@ -133,6 +133,33 @@ struct BadCase
     std::string mustSay;     ///< a piece of the message
 };
 
+// --node-layout: a smooth mesh laid out centroidally holds exactly the nodes asked for and
+// shares out exactly its area; remeshed, about as many and its remeshed surface's area.
+TEST(CommandLineTools, BakeLaysOutAMeshsNodesAsAsked)
+{
+    test::ScratchDir dir;
+    const TriangleMesh sphere = AnalyticShape::sphere(1.0).surfaceMesh(0.1);
+    writeMesh(sphere, dir.file("sphere.obj"));
+    auto nodesOf = [&](const std::string& layout) {
+        const std::string out = dir.file(layout + ".vdb");
+        const auto bake = runCommand(kBake + " " + dir.file("sphere.obj") +
+                                     " --voxel 0.05 --nodes 300 --node-layout " + layout +
+                                     " -o " + out);
+        EXPECT_EQ(bake.exitCode, 0) << bake.output;
+        const auto inspect = runCommand(kInspect + " " + out + " --json");
+        EXPECT_EQ(inspect.exitCode, 0) << inspect.output;
+        return nlohmann::json::parse(inspect.output);
+    };
+    const nlohmann::json centroidal = nodesOf("centroidal");
+    EXPECT_EQ(centroidal["node_count"], 300);
+    // (The OBJ's coordinates are read back as floats: 1e-6 relative.)
+    EXPECT_NEAR(centroidal["node_area_sum"].get<double>(), surfaceArea(sphere),
+                1e-6 * surfaceArea(sphere));
+    const nlohmann::json remeshed = nodesOf("remesh");
+    EXPECT_NE(remeshed["node_count"], 300);
+    EXPECT_NEAR(remeshed["node_count"].get<double>(), 300.0, 0.15 * 300);
+}
+
 TEST(CommandLineTools, BakeRefusesBadInputCleanly)
 {
     test::ScratchDir dir;
@@ -169,6 +196,8 @@ TEST(CommandLineTools, BakeRefusesBadInputCleanly)
         {"zero spacing", "", "--sphere 1 --voxel 0.1 --node-spacing 0", "spacing"},
         {"too few nodes", "", "--sphere 1 --voxel 0.1 --nodes 2", "--nodes"},
         {"bad area rule", "", "--sphere 1 --voxel 0.1 --nodes 100 --areas maybe", "--areas"},
+        {"bad node layout", "", "--sphere 1 --voxel 0.1 --nodes 100 --node-layout curvy",
+         "--node-layout"},
         {"unknown option", "", "--sphere 1 --voxel 0.1 --nodes 100 --colour red", "--colour"},
         {"no placement", "", "--sphere 1 --voxel 0.1", "--node-spacing"},
         {"mesh nodes, no mesh", "", "--sphere 1 --voxel 0.1 --mesh-nodes", "mesh"},

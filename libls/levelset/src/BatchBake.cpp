@@ -141,6 +141,7 @@ std::string batchOptionsText(const BatchBakeOptions& o)
     case NodePlacement::MeshVertices: text += " mesh-nodes"; break;
     }
     text += b.areaRule == AreaRule::Mesh ? " areas mesh" : " areas uniform";
+    if (b.nodeLayout != NodeLayout::Automatic) text += " node-layout " + nodeLayoutName(b.nodeLayout);
     text += " band " + std::to_string(b.exteriorBandVoxels);
     return text;
 }

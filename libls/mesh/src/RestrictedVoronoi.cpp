@@ -2,6 +2,7 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/core/OrderedCollect.h"
+#include "lsdem/mesh/TriangleOffset.h"
 
 #include <Eigen/Geometry>
 
@@ -224,8 +225,8 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& me
                         .cross(mesh.vertices[size_t(tri[2])] - a)
                         .normalized());
     };
-    // Each seed's own side of the surface: the normal of the triangle of its cell whose plane
-    // passes nearest to it (through it, for a seed on the surface).
+    // Each seed's own side of the surface: the normal of its cell's triangle nearest to it
+    // (the one it lies on, for a seed on the surface).
     std::vector<double> homeDistance(seeds.size(), std::numeric_limits<double>::infinity());
     std::vector<Vec3> homeNormal(seeds.size(), Vec3::Zero());
     for (const CellPiece& piece : pieces) {  // in triangle order: the same sums on any threads
@@ -234,15 +235,20 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& me
         cells[s].area += piece.area;
         cells[s].moment += piece.moment;
         cells[s].normalArea += piece.area * normal;
-        const Vec3& corner = mesh.vertices[size_t(mesh.triangles[size_t(piece.triangle)][0])];
-        const double distance = std::abs((seeds[s] - corner).dot(normal));
+        const auto& tri = mesh.triangles[size_t(piece.triangle)];
+        const double distance =
+            offsetFromTriangle(seeds[s], mesh.vertices[size_t(tri[0])],
+                               mesh.vertices[size_t(tri[1])], mesh.vertices[size_t(tri[2])])
+                .squaredNorm();
         if (distance < homeDistance[s]) {
             homeDistance[s] = distance;
             homeNormal[s] = normal;
         }
     }
+    // Turned by more than 120° from it: the other side of a thin part, not a rough surface's
+    // facets (a scan's noise tilts neighbouring facets by tens of degrees).
     for (const CellPiece& piece : pieces)
-        if (normalOf(piece.triangle).dot(homeNormal[size_t(piece.seed)]) < 0.0)
+        if (normalOf(piece.triangle).dot(homeNormal[size_t(piece.seed)]) < -0.5)
             cells[size_t(piece.seed)].facingAway += piece.area;
     return cells;
 }

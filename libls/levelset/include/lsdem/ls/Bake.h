@@ -30,6 +30,11 @@ enum class NodeLayout {
     Centroidal,  ///< a centroidal Voronoi tessellation of the mesh (CentroidalNodes.h)
 };
 
+/// "auto", "remesh" or "centroidal", as lsdem-bake --node-layout takes them.
+std::string nodeLayoutName(NodeLayout layout);
+/// @throw Error naming the three words if @a name is none of them.
+NodeLayout nodeLayoutNamed(const std::string& name);
+
 struct BakeOptions
 {
     double voxelSize = 0.0;          ///< VDP, > 0, in the mesh's length unit

@@ -22,9 +22,9 @@ struct RestrictedVoronoiCell
     double area = 0.0;              ///< length²
     Vec3 moment = Vec3::Zero();     ///< ∫ x dA over the cell (centroid = moment / area)
     Vec3 normalArea = Vec3::Zero(); ///< ∫ n dA over the cell, n the triangles' unit normals
-    /// Area of the cell on triangles that face away from the seed's own (the cell's triangle
-    /// whose plane passes nearest the seed): the other side of a part thinner than the
-    /// seeds' spacing, owned across it.
+    /// Area of the cell on triangles turned more than 120° from the seed's own (the cell's
+    /// triangle nearest the seed): the other side of a part thinner than the seeds' spacing,
+    /// owned across it.
     double facingAway = 0.0;
 };
 

@@ -57,7 +57,7 @@ namespace {
 /// The node placement and area rule from the keyword arguments shared by every bake_*.
 BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
                         std::optional<int> nodeCount, bool meshNodes, const std::string& areas,
-                        int band)
+                        int band, const std::string& nodeLayout = "auto")
 {
     // Checked here as well as by the bake, whose messages name lsdem-bake's options.
     if (!(voxel > 0.0) || !std::isfinite(voxel))
@@ -95,6 +95,10 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
     if (areas == "mesh") o.areaRule = AreaRule::Mesh;
     else if (areas == "uniform") o.areaRule = AreaRule::Uniform;
     else throw Error("", "areas wants 'mesh' or 'uniform', got '" + areas + "'");
+    if (nodeLayout != "auto" && nodeLayout != "centroidal" && nodeLayout != "remesh")
+        throw Error("", "node_layout wants 'auto', 'centroidal' or 'remesh', got '" + nodeLayout +
+                            "'");
+    o.nodeLayout = nodeLayoutNamed(nodeLayout);
     // Provenance: the call as a script wrote it.
     std::ostringstream text;
     text.precision(17);
@@ -103,6 +107,7 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
     if (nodeCount) text << " nodes=" << *nodeCount;
     if (meshNodes) text << " mesh_nodes=True";
     text << " areas=" << areas << " band=" << band;
+    if (o.nodeLayout != NodeLayout::Automatic) text << " node_layout=" << nodeLayout;
     o.optionsText = text.str();
     return o;
 }
@@ -141,7 +146,7 @@ const char* kBakeKeywords =
     "voxel: level-set voxel size (VDP), in the shape's length unit.\n"
     "node_spacing / nodes: place surface nodes by isotropic remeshing to this spacing (SDP), "
     "or to about this many nodes; give one.\n"
-    "areas: 'mesh' (a third of each incident triangle) or 'uniform' (total area / N).\n"
+    "areas: 'mesh' (each node's own share of the surface) or 'uniform' (total area / N).\n"
     "band: exterior narrow-band width in voxels (the interior is filled).\n"
     "Returns an Asset in its principal frame (centroid at the origin). Warnings that do not "
     "stop the bake arrive as Python UserWarnings; bad input raises lsdem.Error.";
@@ -297,17 +302,24 @@ void bindAssets(py::module_& m)
 
     m.def("bake_mesh",
           [](const std::string& path, double voxel, std::optional<double> nodeSpacing,
-             std::optional<int> nodes, bool meshNodes, const std::string& areas, int band) {
-              const BakeOptions o = bakeOptions(voxel, nodeSpacing, nodes, meshNodes, areas, band);
+             std::optional<int> nodes, bool meshNodes, const std::string& areas, int band,
+             const std::string& nodeLayout) {
+              const BakeOptions o =
+                  bakeOptions(voxel, nodeSpacing, nodes, meshNodes, areas, band, nodeLayout);
               return bakeAndWarn(
                   [&](std::vector<std::string>& w) { return bakeMeshFile(path, o, w); });
           },
           py::arg("path"), py::kw_only(), py::arg("voxel"), py::arg("node_spacing") = py::none(),
           py::arg("nodes") = py::none(), py::arg("mesh_nodes") = false,
           py::arg("areas") = "mesh", py::arg("band") = BakeOptions().exteriorBandVoxels,
+          py::arg("node_layout") = "auto",
           (std::string("Bake the closed mesh in path (OBJ, STL, PLY, or anything assimp "
                        "reads) into an Asset, as lsdem-bake does.\n"
-                       "mesh_nodes=True: use the mesh's own vertices as nodes.\n") +
+                       "mesh_nodes=True: use the mesh's own vertices as nodes.\n"
+                       "node_layout: 'auto' (centroidal unless the mesh has sharp edges), "
+                       "'centroidal' (nodes at the centroids of a centroidal Voronoi "
+                       "tessellation of the mesh; give it for a noisy scan) or 'remesh' (the "
+                       "vertices of the mesh remeshed, sharp edges kept).\n") +
            kBakeKeywords)
               .c_str());
     m.def("bake_sphere",

@@ -91,6 +91,49 @@ def test_bake_mesh_of_a_cube(tmp_path):
     assert phi[0] == pytest.approx(-1.0, abs=1e-3)
 
 
+def uv_sphere_obj(rings, sectors):
+    """A unit sphere as latitude-longitude quads split into triangles, with pole fans (OBJ)."""
+    lines = ["v 0 0 1"]
+    for i in range(1, rings):
+        theta = np.pi * i / rings
+        for j in range(sectors):
+            phi = 2 * np.pi * j / sectors
+            lines.append(f"v {np.sin(theta) * np.cos(phi):.9f} {np.sin(theta) * np.sin(phi):.9f} "
+                         f"{np.cos(theta):.9f}")
+    south = len(lines) + 1
+    lines.append("v 0 0 -1")
+    at = lambda i, j: 2 + (i - 1) * sectors + j % sectors  # 1-based OBJ indices
+    for j in range(sectors):
+        lines.append(f"f 1 {at(1, j)} {at(1, j + 1)}")
+        lines.append(f"f {south} {at(rings - 1, j + 1)} {at(rings - 1, j)}")
+    for i in range(1, rings - 1):
+        for j in range(sectors):
+            lines.append(f"f {at(i, j)} {at(i + 1, j)} {at(i + 1, j + 1)}")
+            lines.append(f"f {at(i, j)} {at(i + 1, j + 1)} {at(i, j + 1)}")
+    return "\n".join(lines) + "\n"
+
+
+def test_bake_mesh_node_layouts(tmp_path):
+    path = tmp_path / "ball.obj"
+    path.write_text(uv_sphere_obj(24, 48))
+    # Laid out centroidally: exactly the nodes asked for, sharing out the mesh's whole area.
+    centroidal = lsdem.bake_mesh(str(path), voxel=0.05, nodes=300, node_layout="centroidal")
+    assert len(centroidal.nodes.areas) == 300
+    remeshed = lsdem.bake_mesh(str(path), voxel=0.05, nodes=300, node_layout="remesh")
+    assert len(remeshed.nodes.areas) != 300
+    assert len(remeshed.nodes.areas) == pytest.approx(300, rel=0.15)
+    # The mesh's area by numpy, from the OBJ's own numbers (the sphere's 4π less the facets').
+    verts = np.array([[float(x) for x in line.split()[1:]]
+                      for line in path.read_text().splitlines() if line.startswith("v ")])
+    faces = np.array([[int(x) - 1 for x in line.split()[1:]]
+                      for line in path.read_text().splitlines() if line.startswith("f ")])
+    a, b, c = verts[faces[:, 0]], verts[faces[:, 1]], verts[faces[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+    assert centroidal.nodes.areas.sum() == pytest.approx(area, rel=1e-6)  # float coordinates
+    with pytest.raises(lsdem.Error, match="node_layout"):
+        lsdem.bake_mesh(str(path), voxel=0.05, nodes=300, node_layout="curvy")
+
+
 def test_sample_shapes_and_threads(sphere):
     rng = np.random.default_rng(7)
     points = rng.uniform(-5.5, 5.5, size=(20000, 3))

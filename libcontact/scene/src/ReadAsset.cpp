@@ -45,6 +45,17 @@ void readBakeKeys(TableReader& t, BakeOptions& b, bool analytic, const std::stri
     const std::string areas = t.choice("areas", {"mesh", "uniform"}, "mesh");
     b.areaRule = areas == "mesh" ? AreaRule::Mesh : AreaRule::Uniform;
     opts << " areas " << areas;
+    if (t.has("node_layout")) {
+        if (analytic)
+            t.fail("node_layout", "applies to meshes: an analytic shape's nodes are remeshed "
+                                  "onto its exact surface", "remove it");
+        if (b.nodePlacement == NodePlacement::MeshVertices)
+            t.fail("node_layout", "has no effect with mesh_nodes = true",
+                   "remove it, or give node_spacing or nodes");
+        const std::string layout = t.choice("node_layout", {"auto", "centroidal", "remesh"}, "auto");
+        b.nodeLayout = nodeLayoutNamed(layout);
+        opts << " node_layout " << layout;
+    }
     b.optionsText = opts.str();
 }
 
@@ -72,7 +83,8 @@ AssetSpec readAsset(const std::string& name, const toml::table& table, const Sce
     if (t.has("file")) {
         a.file = existing("file");
         // A baked asset carries its own voxels and nodes; baking keys would be ignored.
-        for (const char* key : {"voxel", "node_spacing", "nodes", "mesh_nodes", "areas"})
+        for (const char* key :
+             {"voxel", "node_spacing", "nodes", "mesh_nodes", "areas", "node_layout"})
             if (t.has(key))
                 t.fail(key, "has no effect on a baked asset (file = ...)",
                        "remove it, or bake again with lsdem-bake, or use mesh = ... instead");

@@ -139,6 +139,7 @@ void writeBakeKeys(TomlText& t, const BakeOptions& b)
     case NodePlacement::MeshVertices: t.boolean("mesh_nodes", true); break;
     }
     t.string("areas", b.areaRule == AreaRule::Mesh ? "mesh" : "uniform");
+    if (b.nodeLayout != NodeLayout::Automatic) t.string("node_layout", nodeLayoutName(b.nodeLayout));
 }
 
 void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)

@@ -293,6 +293,7 @@ TEST(SceneFile, BadScenesAreRefusedWithLineKeyAndFix)
         {"zero normal", edited("normal = [0, 0, 2]", "normal = [0, 0, 0]"), "normal = [0, 0, 0]", "zero vector"},
         {"inconsistent units", edited("force = \"N\"", "force = \"kN\""), "force = \"kN\"", "inconsistent"},
         {"asset without nodes", edited("nodes = 200\n", ""), "[assets.ball]", "surface nodes"},
+        {"node layout of a shape", edited("nodes = 200", "nodes = 200\nnode_layout = \"centroidal\""), "node_layout", "node_layout: applies to meshes"},
         {"two sources", edited("shape = \"sphere\"", "shape = \"sphere\"\nmesh = \"x.obj\""), "[assets.ball]", "more than one source"},
         {"missing mesh file", edited("shape = \"sphere\"\nradius = 2.0", "mesh = \"nowhere.obj\""), "mesh = ", "file not found"},
         {"fixed grain with velocity", edited("velocity = [1, 0, 0]", "velocity = [1, 0, 0]\nmotion = \"fixed\""), "velocity = [1, 0, 0]", "a fixed grain cannot move"},

@@ -52,6 +52,7 @@ void expectSameScene(const Scene& a, const Scene& b)
             EXPECT_EQ(x.bake.nodeSpacing, y.bake.nodeSpacing);
             EXPECT_EQ(x.bake.nodeCount, y.bake.nodeCount);
             EXPECT_EQ(x.bake.areaRule, y.bake.areaRule);
+            EXPECT_EQ(x.bake.nodeLayout, y.bake.nodeLayout);
         }
     }
     ASSERT_EQ(a.materials.size(), b.materials.size());
@@ -158,7 +159,14 @@ Scene everyFeature(const ScratchDir& dir)
     box.bake.voxelSize = 0.0125;
     box.bake.nodeSpacing = 0.03;
     box.bake.areaRule = AreaRule::Uniform;
-    s.assets = {file, sphere, box};
+    std::ofstream(dir.file("pebble.obj")) << "x";  // (as the .vdb above: not read here)
+    AssetSpec pebble;
+    pebble.name = "pebble";
+    pebble.meshFile = dir.file("pebble.obj");
+    pebble.bake.voxelSize = 0.01;
+    pebble.bake.nodeSpacing = 0.02;
+    pebble.bake.nodeLayout = NodeLayout::Centroidal;
+    s.assets = {file, sphere, box, pebble};
     s.materials = {{"sand", 2650.0}, {"steel \"S355\"", 7850.0}, {"rigid", 0.0}};
     auto contact = [](int a, int b, Formulation f, double kn) {
         ContactSpec c;

@@ -106,6 +106,9 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
 /// The sharp-edge angle of the remesher's feature edges (RemeshOptions::featureAngleDeg).
 constexpr double kSharpEdgeDeg = 30.0;
 
+/// From this many sharp edges on, `auto` warns that they look like noise.
+constexpr size_t kNoisySharpEdges = 1000;
+
 /// Nodes at the centroids of a centroidal Voronoi tessellation of @a mesh, each with its
 /// cell's area and mean normal; none if cells reach across parts thinner than the node
 /// spacing (more than 0.1 % of the surface owned across: its traction would push the wrong
@@ -185,14 +188,25 @@ TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool
     return best;
 }
 
-SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o)
+SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
+                              std::vector<std::string>* warnings)
 {
     if (o.nodePlacement == NodePlacement::MeshVertices) return nodesFromMesh(mesh, o.areaRule);
+    size_t sharpEdges = 0;
     if (o.nodeLayout == NodeLayout::Centroidal ||
-        (o.nodeLayout == NodeLayout::Automatic && !hasSharpEdges(mesh, kSharpEdgeDeg))) {
+        (o.nodeLayout == NodeLayout::Automatic &&
+         (sharpEdges = countSharpEdges(mesh, kSharpEdgeDeg)) == 0)) {
         SurfaceNodes nodes = centroidalNodes(mesh, o);
         if (!nodes.positions.empty()) return nodes;
     }
+    // Thousands of sharp edges are a scan's noise rather than a shape's edges (a box finely
+    // tessellated has hundreds): the remesher keeps every one, slowly.
+    if (warnings && sharpEdges >= kNoisySharpEdges)
+        warnings->push_back(
+            "the mesh has " + std::to_string(sharpEdges) + " sharp edges (over 30 degrees), so "
+            "its nodes are remeshed with each kept as a feature; if they are a scan's noise, "
+            "bake with --node-layout centroidal (node_layout = \"centroidal\"): faster, and "
+            "nodes evenly spread over the surface");
     return nodesFromMesh(nodeSurface(mesh, o, /*keepFineInput=*/true), o.areaRule);
 }
 
@@ -279,7 +293,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
         levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
     });
     try {
-        asset.nodes = placeNodesOnMesh(mesh, options);
+        asset.nodes = placeNodesOnMesh(mesh, options, &warnings);
     } catch (...) {
         levelSetTask.wait();
         throw;

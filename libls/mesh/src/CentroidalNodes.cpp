@@ -84,7 +84,7 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
     return nodes;
 }
 
-bool hasSharpEdges(const TriangleMesh& mesh, double angleDeg)
+size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg)
 {
     // Each edge as (low vertex, high vertex, triangle); sorted, the two triangles of an edge
     // are neighbours.
@@ -110,13 +110,14 @@ bool hasSharpEdges(const TriangleMesh& mesh, double angleDeg)
         return Vec3((mesh.vertices[size_t(tri[1])] - a).cross(mesh.vertices[size_t(tri[2])] - a));
     };
     const double cosAngle = std::cos(angleDeg * kPi / 180.0);
+    size_t sharp = 0;
     for (size_t k = 0; k + 1 < sides.size(); ++k) {
         if (sides[k].low != sides[k + 1].low || sides[k].high != sides[k + 1].high) continue;
         const Vec3 n1 = normalOf(sides[k].triangle), n2 = normalOf(sides[k + 1].triangle);
         const double norms = n1.norm() * n2.norm();
-        if (norms > 0.0 && n1.dot(n2) < cosAngle * norms) return true;
+        if (norms > 0.0 && n1.dot(n2) < cosAngle * norms) ++sharp;
     }
-    return false;
+    return sharp;
 }
 
 } // namespace lsdem

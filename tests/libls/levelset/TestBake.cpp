@@ -275,6 +275,32 @@ TEST(Bake, SmoothMeshesGetCentroidalNodesAndBoxesKeepTheirCorners)
     EXPECT_EQ(corners, 8);
 }
 
+// A sphere mesh with a scan's noise (every vertex moved along its radius at random) has
+// thousands of sharp edges: auto remeshes it, keeping them, and says that centroidal would
+// suit a noisy scan; laid out centroidally it gets the count asked and no such message.
+TEST(Bake, AutoLayoutSaysWhenSharpEdgesLookLikeNoise)
+{
+    TriangleMesh noisy = AnalyticShape::sphere(1.0).surfaceMesh(1.05 / 24);  // 11,520 triangles
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> jitter(-0.02, 0.02);  // edges are about 0.044
+    for (Vec3& v : noisy.vertices) v *= 1.0 + jitter(random);
+    BakeOptions o = spacingOptions(0.05, 0.15);
+    std::vector<std::string> warnings;
+    bakeMesh(noisy, "noisy", o, warnings);
+    auto saysCentroidal = [&] {
+        return std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+            return w.find("--node-layout centroidal") != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(saysCentroidal());
+    warnings.clear();
+    o.nodeLayout = NodeLayout::Centroidal;
+    const GrainAsset a = bakeMesh(noisy, "noisy", o, warnings);
+    EXPECT_FALSE(saysCentroidal());
+    EXPECT_EQ(double(a.nodes.size()),
+              std::round(2.0 * surfaceArea(noisy) / (std::sqrt(3.0) * 0.15 * 0.15)));
+}
+
 TEST(Bake, MeshVerticesPlacementKeepsTheInputVertices)
 {
     test::ScratchDir dir;

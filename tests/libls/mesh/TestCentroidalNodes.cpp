@@ -1,4 +1,4 @@
-// Tests of placeCentroidalNodes and hasSharpEdges: the count, the surface shared out exactly,
+// Tests of placeCentroidalNodes and countSharpEdges: the count, the surface shared out exactly,
 // nodes on the surface with their cells' normals, an even spread, a cap's traction integral
 // against Archimedes' closed form, and the same nodes on any thread count.
 #include "lsdem/mesh/CentroidalNodes.h"
@@ -144,11 +144,13 @@ TEST(CentroidalNodes, AreTheSameOnOneThreadAsOnSeveral)
 
 TEST(CentroidalNodes, SharpEdgesAreABoxsNotASpheres)
 {
-    EXPECT_TRUE(lsdem::hasSharpEdges(lsdem::test::makeBox(Vec3::Zero(), Vec3::Ones()), 30.0));
-    EXPECT_FALSE(lsdem::hasSharpEdges(sphereMesh(3, 1.0), 30.0));
-    // An icosahedron's faces meet at 41.8°: sharp at 30°, not at 45°.
-    EXPECT_TRUE(lsdem::hasSharpEdges(sphereMesh(0, 1.0), 30.0));
-    EXPECT_FALSE(lsdem::hasSharpEdges(sphereMesh(0, 1.0), 45.0));
+    // A box's 12 edges (its faces' diagonals are flat: not sharp).
+    EXPECT_EQ(lsdem::countSharpEdges(lsdem::test::makeBox(Vec3::Zero(), Vec3::Ones()), 30.0), 12u);
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(3, 1.0), 30.0), 0u);
+    // An icosahedron's faces meet at 41.8° (its normals turn by 180° − 138.2°): its 30 edges
+    // are sharp at 30°, none at 45°.
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 30.0), 30u);
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 45.0), 0u);
 }
 
 } // namespace

@@ -67,8 +67,9 @@ TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options
 
 /// The nodes of a bake of @a mesh (in its principal frame), placed as @a options ask: its
 /// vertices, a remeshed surface's or a centroidal tessellation's (NodeLayout). One stage of
-/// bakeMesh.
-SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& options);
+/// bakeMesh; a mesh whose sharp edges look like a scan's noise is named in @a warnings.
+SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& options,
+                              std::vector<std::string>* warnings = nullptr);
 
 /// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
 /// surface. NodePlacement::MeshVertices is refused (there is no input mesh).

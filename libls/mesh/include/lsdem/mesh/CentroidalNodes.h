@@ -7,7 +7,7 @@
 /// The cost grows with the input's triangles and the nodes, not with how far the input's
 /// edges are from the node spacing, which is what makes remeshing slow on fine scans.
 /// Sharp edges are not kept: a node sits where its cell's centroid is, so a shape whose
-/// corners and edges matter (a block) is remeshed instead (hasSharpEdges).
+/// corners and edges matter (a block) is remeshed instead (countSharpEdges).
 #pragma once
 
 #include "lsdem/mesh/RestrictedVoronoi.h"
@@ -36,8 +36,8 @@ struct CentroidalNodes
 CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
                                      const CentroidalNodeOptions& options = {});
 
-/// Whether two triangles of @a mesh that share an edge meet at a dihedral angle over
-/// @a angleDeg (their normals turn by more than that across the edge).
-bool hasSharpEdges(const TriangleMesh& mesh, double angleDeg);
+/// How many edges of @a mesh join two triangles at a dihedral angle over @a angleDeg (their
+/// normals turn by more than that across the edge).
+size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg);
 
 } // namespace lsdem

@@ -32,6 +32,12 @@ inline TriaxialWalls periodicTriaxialCell()
     return w;
 }
 
+/// Wall @a which (0 to 5, in TriaxialWalls' order) of the cell in @a w.
+inline Boundary& wallOf(World& w, const TriaxialWalls& walls, int which)
+{
+    return w.boundaries[size_t(walls.index[size_t(which)])];
+}
+
 /// The two other pairs of walls around the walls of @a axis (0 x, 1 y, 2 z): the rectangle
 /// between them is the area those walls push on (StressServo::areaWalls).
 std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis);

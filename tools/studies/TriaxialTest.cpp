@@ -1,6 +1,7 @@
 #include "studies/TriaxialTest.h"
 
 #include "studies/StudyLimits.h"
+#include "studies/TriaxialPathControl.h"
 
 #include "lsdem/core/Error.h"
 #include "lsdem/core/Stopwatch.h"
@@ -13,41 +14,6 @@
 namespace lsdem {
 
 namespace {
-
-Boundary& wallOf(World& w, const TriaxialWalls& walls, int which)
-{
-    return w.boundaries[size_t(walls.index[size_t(which)])];
-}
-
-/// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed (in a periodic cell: its
-/// axis, at most at the strain rate of two walls at that speed).
-void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialProtocol& p,
-                double maxSpeed)
-{
-    if (walls.periodic) {
-        w.periodic.targetStress[axis] = p.confiningStress;
-        w.periodic.maxStrainRate[axis] = 2.0 * maxSpeed / w.periodic.size[axis];
-        return;
-    }
-    for (int side = 0; side < 2; ++side) {
-        StressServo& s = wallOf(w, walls, 2 * axis + side).servo;
-        s.targetStress = p.confiningStress;
-        s.area = 0.0;
-        s.areaWalls = areaWallsOf(walls, axis);
-        s.gain = p.servoGain;
-        s.maxSpeed = maxSpeed;
-    }
-}
-
-/// The stress the servo of @a axis's walls (or the periodic cell's @a axis) aims at.
-void setTargetStress(World& w, const TriaxialWalls& walls, int axis, double stress)
-{
-    if (walls.periodic) {
-        w.periodic.targetStress[axis] = stress;
-        return;
-    }
-    for (int side = 0; side < 2; ++side) wallOf(w, walls, 2 * axis + side).servo.targetStress = stress;
-}
 
 double& grainFriction(World& w)
 {
@@ -81,12 +47,6 @@ bool withinTolerance(const TriaxialState& s, const TriaxialProtocol& p)
     return true;
 }
 
-/// UnloadReload: where the unloading starts.
-double unloadStrainOf(const TriaxialProtocol& p)
-{
-    return p.unloadStrain > 0.0 ? p.unloadStrain : 0.5 * p.maxAxialStrain;
-}
-
 /// The axial strain the path travels at most.
 double axialTravel(const TriaxialProtocol& p)
 {
@@ -103,130 +63,6 @@ bool monotonic(TriaxialPath path)
 {
     return path != TriaxialPath::UnloadReload && path != TriaxialPath::Cyclic;
 }
-
-/// The walls along the path, step by step: the end walls at ε̇·H₀/2 each, closing (or opening),
-/// the side walls by servo (fast enough for a dilation rate of 2ε̇) or, undrained, moved so the
-/// cell keeps its volume.
-class PathControl
-{
-public:
-    PathControl(World& w, const TriaxialWalls& walls, const TriaxialProtocol& p,
-                const TriaxialState& reference, double dt)
-        : mWorld(w), mWalls(walls), mP(p), mReference(reference), mDt(dt),
-          mEndSpeed(0.5 * p.strainRate * reference.size.z())
-    {
-        for (int axis = 0; axis < 2; ++axis)
-            holdStress(w, walls, axis, p, p.strainRate * reference.size[axis]);
-        setTargetStress(w, walls, 2, 0.0);  // the axis is strained, not servoed
-        if (p.path == TriaxialPath::Undrained)
-            for (int axis = 0; axis < 2; ++axis) setTargetStress(w, walls, axis, 0.0);
-        mDirection = p.path == TriaxialPath::Extension ? -1.0 : 1.0;
-        setWalls(reference);
-    }
-
-    /// After a step, with the cell now in @a now at axial strain @a strain: the walls for the
-    /// next step. False once a path that ends by its strain has ended.
-    bool update(const TriaxialState& now, double strain)
-    {
-        const double direction = mDirection;
-        const bool going = turn(now, strain);
-        turned = mDirection != direction;
-        if (going) setWalls(now);
-        return going;
-    }
-
-    double unloadModulus = 0.0;
-    bool turned = false;  ///< the last update reversed the ends
-
-private:
-    /// The path's phase after a step; false once it has ended.
-    bool turn(const TriaxialState& now, double strain)
-    {
-        const double amplitude = mP.maxAxialStrain;
-        switch (mP.path) {
-        case TriaxialPath::UnloadReload:
-            if (mPhase == 0 && strain >= unloadStrainOf(mP)) {
-                mPhase = 1, mDirection = -1.0, mReversalQ = now.q, mReversalStrain = strain;
-            } else if (mPhase == 1 && (now.q <= 0.1 * mReversalQ || strain <= 0.0)) {
-                if (mReversalStrain > strain)
-                    unloadModulus = (mReversalQ - now.q) / (mReversalStrain - strain);
-                mPhase = 2, mDirection = 1.0;
-            } else if (mPhase == 2 && strain >= amplitude) {
-                return false;
-            }
-            break;
-        case TriaxialPath::Cyclic:
-            if (mDirection > 0.0 && mTurnsAtBottom == mP.cycles && strain >= 0.0) return false;
-            if (mDirection > 0.0 && strain >= amplitude) mDirection = -1.0;
-            if (mDirection < 0.0 && strain <= -amplitude) mDirection = 1.0, ++mTurnsAtBottom;
-            break;
-        default: break;
-        }
-        return true;
-    }
-
-    void setWalls(const TriaxialState& now)
-    {
-        PeriodicCell& cell = mWorld.periodic;
-        if (mWalls.periodic) {  // the height changes at 2·ε̇·H₀/2, as between two end walls
-            cell.strainRate.z() = -mDirection * 2.0 * mEndSpeed / now.size.z();
-        } else {
-            for (int side = 0; side < 2; ++side) {
-                Boundary& b = wallOf(mWorld, mWalls, 4 + side);
-                b.velocity = mDirection * mEndSpeed * b.plane.normal;
-            }
-        }
-        const double sigma3 = mP.confiningStress, axial = now.stress.z();
-        switch (mP.path) {
-        case TriaxialPath::ConstantP:
-            // p = (σ_a + 2σ_r)/3 = σ₃; a servo needs a positive target (0 turns it off).
-            for (int axis = 0; axis < 2; ++axis)
-                setTargetStress(mWorld, mWalls, axis,
-                                std::max(0.5 * (3.0 * sigma3 - axial), 1e-3 * sigma3));
-            break;
-        case TriaxialPath::TrueTriaxial:
-            setTargetStress(mWorld, mWalls, 1, sigma3 + mP.b * (axial - sigma3));
-            break;
-        case TriaxialPath::Undrained:
-            if (mWalls.periodic) {
-                // The cell's next step scales z by 1 + ε̇_z·dt: x and y by its inverse root.
-                const double rate =
-                    (1.0 / std::sqrt(1.0 + cell.strainRate.z() * mDt) - 1.0) / mDt;
-                cell.strainRate.x() = cell.strainRate.y() = rate;
-                break;
-            }
-            moveSidesKeepingTheVolume(now);
-            break;
-        default: break;
-        }
-    }
-
-    /// Undrained between walls: the height after the next step, and the sides' sizes that keep
-    /// L_x·L_y·H (each in proportion to its consolidated size): each side wall moves half the
-    /// difference.
-    void moveSidesKeepingTheVolume(const TriaxialState& now)
-    {
-        const double height = now.size.z() - 2.0 * mDirection * mEndSpeed * mDt;
-        const double scale = std::sqrt(mReference.size.z() / height);
-        for (int axis = 0; axis < 2; ++axis) {
-            const double inward = (now.size[axis] - scale * mReference.size[axis]) / (2.0 * mDt);
-            for (int side = 0; side < 2; ++side) {
-                Boundary& b = wallOf(mWorld, mWalls, 2 * axis + side);
-                b.velocity = inward * b.plane.normal;
-            }
-        }
-    }
-
-    World& mWorld;
-    const TriaxialWalls& mWalls;
-    const TriaxialProtocol& mP;
-    const TriaxialState& mReference;
-    double mDt, mEndSpeed;
-    double mDirection = 1.0;
-    int mPhase = 0;           ///< UnloadReload: 0 loading, 1 unloading, 2 reloading
-    int mTurnsAtBottom = 0;   ///< Cyclic: turns at −A so far
-    double mReversalQ = 0.0, mReversalStrain = 0.0;
-};
 
 } // namespace
 
@@ -342,7 +178,7 @@ void shearTriaxial(Simulation& sim, const TriaxialWalls& walls, const TriaxialPr
     const Stopwatch shearClock;
     record(first);
     grainFriction(w) = p.friction;
-    PathControl control(w, walls, p, reference, sim.timeStep());
+    TriaxialPathControl control(w, walls, p, reference, sim.timeStep());
     const long long recordEvery = std::max(1LL, shearSteps / p.records);
     const long long shearStart = w.step;
     // A monotonic path runs its steps; the others until their strain says they are done (at

@@ -15,37 +15,6 @@ namespace lsdem {
 
 namespace {
 
-/// Remove the nodes @a nodes (ascending, each in one of the runs) from the runs [begin, end)
-/// of @a runs (ascending), splitting a run where a node leaves its middle. The runs are built
-/// in this thread's buffer and copied back, so a pair allocates only when its runs outgrow
-/// what it holds.
-void leaveOut(std::vector<std::pair<int, int>>& runs, const std::vector<int>& nodes)
-{
-    thread_local std::vector<std::pair<int, int>> kept;
-    kept.clear();
-    size_t k = 0;
-    for (auto [begin, end] : runs) {
-        for (; k < nodes.size() && nodes[k] < end; ++k) {
-            if (nodes[k] > begin) kept.emplace_back(begin, nodes[k]);
-            begin = nodes[k] + 1;
-        }
-        if (begin < end) kept.emplace_back(begin, end);
-    }
-    runs.assign(kept.begin(), kept.end());
-}
-
-/// Remove from @a cells (ascending by node) those of the nodes @a nodes (ascending).
-void leaveOut(std::vector<CandidateBlocks::SampledCell>& cells, const std::vector<int>& nodes)
-{
-    size_t kept = 0, k = 0;
-    for (const CandidateBlocks::SampledCell& c : cells) {
-        while (k < nodes.size() && nodes[k] < c.node) ++k;
-        if (k < nodes.size() && nodes[k] == c.node) continue;
-        cells[kept++] = c;
-    }
-    cells.resize(kept);
-}
-
 /// One call of findNodeContacts: grain A's nodes against B's level set at one pose of the
 /// pair, in phases. The whole grain, then clusters and blocks, then single nodes are culled
 /// by B's bounding sphere and the box outside which φ_B ≥ 0; the nodes left are sampled. With
@@ -330,8 +299,8 @@ private:
             visit(begin, end);
         }
         if (mLeftOut && !mLeftOut->empty()) {
-            leaveOut(c.runs, *mLeftOut);
-            leaveOut(nextCells, *mLeftOut);
+            leaveOutNodes(c.runs, *mLeftOut);
+            leaveOutNodes(nextCells, *mLeftOut);
         }
         // Copied, not swapped: a swap would hand this pair the thread's buffer, grown by the
         // largest pair it served, and thousands of pairs would each end up that large.

@@ -248,3 +248,25 @@ TEST(CandidateBlocks, HoldsOnlyWhileEveryNodeMovedLessThanTheMargin)
     EXPECT_FALSE(c.holds(turn, Vec3::Zero(), 1.002));
     EXPECT_FALSE(c.holds(turn, Vec3(0.001, 0, 0), 1.0));
 }
+
+// Nodes left out of the remembered runs (found in contact, so walked in full next time).
+TEST(CandidateBlocks, NodesLeftOutSplitTheirRunsAndDropTheirCells)
+{
+    // Runs [0, 5) and [10, 12); leaving out 0 (a run's first), 2 (its middle), 4 (its last)
+    // and 11 (the other's last) leaves [1, 2), [3, 4) and [10, 11).
+    std::vector<std::pair<int, int>> runs{{0, 5}, {10, 12}};
+    lsdem::leaveOutNodes(runs, {0, 2, 4, 11});
+    const std::vector<std::pair<int, int>> expected{{1, 2}, {3, 4}, {10, 11}};
+    EXPECT_EQ(runs, expected);
+
+    std::vector<lsdem::CandidateBlocks::SampledCell> cells(5);
+    for (int k = 0; k < 5; ++k) cells[size_t(k)].node = 2 * k;  // nodes 0, 2, 4, 6, 8
+    lsdem::leaveOutNodes(cells, {1, 2, 8});
+    ASSERT_EQ(cells.size(), 3u);
+    EXPECT_EQ(cells[0].node, 0);
+    EXPECT_EQ(cells[1].node, 4);
+    EXPECT_EQ(cells[2].node, 6);
+
+    lsdem::leaveOutNodes(runs, {});  // nothing left out: unchanged
+    EXPECT_EQ(runs, expected);
+}

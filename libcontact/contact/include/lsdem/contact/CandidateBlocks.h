@@ -87,6 +87,13 @@ struct CandidateBlocks
     }
 };
 
+/// Remove the nodes @a nodes (ascending, each in one of the runs) from the runs [begin, end)
+/// of @a runs (ascending), splitting a run where a node leaves its middle.
+void leaveOutNodes(std::vector<std::pair<int, int>>& runs, const std::vector<int>& nodes);
+
+/// Remove from @a cells (ascending by node) those of the nodes @a nodes (ascending).
+void leaveOutNodes(std::vector<CandidateBlocks::SampledCell>& cells, const std::vector<int>& nodes);
+
 /// Both directions of a grain pair: the first grain's nodes near the second, and back.
 struct PairCandidates
 {

@@ -40,6 +40,7 @@ struct BakeCommandLine
     long long nodeCount = 0;
     std::string areas = "mesh";
     std::string nodeLayout = "auto";
+    CLI::Option* nodeLayoutOption = nullptr;
     std::string outputPath;
     bool quiet = false;
     // Batch mode (--out-dir): many files, sizes relative to each grain.
@@ -108,7 +109,7 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
                         ->group(nodes);
     c.meshNodesOption = app.add_flag("--mesh-nodes", "at the input mesh's own vertices")
                             ->group(nodes);
-    app.add_option("--node-layout", c.nodeLayout,
+    c.nodeLayoutOption = app.add_option("--node-layout", c.nodeLayout,
                    "how a mesh's nodes are placed: 'centroidal' (each node at the\n"
                    "centroid of its Voronoi cell on the mesh; fast on fine scans),\n"
                    "'remesh' (the vertices of the mesh remeshed, sharp edges kept),\n"
@@ -207,6 +208,13 @@ void checkAndResolve(BakeCommandLine& c, const std::optional<lsdem::AnalyticShap
         o.nodeCount = int(c.nodeCount);
     }
     o.nodeLayout = lsdem::nodeLayoutNamed(c.nodeLayout);
+    // Said rather than ignored, as a scene says it.
+    if (c.nodeLayoutOption->count() && shape)
+        throw Error("", "--node-layout applies to meshes: an analytic shape's nodes are "
+                        "remeshed onto its exact surface", "drop --node-layout");
+    if (c.nodeLayoutOption->count() && c.meshNodesOption->count())
+        throw Error("", "--node-layout has no effect with --mesh-nodes",
+                    "drop --node-layout, or give --node-spacing or --nodes");
     if (c.areas == "mesh") o.areaRule = lsdem::AreaRule::Mesh;
     else if (c.areas == "uniform") o.areaRule = lsdem::AreaRule::Uniform;
     else throw Error("", "--areas wants 'mesh' or 'uniform', got '" + c.areas + "'");

@@ -99,6 +99,9 @@ BakeOptions bakeOptions(double voxel, std::optional<double> nodeSpacing,
         throw Error("", "node_layout wants 'auto', 'centroidal' or 'remesh', got '" + nodeLayout +
                             "'");
     o.nodeLayout = nodeLayoutNamed(nodeLayout);
+    if (meshNodes && o.nodeLayout != NodeLayout::Automatic)
+        throw Error("", "node_layout has no effect with mesh_nodes=True",
+                    "drop node_layout, or give node_spacing or nodes");
     // Provenance: the call as a script wrote it.
     std::ostringstream text;
     text.precision(17);
@@ -144,8 +147,8 @@ struct NodesHandle
 
 const char* kBakeKeywords =
     "voxel: level-set voxel size (VDP), in the shape's length unit.\n"
-    "node_spacing / nodes: place surface nodes by isotropic remeshing to this spacing (SDP), "
-    "or to about this many nodes; give one.\n"
+    "node_spacing / nodes: place surface nodes about this far apart (SDP), or about this many "
+    "nodes; give one.\n"
     "areas: 'mesh' (each node's own share of the surface) or 'uniform' (total area / N).\n"
     "band: exterior narrow-band width in voxels (the interior is filled).\n"
     "Returns an Asset in its principal frame (centroid at the origin). Warnings that do not "

@@ -155,9 +155,12 @@ TEST(CommandLineTools, BakeLaysOutAMeshsNodesAsAsked)
     // (The OBJ's coordinates are read back as floats: 1e-6 relative.)
     EXPECT_NEAR(centroidal["node_area_sum"].get<double>(), surfaceArea(sphere),
                 1e-6 * surfaceArea(sphere));
+    // Remeshed: about 300 nodes on the remeshed surface, a polyhedron of about 600 triangles
+    // whose area falls short of the input's by far more than round-off (its edges are ten
+    // times the input's: the sagitta lost is about 1 % of the area).
     const nlohmann::json remeshed = nodesOf("remesh");
-    EXPECT_NE(remeshed["node_count"], 300);
     EXPECT_NEAR(remeshed["node_count"].get<double>(), 300.0, 0.15 * 300);
+    EXPECT_LT(remeshed["node_area_sum"].get<double>(), (1.0 - 1e-3) * surfaceArea(sphere));
 }
 
 TEST(CommandLineTools, BakeRefusesBadInputCleanly)
@@ -198,6 +201,10 @@ TEST(CommandLineTools, BakeRefusesBadInputCleanly)
         {"bad area rule", "", "--sphere 1 --voxel 0.1 --nodes 100 --areas maybe", "--areas"},
         {"bad node layout", "", "--sphere 1 --voxel 0.1 --nodes 100 --node-layout curvy",
          "--node-layout"},
+        {"node layout of a shape", "", "--sphere 1 --voxel 0.1 --nodes 100 --node-layout remesh",
+         "applies to meshes"},
+        {"node layout with mesh nodes", "", "$D/cube.obj --voxel 0.05 --mesh-nodes --node-layout remesh",
+         "--mesh-nodes"},
         {"unknown option", "", "--sphere 1 --voxel 0.1 --nodes 100 --colour red", "--colour"},
         {"no placement", "", "--sphere 1 --voxel 0.1", "--node-spacing"},
         {"mesh nodes, no mesh", "", "--sphere 1 --voxel 0.1 --mesh-nodes", "mesh"},

@@ -119,7 +119,8 @@ void readAssetSet(const std::string& name, const toml::table& table, Scene& scen
     if (set.meshes) {
         readBakeKeys(t, set.bake, false, "scene " + scene.path + " asset set " + name);
     } else {
-        for (const char* key : {"voxel", "node_spacing", "nodes", "mesh_nodes", "areas"})
+        for (const char* key :
+             {"voxel", "node_spacing", "nodes", "mesh_nodes", "areas", "node_layout"})
             if (t.has(key))
                 t.fail(key, "has no effect on baked assets",
                        "remove it, or use glob = \"meshes/*.stl\" to bake meshes at load");

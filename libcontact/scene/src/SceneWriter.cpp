@@ -130,7 +130,7 @@ std::string pathFrom(const std::string& directory, const std::string& file)
 }
 
 
-void writeBakeKeys(TomlText& t, const BakeOptions& b)
+void writeBakeKeys(TomlText& t, const BakeOptions& b, bool forMesh)
 {
     t.number("voxel", b.voxelSize);
     switch (b.nodePlacement) {
@@ -139,7 +139,10 @@ void writeBakeKeys(TomlText& t, const BakeOptions& b)
     case NodePlacement::MeshVertices: t.boolean("mesh_nodes", true); break;
     }
     t.string("areas", b.areaRule == AreaRule::Mesh ? "mesh" : "uniform");
-    if (b.nodeLayout != NodeLayout::Automatic) t.string("node_layout", nodeLayoutName(b.nodeLayout));
+    // (For a mesh's nodes only: the reader refuses it for a shape or with mesh_nodes.)
+    if (b.nodeLayout != NodeLayout::Automatic && b.nodePlacement != NodePlacement::MeshVertices &&
+        forMesh)
+        t.string("node_layout", nodeLayoutName(b.nodeLayout));
 }
 
 void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)
@@ -174,7 +177,7 @@ void writeAsset(TomlText& t, const AssetSpec& a, const std::string& directory)
         throw Error(a.where, "asset '" + a.name + "' has no source",
                     "give it a file, a mesh or a shape");
     }
-    writeBakeKeys(t, a.bake);
+    writeBakeKeys(t, a.bake, !a.meshFile.empty());
 }
 
 void writeContact(TomlText& t, const Scene& scene, const ContactSpec& c)
@@ -342,7 +345,7 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
         t.table("asset_sets." + TomlText::key(s.name));
         if (!s.catalog.empty()) t.string("catalog", pathFrom(sceneDirectory, s.catalog));
         else t.string("glob", pathFrom(sceneDirectory, s.glob));
-        if (s.meshes) writeBakeKeys(t, s.bake);
+        if (s.meshes) writeBakeKeys(t, s.bake, true);
     }
     for (const MaterialSpec& m : scene.materials) {
         t.table("materials." + TomlText::key(m.name));

@@ -103,8 +103,8 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
     }
 }
 
-/// The sharp-edge angle of the remesher's feature edges (RemeshOptions::featureAngleDeg).
-constexpr double kSharpEdgeDeg = 30.0;
+/// The sharp-edge angle of the remesher's feature edges: a mesh with none gets centroidal nodes.
+const double kSharpEdgeDeg = RemeshOptions{}.featureAngleDeg;
 
 /// From this many sharp edges on, `auto` warns that they look like noise.
 constexpr size_t kNoisySharpEdges = 1000;
@@ -112,7 +112,9 @@ constexpr size_t kNoisySharpEdges = 1000;
 /// Nodes at the centroids of a centroidal Voronoi tessellation of @a mesh, each with its
 /// cell's area and mean normal; none if cells reach across parts thinner than the node
 /// spacing (more than 0.1 % of the surface owned across: its traction would push the wrong
-/// way), which the remesher, following the mesh's edges, does not misread.
+/// way, and a cell straddling a thin rim can have no mean normal at all), which the
+/// remesher, following the mesh's edges, does not misread. Exactly the count asked, unless
+/// two nodes fell on one point (the second is dropped: never seen).
 SurfaceNodes centroidalNodes(const TriangleMesh& mesh, const BakeOptions& o)
 {
     const double area = surfaceArea(mesh);
@@ -129,6 +131,7 @@ SurfaceNodes centroidalNodes(const TriangleMesh& mesh, const BakeOptions& o)
         const RestrictedVoronoiCell& cell = placed.cells[i];
         facingAway += cell.facingAway;
         if (!(cell.area > 0.0)) continue;  // (two nodes at one point: the first owns it)
+        if (!(cell.normalArea.norm() > 1e-6 * cell.area)) return {};
         nodes.positions.push_back(placed.positions[i]);
         nodes.normals.push_back(cell.normalArea.normalized());
         nodes.areas.push_back(cell.area);
@@ -192,21 +195,27 @@ SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
                               std::vector<std::string>* warnings)
 {
     if (o.nodePlacement == NodePlacement::MeshVertices) return nodesFromMesh(mesh, o.areaRule);
-    size_t sharpEdges = 0;
+    const size_t sharpEdges =
+        o.nodeLayout == NodeLayout::Automatic ? countSharpEdges(mesh, kSharpEdgeDeg) : 0;
     if (o.nodeLayout == NodeLayout::Centroidal ||
-        (o.nodeLayout == NodeLayout::Automatic &&
-         (sharpEdges = countSharpEdges(mesh, kSharpEdgeDeg)) == 0)) {
+        (o.nodeLayout == NodeLayout::Automatic && sharpEdges == 0)) {
         SurfaceNodes nodes = centroidalNodes(mesh, o);
         if (!nodes.positions.empty()) return nodes;
+        if (warnings)
+            warnings->push_back("the mesh has parts thinner than the node spacing, across "
+                                "which the centroidal layout's cells would reach, so its nodes "
+                                "are remeshed instead (the node count is then about, not "
+                                "exactly, the one asked)");
     }
     // Thousands of sharp edges are a scan's noise rather than a shape's edges (a box finely
     // tessellated has hundreds): the remesher keeps every one, slowly.
     if (warnings && sharpEdges >= kNoisySharpEdges)
         warnings->push_back(
-            "the mesh has " + std::to_string(sharpEdges) + " sharp edges (over 30 degrees), so "
-            "its nodes are remeshed with each kept as a feature; if they are a scan's noise, "
-            "bake with --node-layout centroidal (node_layout = \"centroidal\"): faster, and "
-            "nodes evenly spread over the surface");
+            "the mesh has " + std::to_string(sharpEdges) + " sharp edges (over " +
+            std::to_string(int(kSharpEdgeDeg)) + " degrees), so its nodes are remeshed with "
+            "each kept as a feature; if they are a scan's noise, bake with --node-layout "
+            "centroidal (node_layout = \"centroidal\"): faster, and nodes evenly spread over "
+            "the surface");
     return nodesFromMesh(nodeSurface(mesh, o, /*keepFineInput=*/true), o.areaRule);
 }
 

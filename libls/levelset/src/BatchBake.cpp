@@ -141,7 +141,9 @@ std::string batchOptionsText(const BatchBakeOptions& o)
     case NodePlacement::MeshVertices: text += " mesh-nodes"; break;
     }
     text += b.areaRule == AreaRule::Mesh ? " areas mesh" : " areas uniform";
-    if (b.nodeLayout != NodeLayout::Automatic) text += " node-layout " + nodeLayoutName(b.nodeLayout);
+    // Always named: "auto" chose remeshing alone before the centroidal layout, so a catalogue
+    // written then is baked again once rather than kept with the other layout's nodes.
+    text += " node-layout " + nodeLayoutName(b.nodeLayout);
     text += " band " + std::to_string(b.exteriorBandVoxels);
     return text;
 }

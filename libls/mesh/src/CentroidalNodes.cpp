@@ -18,7 +18,8 @@ namespace lsdem {
 
 namespace {
 
-/// Uniform in [0, 1) from draw @a k of the stream @a base (counter-based: no state to seed).
+/// Uniform in [0, 1) from draw @a k of the stream @a base: SplitMix64 of a counter, a
+/// counter-based generator (no state to seed, and draw k needs no draw before it).
 double uniformDraw(uint64_t base, uint64_t k)
 {
     return double(splitMix64(base + k) >> 11) * 0x1.0p-53;

@@ -71,18 +71,20 @@ public:
         const int rings = std::max({mDims[0], mDims[1], mDims[2]});
         for (int ring = 0; ring <= rings; ++ring) {
             for (int z = c.z() - ring; z <= c.z() + ring; ++z)
-                for (int y = c.y() - ring; y <= c.y() + ring; ++y)
-                    for (int x = c.x() - ring; x <= c.x() + ring; ++x) {
-                        const bool shell = std::max({std::abs(x - c.x()), std::abs(y - c.y()),
-                                                     std::abs(z - c.z())}) == ring;
-                        if (!shell || x < 0 || y < 0 || z < 0 || x >= mDims[0] ||
-                            y >= mDims[1] || z >= mDims[2])
+                for (int y = c.y() - ring; y <= c.y() + ring; ++y) {
+                    // The ring's shell only: every x on its faces in z and y, else its two ends.
+                    const bool face = std::abs(z - c.z()) == ring || std::abs(y - c.y()) == ring;
+                    const int step = face || ring == 0 ? 1 : 2 * ring;
+                    for (int x = c.x() - ring; x <= c.x() + ring; x += step) {
+                        if (x < 0 || y < 0 || z < 0 || x >= mDims[0] || y >= mDims[1] ||
+                            z >= mDims[2])
                             continue;
                         const int f = flat(x, y, z);
                         for (int k = mStart[size_t(f)]; k < mStart[size_t(f) + 1]; ++k)
                             best2 = std::min(best2, (mSeeds[size_t(mItems[size_t(k)])] - p)
                                                         .squaredNorm());
                     }
+                }
             // Seeds beyond this ring are at least ring cells away from p.
             if (best2 <= (ring * mCell) * (ring * mCell)) break;
         }
@@ -153,12 +155,12 @@ void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seed
     if (!(twiceArea > 0.0)) return;
     const Vec3 normal = cross / twiceArea;
     const Vec3 centroid = (a + b + c) / 3.0;
-    const double reach = std::max({(a - centroid).norm(), (b - centroid).norm(),
-                                   (c - centroid).norm()});
+    const double triangleReach = std::max({(a - centroid).norm(), (b - centroid).norm(),
+                                           (c - centroid).norm()});
     // A point x of the triangle is owned by a seed no farther than the centroid's nearest
-    // seed s0 is from x: |x − s0| ≤ d0 + reach. So an owner is within d0 + 2·reach of the
-    // centroid, and no seed farther can own anything here.
-    const double radius = grid.nearestDistance(centroid) + 2.0 * reach;
+    // seed s0 is from x: |x − s0| ≤ d0 + triangleReach. So an owner is within
+    // d0 + 2·triangleReach of the centroid, and no seed farther can own anything here.
+    const double radius = grid.nearestDistance(centroid) + 2.0 * triangleReach;
     candidates.clear();
     grid.forEachWithin(centroid, radius * (1.0 + 1e-12), [&](int s) {
         candidates.emplace_back((seeds[size_t(s)] - centroid).squaredNorm(), s);
@@ -167,6 +169,7 @@ void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seed
     for (const auto& [unused, i] : candidates) {
         const Vec3& pi = seeds[size_t(i)];
         poly.assign({a, b, c});
+        // How far the polygon left reaches from the seed, squared.
         double reach2 = std::max({(a - pi).squaredNorm(), (b - pi).squaredNorm(),
                                   (c - pi).squaredNorm()});
         bool left = true;
@@ -210,8 +213,11 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& me
     // Cells about the seeds' spacing: a few seeds in each.
     const double area = std::max(surfaceArea(mesh), std::numeric_limits<double>::min());
     const SeedGrid grid(seeds, bounds[0], bounds[1], 1.5 * std::sqrt(area / double(seeds.size())));
+    // Chunks of a fixed share of the triangles (not of the threads): the same pieces in the
+    // same order on any thread count, and a coarse mesh holding many seeds still split.
+    const size_t chunk = std::clamp<size_t>(mesh.triangles.size() / 64, 16, 2048);
     const std::vector<CellPiece> pieces = collectInOrder<CellPiece>(
-        mesh.triangles.size(), 2048, [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
+        mesh.triangles.size(), chunk, [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
             std::vector<std::pair<double, int>> candidates;
             std::vector<Vec3> poly, scratch;
             for (size_t t = begin; t < end; ++t)

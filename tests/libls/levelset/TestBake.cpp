@@ -301,6 +301,22 @@ TEST(Bake, AutoLayoutSaysWhenSharpEdgesLookLikeNoise)
               std::round(2.0 * surfaceArea(noisy) / (std::sqrt(3.0) * 0.15 * 0.15)));
 }
 
+// A plate thinner than the node spacing: centroidal cells would reach through it (a node on
+// one face owning the other's area, its traction pushing the wrong way), so even when the
+// centroidal layout is asked for, the bake remeshes and says why.
+TEST(Bake, APlateThinnerThanTheSpacingIsRemeshedWithAWarning)
+{
+    BakeOptions o = spacingOptions(0.004, 0.1);
+    o.nodeLayout = NodeLayout::Centroidal;
+    std::vector<std::string> warnings;
+    const GrainAsset a =
+        bakeMesh(AnalyticShape::box(1.0, 1.0, 0.02).surfaceMesh(0.5), "plate", o, warnings);
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+        return w.find("thinner than the node spacing") != std::string::npos;
+    }));
+    EXPECT_NEAR(a.nodes.totalArea(), 2.0 + 4 * 0.02, 1e-6);  // remeshed: the box's faces, flat
+}
+
 TEST(Bake, MeshVerticesPlacementKeepsTheInputVertices)
 {
     test::ScratchDir dir;

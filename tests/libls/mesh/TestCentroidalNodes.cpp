@@ -65,8 +65,8 @@ TEST(CentroidalNodes, ShareASphereEvenlyWithTheirCellsAreasAndNormals)
     EXPECT_LT(worstRadius, sag * (1.0 + 1e-9));
     // A cell's mean normal is its patch's: radial to within a small angle (1° here).
     EXPECT_GT(worstNormal, std::cos(kPi / 180.0));
-    // Even: the areas of a centroidal tessellation of a sphere vary by a few per cent (the
-    // remesher's vertex areas: about 20 %, BM_BakeFamilyNodes).
+    // Even: the areas of a centroidal tessellation vary by about 10 % after three Lloyd steps
+    // (9.5 % on the bench family; the remesher's vertex areas 20-26 %, BM_BakeFamilyNodes).
     const double mean = sum / double(count);
     EXPECT_LT(std::sqrt(sum2 / double(count) - mean * mean) / mean, 0.12);
 }
@@ -120,7 +120,8 @@ TEST(CentroidalNodes, IntegrateAPlanesPenetrationAsWellAsTheRemeshersVertices)
     const double remeshedRms = std::sqrt(remeshed2 / directions);
     RecordProperty("centroidal_rms_error", std::to_string(centroidalRms));
     RecordProperty("remeshed_rms_error", std::to_string(remeshedRms));
-    EXPECT_LE(centroidalRms, remeshedRms);
+    // As good: within a tenth of the remesher's error (measured below it).
+    EXPECT_LE(centroidalRms, 1.1 * remeshedRms);
     // The cap (radius √(2Rδ) ≈ 1.6, about 33 nodes) is integrated to 1 % (measured: 0.43 %,
     // the remesher's vertices 0.49 %).
     EXPECT_LT(centroidalRms, 0.01);
@@ -136,9 +137,12 @@ TEST(CentroidalNodes, AreTheSameOnOneThreadAsOnSeveral)
     }
     const CentroidalNodes several = lsdem::placeCentroidalNodes(sphere, 1500);
     ASSERT_EQ(single.positions.size(), several.positions.size());
+    // (On a machine of one core both runs are one-threaded and this shows nothing.)
     for (size_t i = 0; i < single.positions.size(); ++i) {
         EXPECT_EQ(single.positions[i], several.positions[i]) << i;
         EXPECT_EQ(single.cells[i].area, several.cells[i].area) << i;
+        EXPECT_EQ(single.cells[i].normalArea, several.cells[i].normalArea) << i;
+        EXPECT_EQ(single.cells[i].facingAway, several.cells[i].facingAway) << i;
     }
 }
 

@@ -137,6 +137,7 @@ TEST(RestrictedVoronoi, GiveTheSameBitsOnOneThreadAsOnSeveral)
         EXPECT_EQ(single[s].area, several[s].area) << s;
         EXPECT_EQ(single[s].moment, several[s].moment) << s;
         EXPECT_EQ(single[s].normalArea, several[s].normalArea) << s;
+        EXPECT_EQ(single[s].facingAway, several[s].facingAway) << s;
     }
 }
 

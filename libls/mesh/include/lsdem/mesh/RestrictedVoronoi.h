@@ -22,9 +22,11 @@ struct RestrictedVoronoiCell
     double area = 0.0;              ///< length²
     Vec3 moment = Vec3::Zero();     ///< ∫ x dA over the cell (centroid = moment / area)
     Vec3 normalArea = Vec3::Zero(); ///< ∫ n dA over the cell, n the triangles' unit normals
-    /// Area of the cell on triangles turned more than 120° from the seed's own (the cell's
-    /// triangle nearest the seed): the other side of a part thinner than the seeds' spacing,
-    /// owned across it.
+    /// Area of the cell on triangles turned more than 120° from the seed's own: the other
+    /// side of a part thinner than the seeds' spacing, owned across it. The seed's own
+    /// triangle is the cell's triangle nearest to it (the one it lies on): neither the cell's
+    /// mean normal (zero for a cell shared equally by a plate's two faces) nor the plane
+    /// nearest the seed (a far facet's plane can pass through it) tells the sides apart.
     double facingAway = 0.0;
 };
 

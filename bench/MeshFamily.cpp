@@ -117,4 +117,13 @@ FamilyMesh familyMesh(int index)
     throw std::out_of_range("familyMesh: no member " + std::to_string(index));
 }
 
+BakeOptions familyBakeOptions()
+{
+    BakeOptions o;
+    o.voxelSize = 0.05;
+    o.nodePlacement = NodePlacement::Spacing;
+    o.nodeSpacing = 0.12;
+    return o;
+}
+
 } // namespace lsdem::bench

@@ -4,6 +4,7 @@
 ///        inputs nobody tuned for). None is used to tune anything alone.
 #pragma once
 
+#include "lsdem/ls/Bake.h"
 #include "lsdem/mesh/TriangleMesh.h"
 
 #include <string>
@@ -30,5 +31,8 @@ constexpr int kFamilySize = 7;
 ///  6 noisy      — the grain with a scan's noise: vertices moved ±0.03 along their radius,
 ///                 so thousands of edges are sharp (over 30°)
 FamilyMesh familyMesh(int index);
+
+/// The bake settings for the family (a grain of size 10): VDP 0.05, SDP 0.12.
+BakeOptions familyBakeOptions();
 
 } // namespace lsdem::bench

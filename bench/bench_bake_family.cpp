@@ -22,16 +22,6 @@ using namespace lsdem::bench;
 
 namespace {
 
-/// The settings for a grain of size 10: VDP 0.05, SDP 0.12.
-BakeOptions familyOptions()
-{
-    BakeOptions o;
-    o.voxelSize = 0.05;
-    o.nodePlacement = NodePlacement::Spacing;
-    o.nodeSpacing = 0.12;
-    return o;
-}
-
 /// Member @a index in its principal frame, as bakeMesh has it before its stages (made once).
 const FamilyMesh& framedMember(int index)
 {
@@ -49,7 +39,7 @@ const FamilyMesh& framedMember(int index)
 void BM_BakeFamily(benchmark::State& state)
 {
     const FamilyMesh member = familyMesh(int(state.range(0)));
-    BakeOptions o = familyOptions();
+    BakeOptions o = familyBakeOptions();
     o.nodeLayout = state.range(1) == 0 ? NodeLayout::Automatic : NodeLayout::Centroidal;
     double peak = 0, grid = 0, nodes = 0, spacing = 0, area = 0;
     for (auto _ : state) {
@@ -81,7 +71,7 @@ BENCHMARK(BM_BakeFamily)->ArgsProduct({benchmark::CreateDenseRange(0, kFamilySiz
 void BM_BakeFamilyNodes(benchmark::State& state)
 {
     const FamilyMesh& member = framedMember(int(state.range(0)));
-    BakeOptions o = familyOptions();
+    BakeOptions o = familyBakeOptions();
     o.nodeLayout = state.range(1) == 0 ? NodeLayout::Remesh : NodeLayout::Centroidal;
     SurfaceNodes nodes;
     double peak = 0;
@@ -111,7 +101,7 @@ BENCHMARK(BM_BakeFamilyNodes)->ArgsProduct({benchmark::CreateDenseRange(0, kFami
 void BM_BakeFamilyLevelSet(benchmark::State& state)
 {
     const FamilyMesh& member = framedMember(int(state.range(0)));
-    const BakeOptions o = familyOptions();
+    const BakeOptions o = familyBakeOptions();
     double peak = 0, grid = 0;
     for (auto _ : state) {
         resetPeakRss();

@@ -42,15 +42,6 @@ const GrainAsset& sphereAsset()
 }
 
 
-BakeOptions pebbleOptions()
-{
-    BakeOptions o;
-    o.voxelSize = 0.05;  // R/100
-    o.nodePlacement = NodePlacement::Spacing;
-    o.nodeSpacing = 0.12;
-    return o;
-}
-
 /// The 100k-triangle pebble in its principal frame, as bakeMesh has it before the stages.
 const TriangleMesh& framedPebble()
 {
@@ -68,7 +59,7 @@ const TriangleMesh& framedPebble()
 void BM_BakeMesh100kTriangles(benchmark::State& state)
 {
     const TriangleMesh mesh = familyMesh(0).mesh;  // the pebble, 100,820 triangles
-    const BakeOptions o = pebbleOptions();
+    const BakeOptions o = familyBakeOptions();
     size_t nodes = 0;
     double peak = 0, grid = 0;
     for (auto _ : state) {
@@ -127,7 +118,7 @@ double gridHash(const LevelSetBricks& grid)
 void BM_BakeStageLevelSet(benchmark::State& state)
 {
     const TriangleMesh& mesh = framedPebble();
-    const BakeOptions o = pebbleOptions();
+    const BakeOptions o = familyBakeOptions();
     double peak = 0, grid = 0, active = 0, hash = 0;
     for (auto _ : state) {
         resetPeakRss();
@@ -151,7 +142,7 @@ BENCHMARK(BM_BakeStageLevelSet)->Unit(benchmark::kMillisecond)->Iterations(1)->M
 void BM_BakeStageRemesh(benchmark::State& state)
 {
     const TriangleMesh& mesh = framedPebble();
-    const BakeOptions o = pebbleOptions();
+    const BakeOptions o = familyBakeOptions();
     size_t vertices = 0;
     double peak = 0;
     for (auto _ : state) {
@@ -167,7 +158,7 @@ BENCHMARK(BM_BakeStageRemesh)->Unit(benchmark::kMillisecond)->Iterations(1)->Mea
 
 void BM_BakeStageAreas(benchmark::State& state)
 {
-    const TriangleMesh surface = nodeSurface(framedPebble(), pebbleOptions(), true);
+    const TriangleMesh surface = nodeSurface(framedPebble(), familyBakeOptions(), true);
     for (auto _ : state) {
         SurfaceNodes nodes = nodesFromMesh(surface, AreaRule::Mesh);
         sortNodesSpatially(nodes, 0.05);

@@ -67,6 +67,7 @@ void printJson(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& 
                              {"max", number(r.spacing.max)}};
         o["node_area_sum"] = number(r.nodeAreaSum);
         o["area_rule"] = a.areaRule == lsdem::AreaRule::Mesh ? "mesh" : "uniform";
+        o["node_layout"] = a.provenance.nodeLayout;
         o["max_abs_phi_at_nodes_voxels"] = number(r.maxAbsPhiAtNodesVoxels);
         o["volume"] = number(a.mass.volume);
         o["centroid"] = vec(a.mass.centroid);
@@ -106,7 +107,9 @@ void printText(const lsdem::InspectionTarget& t, const lsdem::InspectionReport& 
     if (t.asset) {
         const auto& a = *t.asset;
         std::printf("nodes\n");
-        std::printf("  count             %zu\n", r.nodeCount);
+        std::printf("  count             %zu (%s)\n", r.nodeCount,
+                    a.provenance.nodeLayout.empty() ? "layout not recorded"
+                                                    : a.provenance.nodeLayout.c_str());
         std::printf("  spacing           mean %.5g, min %.5g, max %.5g (VDP/SDP = %.3f)\n",
                     r.spacing.mean, r.spacing.min, r.spacing.max, r.voxelSize / r.spacing.mean);
         std::printf("  area sum          %.6g (%s rule; level set area %+.3f %%)\n", r.nodeAreaSum,

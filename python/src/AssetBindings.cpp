@@ -258,6 +258,11 @@ void bindAssets(py::module_& m)
             },
             "How node areas were set: 'mesh' or 'uniform'.")
         .def_property_readonly(
+            "node_layout", [](const AssetHandle& a) { return a.asset->provenance.nodeLayout; },
+            "How the nodes were placed: 'centroidal', 'remesh', 'mesh vertices', 'remesh, "
+            "projected' (a sphere or ellipsoid), 'face grids' (a box); '' for an asset baked "
+            "before it was recorded.")
+        .def_property_readonly(
             "input_frame",
             [](const AssetHandle& a) {
                 py::dict d;

@@ -119,8 +119,10 @@ def test_bake_mesh_node_layouts(tmp_path):
     # Laid out centroidally: exactly the nodes asked for, sharing out the mesh's whole area.
     centroidal = lsdem.bake_mesh(str(path), voxel=0.05, nodes=300, node_layout="centroidal")
     assert len(centroidal.nodes.areas) == 300
+    assert centroidal.node_layout == "centroidal"
     remeshed = lsdem.bake_mesh(str(path), voxel=0.05, nodes=300, node_layout="remesh")
     assert len(remeshed.nodes.areas) == pytest.approx(300, rel=0.15)
+    assert remeshed.node_layout == "remesh"
     # The mesh's area by numpy, from the OBJ's own numbers (the sphere's 4π less the facets').
     verts = np.array([[float(x) for x in line.split()[1:]]
                       for line in path.read_text().splitlines() if line.startswith("v ")])

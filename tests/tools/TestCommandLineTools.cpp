@@ -152,6 +152,7 @@ TEST(CommandLineTools, BakeLaysOutAMeshsNodesAsAsked)
     };
     const nlohmann::json centroidal = nodesOf("centroidal");
     EXPECT_EQ(centroidal["node_count"], 300);
+    EXPECT_EQ(centroidal["node_layout"], "centroidal");
     // (The OBJ's coordinates are read back as floats: 1e-6 relative.)
     EXPECT_NEAR(centroidal["node_area_sum"].get<double>(), surfaceArea(sphere),
                 1e-6 * surfaceArea(sphere));
@@ -160,6 +161,7 @@ TEST(CommandLineTools, BakeLaysOutAMeshsNodesAsAsked)
     // times the input's: the sagitta lost is about 1 % of the area).
     const nlohmann::json remeshed = nodesOf("remesh");
     EXPECT_NEAR(remeshed["node_count"].get<double>(), 300.0, 0.15 * 300);
+    EXPECT_EQ(remeshed["node_layout"], "remesh");
     EXPECT_LT(remeshed["node_area_sum"].get<double>(), (1.0 - 1e-3) * surfaceArea(sphere));
 }
 

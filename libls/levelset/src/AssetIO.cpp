@@ -36,6 +36,7 @@ void writeMetadata(openvdb::GridBase& grid, const GrainAsset& asset)
     grid.insertMeta("source", openvdb::StringMetadata(asset.provenance.source));
     grid.insertMeta("source_sha256", openvdb::StringMetadata(asset.provenance.sourceSha256));
     grid.insertMeta("bake_options", openvdb::StringMetadata(asset.provenance.options));
+    grid.insertMeta("node_layout", openvdb::StringMetadata(asset.provenance.nodeLayout));
     grid.insertMeta("voxel_size", openvdb::DoubleMetadata(asset.voxelSize));
     grid.insertMeta("grid_origin", openvdb::Vec3DMetadata(toVdb(asset.levelSet->origin)));
     grid.insertMeta("exterior_band_voxels", openvdb::Int32Metadata(asset.exteriorBandVoxels));
@@ -315,6 +316,9 @@ void readAssetMetadata(const openvdb::FloatGrid& phi, GrainAsset& asset, const s
     asset.provenance.source = readMeta<std::string>(phi, "source", path);
     asset.provenance.sourceSha256 = readMeta<std::string>(phi, "source_sha256", path);
     asset.provenance.options = readMeta<std::string>(phi, "bake_options", path);
+    // Recorded since 2026-11-28: an earlier asset has none (and stays valid).
+    if (const auto layout = phi.getMetadata<openvdb::StringMetadata>("node_layout"))
+        asset.provenance.nodeLayout = layout->value();
 }
 
 } // namespace

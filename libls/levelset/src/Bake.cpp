@@ -192,15 +192,24 @@ TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& o, bool
 }
 
 SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
-                              std::vector<std::string>* warnings)
+                              std::vector<std::string>* warnings, std::string* layoutUsed)
 {
-    if (o.nodePlacement == NodePlacement::MeshVertices) return nodesFromMesh(mesh, o.areaRule);
+    auto used = [layoutUsed](const char* layout) {
+        if (layoutUsed) *layoutUsed = layout;
+    };
+    if (o.nodePlacement == NodePlacement::MeshVertices) {
+        used("mesh vertices");
+        return nodesFromMesh(mesh, o.areaRule);
+    }
     const size_t sharpEdges =
         o.nodeLayout == NodeLayout::Automatic ? countSharpEdges(mesh, kSharpEdgeDeg) : 0;
     if (o.nodeLayout == NodeLayout::Centroidal ||
         (o.nodeLayout == NodeLayout::Automatic && sharpEdges == 0)) {
         SurfaceNodes nodes = centroidalNodes(mesh, o);
-        if (!nodes.positions.empty()) return nodes;
+        if (!nodes.positions.empty()) {
+            used("centroidal");
+            return nodes;
+        }
         if (warnings)
             warnings->push_back("the mesh has parts thinner than the node spacing, across "
                                 "which the centroidal layout's cells would reach, so its nodes "
@@ -216,6 +225,7 @@ SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
             "each kept as a feature; if they are a scan's noise, bake with --node-layout "
             "centroidal (node_layout = \"centroidal\"): faster, and nodes evenly spread over "
             "the surface");
+    used("remesh");
     return nodesFromMesh(nodeSurface(mesh, o, /*keepFineInput=*/true), o.areaRule);
 }
 
@@ -302,7 +312,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
         levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);
     });
     try {
-        asset.nodes = placeNodesOnMesh(mesh, options, &warnings);
+        asset.nodes = placeNodesOnMesh(mesh, options, &warnings, &asset.provenance.nodeLayout);
     } catch (...) {
         levelSetTask.wait();
         throw;
@@ -365,12 +375,14 @@ GrainAsset bakeAnalytic(const AnalyticShape& shape, const BakeOptions& options,
                              ? std::sqrt(shape.surfaceArea() / options.nodeCount)
                              : options.nodeSpacing;
         surface = shape.surfaceMesh(h);
+        asset.provenance.nodeLayout = "face grids";
     } else {
         const double h = options.nodePlacement == NodePlacement::Count
                              ? edgeLengthForNodeCount(shape.surfaceArea(), options.nodeCount)
                              : options.nodeSpacing;
         surface = nodeSurface(shape.surfaceMesh(0.5 * h), options, false);  // fine seed
         for (Vec3& v : surface.vertices) v = shape.closestSurfacePoint(v);
+        asset.provenance.nodeLayout = "remesh, projected";
     }
     asset.nodes = nodesFromMesh(surface, options.areaRule);
     for (size_t i = 0; i < asset.nodes.size(); ++i)

@@ -52,6 +52,8 @@ void expectSameAsset(const GrainAsset& a, const GrainAsset& b, bool withNormals 
     EXPECT_EQ(a.provenance.sourceSha256, b.provenance.sourceSha256);
     EXPECT_EQ(a.provenance.options, b.provenance.options);
     EXPECT_EQ(a.provenance.lsdemVersion, b.provenance.lsdemVersion);
+    EXPECT_EQ(a.provenance.nodeLayout, "remesh, projected");  // an ellipsoid's
+    EXPECT_EQ(a.provenance.nodeLayout, b.provenance.nodeLayout);
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
     for (size_t i = 0; i < a.nodes.size(); ++i) {
         EXPECT_EQ(a.nodes.positions[i], b.nodes.positions[i]) << i;
@@ -365,4 +367,14 @@ TEST(AssetIO, ForeignLevelSetIsNotMistakenForAnAsset)
 TEST(AssetIO, UnwritableFolderFails)
 {
     EXPECT_THROW(saveAsset(smallAsset(), "/nonexistent-folder-lsdem/grain.vdb"), Error);
+}
+
+// An asset written before the node layout was recorded (the fuzz corpus keeps one, baked
+// 2026-11-26) loads, its layout unknown.
+TEST(AssetIO, AnAssetFromBeforeTheNodeLayoutWasRecordedLoads)
+{
+    const auto asset =
+        loadAsset(std::string(LSDEM_SOURCE_DIR) + "/fuzz/corpus/asset/sphere-r1-voxel0.2.vdb");
+    EXPECT_GT(asset->nodes.size(), 0u);
+    EXPECT_EQ(asset->provenance.nodeLayout, "");
 }

@@ -252,6 +252,7 @@ TEST(Bake, SmoothMeshesGetCentroidalNodesAndBoxesKeepTheirCorners)
     std::vector<std::string> warnings;
     const GrainAsset s = bakeMesh(sphere, "sphere", spacingOptions(0.2, 0.5), warnings);
     const double area = surfaceArea(sphere);
+    EXPECT_EQ(s.provenance.nodeLayout, "centroidal");
     EXPECT_EQ(double(s.nodes.size()), std::round(2.0 * area / (std::sqrt(3.0) * 0.25)));
     EXPECT_NEAR(s.nodes.totalArea(), area, 1e-12 * area);
     for (size_t i = 0; i < s.nodes.size(); ++i)  // cells' mean normals: radial within 2°
@@ -265,6 +266,7 @@ TEST(Bake, SmoothMeshesGetCentroidalNodesAndBoxesKeepTheirCorners)
     const GrainAsset b =
         bakeMesh(AnalyticShape::box(1, 2, 3).surfaceMesh(0.5), "box", spacingOptions(0.1, 0.2),
                  warnings);
+    EXPECT_EQ(b.provenance.nodeLayout, "remesh");
     int corners = 0;
     for (const Vec3& p : b.nodes.positions) {
         std::array<double, 3> sorted{std::abs(p.x()), std::abs(p.y()), std::abs(p.z())};
@@ -315,6 +317,7 @@ TEST(Bake, APlateThinnerThanTheSpacingIsRemeshedWithAWarning)
         return w.find("thinner than the node spacing") != std::string::npos;
     }));
     EXPECT_NEAR(a.nodes.totalArea(), 2.0 + 4 * 0.02, 1e-6);  // remeshed: the box's faces, flat
+    EXPECT_EQ(a.provenance.nodeLayout, "remesh");
 }
 
 TEST(Bake, MeshVerticesPlacementKeepsTheInputVertices)

@@ -67,9 +67,11 @@ TriangleMesh nodeSurface(const TriangleMesh& surface, const BakeOptions& options
 
 /// The nodes of a bake of @a mesh (in its principal frame), placed as @a options ask: its
 /// vertices, a remeshed surface's or a centroidal tessellation's (NodeLayout). One stage of
-/// bakeMesh; a mesh whose sharp edges look like a scan's noise is named in @a warnings.
+/// bakeMesh; a mesh whose sharp edges look like a scan's noise is named in @a warnings, and
+/// the layout used ("centroidal", "remesh", "mesh vertices") put in @a layoutUsed.
 SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& options,
-                              std::vector<std::string>* warnings = nullptr);
+                              std::vector<std::string>* warnings = nullptr,
+                              std::string* layoutUsed = nullptr);
 
 /// Bake an analytic shape with its exact signed distance; nodes are projected onto the exact
 /// surface. NodePlacement::MeshVertices is refused (there is no input mesh).

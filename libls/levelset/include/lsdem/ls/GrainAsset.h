@@ -30,6 +30,10 @@ struct AssetProvenance
     std::string sourceSha256;  ///< SHA-256 of the input file's bytes ("" for analytic shapes)
     std::string options;       ///< the bake options, as given
     std::string lsdemVersion;  ///< version of lsdem that baked it
+    /// How the nodes were placed: "centroidal", "remesh" (a mesh remeshed), "mesh vertices",
+    /// "remesh, projected" (a curved analytic shape), "face grids" (an analytic box); "" for
+    /// assets baked before it was recorded.
+    std::string nodeLayout;
 };
 
 struct GrainAsset

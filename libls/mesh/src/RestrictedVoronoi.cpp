@@ -203,12 +203,49 @@ void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seed
     }
 }
 
+/// @a mesh with each triangle larger than @a largest split into n² equal ones in its own
+/// plane (corners not shared: the cells need no connectivity). A triangle holding many seeds
+/// costs the square of their number to clip; its parts cost a few each.
+TriangleMesh splitLargeTriangles(const TriangleMesh& mesh, double largest)
+{
+    TriangleMesh split;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
+                   &c = mesh.vertices[size_t(tri[2])];
+        const int n = std::max(1, int(std::ceil(std::sqrt(triangleArea(mesh, int(t)) / largest))));
+        const int first = int(split.vertices.size());
+        // Vertex (i, j) = a + (i/n)(b − a) + (j/n)(c − a), i + j ≤ n, row by row in i.
+        std::vector<int> rowStart(size_t(n) + 2, first);
+        for (int i = 0; i <= n; ++i) {
+            rowStart[size_t(i)] = int(split.vertices.size());
+            for (int j = 0; i + j <= n; ++j)
+                split.vertices.push_back(a + (double(i) / n) * (b - a) + (double(j) / n) * (c - a));
+        }
+        auto at = [&](int i, int j) { return rowStart[size_t(i)] + j; };
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; i + j < n; ++j) {
+                split.triangles.push_back({at(i, j), at(i + 1, j), at(i, j + 1)});
+                if (i + j + 1 < n) split.triangles.push_back({at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+            }
+    }
+    return split;
+}
+
 } // namespace
 
-std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& mesh,
+std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& input,
                                                           const std::vector<Vec3>& seeds)
 {
     if (seeds.empty()) throw Error("", "restricted Voronoi cells need at least one seed");
+    // Triangles larger than two cells are split first (their pieces are the same polygons).
+    const double cellArea = surfaceArea(input) / double(seeds.size());
+    TriangleMesh refined;
+    bool large = false;
+    for (int t = 0; t < int(input.triangles.size()) && !large; ++t)
+        large = triangleArea(input, t) > 2.0 * cellArea;
+    if (large) refined = splitLargeTriangles(input, 2.0 * cellArea);
+    const TriangleMesh& mesh = large ? refined : input;
     const auto bounds = meshBounds(mesh);
     // Cells about the seeds' spacing: a few seeds in each.
     const double area = std::max(surfaceArea(mesh), std::numeric_limits<double>::min());

@@ -58,15 +58,17 @@ TEST(RestrictedVoronoi, SeedsAtTheCentresOfAGridOwnTheirSquares)
     }
 }
 
-TEST(RestrictedVoronoi, CellsOnASphereMatchABruteForceCountOfNearestSeeds)
+/// The cells of @a seedCount random seeds on an icosphere of @a levels subdivisions against a
+/// brute-force count of a million points' nearest seeds.
+void expectCellsMatchABruteForceCount(int levels, int seedCount)
 {
-    const TriangleMesh sphere = lsdem::test::makeIcosphere(4);  // 5120 triangles
-    const std::vector<Vec3> seeds = randomDirections(40, 7);
+    const TriangleMesh sphere = lsdem::test::makeIcosphere(levels);
+    const std::vector<Vec3> seeds = randomDirections(seedCount, 7);
     const std::vector<RestrictedVoronoiCell> cells = restrictedVoronoiCells(sphere, seeds);
 
     // The reference: a million points spread uniformly over the mesh's triangles, each given
-    // to its nearest seed by checking every seed. A cell of about 1/40 of the area gets about
-    // 25,000 points: the count's relative standard error is about 0.6 %.
+    // to its nearest seed by checking every seed. A cell gets about a million / seedCount
+    // points; its count's standard error is its square root.
     std::vector<double> triangleAreas;
     double total = 0.0;
     for (int t = 0; t < int(sphere.triangles.size()); ++t) {
@@ -99,6 +101,18 @@ TEST(RestrictedVoronoi, CellsOnASphereMatchABruteForceCountOfNearestSeeds)
         EXPECT_GT(cells[s].normalArea.normalized().dot(seeds[s]), 0.9) << s;
     }
     EXPECT_NEAR(sum, total, 1e-12 * total);  // the cells share out the whole surface
+}
+
+TEST(RestrictedVoronoi, CellsOnASphereMatchABruteForceCountOfNearestSeeds)
+{
+    expectCellsMatchABruteForceCount(4, 40);  // 5120 triangles, many to a cell
+}
+
+// Triangles larger than two cells are split before clipping (so a coarse mesh holding many
+// seeds costs as many clips as a fine one): the cells are the same polygons.
+TEST(RestrictedVoronoi, ACoarseMeshHoldingManySeedsGivesTheSameCells)
+{
+    expectCellsMatchABruteForceCount(1, 200);  // 80 triangles of 2.5 cells each: split
 }
 
 TEST(RestrictedVoronoi, APartThinnerThanTheSpacingIsOwnedAcrossAndReported)

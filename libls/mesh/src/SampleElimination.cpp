@@ -1,7 +1,8 @@
 #include "lsdem/mesh/SampleElimination.h"
 
 #include "lsdem/core/Error.h"
-#include "lsdem/core/PointHashGrid.h"
+
+#include "PointBins.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,10 +85,11 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
         return x4 * x4;  // Yuksel's exponent 8
     };
 
-    const PointHashGrid grid(candidates, reach);
+    const Vec3 none = candidates.front();  // (the bins widen their box to hold every point)
+    const PointBins bins(candidates, none, none, reach);
     std::vector<double> weight(candidates.size(), 0.0);
     auto forNeighbours = [&](int i, auto&& visit) {
-        grid.around(grid.cellOf(candidates[size_t(i)]), [&](int j) {
+        bins.forEachWithin(candidates[size_t(i)], reach, [&](int j) {
             if (j == i) return;
             const double d = (candidates[size_t(j)] - candidates[size_t(i)]).norm();
             if (d < reach) visit(j, d);

@@ -84,6 +84,11 @@ double restitutionOfImpact(double ratio, double exponent)
         }
         x = xNext;
         v = vNext;
+        // Leaving, with the force let go: the body coasts out at this speed, exactly (the
+        // spring's share against the dashpot's, x^((p+1)/2) / (2β·sqrt(p)·|x'|), only falls as
+        // x does at a constant x', so the force never takes hold again). A heavily damped
+        // impact would otherwise creep out over thousands of steps.
+        if (v < 0.0 && x > 0.0 && acceleration(x, v, ratio, exponent) == 0.0) return -v;
     }
     return 0.0;
 }

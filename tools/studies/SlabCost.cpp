@@ -3,6 +3,8 @@
 #include "studies/RunSchedule.h"
 #include "studies/SlabModel.h"
 
+#include "lsdem/mesh/MeshRemesh.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -11,10 +13,6 @@
 namespace lsdem {
 
 namespace {
-
-/// Nodes on a block surface of area @a area remeshed at edge length @a sdp (equilateral
-/// triangles, two per vertex).
-double nodesForSpacing(double area, double sdp) { return 2.0 * area / (std::sqrt(3.0) * sdp * sdp); }
 
 /// "a to b min" or "a min".
 std::string minutes(double least, double most)
@@ -43,7 +41,7 @@ SlabRunCost slabRunCost(const SlabStudyOptions& o, const SlabCase& run)
     // leaves room for a little load.
     const double secondsPerNodeStep = 20e-9;
     SlabRunCost c;
-    c.nodes = nodesForSpacing(area, run.sdp);
+    c.nodes = nodeCountForEdgeLength(area, run.sdp);  // a block remeshed at the SDP
     const ContactModel model = slabContactModel(o, run.formulation);
     const double face =
         model.normal().patchStiffness(model.normalStiffness, panel.sharedFaceArea(), area / c.nodes);

@@ -94,7 +94,7 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
     if (o.nodeSpacing < finest) {
         std::ostringstream msg, fix;
         msg << "a node spacing of " << o.nodeSpacing << " would place about "
-            << 2.0 * area / (std::sqrt(3.0) * o.nodeSpacing * o.nodeSpacing)
+            << nodeCountForEdgeLength(area, o.nodeSpacing)
             << " nodes on a surface of area " << area << ", over the limit of "
             << double(kMaxNodeCount);
         fix << "use node_spacing " << finest << " or larger (lsdem-bake --node-spacing; check "
@@ -122,8 +122,7 @@ SurfaceNodes centroidalNodes(const TriangleMesh& mesh, const BakeOptions& o)
     const size_t count =
         o.nodePlacement == NodePlacement::Count
             ? size_t(o.nodeCount)
-            : size_t(std::max(4.0, std::round(2.0 * area / (std::sqrt(3.0) * o.nodeSpacing *
-                                                              o.nodeSpacing))));
+            : size_t(std::max(4.0, std::round(nodeCountForEdgeLength(area, o.nodeSpacing))));
     const CentroidalNodes placed = placeCentroidalNodes(mesh, count);
     SurfaceNodes nodes;
     double facingAway = 0.0;

@@ -6,12 +6,13 @@
 #include "lsdem/mesh/ClosestPointGrid.h"
 #include "lsdem/mesh/SampleElimination.h"
 
+#include "MeshEdgeUses.h"
+
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <utility>
 
 namespace lsdem {
@@ -87,24 +88,7 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
 
 size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg)
 {
-    // Each edge as (low vertex, high vertex, triangle); sorted, the two triangles of an edge
-    // are neighbours.
-    struct EdgeSide
-    {
-        int low, high, triangle;
-        bool operator<(const EdgeSide& o) const
-        {
-            return std::tie(low, high, triangle) < std::tie(o.low, o.high, o.triangle);
-        }
-    };
-    std::vector<EdgeSide> sides;
-    sides.reserve(3 * mesh.triangles.size());
-    for (size_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const int u = mesh.triangles[t][size_t(k)], v = mesh.triangles[t][size_t((k + 1) % 3)];
-            sides.push_back({std::min(u, v), std::max(u, v), int(t)});
-        }
-    std::sort(sides.begin(), sides.end());
+    const std::vector<EdgeUse> uses = collectEdgeUses(mesh);
     auto normalOf = [&mesh](int t) {
         const auto& tri = mesh.triangles[size_t(t)];
         const Vec3& a = mesh.vertices[size_t(tri[0])];
@@ -112,9 +96,9 @@ size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg)
     };
     const double cosAngle = std::cos(angleDeg * kPi / 180.0);
     size_t sharp = 0;
-    for (size_t k = 0; k + 1 < sides.size(); ++k) {
-        if (sides[k].low != sides[k + 1].low || sides[k].high != sides[k + 1].high) continue;
-        const Vec3 n1 = normalOf(sides[k].triangle), n2 = normalOf(sides[k + 1].triangle);
+    for (size_t k = 0; k + 1 < uses.size(); ++k) {
+        if (uses[k].key != uses[k + 1].key) continue;  // (a closed mesh's edge has two uses)
+        const Vec3 n1 = normalOf(uses[k].triangle), n2 = normalOf(uses[k + 1].triangle);
         const double norms = n1.norm() * n2.norm();
         if (norms > 0.0 && n1.dot(n2) < cosAngle * norms) ++sharp;
     }

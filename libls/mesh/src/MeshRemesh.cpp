@@ -267,4 +267,9 @@ double edgeLengthForNodeCount(double area, int nodeCount)
     return std::sqrt(2.0 * area / (std::sqrt(3.0) * nodeCount));
 }
 
+double nodeCountForEdgeLength(double area, double edgeLength)
+{
+    return 2.0 * area / (std::sqrt(3.0) * edgeLength * edgeLength);
+}
+
 } // namespace lsdem

@@ -1,5 +1,6 @@
 #include "lsdem/mesh/MeshValidation.h"
 
+#include "MeshEdgeUses.h"
 #include "MeshPartCrossing.h"
 
 #include "lsdem/core/Constants.h"
@@ -19,14 +20,6 @@
 namespace lsdem {
 
 namespace {
-
-/// One triangle's use of an undirected edge.
-struct EdgeUse
-{
-    std::uint64_t key;  ///< (lower vertex << 32) | higher vertex
-    int triangle;
-    bool forward;  ///< the triangle runs along the edge from the lower to the higher vertex
-};
 
 /// A triangle across an edge, and whether both run along that edge the same way.
 struct Neighbour
@@ -93,24 +86,6 @@ int removeDegenerateTriangles(TriangleMesh& mesh, const std::string& source)
     const int removed = count - static_cast<int>(kept.size());
     mesh.triangles = std::move(kept);
     return removed;
-}
-
-/// Every edge use of every triangle, sorted so the uses of one edge are adjacent.
-std::vector<EdgeUse> collectEdgeUses(const TriangleMesh& mesh)
-{
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * mesh.triangles.size());
-    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const auto a = static_cast<std::uint32_t>(mesh.triangles[t][k]);
-            const auto b = static_cast<std::uint32_t>(mesh.triangles[t][(k + 1) % 3]);
-            const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            uses.push_back({key, t, a < b});
-        }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-        return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
-    });
-    return uses;
 }
 
 /// Refuse open or non-manifold surfaces; otherwise return each triangle's three neighbours.

@@ -32,4 +32,8 @@ TriangleMesh remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
 /// near-equilateral triangles (each vertex owns two triangles of area sqrt(3)/4 h^2).
 double edgeLengthForNodeCount(double area, int nodeCount);
 
+/// Its inverse: about how many vertices near-equilateral triangles of edge @a edgeLength
+/// place on a surface of area @a area, 2A/(√3·h²) (what a node spacing, the SDP, asks for).
+double nodeCountForEdgeLength(double area, double edgeLength);
+
 } // namespace lsdem

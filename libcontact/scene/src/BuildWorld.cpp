@@ -227,17 +227,15 @@ void placeInPeriodicCell(const Scene& scene, World& w)
     if (!w.periodic.active()) return;
     double largest = 0.0;
     for (const Grain& g : w.grains) largest = std::max(largest, g.asset->boundingRadius);
-    // Two grains reach 2·r + the contact list's skin (at most r/4): twice that fits the cell.
-    const double least = 4.5 * largest;
-    w.periodic.leastSize = least;
-    for (int a = 0; a < 3; ++a)
-        if (w.periodic.periodic(a) && w.periodic.size[a] < least)
-            throw Error(scene.path,
-                        std::string("[simulation] periodic_cell: the period along ") + "xyz"[a] +
-                            " (" + numberText(w.periodic.size[a]) +
-                            ") is less than 4.5 times the largest grain's bounding radius (" +
-                            numberText(largest) + "): a grain could touch two images of another",
-                        "make the cell at least " + numberText(least) + " along " + "xyz"[a]);
+    w.periodic.leastSize = PeriodicCell::kLeastSizeOverRadius * largest;
+    const int a = w.periodic.axisBelowLeastSize(w.periodic.size);
+    if (a >= 0)
+        throw Error(scene.path,
+                    std::string("[simulation] periodic_cell: the period along ") + "xyz"[a] +
+                        " (" + numberText(w.periodic.size[a]) + ") is " +
+                        w.periodic.leastSizeProblem(),
+                    "make the cell at least " + numberText(w.periodic.leastSize) + " along " +
+                        "xyz"[a]);
     for (Grain& g : w.grains) g.body.pose.position += w.periodic.shiftInto(g.body.pose.position);
 }
 

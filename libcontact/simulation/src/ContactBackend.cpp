@@ -23,7 +23,7 @@ void computeContactSlot(const ContactBatch& batch, size_t k, ContactScratch& scr
         ContactGrain image;
         const bool shifted = !s.periods.isZero(0.0);
         if (shifted) {
-            const Vec3 shift = s.periods.cwiseProduct(w.periodic.size);
+            const Vec3 shift = w.periodic.imageShift(s.periods);
             image = batch.grains[s.second];
             image.pose.position += shift;
             // (A deforming cell carries its images along: they move with its faces.)

@@ -160,7 +160,7 @@ std::vector<ShiftedPair> candidatePairs(const World& w, const std::vector<Vec3>&
     std::vector<Vec3> all = centers;
     std::vector<double> allRadii = radii;
     for (const Image& image : images) {
-        all.push_back(centers[size_t(image.grain)] + image.periods.cwiseProduct(w.periodic.size));
+        all.push_back(centers[size_t(image.grain)] + w.periodic.imageShift(image.periods));
         allRadii.push_back(radii[size_t(image.grain)]);
     }
     for (const GrainPair& p : findCandidatePairs(all, allRadii, skin)) {

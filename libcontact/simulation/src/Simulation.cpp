@@ -98,19 +98,18 @@ void Simulation::step()
     const Vec3 stretch = Vec3::Ones() + dt * cell.strainRate;
     if (cell.deforming()) {
         const Vec3 size = cell.size.cwiseProduct(stretch);
-        for (int a = 0; a < 3; ++a)
-            if (cell.periodic(a) && size[a] < cell.leastSize)
-                throw Error("", std::string("the periodic cell would be strained to ") +
-                                    numberText(size[a]) + " along " + "xyz"[a] +
-                                    ", less than 4.5 times the largest grain's bounding radius (" +
-                                    numberText(cell.leastSize) +
-                                    "): a grain could touch two images of another",
-                            "start from a larger cell (more grains), or strain it less");
+        const int a = cell.axisBelowLeastSize(size);
+        if (a >= 0)
+            throw Error("", std::string("the periodic cell would be strained to ") +
+                                numberText(size[a]) + " along " + "xyz"[a] + ", " +
+                                cell.leastSizeProblem(),
+                        "start from a larger cell (more grains), or strain it less");
         cell.size = size;
     }
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
     // A ghost is moved by its owner (and brought here before the forces).
+    const bool wraps = cell.active(), deforms = cell.deforming();
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         if (!integratesGrain(i)) return;
         Grain& g = mWorld.grains[i];
@@ -126,8 +125,8 @@ void Simulation::step()
         case GrainMotion::Fixed: break;
         }
         // In a periodic cell a grain leaving through a face comes back through the other.
-        if (cell.active() && g.motion != GrainMotion::Fixed) {
-            if (cell.deforming()) {
+        if (wraps && g.motion != GrainMotion::Fixed) {
+            if (deforms) {
                 g.body.pose.position = cell.origin + (g.body.pose.position - cell.origin).cwiseProduct(stretch);
                 g.wrapShift = g.wrapShift.cwiseProduct(stretch);
             }

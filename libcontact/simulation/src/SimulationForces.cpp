@@ -154,11 +154,12 @@ void Simulation::updateContactList()
     mViews.resize(size_t(n));
     // (Split by space, a grain's index is its global one: the contact laws break ties by it.)
     const std::vector<int>* ids = mGhosts ? &mGhosts->globalIds() : nullptr;
+    const bool deforming = w.periodic.deforming();
     tbb::parallel_for(0, n, [&](int i) {
         const Grain& g = w.grains[size_t(i)];
         mViews[size_t(i)] = contactView(g, ids ? (*ids)[size_t(i)] : i);
         // In a deforming periodic cell a grain moves with the cell's affine motion too.
-        if (w.periodic.deforming() && g.motion != GrainMotion::Fixed)
+        if (deforming && g.motion != GrainMotion::Fixed)
             mViews[size_t(i)].velocity += w.periodic.affineVelocity(g.body.pose.position);
     });
     mBoundaryViews.clear();

@@ -45,9 +45,10 @@ void Simulation::measureCell()
         const Vec3& first = mWorld.grains[size_t(s.first)].body.pose.position;
         if (s.boundary < 0) {
             const Vec3 branch = mWorld.grains[size_t(s.second)].body.pose.position +
-                                s.periods.cwiseProduct(cell.size) - first;
-            moment += branch.cwiseProduct(f);
-            loveWeber += branch.cwiseProduct(f);
+                                cell.imageShift(s.periods) - first;
+            const Vec3 term = branch.cwiseProduct(f);
+            moment += term;
+            loveWeber += term;
         } else {
             moment -= (first - cell.origin).cwiseProduct(f);
             loveWeber += (s.result.centre - first).cwiseProduct(f);
@@ -93,7 +94,7 @@ std::vector<ContactRecord> Simulation::contactRecords() const
         r.first = s.first;
         if (k < mContacts.pairSlotCount()) {
             r.second = s.second;
-            r.shift = s.periods.cwiseProduct(mWorld.periodic.size);
+            r.shift = mWorld.periodic.imageShift(s.periods);
         } else
             r.boundary = s.boundary;
         r.force = s.result.forceOnFirst;

@@ -28,19 +28,38 @@ struct Consolidated
     TriaxialTestResult result;
 };
 
+/// The bundled sand at SDP 0.15: @a grains of it on the study's lattice (seed 1), as the
+/// study builds its world, between walls or in a periodic cell.
+struct SandSample
+{
+    TriaxialOptions options;
+    TriaxialAssets assets;
+    World world;
+};
+SandSample sandSample(long long grains, bool periodic)
+{
+    SandSample s;
+    TriaxialOptions& o = s.options;
+    o.meshes = {std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand"};
+    o.sdps = {0.15};
+    o.grains = grains;
+    o.periodic = periodic;
+    const std::vector<std::string> files = triaxialMeshFiles(o);
+    s.assets = bakeTriaxialAssets(files, o.vdp, o.sdps[0]);
+    const TriaxialCloud cloud =
+        makeTriaxialCloud(o.grains, int(files.size()), triaxialCloudSpacing(s.assets), 1);
+    std::vector<std::string> warnings;
+    s.world = buildWorld(triaxialScene(o, s.assets, cloud, Formulation::Adapted, o.knStar), warnings);
+    return s;
+}
+
 /// The sample of TestTriaxialTest, consolidated to 100 kPa once for every path.
 const Consolidated& consolidated()
 {
     static const Consolidated c = [] {
-        TriaxialOptions o;
-        o.meshes = {std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand"};
-        o.sdps = {0.15};
-        o.grains = 100;
-        const std::vector<std::string> files = triaxialMeshFiles(o);
-        const TriaxialAssets assets = bakeTriaxialAssets(files, o.vdp, o.sdps[0]);
-        const TriaxialCloud cloud =
-            makeTriaxialCloud(o.grains, int(files.size()), triaxialCloudSpacing(assets), 1);
-        std::vector<std::string> warnings;
+        SandSample sample = sandSample(100, false);
+        const TriaxialOptions& o = sample.options;
+        const TriaxialAssets& assets = sample.assets;
         Consolidated out;
         TriaxialProtocol& p = out.protocol;
         p.confiningStress = o.confiningStress;
@@ -50,9 +69,7 @@ const Consolidated& consolidated()
         p.grainDiameter = assets.meanDiameter;
         p.density = o.density;
         p.records = 100;
-        Simulation sim(buildWorld(triaxialScene(o, assets, cloud, Formulation::Adapted, o.knStar),
-                                  warnings),
-                       out.dt);
+        Simulation sim(std::move(sample.world), out.dt);
         out.result = consolidateTriaxial(sim, triaxialWalls(), p);
         out.world = sim.world();
         return out;
@@ -237,20 +254,10 @@ TEST(TriaxialPath, CyclesReachTheAmplitudeBothWays)
 // the cell's volume holds to round-off (its axes scale by exact factors).
 TEST(TriaxialPath, APeriodicCellConsolidatesCompressesAndKeepsItsVolume)
 {
-    TriaxialOptions o;
-    o.meshes = {std::string(LSDEM_SOURCE_DIR) + "/assets/meshes/sand"};
-    o.sdps = {0.15};
-    o.grains = 200;
-    o.periodic = true;
-    const std::vector<std::string> files = triaxialMeshFiles(o);
-    const TriaxialAssets assets = bakeTriaxialAssets(files, o.vdp, o.sdps[0]);
-    const TriaxialCloud cloud =
-        makeTriaxialCloud(o.grains, int(files.size()), triaxialCloudSpacing(assets), 1);
+    const SandSample sample = sandSample(200, true);
+    const World& start = sample.world;
     TriaxialProtocol p = consolidated().protocol;
     p.maxAxialStrain = 0.01;
-    std::vector<std::string> warnings;
-    const World start =
-        buildWorld(triaxialScene(o, assets, cloud, Formulation::Adapted, o.knStar), warnings);
     ASSERT_TRUE(start.boundaries.empty());
     ASSERT_GT(start.periodic.size.minCoeff(), 0.0);
     Simulation sim(World(start), 1.5e-6);

@@ -5,10 +5,12 @@
 ///        ordinary (walls may bound them).
 #pragma once
 
+#include "lsdem/core/NumberText.h"
 #include "lsdem/core/Vec3.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace lsdem {
 
@@ -31,8 +33,11 @@ struct PeriodicCell
     /// (compressive positive): −M_kk / volume, M the Love–Weber stress moment of the contacts
     /// (zero unless the cell is periodic along all three axes, which gives the volume).
     Vec3 stress = Vec3::Zero();
-    /// The least period the grains allow (twice the reach of a pair: 4.5 times the largest
-    /// bounding radius, set when the world is built): a cell strained below it is refused.
+    /// The least period the grains allow over their largest bounding radius: two grains reach
+    /// 2r plus the contact list's skin (at most r/4), and twice that must fit the cell.
+    static constexpr double kLeastSizeOverRadius = 4.5;
+    /// The least period the grains allow (kLeastSizeOverRadius times the largest bounding
+    /// radius, set when the world is built): a cell strained below it is refused.
     double leastSize = 0.0;
 
     bool active() const { return size.maxCoeff() > 0.0; }
@@ -40,6 +45,23 @@ struct PeriodicCell
     bool deforming() const { return !strainRate.isZero(0.0) || servoed(); }
     /// The velocity of the cell's affine deformation at @a x (zero in a fixed cell).
     Vec3 affineVelocity(const Vec3& x) const { return strainRate.cwiseProduct(x - origin); }
+    /// The shift of an image @a periods whole periods away along each axis.
+    Vec3 imageShift(const Vec3& periods) const { return periods.cwiseProduct(size); }
+    /// The first periodic axis of a cell of @a sizes below leastSize, or −1.
+    int axisBelowLeastSize(const Vec3& sizes) const
+    {
+        for (int a = 0; a < 3; ++a)
+            if (periodic(a) && sizes[a] < leastSize) return a;
+        return -1;
+    }
+    /// What is wrong with a period below leastSize, in the words of every refusal of one.
+    std::string leastSizeProblem() const
+    {
+        return "less than " + numberText(kLeastSizeOverRadius) +
+               " times the largest grain's bounding radius (" +
+               numberText(leastSize / kLeastSizeOverRadius) +
+               "): a grain could touch two images of another";
+    }
     /// Its volume (zero unless periodic along all three axes).
     double volume() const { return size.x() * size.y() * size.z(); }
     bool servoed() const { return targetStress.maxCoeff() > 0.0; }

@@ -183,6 +183,109 @@ void addDashpot(const Dashpot& dashpot, const ContactGrain& first, const Contact
                      dashpot.force, true);
 }
 
+/// Where the contact acts and along which normal: the dashpot's axis if it has one, else the
+/// place its point forces give.
+void placeContact(const ContactSide* sides, int sideCount, const std::vector<PointForce>* normal,
+                  bool perNodeForces, const Dashpot& dashpot, PairForces& result)
+{
+    if (dashpot.axis.normal.isZero(0.0)) {
+        const ContactPlace place = contactPlace(sides, sideCount, normal, perNodeForces);
+        result.centre = place.centre;
+        result.normal = place.normal;
+    } else {
+        result.centre = dashpot.axis.centre;
+        result.normal = dashpot.axis.normal;
+    }
+}
+
+/// What the pass over each side's point forces needs of the whole contact, fixed before the
+/// first side: one bundle rather than eight arguments to every helper below.
+struct SidePass
+{
+    const ContactModel& model;
+    ShearSpringModel shearSprings;
+    /// A per-node law gives contact i exactly one force, k_i·d_i along its unit normal n_i
+    /// (NormalModel::perNodeForces): its size and direction are read from the contact rather
+    /// than recovered from the force with a root and divisions.
+    bool perNodeForces;
+    bool perNodeShear;  ///< shear springs at the nodes (implies perNodeForces)
+    bool shearPerArea;  ///< their stiffness is per unit area
+    double viscousPerStiffness;  ///< the dashpot's normal force over Σ k (Dashpot)
+    Vec3 meanTurn;  ///< the shear history's turn about the normal in this step
+    double dt;
+};
+
+/// Node contact @a c's shear spring carried through the step: the new shear force on its
+/// point force @a f (normal size @a size along @a n, shear stiffness @a shearStiffness);
+/// friction's work is added to @a frictionWork. Coulomb's limit is μ times the node's normal
+/// force: its spring and its share of the dashpot (which the bodies feel as normal force too).
+Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& f, const Vec3& n,
+               double size, double shearStiffness, const SidePass& pass, StoredShear& stored,
+               double& frictionWork)
+{
+    const Vec3 relativeVelocity =
+        side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
+    return updateShearForce(
+        stored.of(c.node), c.normal, relativeVelocity * pass.dt, pass.meanTurn.dot(n),
+        shearStiffness,
+        pass.shearSprings.friction *
+            std::max(0.0, size + pass.viscousPerStiffness * f.stiffness),
+        &frictionWork);
+}
+
+/// Side @a side's new shear history @a nextHistory kept (sorted by node, as the history is,
+/// when the nodes did not come in order).
+void keepShearHistory(ContactSide& side, const StoredShear& stored,
+                      std::vector<ShearHistory::Entry>& nextHistory)
+{
+    if (!stored.inOrder())
+        std::sort(nextHistory.begin(), nextHistory.end(),
+                  [](const auto& a, const auto& b) { return a.node < b.node; });
+    side.history->replaceWith(nextHistory);
+}
+
+/// Side @a side's point forces @a forces given their shear springs (its history renewed), and
+/// their elastic energy, friction's work and stiffness added to the sums, point force by point
+/// force. The energy is summed in a local (a register), as in addSideForces, in the same order.
+void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, const SidePass& pass,
+                         std::vector<ShearHistory::Entry>& nextHistory, double& elasticEnergySum,
+                         double& frictionWork, StiffnessSum& stiffness)
+{
+    double elasticEnergy = elasticEnergySum;
+    nextHistory.clear();
+    StoredShear stored(side.history);
+    for (size_t k = 0; k < forces.size(); ++k) {
+        PointForce& f = forces[k];
+        const NodeContact* c = pass.perNodeForces ? &side.contacts[k] : nullptr;
+        const double size = c ? f.stiffness * c->depth : f.force.norm();
+        if (size == 0.0 || f.stiffness <= 0.0) continue;
+        const Vec3 n = c ? c->normal : Vec3(f.force / size);
+        // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added
+        // once per side.
+        if (c)
+            elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
+                                          : 0.5 * size * c->depth;
+        double shearStiffness = 0.0;
+        if (pass.perNodeShear && side.history) {
+            // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
+            // that left contact lose their history; nodes that entered start from zero.
+            shearStiffness =
+                pass.shearSprings.nodeStiffness(pass.shearPerArea, c->area, side.weight);
+            const Vec3 shear =
+                nodeShear(side, *c, f, n, size, shearStiffness, pass, stored, frictionWork);
+            nextHistory.push_back({c->node, shear});
+            f.force += shear;
+            elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
+        }
+        stiffness.add(f.stiffness, shearStiffness, n, f.point);
+    }
+    if (!pass.perNodeForces && !forces.empty())
+        elasticEnergy += pass.model.normal().elasticEnergy(
+            side.contacts, pass.model.normalStiffness, side.weight);
+    if (side.history) keepShearHistory(side, stored, nextHistory);
+    elasticEnergySum = elasticEnergy;
+}
+
 } // namespace
 
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
@@ -196,80 +299,31 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
 
     // The normal laws first, for every side: the dashpot is the whole contact's.
     const NormalModel& normalLaw = model.normal();
-    const ShearSpringModel shearSprings = model.tangential();
     std::vector<PointForce>* normal = work.forces;
     result.contactNodes = normalForces(sides, sideCount, model, normal);
-    const bool perNodeShear = shearSprings.active(normalLaw);
-    // A per-node law gives contact i exactly one force, k_i·d_i along its unit normal n_i
-    // (NormalModel::perNodeForces): its size and direction are read from the contact rather
-    // than recovered from the force with a root and divisions.
     const bool perNodeForces = normalLaw.perNodeForces();
-    const bool shearPerArea = normalLaw.stiffnessPerArea();
-
     const Dashpot dashpot = contactDashpot(sides, sideCount, model, normal, perNodeForces);
     result.dashpot = dashpot.coefficient;
-    if (dashpot.axis.normal.isZero(0.0)) {
-        const ContactPlace place = contactPlace(sides, sideCount, normal, perNodeForces);
-        result.centre = place.centre;
-        result.normal = place.normal;
-    } else {
-        result.centre = dashpot.axis.centre;
-        result.normal = dashpot.axis.normal;
-    }
+    placeContact(sides, sideCount, normal, perNodeForces, dashpot, result);
+    const ShearSpringModel shearSprings = model.tangential();
     // The turn of the shear history about the normal in this step: the pair's mean spin.
-    const Vec3 meanTurn = (0.5 * dt) * (first.angularVelocity + second.angularVelocity);
+    const SidePass pass{model,
+                        shearSprings,
+                        perNodeForces,
+                        shearSprings.active(normalLaw),
+                        normalLaw.stiffnessPerArea(),
+                        dashpot.viscousPerStiffness,
+                        (0.5 * dt) * (first.angularVelocity + second.angularVelocity),
+                        dt};
 
-    // Shear springs, elastic energy and stiffness, point force by point force; sums in locals
-    // (registers), as in addSideForces.
+    // Then side by side: shear springs, elastic energy and stiffness; the forces on the bodies.
     double elasticEnergy = 0.0, frictionWork = 0.0;
     StiffnessSum stiffness(first, second);
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
         std::vector<PointForce>& forces = normal[s];
-        std::vector<ShearHistory::Entry>& nextHistory = work.nextHistory;
-        nextHistory.clear();
-        StoredShear stored(side.history);
-        for (size_t k = 0; k < forces.size(); ++k) {
-            PointForce& f = forces[k];
-            const NodeContact* c = perNodeForces ? &side.contacts[k] : nullptr;
-            const double size = c ? f.stiffness * c->depth : f.force.norm();
-            if (size == 0.0 || f.stiffness <= 0.0) continue;
-            const Vec3 n = c ? c->normal : Vec3(f.force / size);
-            // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added once per side.
-            if (c)
-                elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
-                                              : 0.5 * size * c->depth;
-            double shearStiffness = 0.0;
-            if (perNodeShear && side.history) {
-                // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
-                // that left contact lose their history; nodes that entered start from zero.
-                // Coulomb's limit is μ times the node's normal force: its spring and its share
-                // of the dashpot (which the bodies feel as normal force too).
-                shearStiffness = shearSprings.nodeStiffness(shearPerArea, c->area, side.weight);
-                const Vec3 relativeVelocity =
-                    side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
-                const Vec3 shear = updateShearForce(
-                    stored.of(c->node), c->normal, relativeVelocity * dt, meanTurn.dot(n),
-                    shearStiffness,
-                    shearSprings.friction *
-                        std::max(0.0, size + dashpot.viscousPerStiffness * f.stiffness),
-                    &frictionWork);
-                nextHistory.push_back({c->node, shear});
-                f.force += shear;
-                elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
-            }
-            stiffness.add(f.stiffness, shearStiffness, n, f.point);
-        }
-        if (!perNodeForces && !forces.empty())
-            elasticEnergy += normalLaw.elasticEnergy(side.contacts, model.normalStiffness,
-                                                     side.weight);
-        if (side.history) {
-            if (!stored.inOrder())
-                std::sort(nextHistory.begin(), nextHistory.end(),
-                          [](const auto& a, const auto& b) { return a.node < b.node; });
-            side.history->replaceWith(nextHistory);
-        }
-
+        addSideShearAndSums(side, forces, pass, work.nextHistory, elasticEnergy, frictionWork,
+                            stiffness);
         addSideForces(side, first, forces, result);
         if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
         if (s == 0 && result.dashpot > 0.0) {

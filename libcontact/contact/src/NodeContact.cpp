@@ -156,14 +156,9 @@ private:
                 ++culled;  // outside B's sphere: φ_B > 0 there
                 if (d2 > bandReach2) {
                     outsideSphere2 = std::min(outsideSphere2, d2);
-                } else {  // near the sphere: its gap is the larger of the two bounds
+                } else {
                     const Vec3 inB = intoB(inA);
-                    const double outside = beyondBox(inB);
-                    const double fromSurface = outside > 0.0
-                                                   ? outside - mReach
-                                                   : (sampler().phi(inB) - mReach) / mB.levelSetSlope;
-                    mNearestInBand = std::min(
-                        mNearestInBand, std::max(std::sqrt(d2) - reachB, fromSurface));
+                    noteGapInBand(inB, beyondBox(inB), std::sqrt(d2) - reachB);
                 }
                 continue;
             }
@@ -177,32 +172,56 @@ private:
             ++mStats.nodesSampled;
             const LevelSetSample s = sampleNode(i, inB);
             if (!(s.phi < mReach)) {
-                // (a NaN φ leaves the smallest: see below)
-                mSmallestPhi = std::min(mSmallestPhi, s.phi - mReach);
-                mAnyInside |= std::isnan(s.phi);
-                if (s.phi > mLeaveOutAbove + mReach) mLeftOut->push_back(i);
+                noteClearNode(i, s.phi);
                 continue;
             }
             mAnyInside = true;
-            if (mPatches) {
+            if (mPatches)
                 addPatchContact(i, inB, s);
-                continue;
-            }
-            const double gradientLength = s.gradient.norm();
-            if (gradientLength == 0.0) continue;  // no direction to push (degenerate level set)
-            ++mStats.nodesInContact;
-            NodeContact c;
-            c.node = i;
-            c.depth = -s.phi;
-            c.normal = mBToWorld * (s.gradient * (1.0 / gradientLength));  // one division
-            const Vec3 nodeWorld = mPoseB.position + mBToWorld * inB;
-            c.point = nodeWorld + 0.5 * c.depth * c.normal;
-            c.area = mA.nodes.areas[i];
-            mOut.push_back(c);
+            else
+                addPointContact(i, inB, s);
         }
         mStats.nodesCulled += culled;
         mNearestOutsideSphere2 = outsideSphere2;
         mNearestOutsideBox = outsideBox;
+    }
+
+    /// A node of the band just outside B's bounding sphere (@a sphereGap from it, @a inB in B's
+    /// frame, @a outside beyond the box of B's inside): its gap to B is the larger of the two
+    /// bounds, the sphere's and the surface's, and the nearest such gap is kept.
+    void noteGapInBand(const Vec3& inB, double outside, double sphereGap)
+    {
+        const double fromSurface = outside > 0.0
+                                       ? outside - mReach
+                                       : (sampler().phi(inB) - mReach) / mB.levelSetSlope;
+        mNearestInBand = std::min(mNearestInBand, std::max(sphereGap, fromSurface));
+    }
+
+    /// A sampled node @a i clear of B (φ_B = @a phi, at least the reach): how near it came, and
+    /// whether it is far enough to be left out of the remembered runs. (A NaN φ leaves the
+    /// smallest as it was but counts as inside, so keepClearGap keeps no gap.)
+    void noteClearNode(int i, double phi)
+    {
+        mSmallestPhi = std::min(mSmallestPhi, phi - mReach);
+        mAnyInside |= std::isnan(phi);
+        if (phi > mLeaveOutAbove + mReach) mLeftOut->push_back(i);
+    }
+
+    /// Node @a i, inside B (its φ and ∇φ @a s, at @a inB in B's frame), appended to the
+    /// contacts as a point: depth −φ along ∇φ, acting halfway into the overlap.
+    void addPointContact(int i, const Vec3& inB, const LevelSetSample& s)
+    {
+        const double gradientLength = s.gradient.norm();
+        if (gradientLength == 0.0) return;  // no direction to push (degenerate level set)
+        ++mStats.nodesInContact;
+        NodeContact c;
+        c.node = i;
+        c.depth = -s.phi;
+        c.normal = mBToWorld * (s.gradient * (1.0 / gradientLength));  // one division
+        const Vec3 nodeWorld = mPoseB.position + mBToWorld * inB;
+        c.point = nodeWorld + 0.5 * c.depth * c.normal;
+        c.area = mA.nodes.areas[i];
+        mOut.push_back(c);
     }
 
     /// Node @a i's patch against B (its φ and ∇φ at the node @a s, at @a inB in B's frame),

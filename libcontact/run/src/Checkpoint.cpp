@@ -245,18 +245,13 @@ void restoreWorldState(const std::string& path, World& world)
 
 namespace {
 
-/// @a world with the state that @a r (at the start of the checkpoint's bytes) holds.
-World stateFrom(Reader& r, const std::string& path, const World& world)
+// The world's state follows the header in the order saveCheckpoint writes it: the clock and
+// energies, the periodic cell, the grains, the boundaries, then the shear histories. Each
+// reader below takes its part and checks it, so that a damaged file never starts a run.
+
+/// The clock and the energies the run carries (time, step, boundary work, initial total).
+void readClock(Reader& r, World& w)
 {
-    // The header again, from the same bytes, to reach the state and the fingerprint.
-    Checkpoint header;
-    uint32_t version = 0;
-    WorldFingerprint fingerprint;
-    readHeader(r, path, header, version, fingerprint);
-    // The scene's text comes from the checkpoint, but its assets and grain files are read as
-    // they are now: they must still make the world the run was checkpointed with.
-    if (version >= 3) checkSameInputs(fingerprint, world, path);
-    World w = world;
     w.time = r.value<double>();
     w.step = r.value<int64_t>();
     w.energy.boundaryWork = r.value<double>();
@@ -264,51 +259,70 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     if (!std::isfinite(w.time) || w.step < 0 || !std::isfinite(w.energy.boundaryWork) ||
         !std::isfinite(w.energy.initialTotal))
         r.fail();
+}
+
+/// The cell as the run left it (version 7 on): periodic along the axes the scene makes
+/// periodic.
+void readPeriodicCell(Reader& r, const std::string& path, World& w)
+{
+    const Vec3 size = r.vec();
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(size[a]) || size[a] < 0.0 || (size[a] > 0.0) != w.periodic.periodic(a))
+            throw Error(path, "the checkpoint's periodic cell does not match its scene's",
+                        "the scene's periodic_cell may have changed; start the run again");
+    w.periodic.size = size;
+    w.periodic.strainRate = r.vec();
+    w.periodic.stress = r.vec();
+    w.energy.cellMoment = r.vec();
+    if (!allFinite(w.periodic.strainRate) || !allFinite(w.periodic.stress) ||
+        !allFinite(w.energy.cellMoment))
+        r.fail();
+}
+
+/// One grain's motion and forces (and from version 7 its dissipated energies and the periods
+/// it moved by; an earlier file's grain restarts from none).
+void readGrain(Reader& r, uint32_t version, Grain& g)
+{
+    g.body.pose.position = r.vec();
+    g.body.pose.orientation = r.quat();
+    g.body.velocity = r.vec();
+    g.body.angularMomentum = r.vec();
+    g.force = r.vec();
+    g.torque = r.vec();
+    g.dissipated = DissipatedEnergy();
+    g.wrapShift = Vec3::Zero();
     if (version >= 7) {
-        // The cell as the run left it: periodic along the axes the scene makes periodic.
-        const Vec3 size = r.vec();
-        for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(size[a]) || size[a] < 0.0 || (size[a] > 0.0) != w.periodic.periodic(a))
-                throw Error(path, "the checkpoint's periodic cell does not match its scene's",
-                            "the scene's periodic_cell may have changed; start the run again");
-        w.periodic.size = size;
-        w.periodic.strainRate = r.vec();
-        w.periodic.stress = r.vec();
-        w.energy.cellMoment = r.vec();
-        if (!allFinite(w.periodic.strainRate) || !allFinite(w.periodic.stress) ||
-            !allFinite(w.energy.cellMoment))
-            r.fail();
+        g.dissipated.friction = r.number();
+        g.dissipated.dashpot = r.number();
+        g.dissipated.globalDamping = r.number();
+        g.wrapShift = r.vec();
     }
+    // A damaged state must not start a run: every number finite, the rotation a rotation.
+    const bool sane = allFinite(g.body.pose.position) && allFinite(g.body.velocity) &&
+                      allFinite(g.body.angularMomentum) && allFinite(g.force) &&
+                      allFinite(g.torque) && std::isfinite(g.dissipated.friction) &&
+                      std::isfinite(g.dissipated.dashpot) &&
+                      std::isfinite(g.dissipated.globalDamping) && allFinite(g.wrapShift) &&
+                      std::abs(g.body.pose.orientation.norm() - 1.0) < 1e-6;
+    if (!sane) r.fail();
+}
+
+/// Every grain, as many as the scene makes.
+void readGrains(Reader& r, const std::string& path, uint32_t version, World& w)
+{
     // position, orientation, 4 vectors (and from version 7, 3 dissipated energies and the
     // periods moved by)
     const uint64_t grainBytes = (version >= 7 ? 25 : 19) * sizeof(double);
     if (r.count(grainBytes) != w.grains.size())
         throw Error(path, "the checkpoint's grain count does not match its scene",
                     "the scene's assets may have changed; start the run again");
-    for (Grain& g : w.grains) {
-        g.body.pose.position = r.vec();
-        g.body.pose.orientation = r.quat();
-        g.body.velocity = r.vec();
-        g.body.angularMomentum = r.vec();
-        g.force = r.vec();
-        g.torque = r.vec();
-        g.dissipated = DissipatedEnergy();
-        g.wrapShift = Vec3::Zero();
-        if (version >= 7) {
-            g.dissipated.friction = r.number();
-            g.dissipated.dashpot = r.number();
-            g.dissipated.globalDamping = r.number();
-            g.wrapShift = r.vec();
-        }
-        // A damaged state must not start a run: every number finite, the rotation a rotation.
-        const bool sane = allFinite(g.body.pose.position) && allFinite(g.body.velocity) &&
-                          allFinite(g.body.angularMomentum) && allFinite(g.force) &&
-                          allFinite(g.torque) && std::isfinite(g.dissipated.friction) &&
-                          std::isfinite(g.dissipated.dashpot) &&
-                          std::isfinite(g.dissipated.globalDamping) && allFinite(g.wrapShift) &&
-                          std::abs(g.body.pose.orientation.norm() - 1.0) < 1e-6;
-        if (!sane) r.fail();
-    }
+    for (Grain& g : w.grains) readGrain(r, version, g);
+}
+
+/// Every boundary's displacement and force (and from version 2 its contact stiffness and
+/// dashpot, a servo wall's gain).
+void readBoundaries(Reader& r, const std::string& path, uint32_t version, World& w)
+{
     const bool hasStiffness = version >= 2;
     if (r.count((hasStiffness ? 8 : 6) * sizeof(double)) != w.boundaries.size())
         throw Error(path, "the checkpoint's boundary count does not match its scene",
@@ -321,7 +335,12 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
             !std::isfinite(b.normalStiffness) || !std::isfinite(b.normalDashpot))
             r.fail();
     }
-    // Grain and boundary indices are checked here: a damaged one would index past the world.
+}
+
+/// The shear histories that hold shear, of grain pairs and of grains on boundaries. Grain and
+/// boundary indices are checked here: a damaged one would index past the world.
+void readShearHistories(Reader& r, World& w)
+{
     const auto grains = static_cast<int64_t>(w.grains.size());
     const auto boundaries = static_cast<int64_t>(w.boundaries.size());
     w.pairHistory.clear();
@@ -340,6 +359,25 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
         if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
         w.boundaryHistory[{i, b}] = r.shear();
     }
+}
+
+/// @a world with the state that @a r (at the start of the checkpoint's bytes) holds.
+World stateFrom(Reader& r, const std::string& path, const World& world)
+{
+    // The header again, from the same bytes, to reach the state and the fingerprint.
+    Checkpoint header;
+    uint32_t version = 0;
+    WorldFingerprint fingerprint;
+    readHeader(r, path, header, version, fingerprint);
+    // The scene's text comes from the checkpoint, but its assets and grain files are read as
+    // they are now: they must still make the world the run was checkpointed with.
+    if (version >= 3) checkSameInputs(fingerprint, world, path);
+    World w = world;
+    readClock(r, w);
+    if (version >= 7) readPeriodicCell(r, path, w);
+    readGrains(r, path, version, w);
+    readBoundaries(r, path, version, w);
+    readShearHistories(r, w);
     if (!r.magic(kMagic)) r.fail();  // the trailer: a complete file ends with the magic
     return w;
 }

@@ -25,6 +25,58 @@ void rotateBy(Quat& orientation, const Vec3& omega, double dt)
     orientation = (Quat(Eigen::AngleAxisd(angle, omega.normalized())) * orientation).normalized();
 }
 
+/// A deforming periodic cell @a cell stretched by 1 + ε̇·dt along each axis for this step (its
+/// stress-controlled axes at the rate their stress asks); the stretch, which the grains'
+/// positions in the cell follow (their velocities are what they have on top of that).
+Vec3 stretchCell(PeriodicCell& cell, double dt)
+{
+    const Vec3 stretch = Vec3::Ones() + dt * cell.strainRate;
+    if (cell.deforming()) {
+        const Vec3 size = cell.size.cwiseProduct(stretch);
+        const int a = cell.axisBelowLeastSize(size);
+        if (a >= 0)
+            throw Error("", std::string("the periodic cell would be strained to ") +
+                                numberText(size[a]) + " along " + "xyz"[a] + ", " +
+                                cell.leastSizeProblem(),
+                        "start from a larger cell (more grains), or strain it less");
+        cell.size = size;
+    }
+    return stretch;
+}
+
+/// The first half of grain @a g's step: a free grain's half kick and drift, a prescribed
+/// grain's motion; a fixed grain stays.
+void moveGrain(Grain& g, double dt)
+{
+    switch (g.motion) {
+    case GrainMotion::Free:
+        kick(g.body, g.force, g.torque, 0.5 * dt);
+        drift(g.body, dt);
+        break;
+    case GrainMotion::Prescribed:
+        g.body.pose.position += g.body.velocity * dt;
+        rotateBy(g.body.pose.orientation, g.prescribedAngularVelocity, dt);
+        break;
+    case GrainMotion::Fixed: break;
+    }
+}
+
+/// Grain @a g (not fixed) carried along by a deforming cell's @a stretch, and brought back
+/// into the cell: a grain leaving through a face comes back through the other.
+void keepInCell(Grain& g, const PeriodicCell& cell, const Vec3& stretch, bool deforms)
+{
+    if (deforms) {
+        g.body.pose.position =
+            cell.origin + (g.body.pose.position - cell.origin).cwiseProduct(stretch);
+        g.wrapShift = g.wrapShift.cwiseProduct(stretch);
+    }
+    const Vec3 shift = cell.shiftInto(g.body.pose.position);
+    if (!shift.isZero(0.0)) {
+        g.body.pose.position += shift;
+        g.wrapShift += shift;
+    }
+}
+
 } // namespace
 
 Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
@@ -87,25 +139,12 @@ void Simulation::step()
     // Servo walls choose this step's velocity from the state it starts from.
     updateServoVelocities(mWorld, dt);
     // Work of moving boundaries and prescribed grains: trapezoid over the step.
-    // A deforming periodic cell stretches by 1 + ε̇·dt along each axis in this step (its
-    // stress-controlled axes at the rate their stress asks), and the grains' positions in it
-    // with it (their velocities are what they have on top of that).
     PeriodicCell& cell = mWorld.periodic;
     if (cell.servoed()) cell.steer();
     double workBefore = cell.strainRate.dot(mWorld.energy.cellMoment);
     for (const Boundary& b : mWorld.boundaries) workBefore -= b.force.dot(b.velocity);
     subtractPrescribedPower(workBefore);
-    const Vec3 stretch = Vec3::Ones() + dt * cell.strainRate;
-    if (cell.deforming()) {
-        const Vec3 size = cell.size.cwiseProduct(stretch);
-        const int a = cell.axisBelowLeastSize(size);
-        if (a >= 0)
-            throw Error("", std::string("the periodic cell would be strained to ") +
-                                numberText(size[a]) + " along " + "xyz"[a] + ", " +
-                                cell.leastSizeProblem(),
-                        "start from a larger cell (more grains), or strain it less");
-        cell.size = size;
-    }
+    const Vec3 stretch = stretchCell(cell, dt);
 
     // Each grain moves on its own: parallel, and still the same numbers on any thread count.
     // A ghost is moved by its owner (and brought here before the forces).
@@ -113,29 +152,8 @@ void Simulation::step()
     tbb::parallel_for(size_t(0), mWorld.grains.size(), [&](size_t i) {
         if (!integratesGrain(i)) return;
         Grain& g = mWorld.grains[i];
-        switch (g.motion) {
-        case GrainMotion::Free:
-            kick(g.body, g.force, g.torque, 0.5 * dt);
-            drift(g.body, dt);
-            break;
-        case GrainMotion::Prescribed:
-            g.body.pose.position += g.body.velocity * dt;
-            rotateBy(g.body.pose.orientation, g.prescribedAngularVelocity, dt);
-            break;
-        case GrainMotion::Fixed: break;
-        }
-        // In a periodic cell a grain leaving through a face comes back through the other.
-        if (wraps && g.motion != GrainMotion::Fixed) {
-            if (deforms) {
-                g.body.pose.position = cell.origin + (g.body.pose.position - cell.origin).cwiseProduct(stretch);
-                g.wrapShift = g.wrapShift.cwiseProduct(stretch);
-            }
-            const Vec3 shift = cell.shiftInto(g.body.pose.position);
-            if (!shift.isZero(0.0)) {
-                g.body.pose.position += shift;
-                g.wrapShift += shift;
-            }
-        }
+        moveGrain(g, dt);
+        if (wraps && g.motion != GrainMotion::Fixed) keepInCell(g, cell, stretch, deforms);
     });
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
     mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt

@@ -74,54 +74,76 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 
 } // namespace
 
-// Long on purpose: its passes (the deep step, the table's size, pass 1 classifying the places,
-// the bricks laid out in place order, pass 2 writing them) share the table under construction,
-// and are marked below; the storage's rework (16-bit bricks, issue 35) will split it with it.
+// The constructor's passes share the table under construction, so they are members; each
+// reads what the one before it left: the deep step, the table's size, pass 1 classifying the
+// places, the bricks laid out in place order, the storage, then pass 2 writing the bricks.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
 {
-    // The deep bricks' step: the power of two in (2^-13, 2^-12] voxel (cubic voxels only).
-    const openvdb::Vec3d voxel = grid.voxelSize();
-    if (voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2]) {
-        int e = 0;
-        std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
-        mDeepStep = float(std::ldexp(1.0, e - 1));
-        // The float at or below −kDeepVoxels voxels: a deep value is at least that deep.
-        const double below = -kDeepVoxels * voxel[0];
-        mDeepBelow = float(below);
-        if (double(mDeepBelow) > below)
-            mDeepBelow = std::nextafter(mDeepBelow, -std::numeric_limits<float>::infinity());
+    chooseDeepStep(grid.voxelSize());
+    sizeTable(valueBox(grid));
+    const std::vector<Place> places = classifyPlaces(grid);
+    SharedBricks shared;
+    shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
+    const uint32_t bricks = layOutBricks(places, shared);
+    allocateBricks(bricks);
+    for (const auto& [uniform, brick] : shared) {
+        float value = 0.0f;
+        std::memcpy(&value, &uniform.first, sizeof value);
+        writeUniformBrick(brick, value, uniform.second != 0);
     }
-    const openvdb::CoordBBox box = valueBox(grid);
-    if (!box.empty()) {
-        mOrigin = box.min();
-        double places = 1.0;
-        for (int k = 0; k < 3; ++k) {
-            mBricks[k] = uint32_t((int64_t(box.max()[k]) - box.min()[k]) / kDim + 1);
-            places *= mBricks[k];
-        }
-        // The table is dense: a grid whose values spread over a huge box (a fog volume's
-        // tiles, say) would need more than its voxels are worth.
-        if (places > double(1u << 28))
-            throw Error("level set",
-                        "the grid's values span " + std::to_string(box.dim().x()) + " x " +
-                            std::to_string(box.dim().y()) + " x " +
-                            std::to_string(box.dim().z()) +
-                            " voxels, too large a box for lsdem's level-set table",
-                        "lsdem samples grain-sized level sets; crop or rebuild the grid");
-        mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
-    }
+    writeVaryingBricks(grid);
+}
 
-    // Pass 1, in parallel: what each place of the table holds (varying values, or one value
-    // and state), and whether its values are all finite.
-    using Uniform = std::pair<uint32_t, uint8_t>;  // (value bits, active) of one value
-    struct Place
-    {
-        bool varies = false;
-        bool deep = false;
-        bool finite = true;
-        Uniform uniform{0, 0};
-    };
+/// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel (cubic voxels only).
+void LevelSetBricks::chooseDeepStep(const openvdb::Vec3d& voxel)
+{
+    if (!(voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2])) return;
+    int e = 0;
+    std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
+    mDeepStep = float(std::ldexp(1.0, e - 1));
+    // The float at or below −kDeepVoxels voxels: a deep value is at least that deep.
+    const double below = -kDeepVoxels * voxel[0];
+    mDeepBelow = float(below);
+    if (double(mDeepBelow) > below)
+        mDeepBelow = std::nextafter(mDeepBelow, -std::numeric_limits<float>::infinity());
+}
+
+/// The table over @a box (the grid's values), every place the background brick to begin with.
+void LevelSetBricks::sizeTable(const openvdb::CoordBBox& box)
+{
+    if (box.empty()) return;
+    mOrigin = box.min();
+    double places = 1.0;
+    for (int k = 0; k < 3; ++k) {
+        mBricks[k] = uint32_t((int64_t(box.max()[k]) - box.min()[k]) / kDim + 1);
+        places *= mBricks[k];
+    }
+    // The table is dense: a grid whose values spread over a huge box (a fog volume's
+    // tiles, say) would need more than its voxels are worth.
+    if (places > double(1u << 28))
+        throw Error("level set",
+                    "the grid's values span " + std::to_string(box.dim().x()) + " x " +
+                        std::to_string(box.dim().y()) + " x " +
+                        std::to_string(box.dim().z()) +
+                        " voxels, too large a box for lsdem's level-set table",
+                    "lsdem samples grain-sized level sets; crop or rebuild the grid");
+    mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
+}
+
+struct LevelSetBricks::Place
+{
+    bool varies = false;
+    bool deep = false;
+    bool finite = true;
+    SharedBricks::key_type uniform{0, 0};  ///< (value bits, active) of one value
+};
+
+/// Pass 1, in parallel: what each place of the table holds (varying values, or one value and
+/// state), and whether its values are all finite.
+std::vector<LevelSetBricks::Place>
+LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
+{
     std::vector<Place> places(mTable.size());
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         Place& p = places[slot];
@@ -131,13 +153,17 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
         if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
+    return places;
+}
 
-    // In place order, one thread: each place's brick. Brick 0 is the inactive background,
-    // shared by every such place and by all outside; the bricks of varying values and each
-    // new value of one come next in the order of their first place, then the deep bricks in
-    // the order of their places, so the layout does not depend on the thread count.
-    std::map<Uniform, uint32_t> shared;  // → its brick
-    shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
+/// In place order, one thread: each place's brick into the table, and the bricks of one value
+/// into @a shared (which holds the background's, brick 0); returns the number of bricks. Brick
+/// 0 is the inactive background, shared by every such place and by all outside; the bricks of
+/// varying values and each new value of one come next in the order of their first place, then
+/// the deep bricks in the order of their places, so the layout does not depend on the thread
+/// count.
+uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBricks& shared)
+{
     uint32_t bricks = 1;
     for (size_t slot = 0; slot < places.size(); ++slot) {
         const Place& p = places[slot];
@@ -161,21 +187,24 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     mWideBricks = bricks;
     for (size_t slot = 0; slot < places.size(); ++slot)
         if (places[slot].deep) mTable[slot] = bricks++;
+    return bricks;
+}
 
-    // Sized once (grown by doubling they would hold up to twice their size), plus the
-    // padding byte that decode() may read after the last 24-bit code when no deep brick
-    // follows.
+/// The storage of @a bricks bricks, sized once (grown by doubling it would hold up to twice
+/// its size), plus the padding byte that decode() may read after the last 24-bit code when no
+/// deep brick follows.
+void LevelSetBricks::allocateBricks(uint32_t bricks)
+{
     const size_t deep = bricks - mWideBricks;
     mCode.assign(size_t(mWideBricks) * 3 * kVoxels + deep * 2 * kVoxels + 1, 0);
     mBrickStep.assign(bricks, 0.0f);
     mDeepBase.assign(deep, 0);
     mActive.assign(size_t(bricks) * kMaskWords, 0);
-    for (const auto& [uniform, brick] : shared) {
-        float value = 0.0f;
-        std::memcpy(&value, &uniform.first, sizeof value);
-        writeUniformBrick(brick, value, uniform.second != 0);
-    }
-    // Pass 2, in parallel: the bricks of varying values, each into its own place.
+}
+
+/// Pass 2, in parallel: the bricks of varying values, each into its own place.
+void LevelSetBricks::writeVaryingBricks(const openvdb::FloatGrid& grid)
+{
     forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         if (!varies) return;
         const uint32_t brick = mTable[slot] & kIndexMask;

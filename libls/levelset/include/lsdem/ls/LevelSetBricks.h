@@ -39,6 +39,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace lsdem {
@@ -184,6 +186,17 @@ private:
     void forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const;
     /// The first voxel of the table's place @a slot.
     openvdb::Coord placeOrigin(size_t slot) const;
+
+    // The constructor's passes, in their order (LevelSetBricks.cpp).
+    struct Place;  ///< what pass 1 finds at a place of the table
+    /// (value bits, active) of a brick of one value → that brick.
+    using SharedBricks = std::map<std::pair<uint32_t, uint8_t>, uint32_t>;
+    void chooseDeepStep(const openvdb::Vec3d& voxel);
+    void sizeTable(const openvdb::CoordBBox& box);
+    std::vector<Place> classifyPlaces(const openvdb::FloatGrid& grid) const;
+    uint32_t layOutBricks(const std::vector<Place>& places, SharedBricks& shared);
+    void allocateBricks(uint32_t bricks);
+    void writeVaryingBricks(const openvdb::FloatGrid& grid);
     uint8_t* writableCodes(uint32_t brick)
     {
         return mCode.data() + (codes(brick) - mCode.data());

@@ -6,16 +6,17 @@
 
 namespace lsdem {
 
-Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
-                      std::shared_ptr<const GrainAsset> sphere)
+namespace {
+
+/// The sphere every grain shares: @a sphere when given (baked once for the study), else
+/// baked by the scene with run @a run's node count.
+void addSphereAsset(Scene& scene, const Cube27Options& o, const Cube27Run& run,
+                    std::shared_ptr<const GrainAsset> sphere)
 {
-    const double r = o.radius, side = 6.0 * r;
-    Scene scene;
-    scene.path = "(lsdem-study cube27)";
     AssetSpec asset;
     asset.name = "sphere";
     if (!sphere) {
-        asset.shape = AnalyticShape::sphere(r);
+        asset.shape = AnalyticShape::sphere(o.radius);
         asset.bake.voxelSize = o.voxel;
         asset.bake.nodePlacement = NodePlacement::Count;
         asset.bake.nodeCount = run.nodes;
@@ -24,9 +25,12 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
     }
     asset.where = scene.path;
     scene.assets.push_back(asset);
-    scene.materials.push_back({"steel", o.density});
-    scene.materials.push_back({"wall", 0.0});
+}
 
+/// Run @a run's law between the spheres (material 0) and between a sphere and a wall
+/// (material 1).
+void addContactLaws(Scene& scene, const Cube27Options& o, const Cube27Run& run)
+{
     ContactModel model;
     model.formulation = run.formulation;
     model.testing = o.testing;
@@ -47,8 +51,13 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
         c.where = scene.path;
         scene.contacts.push_back(c);
     }
+}
 
-    // The orientation set: one random rotation per grain, the same set for every N and law.
+/// The 3×3×3 stack of touching spheres in the box's corner. The orientation set: one random
+/// rotation per grain, the same set for every N and law.
+void addSphereStack(Scene& scene, const Cube27Options& o, const Cube27Run& run)
+{
+    const double r = o.radius;
     std::mt19937_64 rng(o.seed * 7919u + unsigned(run.orientation));
     for (int k = 0; k < 3; ++k)
         for (int j = 0; j < 3; ++j)
@@ -62,7 +71,12 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
                 g.where = scene.path;
                 scene.grains.push_back(g);
             }
+}
 
+/// The six walls of the box of side @a side around the stack; the top one (boundary 1) comes
+/// down at the run's speed.
+void addBoxWalls(Scene& scene, double side, const Cube27Run& run)
+{
     auto wall = [&](const std::string& name, const Vec3& point, const Vec3& normal) {
         BoundarySpec b;
         b.name = name;
@@ -80,6 +94,21 @@ Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
     wall("south", Vec3(0, 0, 0), Vec3::UnitY());
     wall("north", Vec3(0, side, 0), -Vec3::UnitY());
     scene.boundaries[1].velocity = Vec3(0, 0, -run.speed);
+}
+
+} // namespace
+
+Scene makeCube27Scene(const Cube27Options& o, const Cube27Run& run,
+                      std::shared_ptr<const GrainAsset> sphere)
+{
+    Scene scene;
+    scene.path = "(lsdem-study cube27)";
+    addSphereAsset(scene, o, run, std::move(sphere));
+    scene.materials.push_back({"steel", o.density});
+    scene.materials.push_back({"wall", 0.0});
+    addContactLaws(scene, o, run);
+    addSphereStack(scene, o, run);
+    addBoxWalls(scene, 6.0 * o.radius, run);
 
     scene.gravity = Vec3::Zero();
     scene.globalDamping = o.globalDamping;

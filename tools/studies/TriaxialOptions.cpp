@@ -37,9 +37,8 @@ bool isMeshFile(const std::filesystem::path& p)
     return ext == ".obj" || ext == ".stl" || ext == ".ply" || ext == ".off";
 }
 
-} // namespace
-
-void checkTriaxialOptions(const TriaxialOptions& o)
+/// The sample: its meshes, its grain count, its seeds (each one sample).
+void checkTriaxialSample(const TriaxialOptions& o)
 {
     if (o.meshes.empty()) throw Error("", "--meshes needs at least one mesh file or folder");
     if (o.grains < 8)
@@ -61,6 +60,11 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                 throw Error("", "--seed " + std::to_string(o.seeds[i]) + " is given twice",
                             "give each seed once: each is one sample");
     }
+}
+
+/// The voxel size and the node spacings, coarsest first.
+void checkTriaxialResolutions(const TriaxialOptions& o)
+{
     requirePositive(o.vdp, "--vdp", "e.g. --vdp 0.03 (mm)");
     if (o.sdps.empty()) throw Error("", "--sdps needs at least one node spacing");
     for (double s : o.sdps) requirePositive(s, "--sdps", "e.g. --sdps 0.1 0.07 0.05 (mm)");
@@ -70,8 +74,12 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                                 roundedText(o.sdps[i - 1]) + " then " +
                                 roundedText(o.sdps[i]),
                         "e.g. --sdps 0.1 0.07 0.05");
+}
+
+/// The laws: the study needs shear springs at every node and a traction that kn* sets.
+void checkTriaxialFormulations(const TriaxialOptions& o)
+{
     checkFormulationList(o.formulations);
-    // The study needs shear springs at every node and a traction that kn* sets.
     auto runnable = [](Formulation f) {
         return normalModel(f).perNodeForces() && normalModel(f).tractionStiffness(1.0, 1.0);
     };
@@ -87,6 +95,11 @@ void checkTriaxialOptions(const TriaxialOptions& o)
                                 " (a shear spring at every node), not " + formulationName(f),
                         "--formulation" + list);
         }
+}
+
+/// The grains' material and contacts: density, stiffnesses, frictions, damping.
+void checkTriaxialMaterial(const TriaxialOptions& o)
+{
     requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
     requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
     if (!(o.latticeSpacing >= 0.0 && std::isfinite(o.latticeSpacing)))
@@ -103,6 +116,12 @@ void checkTriaxialOptions(const TriaxialOptions& o)
             throw Error("", std::string(option) + " must be zero or positive, got " +
                                 roundedText(value));
     requireFraction(o.globalDamping, "--damping", 1.0);
+}
+
+/// The loading: confinement, rate, the path's strains and cycles, the servo's tolerance and
+/// the records.
+void checkTriaxialLoading(const TriaxialOptions& o)
+{
     requirePositive(o.confiningStress, "--confining-stress",
                     "a compressive stress in MPa, e.g. 0.1 for 100 kPa");
     requirePositive(o.inertialNumber, "--inertial-number", "1e-3 is quasi-static");
@@ -122,6 +141,19 @@ void checkTriaxialOptions(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             roundedText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
+}
+
+} // namespace
+
+// The checks in groups (in their old order, so the first problem found is still the one
+// reported).
+void checkTriaxialOptions(const TriaxialOptions& o)
+{
+    checkTriaxialSample(o);
+    checkTriaxialResolutions(o);
+    checkTriaxialFormulations(o);
+    checkTriaxialMaterial(o);
+    checkTriaxialLoading(o);
     cli::checkThreads(o.threads);
     triaxialMeshFiles(o);  // a missing or twice-given mesh, before the output folder is made
 }

@@ -34,27 +34,12 @@ struct Series
     double stiffness;
 };
 
-/// One node count of the study (bake, every series and orientation) into @a part; its
-/// progress line goes to stdout if @a live, else into @a log.
-void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresResult& part,
-                  std::string& log)
+/// The series of node count @a nodes: each law at every --stiffness given, else at its
+/// paper's stiffness times each factor at the stiffness series' node count, else at its
+/// paper's stiffness alone.
+std::vector<Series> seriesAt(const TwoSpheresOptions& o, int nodes)
 {
     const int kSeriesCount = stiffnessSeriesNodes(o);
-    const Stopwatch bake;
-    std::vector<std::string> warnings;
-    const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
-    part.bakeSeconds += bake.seconds();
-    const Stopwatch contact;
-    if (!o.quiet) {
-        char line[160];
-        std::snprintf(line, sizeof line, "  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes,
-                      sphere.nodes.size(), sphere.spacing.mean);
-        if (live)
-            std::fputs(line, stdout);
-        else
-            log += line;
-    }
-
     std::vector<Series> series;
     for (Formulation f : o.formulations) {
         if (!o.stiffness.empty()) {
@@ -66,7 +51,16 @@ void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresRe
             series.push_back({f, defaultStiffness(f)});
         }
     }
-    // P[series][step][orientation]
+    return series;
+}
+
+/// The force P[series][step][orientation] along the centre line, on two copies of @a sphere
+/// turned at random (one set of turns per orientation), pressed together step by step.
+std::vector<std::vector<std::vector<double>>> centreLineForces(const TwoSpheresOptions& o,
+                                                               const GrainAsset& sphere,
+                                                               const std::vector<Series>& series,
+                                                               NodeCheckStats& stats)
+{
     std::vector<std::vector<std::vector<double>>> force(
         series.size(), std::vector<std::vector<double>>(o.steps + 1));
     for (int m = 0; m < o.orientations; ++m) {
@@ -85,39 +79,68 @@ void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresRe
                 model.formulation = series[s].formulation;
                 model.normalStiffness = series[s].stiffness;
                 model.testing = o.testing;
-                const PairForces f =
-                    computePairContact(fixed, moved, model, 0.0, nullptr, part.stats);
+                const PairForces f = computePairContact(fixed, moved, model, 0.0, nullptr, stats);
                 force[s][step].push_back(f.forceOnSecond.x());  // along the centre line
             }
         }
     }
+    return force;
+}
+
+/// The row of one series and step: @a p, the force over the orientations, as its mean,
+/// spread, least and largest, beside the law's continuum limit.
+TwoSpheresRow forceRow(const TwoSpheresOptions& o, const Series& series, int nodes,
+                       const GrainAsset& sphere, int step, const std::vector<double>& p)
+{
+    TwoSpheresRow row;
+    row.formulation = series.formulation;
+    row.nodesRequested = nodes;
+    row.nodesActual = double(sphere.nodes.size());
+    row.stiffness = series.stiffness;
+    row.delta = o.deltaMax * step / o.steps;
+    double sum = 0, sum2 = 0;
+    row.forceMin = p.front();
+    row.forceMax = p.front();
+    for (double v : p) {
+        sum += v;
+        sum2 += v * v;
+        row.forceMin = std::min(row.forceMin, v);
+        row.forceMax = std::max(row.forceMax, v);
+    }
+    row.forceMean = sum / p.size();
+    row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
+    // Each law's continuum limit at its stiffness taken as a traction: the limit of
+    // the laws per area (SCIENCE.md §3); for the others, what the adapted law would
+    // give at the same number (they diverge from it as the nodes refine).
+    row.forceExact =
+        normalModel(row.formulation).continuumSphereForce(o.radius, row.delta, row.stiffness);
+    return row;
+}
+
+/// One node count of the study (bake, every series and orientation) into @a part; its
+/// progress line goes to stdout if @a live, else into @a log.
+void runNodeCount(const TwoSpheresOptions& o, int nodes, bool live, TwoSpheresResult& part,
+                  std::string& log)
+{
+    const Stopwatch bake;
+    std::vector<std::string> warnings;
+    const GrainAsset sphere = bakeSeriesSphere(o, nodes, warnings);
+    part.bakeSeconds += bake.seconds();
+    const Stopwatch contact;
+    if (!o.quiet) {
+        char line[160];
+        std::snprintf(line, sizeof line, "  N = %d: baked %zu nodes (spacing %.4g mm)\n", nodes,
+                      sphere.nodes.size(), sphere.spacing.mean);
+        if (live)
+            std::fputs(line, stdout);
+        else
+            log += line;
+    }
+    const std::vector<Series> series = seriesAt(o, nodes);
+    const auto force = centreLineForces(o, sphere, series, part.stats);
     for (size_t s = 0; s < series.size(); ++s)
-        for (int step = 0; step <= o.steps; ++step) {
-            const std::vector<double>& p = force[s][step];
-            TwoSpheresRow row;
-            row.formulation = series[s].formulation;
-            row.nodesRequested = nodes;
-            row.nodesActual = double(sphere.nodes.size());
-            row.stiffness = series[s].stiffness;
-            row.delta = o.deltaMax * step / o.steps;
-            double sum = 0, sum2 = 0;
-            row.forceMin = p.front();
-            row.forceMax = p.front();
-            for (double v : p) {
-                sum += v;
-                sum2 += v * v;
-                row.forceMin = std::min(row.forceMin, v);
-                row.forceMax = std::max(row.forceMax, v);
-            }
-            row.forceMean = sum / p.size();
-            row.forceStd = std::sqrt(std::max(0.0, sum2 / p.size() - row.forceMean * row.forceMean));
-            // Each law's continuum limit at its stiffness taken as a traction: the limit of
-            // the laws per area (SCIENCE.md §3); for the others, what the adapted law would
-            // give at the same number (they diverge from it as the nodes refine).
-            row.forceExact = normalModel(row.formulation)
-                                 .continuumSphereForce(o.radius, row.delta, row.stiffness);
-            part.rows.push_back(row);
-        }
+        for (int step = 0; step <= o.steps; ++step)
+            part.rows.push_back(forceRow(o, series[s], nodes, sphere, step, force[s][step]));
     part.contactSeconds += contact.seconds();
 }
 

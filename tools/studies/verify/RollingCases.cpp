@@ -19,6 +19,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace lsdem::verify {
 
@@ -105,93 +107,146 @@ RollingRun slideAndRoll(Context& c, const std::shared_ptr<const GrainAsset>& bal
     return run;
 }
 
-void slideToRollOnAFloor(Context& c)
+namespace {
+
+/// The slide-to-roll case: the throw, how long the roll is watched, and rigid-body theory's
+/// answer.
+struct SlideCase
 {
-    const Setup& s = c.bodies.setup();
-    const double speed = 1000.0, friction = 0.3, rollTime = c.quick ? 0.05 : 0.2;
-    const SlideToRoll theory = slideToRoll(speed, friction, s.gravity);
-    const int resolving = std::max(s.sphereNodes, resolvingNodeCount(s));
-    // The setup's ball is judged with patches (for the laws that integrate them), shown with
-    // points when a finer ball is judged instead.
-    struct Ball { int nodes; bool judged; NodeQuadrature quadrature; };
+    double speed = 1000.0, friction = 0.3, rollTime = 0.0;
+    SlideToRoll theory;
+};
+
+/// A ball the case runs: its node count, whether its checks are judged (else shown), how its
+/// nodes touch.
+struct Ball
+{
+    int nodes;
+    bool judged;
+    NodeQuadrature quadrature;
+};
+
+/// The ball whose nodes resolve the resting cap (@a resolving nodes), judged; when that is not
+/// the setup's ball, the setup's ball too, shown with points and judged with patches (for the
+/// laws that integrate them).
+std::vector<Ball> ballsToRoll(const Setup& s, int resolving)
+{
     std::vector<Ball> balls = {{resolving, true, NodeQuadrature::Point}};
     if (resolving != s.sphereNodes) {
         balls.push_back({s.sphereNodes, false, NodeQuadrature::Point});
         balls.push_back({s.sphereNodes, true, NodeQuadrature::Patch});
     }
-    for (const Ball& b : balls) {
-        const auto ball = c.bodies.sphere(s.radius, b.nodes, s.sphereVoxel);
-        const double spacing = std::sqrt(ball->nodes.totalArea() / double(ball->nodes.size()));
-        char why[200];
-        std::snprintf(why, sizeof why,
-                      "not judged: a resting cap of radius %.3g mm, %.2g node spacings: the ball "
-                      "rolls over its nodes (judged: the ball of %d nodes)",
-                      restingCapRadius(s), restingCapRadius(s) / spacing, resolving);
-        const bool patches = b.quadrature == NodeQuadrature::Patch;
-        for (const Formulation f : c.formulations) {
-            if (!normalModel(f).perNodeForces()) continue;  // friction needs shear springs
-            if (patches && !normalModel(f).integratesPatches()) continue;
-            for (const double restitution : {0.3, 1.0}) {
-                const RollingRun run = slideAndRoll(c, ball, f, speed, friction, restitution,
-                                                    rollTime, b.quadrature);
-                const std::string name = "slide-to-roll e=" + numberText(restitution) + " N=" +
-                                         std::to_string(ball->nodes.size()) +
-                                         (patches ? " patches" : "");
-                const std::string law = formulationName(f);
-                const auto add = [&](Check check) {
-                    check.informative = !b.judged;
-                    if (!b.judged) check.basis = why;
-                    c.report.add(check);
-                };
-                // 1 %, the issue's goal: rigid-body theory holds to the lever's δ/R (3e-4 under
-                // a ball's weight) and the shear springs' deflection when the slip stops.
-                add({name, law, "slip's end", "s", theory.slipTime, run.slipEnd, theory.slipTime,
-                     0.01, "rigid body: 2v₀/(7μg); 1 % (the goal)"});
-                add({name, law, "speed at the slip's end", "mm/s", theory.rollingSpeed,
-                     run.speedAtSlipEnd, theory.rollingSpeed, 0.01,
-                     "rigid body: 5/7·v₀; 1 % (the goal)"});
-                add({name, law, "speed after rolling " + numberText(rollTime) + " s", "mm/s",
-                     theory.rollingSpeed, run.finalSpeed, theory.rollingSpeed, 0.01,
-                     "rolling costs nothing: 5/7·v₀ still; 1 % (the goal)"});
-                // The kinetic energy the slide loses, ½mv₀²(1 − (5/7)² − (2/5)(5/7)²) = mv₀²/7,
-                // is friction's (dissipated_friction): μ·m·g times the slip's length, so 1 % as
-                // the slip's end. Rolling, the contact sticks: what friction takes then is shown.
-                const double slideLoss = run.mass * speed * speed / 7.0;
-                add({name, law, "friction's work over the slide", "N·mm", slideLoss,
-                     run.frictionBySlipEnd, slideLoss, 0.01,
-                     "rigid body: m·v₀²/7 of the kinetic energy; 1 % (as the slip's end)"});
-                Check rolling{name, law, "friction's work while rolling, of the slide's", "", 0.0,
-                              run.frictionWhileRolling / slideLoss, 1.0, 0.0,
-                              "shown: a rolling contact sticks (nodes entering and leaving it "
-                              "slip a little)"};
-                rolling.informative = true;
-                c.report.add(rolling);
-                // The apparent rolling resistance μ_r = (7/5)·a/g of a ball decelerating at a.
-                add({name, law, "rolling resistance μ_r", "", 0.0,
-                     1.4 * run.deceleration / s.gravity, 1.0, 0.002,
-                     "no rolling resistance in the law: the goal, μ_r ≤ 0.002"});
-                // A hop lifts the centre above R (every node lies on the sphere, so resting on
-                // any of them leaves it at most R high). The original law's stiffness is its
-                // node count in the cap, which the node pattern makes vary as the ball rolls:
-                // undamped, that shakes it, so its rise is shown, not judged.
-                Check hop{name, law, "highest rise of the centre above R", "mm", 0.0,
-                          run.highestRise, s.radius, 1e-4,
-                          "no hops: the centre stays within R (1e-4·R of it)"};
-                if (!normalModel(f).stiffnessPerArea() && restitution == 1.0) {
-                    hop.informative = true;
-                    hop.basis = "not judged: the original law's stiffness follows its node count "
-                                "in the cap, which varies as the ball rolls; undamped, that shakes";
-                    c.report.add(hop);
-                } else {
-                    add(hop);
-                }
-                Series trace = run.trace;
-                trace.name = "slide_to_roll_" + law + "_e" + numberText(restitution) + "_n" +
-                             std::to_string(ball->nodes.size()) + (patches ? "_patches" : "");
-                c.report.series.push_back(trace);
-            }
+    return balls;
+}
+
+/// Where one run's checks go: judged, or shown with the reason it is not judged.
+struct RunChecks
+{
+    Context& c;
+    std::string name, law;
+    bool judged;
+    std::string why;
+
+    void add(Check check) const
+    {
+        check.informative = !judged;
+        if (!judged) check.basis = why;
+        c.report.add(check);
+    }
+};
+
+/// One run's checks against rigid-body theory: the slip's end, the rolling speed, friction's
+/// work, the rolling resistance and hops.
+void judgeSlideToRoll(const RunChecks& checks, const SlideCase& slide, const RollingRun& run,
+                      Formulation f, double restitution, const Setup& s)
+{
+    const std::string& name = checks.name;
+    const std::string& law = checks.law;
+    const SlideToRoll& theory = slide.theory;
+    // 1 %, the issue's goal: rigid-body theory holds to the lever's δ/R (3e-4 under
+    // a ball's weight) and the shear springs' deflection when the slip stops.
+    checks.add({name, law, "slip's end", "s", theory.slipTime, run.slipEnd, theory.slipTime,
+                0.01, "rigid body: 2v₀/(7μg); 1 % (the goal)"});
+    checks.add({name, law, "speed at the slip's end", "mm/s", theory.rollingSpeed,
+                run.speedAtSlipEnd, theory.rollingSpeed, 0.01,
+                "rigid body: 5/7·v₀; 1 % (the goal)"});
+    checks.add({name, law, "speed after rolling " + numberText(slide.rollTime) + " s", "mm/s",
+                theory.rollingSpeed, run.finalSpeed, theory.rollingSpeed, 0.01,
+                "rolling costs nothing: 5/7·v₀ still; 1 % (the goal)"});
+    // The kinetic energy the slide loses, ½mv₀²(1 − (5/7)² − (2/5)(5/7)²) = mv₀²/7,
+    // is friction's (dissipated_friction): μ·m·g times the slip's length, so 1 % as
+    // the slip's end. Rolling, the contact sticks: what friction takes then is shown.
+    const double slideLoss = run.mass * slide.speed * slide.speed / 7.0;
+    checks.add({name, law, "friction's work over the slide", "N·mm", slideLoss,
+                run.frictionBySlipEnd, slideLoss, 0.01,
+                "rigid body: m·v₀²/7 of the kinetic energy; 1 % (as the slip's end)"});
+    Check rolling{name, law, "friction's work while rolling, of the slide's", "", 0.0,
+                  run.frictionWhileRolling / slideLoss, 1.0, 0.0,
+                  "shown: a rolling contact sticks (nodes entering and leaving it "
+                  "slip a little)"};
+    rolling.informative = true;
+    checks.c.report.add(rolling);
+    // The apparent rolling resistance μ_r = (7/5)·a/g of a ball decelerating at a.
+    checks.add({name, law, "rolling resistance μ_r", "", 0.0, 1.4 * run.deceleration / s.gravity,
+                1.0, 0.002, "no rolling resistance in the law: the goal, μ_r ≤ 0.002"});
+    // A hop lifts the centre above R (every node lies on the sphere, so resting on
+    // any of them leaves it at most R high). The original law's stiffness is its
+    // node count in the cap, which the node pattern makes vary as the ball rolls:
+    // undamped, that shakes it, so its rise is shown, not judged.
+    Check hop{name, law, "highest rise of the centre above R", "mm", 0.0, run.highestRise,
+              s.radius, 1e-4, "no hops: the centre stays within R (1e-4·R of it)"};
+    if (!normalModel(f).stiffnessPerArea() && restitution == 1.0) {
+        hop.informative = true;
+        hop.basis = "not judged: the original law's stiffness follows its node count "
+                    "in the cap, which varies as the ball rolls; undamped, that shakes";
+        checks.c.report.add(hop);
+    } else {
+        checks.add(hop);
+    }
+}
+
+/// Ball @a b slid and rolled with every law that has shear springs (and integrates patches,
+/// for a ball with patches), damped and undamped: the checks and the traces.
+void rollBall(Context& c, const SlideCase& slide, const Ball& b, int resolving)
+{
+    const Setup& s = c.bodies.setup();
+    const auto ball = c.bodies.sphere(s.radius, b.nodes, s.sphereVoxel);
+    const double spacing = std::sqrt(ball->nodes.totalArea() / double(ball->nodes.size()));
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "not judged: a resting cap of radius %.3g mm, %.2g node spacings: the ball "
+                  "rolls over its nodes (judged: the ball of %d nodes)",
+                  restingCapRadius(s), restingCapRadius(s) / spacing, resolving);
+    const bool patches = b.quadrature == NodeQuadrature::Patch;
+    for (const Formulation f : c.formulations) {
+        if (!normalModel(f).perNodeForces()) continue;  // friction needs shear springs
+        if (patches && !normalModel(f).integratesPatches()) continue;
+        for (const double restitution : {0.3, 1.0}) {
+            const RollingRun run = slideAndRoll(c, ball, f, slide.speed, slide.friction,
+                                                restitution, slide.rollTime, b.quadrature);
+            const std::string name = "slide-to-roll e=" + numberText(restitution) + " N=" +
+                                     std::to_string(ball->nodes.size()) +
+                                     (patches ? " patches" : "");
+            const std::string law = formulationName(f);
+            judgeSlideToRoll({c, name, law, b.judged, why}, slide, run, f, restitution, s);
+            Series trace = run.trace;
+            trace.name = "slide_to_roll_" + law + "_e" + numberText(restitution) + "_n" +
+                         std::to_string(ball->nodes.size()) + (patches ? "_patches" : "");
+            c.report.series.push_back(trace);
         }
     }
+}
+
+} // namespace
+
+void slideToRollOnAFloor(Context& c)
+{
+    const Setup& s = c.bodies.setup();
+    SlideCase slide;
+    slide.rollTime = c.quick ? 0.05 : 0.2;
+    slide.theory = slideToRoll(slide.speed, slide.friction, s.gravity);
+    const int resolving = std::max(s.sphereNodes, resolvingNodeCount(s));
+    for (const Ball& b : ballsToRoll(s, resolving)) rollBall(c, slide, b, resolving);
 }
 
 } // namespace lsdem::verify

@@ -46,65 +46,141 @@ Vec3 Surface::normalAt(const Vec3& p) const
     return (p - Vec3(0, 0, -radius)).normalized();
 }
 
-// Long on purpose: the whole reference integrator in one place, written apart from lsdem's
-// contact code, so that it can be read against the equations line by line.
+// The reference integrator, written apart from lsdem's contact code so that it can be read
+// against the equations (ShearFieldReference.h): one function per step of the law, in the
+// order a time step takes them.
+namespace {
+
+/// The ball as it moves: its centre, velocity, spin and turn from its start.
+struct BallState
+{
+    Vec3 centre, v, w;
+    Quat turn;
+};
+
+/// Each point's normal and shear spring stiffness: the law's, times the point's area for a
+/// law per area.
+struct PointStiffness
+{
+    std::vector<double> normal, shear;
+};
+
+PointStiffness pointStiffness(const SurfacePoints& points, const ContactModel& law)
+{
+    const bool perArea = law.normal().stiffnessPerArea();
+    const size_t n = points.positions.size();
+    PointStiffness k{std::vector<double>(n), std::vector<double>(n)};
+    for (size_t a = 0; a < n; ++a) {
+        k.normal[a] = perArea ? law.normalStiffness * points.areas[a] : law.normalStiffness;
+        k.shear[a] = perArea ? law.shearStiffness * points.areas[a] : law.shearStiffness;
+    }
+    return k;
+}
+
+/// The contact as a whole, summed over the points below the surface (for the dashpot).
+struct ContactSums
+{
+    double total = 0.0, elastic = 0.0, deepest = 0.0, areas = 0.0, squares = 0.0;
+    Vec3 weighted = Vec3::Zero();
+    bool any = false;
+};
+
+/// Every point placed in the world (@a world) with its depth below the surface (@a depth);
+/// the sums of those below it.
+ContactSums placePoints(const SurfacePoints& points, const std::vector<double>& normalStiffness,
+                        const Surface& surface, const BallState& ball, std::vector<Vec3>& world,
+                        std::vector<double>& depth)
+{
+    ContactSums sums;
+    for (size_t a = 0; a < world.size(); ++a) {
+        world[a] = ball.centre + ball.turn * points.positions[a];
+        depth[a] = surface.depthOf(world[a]);
+        if (depth[a] <= 0.0) continue;
+        sums.any = true;
+        sums.total += normalStiffness[a];
+        sums.elastic += normalStiffness[a] * depth[a];
+        sums.weighted += normalStiffness[a] * world[a];
+        sums.deepest = std::max(sums.deepest, depth[a]);
+        sums.areas += points.areas[a];
+        sums.squares += points.areas[a] * points.areas[a];
+    }
+    return sums;
+}
+
+/// The contact's dashpot force and torque on the ball, added to @a force and @a torque: at the
+/// springs' stiffness-weighted centre, along the surface's normal there, pushing but not
+/// pulling. Returns its normal force over Σ k (the share each point's friction limit takes).
+double addDashpot(const ContactModel& law, double mass, const Surface& surface,
+                  const ContactSums& sums, const BallState& ball, Vec3& force, Vec3& torque)
+{
+    const Vec3 at = sums.weighted / sums.total;
+    const Vec3 normal = surface.normalAt(at);
+    // (On a plane every point's normal is the contact's; on a heavy ball the tilt
+    // within the cap is second order.)
+    const double exponent = std::max(
+        1.0, sums.deepest * (1.0 + sums.squares / (sums.areas * sums.areas)) * sums.total /
+                 sums.elastic);
+    const double dashpot = law.damping.dashpot(
+        mass, sums.total, law.normal().perNodeForces() ? exponent : 1.0);
+    const double separating = (ball.v + ball.w.cross(at - ball.centre)).dot(normal);
+    const double viscous = std::max(-dashpot * separating, -sums.elastic);
+    force += viscous * normal;
+    torque += (at - ball.centre).cross(viscous * normal);
+    return viscous / sums.total;
+}
+
+/// A point's shear spring @a stored carried through the step at @a point (normal @a normal):
+/// kept in the tangent plane at its size, turned with the ball's spin about the normal, less
+/// k_t times the slip, and capped at @a limit.
+Vec3 shearSpring(const Vec3& stored, const Vec3& normal, const Vec3& point, const BallState& ball,
+                 double shearStiffness, double limit, double step)
+{
+    const Vec3 slip = (ball.v + ball.w.cross(point - ball.centre)) * step;
+    Vec3 s = stored - stored.dot(normal) * normal;
+    s += (0.5 * ball.w.dot(normal) * step) * normal.cross(s);
+    if (s.squaredNorm() > 0.0) s *= stored.norm() / s.norm();
+    s -= shearStiffness * (slip - slip.dot(normal) * normal);
+    if (s.norm() > limit) s *= limit > 0.0 ? limit / s.norm() : 0.0;
+    return s;
+}
+
+/// Semi-implicit Euler: the velocities with these forces, then the positions.
+void advance(BallState& ball, const Vec3& force, const Vec3& torque, double mass, double inertia,
+             double step)
+{
+    ball.v += force / mass * step;
+    ball.w += torque / inertia * step;
+    ball.centre += ball.v * step;
+    const double angle = ball.w.norm() * step;
+    if (angle > 0.0)
+        ball.turn = (Quat(Eigen::AngleAxisd(angle, ball.w.normalized())) * ball.turn).normalized();
+}
+
+} // namespace
+
 BallImpact ballOnSurface(const SurfacePoints& points, const ContactModel& law, double mass,
                          double inertia, const Surface& surface, double height,
                          const Vec3& velocity, const Vec3& spin, double step)
 {
-    const NormalModel& normalLaw = law.normal();
-    const bool perArea = normalLaw.stiffnessPerArea();
-    const bool shear = law.tangential().active(normalLaw);
+    const bool shear = law.tangential().active(law.normal());
     const size_t n = points.positions.size();
-    std::vector<double> normalStiffness(n), shearStiffness(n);
-    for (size_t a = 0; a < n; ++a) {
-        normalStiffness[a] = perArea ? law.normalStiffness * points.areas[a] : law.normalStiffness;
-        shearStiffness[a] = perArea ? law.shearStiffness * points.areas[a] : law.shearStiffness;
-    }
+    const PointStiffness stiffness = pointStiffness(points, law);
     std::vector<Vec3> stored(n, Vec3::Zero());
-    std::vector<bool> inside(n, false);
-    Vec3 centre(0, 0, height), v = velocity, w = spin;
-    Quat turn = Quat::Identity();
+    BallState ball{Vec3(0, 0, height), velocity, spin, Quat::Identity()};
     BallImpact out;
     bool touched = false;
     std::vector<Vec3> world(n);
     std::vector<double> depth(n);
     for (long k = 0; k < 50000000L; ++k) {
-        // The points below the surface, and the contact as a whole (for the dashpot).
-        double total = 0.0, elastic = 0.0, deepest = 0.0, areas = 0.0, squares = 0.0;
-        Vec3 weighted = Vec3::Zero();
-        bool any = false;
-        for (size_t a = 0; a < n; ++a) {
-            world[a] = centre + turn * points.positions[a];
-            depth[a] = surface.depthOf(world[a]);
-            if (depth[a] <= 0.0) continue;
-            any = true;
-            total += normalStiffness[a];
-            elastic += normalStiffness[a] * depth[a];
-            weighted += normalStiffness[a] * world[a];
-            deepest = std::max(deepest, depth[a]);
-            areas += points.areas[a];
-            squares += points.areas[a] * points.areas[a];
-        }
-        touched = touched || any;
-        if (touched && !any) break;
+        const ContactSums sums = placePoints(points, stiffness.normal, surface, ball, world, depth);
+        touched = touched || sums.any;
+        if (touched && !sums.any) break;
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
         double viscousPerStiffness = 0.0;
-        if (any && law.damping.active()) {
-            const Vec3 at = weighted / total;
-            const Vec3 normal = surface.normalAt(at);
-            // (On a plane every point's normal is the contact's; on a heavy ball the tilt
-            // within the cap is second order.)
-            const double exponent =
-                std::max(1.0, deepest * (1.0 + squares / (areas * areas)) * total / elastic);
-            const double dashpot =
-                law.damping.dashpot(mass, total, normalLaw.perNodeForces() ? exponent : 1.0);
-            const double separating = (v + w.cross(at - centre)).dot(normal);
-            const double viscous = std::max(-dashpot * separating, -elastic);
-            viscousPerStiffness = viscous / total;
-            force += viscous * normal;
-            torque += (at - centre).cross(viscous * normal);
-        }
+        if (sums.any && law.damping.active())
+            viscousPerStiffness = addDashpot(law, mass, surface, sums, ball, force, torque);
+        // Each point's spring, and its shear spring (which starts from zero when it enters and
+        // is dropped when it leaves); its forces act halfway between it and the surface.
         for (size_t a = 0; a < n; ++a) {
             if (depth[a] <= 0.0) {
                 stored[a] = Vec3::Zero();
@@ -112,32 +188,22 @@ BallImpact ballOnSurface(const SurfacePoints& points, const ContactModel& law, d
             }
             const Vec3 normal = surface.normalAt(world[a]);
             const Vec3 point = world[a] + 0.5 * depth[a] * normal;
-            Vec3 f = normalStiffness[a] * depth[a] * normal;
+            Vec3 f = stiffness.normal[a] * depth[a] * normal;
             if (shear) {
-                const Vec3 slip = (v + w.cross(point - centre)) * step;
-                Vec3 s = stored[a] - stored[a].dot(normal) * normal;
-                s += (0.5 * w.dot(normal) * step) * normal.cross(s);
-                if (s.squaredNorm() > 0.0) s *= stored[a].norm() / s.norm();
-                s -= shearStiffness[a] * (slip - slip.dot(normal) * normal);
-                const double limit =
-                    law.friction * std::max(0.0, normalStiffness[a] * (depth[a] + viscousPerStiffness));
-                if (s.norm() > limit) s *= limit > 0.0 ? limit / s.norm() : 0.0;
-                stored[a] = s;
-                f += s;
+                const double normalForce = stiffness.normal[a] * (depth[a] + viscousPerStiffness);
+                const double limit = law.friction * std::max(0.0, normalForce);
+                stored[a] =
+                    shearSpring(stored[a], normal, point, ball, stiffness.shear[a], limit, step);
+                f += stored[a];
             }
             force += f;
-            torque += (point - centre).cross(f);
+            torque += (point - ball.centre).cross(f);
         }
-        // Semi-implicit Euler: the velocities with these forces, then the positions.
-        v += force / mass * step;
-        w += torque / inertia * step;
-        centre += v * step;
-        const double angle = w.norm() * step;
-        if (angle > 0.0) turn = (Quat(Eigen::AngleAxisd(angle, w.normalized())) * turn).normalized();
-        out.maxOverlap = std::max(out.maxOverlap, deepest);
+        advance(ball, force, torque, mass, inertia, step);
+        out.maxOverlap = std::max(out.maxOverlap, sums.deepest);
     }
-    out.velocity = v;
-    out.angularVelocity = w;
+    out.velocity = ball.v;
+    out.angularVelocity = ball.w;
     return out;
 }
 

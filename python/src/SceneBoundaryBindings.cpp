@@ -1,54 +1,60 @@
 // Scene builder methods in Python: walls (with an optional stress servo), containers, an
-// orifice plate and an indenter, checked as the scene reader checks [[boundaries]].
+// orifice plate, an indenter and level-set obstacles, checked by the rules the scene reader
+// applies to [[boundaries]] (BoundaryKeys.h).
 #include "SceneBuilding.h"
 
 #include "lsdem/core/Error.h"
 #include "lsdem/scene/SceneFile.h"
-#include "lsdem/scene/ServoKeys.h"
+#include "lsdem/scene/BoundaryKeys.h"
 
 #include <pybind11/stl.h>
 
-#include <cmath>
+#include <array>
 #include <optional>
 
 namespace lsdem::python {
 
 namespace {
 
-/// A plane's stress servo from the keyword arguments of add_plane, by the rules a file's
-/// [[boundaries]] servo keys obey (ServoKeys.h). Nothing unless @a stress is given.
-void setServo(BoundarySpec& b, const std::optional<double>& stress,
-              const std::optional<double>& area,
-              const std::optional<std::vector<std::string>>& areaWalls,
-              const std::optional<double>& maxSpeed, const std::optional<double>& gain)
+/// Optional arguments as the schema's optional keys (None: not given).
+std::optional<Vec3> optionalVec3(const py::object& value, const std::string& what)
 {
-    const ServoKeys keys{stress, area, areaWalls, maxSpeed, gain, !b.velocity.isZero(0.0)};
-    if (std::optional<ServoProblem> p = applyServoKeys(keys, b))
-        throw Error("", "boundary '" + b.name + "': " + p->key + " " + p->problem, p->fix);
+    return value.is_none() ? std::nullopt : std::optional<Vec3>(toVec3(value, what));
 }
 
-/// A boundary about an axis (a cylinder's side wall, an orifice plate), checked as the scene
-/// reader checks it: a new name, a positive radius, a non-zero axis (made unit).
-BoundarySpec axialBoundary(const Scene& s, const std::string& name, const std::string& material,
-                           BoundaryShape shape, const py::object& center, double radius,
-                           const py::object& axis, const py::object& velocity)
+/// Adds the boundary @a keys give to @a s by the rules a file's [[boundaries]] entry obeys
+/// (BoundaryKeys.h), in the same words; a servo's area walls must be in the scene already.
+void addBoundary(Scene& s, const BoundaryKeys& keys)
 {
-    checkNewName(s.boundaries, name, "boundary");
-    if (!(radius > 0.0) || !std::isfinite(radius))
-        throw Error("", "boundary '" + name + "': radius must be > 0");
+    checkNewName(s.boundaries, keys.name, "boundary");
     BoundarySpec b;
-    b.name = name;
-    b.shape = shape;
-    b.material = indexOf(s.materials, material, "material");
-    b.center = toVec3(center, "center");
-    b.axis = toVec3(axis, "axis");
-    if (!(b.axis.norm() > 0.0))
-        throw Error("", "boundary '" + name + "': the axis must not be zero");
-    b.axis.normalize();
-    b.radius = radius;
-    b.velocity = toVec3(velocity, "velocity");
-    b.where = "boundary '" + name + "'";
-    return b;
+    b.where = "boundary '" + keys.name + "'";
+    if (std::optional<BoundaryProblem> p = applyBoundaryKeys(keys, b))
+        throw Error("", "boundary '" + keys.name + "': " + (p->key.empty() ? "" : p->key + " ") +
+                            p->problem,
+                    p->fix);
+    s.boundaries.push_back(b);
+    if (!b.areaWallNames.empty()) {
+        try {
+            resolveServoAreaWalls(s);
+        } catch (const Error&) {
+            s.boundaries.pop_back();
+            throw;
+        }
+    }
+    markChanged(s);
+}
+
+/// The keys every boundary has: its name, type, material and velocity.
+BoundaryKeys commonKeys(const Scene& s, const std::string& name, const std::string& type,
+                        const std::string& material, const py::object& velocity)
+{
+    BoundaryKeys k;
+    k.name = name;
+    k.type = type;
+    k.material = indexOf(s.materials, material, "material");
+    k.velocity = toVec3(velocity, "velocity");
+    return k;
 }
 
 } // namespace
@@ -60,39 +66,30 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
         .def("add_plane",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& point, const py::object& normal, const py::object& velocity,
-                std::optional<double> stress, std::optional<double> area,
-                std::optional<std::vector<std::string>> areaWalls,
+                std::optional<std::array<double, 2>> extent, const py::object& axisU,
+                std::optional<double> thickness, std::optional<double> stress,
+                std::optional<double> area, std::optional<std::vector<std::string>> areaWalls,
                 std::optional<double> maxSpeed, std::optional<double> servoGain) {
-                 checkNewName(s.boundaries, name, "boundary");
-                 BoundarySpec b;
-                 b.name = name;
-                 b.shape = BoundaryShape::Plane;
-                 b.material = indexOf(s.materials, material, "material");
-                 b.point = toVec3(point, "point");
-                 b.normal = toVec3(normal, "normal");
-                 if (!(b.normal.norm() > 0.0)) throw Error("", "the normal must not be zero");
-                 b.normal.normalize();
-                 b.velocity = toVec3(velocity, "velocity");
-                 b.where = "boundary '" + name + "'";
-                 setServo(b, stress, area, areaWalls, maxSpeed, servoGain);
-                 s.boundaries.push_back(b);
-                 if (!b.areaWallNames.empty()) {
-                     try {  // the walls it names must be in the scene already
-                         resolveServoAreaWalls(s);
-                     } catch (const Error&) {
-                         s.boundaries.pop_back();
-                         throw;
-                     }
-                 }
-                 markChanged(s);
+                 BoundaryKeys k = commonKeys(s, name, "plane", material, velocity);
+                 k.point = toVec3(point, "point");
+                 k.normal = toVec3(normal, "normal");
+                 k.extent = extent;
+                 k.axisU = optionalVec3(axisU, "axis_u");
+                 k.thickness = thickness;
+                 k.servo = ServoKeys{stress, area, areaWalls, maxSpeed, servoGain, false};
+                 addBoundary(s, k);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("point"),
              py::arg("normal"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
-             py::arg("stress") = py::none(), py::arg("area") = py::none(),
-             py::arg("area_walls") = py::none(), py::arg("max_speed") = py::none(),
-             py::arg("servo_gain") = py::none(),
-             "An unbounded wall through `point`; grains live on the side `normal` points to. "
-             "It moves at `velocity` whatever the forces (zero: fixed).\n\n"
+             py::arg("extent") = py::none(), py::arg("axis_u") = py::none(),
+             py::arg("thickness") = py::none(), py::arg("stress") = py::none(),
+             py::arg("area") = py::none(), py::arg("area_walls") = py::none(),
+             py::arg("max_speed") = py::none(), py::arg("servo_gain") = py::none(),
+             "A wall through `point`; grains live on the side `normal` points to. It moves at "
+             "`velocity` whatever the forces (zero: fixed).\n\n"
+             "Unbounded, or a rectangular patch `extent` = (wu, wv) wide along `axis_u` (default: "
+             "any direction within the plane) and normal × `axis_u`; nodes more than `thickness` "
+             "behind it are ignored (default: none are).\n\n"
              "With `stress` (> 0, force/length²) it is a servo wall instead (docs/packing.md): "
              "it moves along its normal to keep the grains' normal stress on it, over `area` "
              "(length²) or over the rectangle between `area_walls` (the names of two pairs of "
@@ -103,10 +100,11 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& axis,
                 const py::object& velocity) {
-                 BoundarySpec b = axialBoundary(s, name, material, BoundaryShape::Cylinder,
-                                                center, radius, axis, velocity);
-                 markChanged(s);
-                 s.boundaries.push_back(b);
+                 BoundaryKeys k = commonKeys(s, name, "cylinder", material, velocity);
+                 k.center = toVec3(center, "center");
+                 k.radius = radius;
+                 k.axis = toVec3(axis, "axis");
+                 addBoundary(s, k);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
              py::arg("radius"), py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0),
@@ -117,13 +115,12 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, double thickness,
                 const py::object& axis, const py::object& velocity) {
-                 BoundarySpec b = axialBoundary(s, name, material, BoundaryShape::Orifice,
-                                                center, radius, axis, velocity);
-                 if (!(thickness > 0.0) || !std::isfinite(thickness))
-                     throw Error("", "boundary '" + name + "': thickness must be > 0");
-                 b.thickness = thickness;
-                 markChanged(s);
-                 s.boundaries.push_back(b);
+                 BoundaryKeys k = commonKeys(s, name, "orifice", material, velocity);
+                 k.center = toVec3(center, "center");
+                 k.radius = radius;
+                 k.thickness = thickness;
+                 k.axis = toVec3(axis, "axis");
+                 addBoundary(s, k);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
              py::arg("radius"), py::arg("thickness"),
@@ -136,23 +133,30 @@ void bindSceneBoundaries(py::class_<Scene>& scene)
         .def("add_sphere_boundary",
              [](Scene& s, const std::string& name, const std::string& material,
                 const py::object& center, double radius, const py::object& velocity) {
-                 checkNewName(s.boundaries, name, "boundary");
-                 if (!(radius > 0.0) || !std::isfinite(radius))
-                     throw Error("", "boundary '" + name + "': radius must be > 0");
-                 BoundarySpec b;
-                 b.name = name;
-                 b.shape = BoundaryShape::Sphere;
-                 b.material = indexOf(s.materials, material, "material");
-                 b.center = toVec3(center, "center");
-                 b.radius = radius;
-                 b.velocity = toVec3(velocity, "velocity");
-                 b.where = "boundary '" + name + "'";
-                 markChanged(s);
-                 s.boundaries.push_back(b);
+                 BoundaryKeys k = commonKeys(s, name, "sphere", material, velocity);
+                 k.center = toVec3(center, "center");
+                 k.radius = radius;
+                 addBoundary(s, k);
              },
              py::arg("name"), py::arg("material"), py::kw_only(), py::arg("center"),
              py::arg("radius"), py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
-             "A rigid sphere (an indenter); grains live outside it.");
+             "A rigid sphere (an indenter); grains live outside it.")
+        .def("add_level_set_boundary",
+             [](Scene& s, const std::string& name, const std::string& material,
+                const std::string& asset, const py::object& position,
+                const py::object& orientation, const py::object& velocity) {
+                 BoundaryKeys k = commonKeys(s, name, "level-set", material, velocity);
+                 k.asset = indexOf(s.assets, asset, "asset");
+                 k.position = toVec3(position, "position");
+                 k.orientation = toQuat(orientation);
+                 addBoundary(s, k);
+             },
+             py::arg("name"), py::arg("material"), py::kw_only(), py::arg("asset"),
+             py::arg("position"), py::arg("orientation") = py::make_tuple(1.0, 0.0, 0.0, 0.0),
+             py::arg("velocity") = py::make_tuple(0.0, 0.0, 0.0),
+             "An asset of the scene as a rigid obstacle (an indenter of any shape, a rough "
+             "floor): its centroid at `position`, turned by the unit quaternion `orientation` "
+             "[w, x, y, z] (asset frame to world); grains live outside it.");
 }
 
 } // namespace lsdem::python

@@ -267,7 +267,7 @@ def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):
     assert scene.boundary_names == []  # nothing half-added
     with pytest.raises(lsdem.Error, match="radius must be > 0"):
         scene.add_cylinder_boundary("drum", "wall", center=[0, 0, 0], radius=0.0)
-    with pytest.raises(lsdem.Error, match="axis must not be zero"):
+    with pytest.raises(lsdem.Error, match="axis must not be the zero vector"):
         scene.add_cylinder_boundary("drum", "wall", center=[0, 0, 0], radius=1.0, axis=[0, 0, 0])
     with pytest.raises(lsdem.Error, match="catalogue not found"):
         scene.add_asset_set("sand", catalog=str(tmp_path / "none.csv"))
@@ -284,6 +284,31 @@ def test_builder_refuses_bad_servo_walls_sets_and_tables(sphere, tmp_path):
     assert len(scene) == 0  # nothing half-added
     with pytest.raises(lsdem.Error, match="cannot read"):
         scene.add_grain_file(str(tmp_path / "none.csv"), "wall")
+
+
+def test_builder_adds_patches_and_level_set_obstacles_as_a_file_does(sphere, tmp_path):
+    """A plane patch and a level-set obstacle from Python read back from the saved scene as
+    they were built, and a key that breaks a rule is refused in the reader's own words."""
+    scene = lsdem.Scene()
+    scene.add_asset("ball", sphere)
+    scene.add_material("wall")
+    scene.add_plane("ramp", "wall", point=[0, 0, 0], normal=[0, 0, 1], extent=(4.0, 2.0),
+                    axis_u=[0.6, 0.8, 0], thickness=0.5)
+    scene.add_level_set_boundary("rock", "wall", asset="ball", position=[0, 0, 9],
+                                 orientation=[0, 0, 0, 1])
+    assert scene.boundary_names == ["ramp", "rock"]
+    text = scene.to_toml(str(tmp_path))
+    assert "extent = [4.0, 2.0]" in text and "axis_u = [0.6, 0.8, 0.0]" in text
+    assert "type = 'level-set'" in text and "orientation = [0.0, 0.0, 0.0, 1.0]" in text
+    with pytest.raises(lsdem.Error, match="axis_u only makes sense with extent"):
+        scene.add_plane("bad", "wall", point=[0, 0, 0], normal=[0, 0, 1], axis_u=[1, 0, 0])
+    with pytest.raises(lsdem.Error, match="extent both widths must be > 0"):
+        scene.add_plane("bad", "wall", point=[0, 0, 0], normal=[0, 0, 1], extent=(1.0, 0.0))
+    with pytest.raises(lsdem.Error, match="cannot name a file"):
+        scene.add_sphere_boundary("a/b", "wall", center=[0, 0, 0], radius=1.0)
+    with pytest.raises(lsdem.Error, match="no asset called 'pebble'"):
+        scene.add_level_set_boundary("bad", "wall", asset="pebble", position=[0, 0, 0])
+    assert scene.boundary_names == ["ramp", "rock"]  # nothing half-added
 
 
 def test_builder_refuses_what_it_cannot_mean(sphere):

@@ -3,115 +3,69 @@
 #include "SceneSections.h"
 
 #include "lsdem/scene/SceneFile.h"
-#include "lsdem/scene/ServoKeys.h"
+#include "lsdem/scene/BoundaryKeys.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 namespace lsdem::scenefile {
 
 namespace {
 
-/// A boundary's name becomes part of a file name (boundary_<name>.csv).
-bool isFileNameSafe(const std::string& s)
+/// area_walls = ["left", "right", "front", "back"]: the names as given (their rules are the
+/// servo's, ServoKeys.h).
+std::vector<std::string> readAreaWalls(TableReader& t)
 {
-    if (s.empty()) return false;
-    for (char ch : s)
-        if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-')) return false;
-    return true;
-}
-
-/// A plane's stress servo: its keys read in their types, then the servo's rules
-/// (ServoKeys.h). Nothing unless stress is given.
-void readServo(TableReader& t, BoundarySpec& b)
-{
-    ServoKeys keys;
-    const auto number = [&t](const char* key) {
-        return t.has(key) ? std::optional<double>(t.number(key)) : std::nullopt;
-    };
-    keys.stress = number("stress");
-    keys.area = number("area");
-    keys.maxSpeed = number("max_speed");
-    keys.gain = number("servo_gain");
-    keys.velocityGiven = t.has("velocity");
-    if (t.has("area_walls")) {
-        const toml::array* a = t.node("area_walls").as_array();
-        if (!a || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_string(); }))
-            t.fail("area_walls", "expected the names of four walls (two opposite pairs)",
-                   "write e.g. area_walls = [\"left\", \"right\", \"front\", \"back\"]");
-        keys.areaWalls.emplace();
-        for (const toml::node& e : *a) keys.areaWalls->push_back(e.as_string()->get());
-    }
-    if (std::optional<ServoProblem> p = applyServoKeys(keys, b)) t.fail(p->key, p->problem, p->fix);
+    const toml::array* a = t.node("area_walls").as_array();
+    if (!a || !std::all_of(a->begin(), a->end(), [](const toml::node& e) { return e.is_string(); }))
+        t.fail("area_walls", "expected the names of four walls (two opposite pairs)",
+               "write e.g. area_walls = [\"left\", \"right\", \"front\", \"back\"]");
+    std::vector<std::string> names;
+    for (const toml::node& e : *a) names.push_back(e.as_string()->get());
+    return names;
 }
 
 } // namespace
 
+// Every key the schema knows is gathered in its type, whatever the entry's type; the schema
+// (BoundaryKeys.h) then says which of them this type takes, needs, and in what range.
 BoundarySpec readBoundary(TableReader& t, const Scene& scene)
 {
+    BoundaryKeys k;
+    k.name = t.string("name");
+    k.type = t.string("type", "");
+    k.material = lookUpMaterial(t, scene);
+    const auto vector = [&t](const char* key) {
+        return t.has(key) ? std::optional<Vec3>(t.vec3(key)) : std::nullopt;
+    };
+    const auto number = [&t](const char* key) {
+        return t.has(key) ? std::optional<double>(t.number(key)) : std::nullopt;
+    };
+    k.velocity = vector("velocity");
+    k.point = vector("point");
+    k.normal = vector("normal");
+    if (t.has("extent")) {
+        const std::vector<double> e = t.numbers("extent", 2);
+        k.extent = std::array<double, 2>{e[0], e[1]};
+    }
+    k.axisU = vector("axis_u");
+    k.thickness = number("thickness");
+    k.center = vector("center");
+    k.radius = number("radius");
+    k.axis = vector("axis");
+    if (t.has("asset")) k.asset = lookUpAsset(t, scene);
+    k.position = vector("position");
+    if (t.has("orientation") || t.has("axis_angle")) k.orientation = readOrientation(t);
+    k.servo.stress = number("stress");
+    k.servo.area = number("area");
+    if (t.has("area_walls")) k.servo.areaWalls = readAreaWalls(t);
+    k.servo.maxSpeed = number("max_speed");
+    k.servo.gain = number("servo_gain");
+    t.rejectUnknownKeys();
+
     BoundarySpec b;
     b.where = t.where();
-    b.name = t.string("name");
-    if (!isFileNameSafe(b.name))
-        t.fail("name", "'" + b.name + "' cannot name a file (boundary_<name>.csv)",
-               "use letters, digits, '_' and '-' only");
-    const std::string type =
-        t.choice("type", {"plane", "sphere", "level-set", "cylinder", "orifice"}, "");
-    if (type.empty())
-        t.fail("", "missing key 'type'",
-               "add type = \"plane\" | \"sphere\" | \"level-set\" | \"cylinder\" | "
-               "\"orifice\"");
-    b.material = lookUpMaterial(t, scene);
-    b.velocity = t.vec3("velocity", Vec3::Zero());
-    if (type != "plane")
-        for (const char* key : {"stress", "area", "area_walls", "max_speed", "servo_gain"})
-            if (t.has(key))
-                t.fail(key, "only a plane can keep a stress",
-                       "use type = \"plane\" or remove " + std::string(key));
-    if (type == "plane") {
-        b.shape = BoundaryShape::Plane;
-        b.point = t.vec3("point");
-        b.normal = t.unitVec3("normal");
-        if (t.has("extent")) {
-            const std::vector<double> e = t.numbers("extent", 2);
-            if (!(e[0] > 0.0 && e[1] > 0.0))
-                t.fail("extent", "both widths must be > 0", "omit extent for an unbounded plane");
-            b.extentU = e[0];
-            b.extentV = e[1];
-            b.axisU = t.has("axis_u") ? t.unitVec3("axis_u") : b.normal.unitOrthogonal();
-            // Keep only the in-plane part, so a slightly off axis still defines the patch.
-            const Vec3 inPlane = b.axisU - b.axisU.dot(b.normal) * b.normal;
-            if (inPlane.norm() < 1e-6)
-                t.fail("axis_u", "is parallel to the normal", "give a direction within the plane");
-            b.axisU = inPlane.normalized();
-        } else if (t.has("axis_u")) {
-            t.fail("axis_u", "only makes sense with extent", "add extent = [wu, wv] or remove it");
-        }
-        b.thickness = t.has("thickness") ? t.positive("thickness") : 0.0;
-        readServo(t, b);
-    } else if (type == "sphere") {
-        b.shape = BoundaryShape::Sphere;
-        b.center = t.vec3("center");
-        b.radius = t.positive("radius");
-    } else if (type == "cylinder") {
-        b.shape = BoundaryShape::Cylinder;
-        b.center = t.vec3("center");
-        b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
-        b.radius = t.positive("radius");
-    } else if (type == "orifice") {
-        b.shape = BoundaryShape::Orifice;
-        b.center = t.vec3("center");
-        b.axis = t.has("axis") ? t.unitVec3("axis") : Vec3::UnitZ();
-        b.radius = t.positive("radius");
-        b.thickness = t.positive("thickness");
-    } else {
-        b.shape = BoundaryShape::LevelSet;
-        b.asset = lookUpAsset(t, scene);
-        b.pose.position = t.vec3("position");
-        b.pose.orientation = readOrientation(t);
-    }
-    t.rejectUnknownKeys();
+    if (std::optional<BoundaryProblem> p = applyBoundaryKeys(k, b)) t.fail(p->key, p->problem, p->fix);
     return b;
 }
 

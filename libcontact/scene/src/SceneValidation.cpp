@@ -4,6 +4,7 @@
 
 #include "SceneChecks.h"
 
+#include "lsdem/scene/BoundaryKeys.h"
 #include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/SceneSettings.h"
 
@@ -80,25 +81,6 @@ void validateGrains(const Scene& s)
     }
 }
 
-/// A boundary's size: the radius of the shapes that have one, an orifice plate's thickness.
-void validateBoundaryShape(const BoundarySpec& b, const std::string& where, size_t assets)
-{
-    const bool round = b.shape == BoundaryShape::Sphere || b.shape == BoundaryShape::Cylinder ||
-                       b.shape == BoundaryShape::Orifice;
-    if (round && !(std::isfinite(b.radius) && b.radius > 0.0))
-        throw Error(where, "boundary '" + b.name + "': radius must be > 0", "give its radius");
-    if (b.shape == BoundaryShape::Orifice && !(std::isfinite(b.thickness) && b.thickness > 0.0))
-        throw Error(where, "boundary '" + b.name + "': the plate's thickness must be > 0", "");
-    if (b.shape == BoundaryShape::Plane && !(b.normal.norm() > 0.0))
-        throw Error(where, "boundary '" + b.name + "': the normal must not be zero", "");
-    if ((b.shape == BoundaryShape::Cylinder || b.shape == BoundaryShape::Orifice) &&
-        !(b.axis.norm() > 0.0))
-        throw Error(where, "boundary '" + b.name + "': the axis must not be zero", "");
-    if (b.shape == BoundaryShape::LevelSet && !inRange(b.asset, assets))
-        throw Error(where, "boundary '" + b.name + "': its asset index is out of range",
-                    "name an asset");
-}
-
 void validateBoundaries(const Scene& s)
 {
     for (size_t i = 0; i < s.boundaries.size(); ++i) {
@@ -108,24 +90,15 @@ void validateBoundaries(const Scene& s)
         if (!inRange(b.material, s.materials.size()))
             throw Error(where, "boundary '" + b.name + "': its material index is out of range",
                         "name a material");
-        const bool sizesFinite = std::isfinite(b.extentU) && std::isfinite(b.extentV) &&
-                                 std::isfinite(b.thickness) && std::isfinite(b.radius) &&
-                                 b.extentU >= 0.0 && b.extentV >= 0.0 && b.thickness >= 0.0;
-        if (!finite(b.point) || !finite(b.normal) || !finite(b.axisU) || !finite(b.center) ||
-            !finite(b.axis) || !finite(b.pose.position) || !finite(b.velocity) || !sizesFinite)
-            throw Error(where, "boundary '" + b.name + "': a position, direction, size or "
-                                                       "velocity is not finite or is negative",
-                        "give finite numbers");
-        validateBoundaryShape(b, where, s.assets.size());
-        const StressServo& v = b.servo;
-        if (v.targetStress != 0.0 &&
-            !(v.targetStress > 0.0 && std::isfinite(v.targetStress) && v.maxSpeed > 0.0 &&
-              std::isfinite(v.maxSpeed) && v.gain > 0.0 && v.gain <= 1.0 &&
-              std::isfinite(v.area) && v.area >= 0.0))
-            throw Error(where, "boundary '" + b.name + "': a servo wall needs stress > 0, "
-                                                       "max_speed > 0, servo_gain in (0, 1] "
-                                                       "and an area >= 0",
-                        "see docs/scenes.md, [[boundaries]]");
+        if (b.shape == BoundaryShape::LevelSet && !inRange(b.asset, s.assets.size()))
+            throw Error(where, "boundary '" + b.name + "': its asset index is out of range",
+                        "name an asset");
+        // The rules a file's entry obeys, applied to the keys that would write this boundary.
+        BoundarySpec checked;
+        if (std::optional<BoundaryProblem> p = applyBoundaryKeys(boundaryKeysOf(b, s), checked))
+            throw Error(where, "boundary '" + b.name + "': " +
+                                   (p->key.empty() ? "" : p->key + " ") + p->problem,
+                        p->fix);
     }
 }
 

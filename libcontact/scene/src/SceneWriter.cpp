@@ -4,6 +4,7 @@
 // (Debian's toml++ 3.3 library prints 17 significant digits, 0.1 as 0.10000000000000001).
 #include "lsdem/scene/SceneWriter.h"
 
+#include "lsdem/scene/BoundaryKeys.h"
 #include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneValidation.h"
 
@@ -215,67 +216,37 @@ void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
     if (g.mass > 0.0) t.number("mass", g.mass);
 }
 
-void writeServo(TomlText& t, const Scene& scene, const StressServo& s)
-{
-    t.number("stress", s.targetStress);
-    if (s.areaFromWalls()) {
-        std::vector<std::string> names;
-        for (int w : s.areaWalls) names.push_back(scene.boundaries[size_t(w)].name);
-        t.strings("area_walls", names);
-    } else {
-        t.number("area", s.area);
-    }
-    t.number("max_speed", s.maxSpeed);
-    t.number("servo_gain", s.gain);
-}
-
+/// A boundary by its keys (BoundaryKeys.h), so the writer gives what the reader reads back.
 void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
 {
+    const BoundaryKeys k = boundaryKeysOf(b, scene);
+    const auto vector = [&t](const char* key, const std::optional<Vec3>& v) {
+        if (v) t.vec3(key, *v);
+    };
+    const auto number = [&t](const char* key, const std::optional<double>& v) {
+        if (v) t.number(key, *v);
+    };
     t.arrayTable("boundaries");
-    t.string("name", b.name);
-    switch (b.shape) {
-    case BoundaryShape::Plane:
-        t.string("type", "plane");
-        t.string("material", scene.materials[b.material].name);
-        t.vec3("point", b.point);
-        t.vec3("normal", b.normal);
-        if (b.extentU > 0.0 && b.extentV > 0.0) {
-            t.numbers("extent", {b.extentU, b.extentV});
-            t.vec3("axis_u", b.axisU);
-        }
-        if (b.thickness > 0.0) t.number("thickness", b.thickness);
-        if (b.servo.active()) writeServo(t, scene, b.servo);
-        break;
-    case BoundaryShape::Sphere:
-        t.string("type", "sphere");
-        t.string("material", scene.materials[b.material].name);
-        t.vec3("center", b.center);
-        t.number("radius", b.radius);
-        break;
-    case BoundaryShape::Cylinder:
-        t.string("type", "cylinder");
-        t.string("material", scene.materials[b.material].name);
-        t.vec3("center", b.center);
-        t.vec3("axis", b.axis);
-        t.number("radius", b.radius);
-        break;
-    case BoundaryShape::Orifice:
-        t.string("type", "orifice");
-        t.string("material", scene.materials[b.material].name);
-        t.vec3("center", b.center);
-        t.vec3("axis", b.axis);
-        t.number("radius", b.radius);
-        t.number("thickness", b.thickness);
-        break;
-    case BoundaryShape::LevelSet:
-        t.string("type", "level-set");
-        t.string("asset", scene.assets[b.asset].name);
-        t.string("material", scene.materials[b.material].name);
-        t.vec3("position", b.pose.position);
-        writeOrientation(t, b.pose.orientation);
-        break;
-    }
-    if (!b.velocity.isZero(0.0)) t.vec3("velocity", b.velocity);
+    t.string("name", k.name);
+    t.string("type", k.type);
+    if (k.asset) t.string("asset", scene.assets[size_t(*k.asset)].name);
+    t.string("material", scene.materials[size_t(k.material)].name);
+    vector("point", k.point);
+    vector("normal", k.normal);
+    if (k.extent) t.numbers("extent", {(*k.extent)[0], (*k.extent)[1]});
+    vector("axis_u", k.axisU);
+    vector("center", k.center);
+    vector("axis", k.axis);
+    number("radius", k.radius);
+    number("thickness", k.thickness);
+    vector("position", k.position);
+    if (k.orientation) writeOrientation(t, *k.orientation);
+    number("stress", k.servo.stress);
+    if (k.servo.areaWalls) t.strings("area_walls", *k.servo.areaWalls);
+    number("area", k.servo.area);
+    number("max_speed", k.servo.maxSpeed);
+    number("servo_gain", k.servo.gain);
+    vector("velocity", k.velocity);
 }
 
 /// The settings of @a section (SceneSettings.h) in the schema's order, those that the file

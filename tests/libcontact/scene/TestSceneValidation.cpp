@@ -62,7 +62,7 @@ std::vector<Breach> breaches()
              s.boundaries[0].servo.area = 1.0;
              s.boundaries[0].servo.gain = 1.5;
          },
-         "servo_gain in (0, 1]"},
+         "servo_gain must be in (0, 1] (got 1.5)"},
         {"global damping", [](Scene& s) { s.globalDamping = 1.0; }, "global_damping must be in [0, 1)"},
         {"gravity", [](Scene& s) { s.gravity.z() = kNaN; }, "gravity must be finite"},
         {"safety", [](Scene& s) { s.timeStep.safety = 2.0; }, "safety must be in (0, 1]"},

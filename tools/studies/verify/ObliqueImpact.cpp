@@ -48,7 +48,7 @@ Rebound ballOnWall(Context& c, const ContactModel& law, const Vec3& v, const Vec
     addGrain(scene, "ball", ball, Vec3(0, 0, s.radius * 1.001), v, w);
     if (partnerRadius > 0.0) {
         BoundarySpec b;
-        b.name = "heavy ball";
+        b.name = "heavy_ball";  // names a file, were it written: no space
         b.shape = BoundaryShape::Sphere;
         b.material = 1;
         b.center = Vec3(0, 0, -partnerRadius);

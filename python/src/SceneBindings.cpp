@@ -22,12 +22,6 @@ namespace lsdem::python {
 
 namespace fs = std::filesystem;
 
-double finite(double value, const std::string& what)
-{
-    if (!std::isfinite(value)) throw Error("", what + " must be finite");
-    return value;
-}
-
 Quat toQuat(const py::handle& value)
 {
     const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
@@ -37,14 +31,6 @@ Quat toQuat(const py::handle& value)
     if (std::optional<std::string> p = orientationProblem(q))
         throw Error("", "orientation " + *p, kOrientationFix);
     return unitQuaternion(q);
-}
-
-GrainMotion parseMotion(const std::string& motion)
-{
-    if (const std::optional<GrainMotion> m = parseGrainMotion(motion)) return *m;
-    std::string names;
-    for (const std::string& n : grainMotionNames()) names += (names.empty() ? "'" : ", '") + n + "'";
-    throw Error("", "motion wants one of " + names + ", got '" + motion + "'");
 }
 
 void markChanged(Scene& s)

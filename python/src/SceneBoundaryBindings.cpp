@@ -29,9 +29,8 @@ void addBoundary(Scene& s, const BoundaryKeys& keys)
     checkNewName(s.boundaries, keys.name, "boundary");
     BoundarySpec b;
     b.where = "boundary '" + keys.name + "'";
-    if (std::optional<BoundaryProblem> p = applyBoundaryKeys(keys, b))
-        throw Error("", "boundary '" + keys.name + "': " + (p->key.empty() ? "" : p->key + " ") +
-                            p->problem,
+    if (std::optional<KeyProblem> p = applyBoundaryKeys(keys, b))
+        throw Error("", "boundary '" + keys.name + "': " + keyProblemText(*p),
                     p->fix);
     s.boundaries.push_back(b);
     if (!b.areaWallNames.empty()) {

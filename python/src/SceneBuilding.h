@@ -44,12 +44,8 @@ std::vector<std::string> namesOf(const Items& items)
     return names;
 }
 
-/// @a value, or an Error saying that @a what must be finite.
-double finite(double value, const std::string& what);
 /// A unit quaternion (w, x, y, z) from Python; Error if it is not about unit length.
 Quat toQuat(const py::handle& value);
-/// "free", "fixed" or "prescribed".
-GrainMotion parseMotion(const std::string& motion);
 /// A scene changed in Python no longer matches its file's text: drop it, so checkpoints store
 /// the scene as it is now (its TOML) rather than as it was read.
 void markChanged(Scene& s);

@@ -3,6 +3,7 @@
 #include "SceneBuilding.h"
 
 #include "lsdem/scene/EntryRules.h"
+#include "lsdem/scene/GrainKeys.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
 #include "lsdem/core/Error.h"
@@ -98,26 +99,21 @@ void bindSceneContents(py::class_<Scene>& scene)
                 const py::object& position, const py::object& orientation,
                 const py::object& velocity, const py::object& angularVelocity, double mass,
                 const std::string& motion, const std::string& name) {
+                 GrainKeys k;
+                 k.name = name;
+                 k.asset = indexOf(s.assets, asset, "asset");
+                 k.material = indexOf(s.materials, material, "material");
+                 k.position = toVec3(position, "position");
+                 k.orientation = toQuat(orientation);
+                 k.velocity = toVec3(velocity, "velocity");
+                 k.angularVelocity = toVec3(angularVelocity, "angular_velocity");
+                 k.mass = mass;
+                 k.motion = motion;
                  GrainSpec g;
-                 g.asset = indexOf(s.assets, asset, "asset");
-                 g.material = indexOf(s.materials, material, "material");
-                 g.pose.position = toVec3(position, "position");
-                 g.pose.orientation = toQuat(orientation);
-                 g.velocity = toVec3(velocity, "velocity");
-                 g.angularVelocity = toVec3(angularVelocity, "angular_velocity");
-                 if (!(finite(mass, "mass") >= 0.0))
-                     throw Error("", "mass must be >= 0, got " + std::to_string(mass),
-                                 "0 to take density × volume");
-                 g.mass = mass;
-                 g.motion = parseMotion(motion);
-                 if (g.motion == GrainMotion::Fixed &&
-                     (g.velocity.norm() > 0.0 || g.angularVelocity.norm() > 0.0))
-                     throw Error("", "a fixed grain cannot move, but it has a velocity",
-                                 "remove the velocity, or use motion='prescribed' to move it at "
-                                 "that velocity");
-                 if (!name.empty()) checkNewName(s.grains, name, "grain");
-                 g.name = name;
                  g.where = "grain " + std::to_string(s.grains.size());
+                 if (std::optional<KeyProblem> p = applyGrainKeys(k, g))
+                     throw Error("", g.where + ": " + keyProblemText(*p), p->fix);
+                 if (!name.empty()) checkNewName(s.grains, name, "grain");
                  markChanged(s);
                  s.grains.push_back(g);
                  return s.grains.size() - 1;

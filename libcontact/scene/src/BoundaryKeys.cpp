@@ -63,50 +63,50 @@ std::string listed(const std::vector<std::string>& words)
 }
 
 /// The keys @a k gives that its type does not take, then those it needs and lacks.
-std::optional<BoundaryProblem> keysProblem(const BoundaryKeys& k, const BoundaryType& type)
+std::optional<KeyProblem> keysProblem(const BoundaryKeys& k, const BoundaryType& type)
 {
     for (const std::string& key : givenKeys(k)) {
         if (contains(type.required, key) || contains(type.optional, key)) continue;
         if (contains(kServoKeyNames, key))
-            return BoundaryProblem{key, "only a plane can keep a stress",
+            return KeyProblem{key, "only a plane can keep a stress",
                                    "use type = \"plane\" or remove " + key};
         std::vector<std::string> keys = type.required;
         keys.insert(keys.end(), type.optional.begin(), type.optional.end());
-        return BoundaryProblem{key, "a " + type.name + " boundary takes no '" + key + "'",
+        return KeyProblem{key, "a " + type.name + " boundary takes no '" + key + "'",
                                "remove it; a " + type.name + " takes " + listed(keys) +
                                    " (and name, type, material, velocity)"};
     }
     const std::vector<std::string> given = givenKeys(k);
     for (const std::string& key : type.required)
         if (!contains(given, key))
-            return BoundaryProblem{"", "missing key '" + key + "'", "add " + key + " = ..."};
+            return KeyProblem{"", "missing key '" + key + "'", "add " + key + " = ..."};
     return std::nullopt;
 }
 
-std::optional<BoundaryProblem> sizeProblem(const char* key, const std::optional<double>& size)
+std::optional<KeyProblem> sizeProblem(const char* key, const std::optional<double>& size)
 {
     if (!size) return std::nullopt;
     if (std::optional<std::string> p = outOfRange(NumberRange::Positive, *size))
-        return BoundaryProblem{key, *p, "give a positive length"};
+        return KeyProblem{key, *p, "give a positive length"};
     return std::nullopt;
 }
 
-std::optional<BoundaryProblem> directionProblem(const char* key, const std::optional<Vec3>& v)
+std::optional<KeyProblem> directionProblem(const char* key, const std::optional<Vec3>& v)
 {
     if (v && !(v->norm() > 0.0))
-        return BoundaryProblem{key, "must not be the zero vector", "give a direction"};
+        return KeyProblem{key, "must not be the zero vector", "give a direction"};
     return std::nullopt;
 }
 
-std::optional<BoundaryProblem> pointProblem(const char* key, const std::optional<Vec3>& v)
+std::optional<KeyProblem> pointProblem(const char* key, const std::optional<Vec3>& v)
 {
     if (v && !v->allFinite())
-        return BoundaryProblem{key, "holds a value that is not finite", "give finite numbers"};
+        return KeyProblem{key, "holds a value that is not finite", "give finite numbers"};
     return std::nullopt;
 }
 
 /// The values' rules, key by key in the order the type lists them.
-std::optional<BoundaryProblem> valuesProblem(const BoundaryKeys& k)
+std::optional<KeyProblem> valuesProblem(const BoundaryKeys& k)
 {
     for (const auto& [key, v] : {std::pair<const char*, const std::optional<Vec3>*>{"velocity", &k.velocity},
                                  {"point", &k.point}, {"normal", &k.normal}, {"axis_u", &k.axisU},
@@ -118,16 +118,16 @@ std::optional<BoundaryProblem> valuesProblem(const BoundaryKeys& k)
         if (auto p = directionProblem(key, *v)) return p;
     if (k.extent && !((*k.extent)[0] > 0.0 && (*k.extent)[1] > 0.0 &&
                       std::isfinite((*k.extent)[0]) && std::isfinite((*k.extent)[1])))
-        return BoundaryProblem{"extent", "both widths must be > 0",
+        return KeyProblem{"extent", "both widths must be > 0",
                                "omit extent for an unbounded plane"};
     if (k.axisU && !k.extent)
-        return BoundaryProblem{"axis_u", "only makes sense with extent",
+        return KeyProblem{"axis_u", "only makes sense with extent",
                                "add extent = [wu, wv] or remove it"};
     if (auto p = sizeProblem("radius", k.radius)) return p;
     if (auto p = sizeProblem("thickness", k.thickness)) return p;
     if (k.orientation)
         if (std::optional<std::string> p = orientationProblem(*k.orientation))
-            return BoundaryProblem{"orientation", *p, kOrientationFix};
+            return KeyProblem{"orientation", *p, kOrientationFix};
     return std::nullopt;
 }
 
@@ -173,18 +173,18 @@ const BoundaryType& boundaryTypeOf(BoundaryShape shape)
     return boundaryTypes().front();  // unreachable: every shape has a type
 }
 
-std::optional<BoundaryProblem> applyBoundaryKeys(const BoundaryKeys& k, BoundarySpec& out)
+std::optional<KeyProblem> applyBoundaryKeys(const BoundaryKeys& k, BoundarySpec& out)
 {
     if (!isFileNameSafe(k.name))
-        return BoundaryProblem{"name", "'" + k.name + "' cannot name a file (boundary_<name>.csv)",
+        return KeyProblem{"name", "'" + k.name + "' cannot name a file (boundary_<name>.csv)",
                                "use letters, digits, '_' and '-' only"};
     std::vector<std::string> typeNames;
     for (const BoundaryType& t : boundaryTypes()) typeNames.push_back("\"" + t.name + "\"");
     if (k.type.empty())
-        return BoundaryProblem{"", "missing key 'type'", "add type = " + listed(typeNames)};
+        return KeyProblem{"", "missing key 'type'", "add type = " + listed(typeNames)};
     const BoundaryType* type = boundaryType(k.type);
     if (!type)
-        return BoundaryProblem{"type", "unknown value '" + k.type + "'",
+        return KeyProblem{"type", "unknown value '" + k.type + "'",
                                "use one of: " + listed(typeNames)};
     if (auto p = keysProblem(k, *type)) return p;
     if (auto p = valuesProblem(k)) return p;
@@ -202,7 +202,7 @@ std::optional<BoundaryProblem> applyBoundaryKeys(const BoundaryKeys& k, Boundary
         const std::optional<Vec3> u =
             inPlaneAxis(k.axisU ? unitVector(*k.axisU) : b.normal.unitOrthogonal(), b.normal);
         if (!u)
-            return BoundaryProblem{"axis_u", "is parallel to the normal",
+            return KeyProblem{"axis_u", "is parallel to the normal",
                                    "give a direction within the plane"};
         b.axisU = *u;
     }
@@ -216,8 +216,7 @@ std::optional<BoundaryProblem> applyBoundaryKeys(const BoundaryKeys& k, Boundary
 
     ServoKeys servo = k.servo;
     servo.velocityGiven = k.velocity.has_value() && !k.velocity->isZero(0.0);
-    if (std::optional<ServoProblem> p = applyServoKeys(servo, b))
-        return BoundaryProblem{p->key, p->problem, p->fix};
+    if (std::optional<KeyProblem> p = applyServoKeys(servo, b)) return p;
     b.where = out.where;
     out = std::move(b);
     return std::nullopt;

@@ -65,7 +65,7 @@ BoundarySpec readBoundary(TableReader& t, const Scene& scene)
 
     BoundarySpec b;
     b.where = t.where();
-    if (std::optional<BoundaryProblem> p = applyBoundaryKeys(k, b)) t.fail(p->key, p->problem, p->fix);
+    if (std::optional<KeyProblem> p = applyBoundaryKeys(k, b)) t.fail(p->key, p->problem, p->fix);
     return b;
 }
 

@@ -3,6 +3,7 @@
 #include "SceneSections.h"
 
 #include "lsdem/scene/EntryRules.h"
+#include "lsdem/scene/GrainKeys.h"
 
 #include "lsdem/core/Constants.h"
 #include "lsdem/scene/RandomRotation.h"
@@ -33,43 +34,50 @@ Quat readOrientation(TableReader& t)
     return Quat::Identity();
 }
 
-/// The motion and velocities of a grain (or of every grain of a lattice).
-void readMotion(TableReader& t, GrainSpec& g)
+namespace {
+
+/// The keys a grain and a lattice's grains share (GrainKeys.h): asset, material, motion,
+/// velocities and mass. The position and orientation are each caller's own.
+GrainKeys readSharedGrainKeys(TableReader& t, const Scene& scene)
 {
-    g.motion = *parseGrainMotion(
-        t.choice("motion", grainMotionNames(), grainMotionName(GrainMotion::Free)));
-    g.velocity = t.vec3("velocity", Vec3::Zero());
-    g.angularVelocity = t.vec3("angular_velocity", Vec3::Zero());
-    if (g.motion == GrainMotion::Fixed && (t.has("velocity") || t.has("angular_velocity")))
-        t.fail(t.has("velocity") ? "velocity" : "angular_velocity",
-               "a fixed grain cannot move",
-               "remove the velocity, or write motion = \"prescribed\" to move it at that velocity");
-    if (t.has("mass")) g.mass = t.positive("mass");
+    GrainKeys k;
+    k.asset = lookUpAsset(t, scene);
+    k.material = lookUpMaterial(t, scene);
+    if (t.has("motion")) k.motion = t.string("motion");
+    if (t.has("velocity")) k.velocity = t.vec3("velocity");
+    if (t.has("angular_velocity")) k.angularVelocity = t.vec3("angular_velocity");
+    if (t.has("mass")) k.mass = t.number("mass");
+    return k;
 }
 
-GrainSpec readGrain(TableReader& t, const Scene& scene)
+/// The grain @a k gives, by the schema's rules, or the file's error at the key at fault.
+GrainSpec grainOf(TableReader& t, const GrainKeys& k)
 {
     GrainSpec g;
     g.where = t.where();
-    g.name = t.string("name", "");
-    g.asset = lookUpAsset(t, scene);
-    g.material = lookUpMaterial(t, scene);
-    g.pose.position = t.vec3("position");
-    g.pose.orientation = readOrientation(t);
-    readMotion(t, g);
-    t.rejectUnknownKeys();
+    if (std::optional<KeyProblem> p = applyGrainKeys(k, g)) t.fail(p->key, p->problem, p->fix);
     return g;
+}
+
+} // namespace
+
+GrainSpec readGrain(TableReader& t, const Scene& scene)
+{
+    const std::string name = t.string("name", "");
+    GrainKeys k = readSharedGrainKeys(t, scene);
+    k.name = name;
+    if (t.has("position")) k.position = t.vec3("position");
+    k.orientation = readOrientation(t);
+    t.rejectUnknownKeys();
+    return grainOf(t, k);
 }
 
 /// A block of count[0]×count[1]×count[2] grains at origin + (i, j, k)·spacing, optionally
 /// jittered and randomly turned (seeded, reproducible everywhere).
 void readLattice(TableReader& t, Scene& scene)
 {
-    GrainSpec model;
-    model.where = t.where();
     const std::string prefix = t.string("name", "");
-    model.asset = lookUpAsset(t, scene);
-    model.material = lookUpMaterial(t, scene);
+    GrainKeys keys = readSharedGrainKeys(t, scene);
     const Vec3 origin = t.vec3("origin");
     const std::vector<double> c = t.numbers("count", 3);
     long long count[3];
@@ -97,8 +105,10 @@ void readLattice(TableReader& t, Scene& scene)
         t.fail("random_orientation", "conflicts with a given orientation", "keep one of them");
     const Quat orientation = readOrientation(t);
     const long long seed = t.has("seed") ? t.integer("seed") : 1;
-    readMotion(t, model);
     t.rejectUnknownKeys();
+    keys.position = origin;
+    keys.orientation = orientation;
+    const GrainSpec model = grainOf(t, keys);
 
     scene.grains.reserve(static_cast<size_t>(before + wanted));
     std::mt19937_64 rng(static_cast<uint64_t>(seed));

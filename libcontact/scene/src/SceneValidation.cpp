@@ -6,6 +6,7 @@
 
 #include "lsdem/scene/BoundaryKeys.h"
 #include "lsdem/scene/EntryRules.h"
+#include "lsdem/scene/GrainKeys.h"
 #include "lsdem/scene/SceneSettings.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
@@ -18,11 +19,6 @@
 namespace lsdem {
 
 namespace {
-
-bool finite(const Vec3& v)
-{
-    return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z());
-}
 
 /// @a index names one of @a count entries.
 bool inRange(int index, size_t count)
@@ -66,18 +62,10 @@ void validateGrains(const Scene& s)
             throw Error(where, "the grain's asset index is out of range", "name an asset");
         if (!inRange(g.material, s.materials.size()))
             throw Error(where, "the grain's material index is out of range", "name a material");
-        if (!finite(g.pose.position) || !finite(g.velocity) || !finite(g.angularVelocity))
-            throw Error(where, "the grain's position, velocity or angular velocity is not finite",
-                        "give finite numbers");
-        if (std::optional<std::string> p = orientationProblem(g.pose.orientation))
-            throw Error(where, "the grain's orientation " + *p, kOrientationFix);
-        if (!(std::isfinite(g.mass) && g.mass >= 0.0))
-            throw Error(where, "the grain's mass must be >= 0 (0: density × volume)", "");
-        if (g.motion == GrainMotion::Fixed &&
-            (!g.velocity.isZero(0.0) || !g.angularVelocity.isZero(0.0)))
-            throw Error(where, "a fixed grain cannot move, but it has a velocity",
-                        "remove the velocity, or make its motion prescribed to move it at that "
-                        "velocity");
+        // The rules a file's entry obeys, applied to the keys that would write this grain.
+        GrainSpec checked;
+        if (std::optional<KeyProblem> p = applyGrainKeys(grainKeysOf(g), checked))
+            throw Error(where, "the grain's " + keyProblemText(*p), p->fix);
     }
 }
 
@@ -95,9 +83,9 @@ void validateBoundaries(const Scene& s)
                         "name an asset");
         // The rules a file's entry obeys, applied to the keys that would write this boundary.
         BoundarySpec checked;
-        if (std::optional<BoundaryProblem> p = applyBoundaryKeys(boundaryKeysOf(b, s), checked))
+        if (std::optional<KeyProblem> p = applyBoundaryKeys(boundaryKeysOf(b, s), checked))
             throw Error(where, "boundary '" + b.name + "': " +
-                                   (p->key.empty() ? "" : p->key + " ") + p->problem,
+                                   keyProblemText(*p),
                         p->fix);
     }
 }

@@ -5,6 +5,7 @@
 #include "lsdem/scene/SceneWriter.h"
 
 #include "lsdem/scene/BoundaryKeys.h"
+#include "lsdem/scene/GrainKeys.h"
 #include "lsdem/scene/SceneSettings.h"
 #include "lsdem/scene/SceneValidation.h"
 
@@ -200,20 +201,20 @@ void writeOrientation(TomlText& t, const Quat& q)
     t.numbers("orientation", {q.w(), q.x(), q.y(), q.z()});
 }
 
+/// A grain by its keys (GrainKeys.h), so the writer gives what the reader reads back.
 void writeGrain(TomlText& t, const Scene& scene, const GrainSpec& g)
 {
+    const GrainKeys k = grainKeysOf(g);
     t.arrayTable("grains");
-    if (!g.name.empty()) t.string("name", g.name);
-    t.string("asset", scene.assets[g.asset].name);
-    t.string("material", scene.materials[g.material].name);
-    t.vec3("position", g.pose.position);
-    writeOrientation(t, g.pose.orientation);
-    if (g.motion != GrainMotion::Free) t.string("motion", grainMotionName(g.motion));
-    if (g.motion != GrainMotion::Fixed) {
-        if (!g.velocity.isZero(0.0)) t.vec3("velocity", g.velocity);
-        if (!g.angularVelocity.isZero(0.0)) t.vec3("angular_velocity", g.angularVelocity);
-    }
-    if (g.mass > 0.0) t.number("mass", g.mass);
+    if (!k.name.empty()) t.string("name", k.name);
+    t.string("asset", scene.assets[size_t(k.asset)].name);
+    t.string("material", scene.materials[size_t(k.material)].name);
+    t.vec3("position", *k.position);
+    writeOrientation(t, *k.orientation);
+    if (k.motion) t.string("motion", *k.motion);
+    if (k.velocity) t.vec3("velocity", *k.velocity);
+    if (k.angularVelocity) t.vec3("angular_velocity", *k.angularVelocity);
+    if (k.mass) t.number("mass", *k.mass);
 }
 
 /// A boundary by its keys (BoundaryKeys.h), so the writer gives what the reader reads back.

@@ -136,7 +136,7 @@ TEST(BoundaryKeys, EachBrokenRuleNamesItsKeyInFileAndDirectlyAlike)
     for (const Case& c : cases()) {
         BoundarySpec b;
         b.name = "unchanged";
-        const std::optional<BoundaryProblem> p = applyBoundaryKeys(c.keys, b);
+        const std::optional<KeyProblem> p = applyBoundaryKeys(c.keys, b);
         const std::string fromFile = errorOf(sceneWith("b", c.fileLines));
         if (std::string(c.words).empty()) {
             EXPECT_FALSE(p) << c.name << ": " << p->key << " " << p->problem;
@@ -162,7 +162,7 @@ TEST(BoundaryKeys, ANameThatCannotNameAFileIsRefused)
     for (const char* name : {"", "a/b", "top wall"}) {
         k.name = name;
         BoundarySpec b;
-        const std::optional<BoundaryProblem> p = applyBoundaryKeys(k, b);
+        const std::optional<KeyProblem> p = applyBoundaryKeys(k, b);
         ASSERT_TRUE(p) << name;
         EXPECT_EQ(p->key, "name");
         EXPECT_NE(p->problem.find("cannot name a file"), std::string::npos);

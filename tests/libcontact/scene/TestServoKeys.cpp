@@ -72,7 +72,7 @@ TEST(ServoKeys, EachBrokenRuleNamesItsKeyInFileAndDirectlyAlike)
     for (const Case& c : cases()) {
         BoundarySpec wall;
         wall.name = "top";
-        const std::optional<ServoProblem> p = applyServoKeys(c.keys, wall);
+        const std::optional<KeyProblem> p = applyServoKeys(c.keys, wall);
         std::string fromFile;
         try {
             parseScene(sceneWith(c.fileLines), "servo.toml");

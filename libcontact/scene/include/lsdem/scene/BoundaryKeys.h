@@ -44,13 +44,6 @@ struct BoundaryKeys
     ServoKeys servo;
 };
 
-/// A rule the keys break: the key at fault ("" for the entry as a whole, e.g. a missing key),
-/// what is wrong, the fix.
-struct BoundaryProblem
-{
-    std::string key, problem, fix;
-};
-
 /// One type of boundary: its name in a file, its shape, the keys it needs and those it may
 /// have besides the common ones (name, type, material, velocity), and where grains live.
 struct BoundaryType
@@ -75,7 +68,7 @@ const BoundaryType& boundaryTypeOf(BoundaryShape shape);
 /// type takes, the keys it needs, their values (sizes > 0, directions not zero, a patch's axis
 /// within the plane), then the servo's rules (ServoKeys.h). If none, @a out is the boundary
 /// (directions made unit) and nothing is returned; otherwise @a out is left as it was.
-std::optional<BoundaryProblem> applyBoundaryKeys(const BoundaryKeys& keys, BoundarySpec& out);
+std::optional<KeyProblem> applyBoundaryKeys(const BoundaryKeys& keys, BoundarySpec& out);
 
 /// The keys that give @a b: those its type needs, and the others where they differ from their
 /// defaults (a fixed boundary has no velocity). A servo's area walls are named by the walls'

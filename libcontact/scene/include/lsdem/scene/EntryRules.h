@@ -11,6 +11,20 @@
 
 namespace lsdem {
 
+/// A rule an entry's keys break (a servo wall's, a boundary's, a grain's): the key at fault (""
+/// for the entry as a whole, e.g. a missing key), what is wrong, the fix. A file's reader shows
+/// it at the key's line; Python and validateScene by keyProblemText.
+struct KeyProblem
+{
+    std::string key, problem, fix;
+};
+
+/// "radius must be > 0 (got 0)": the key, then the problem.
+inline std::string keyProblemText(const KeyProblem& p)
+{
+    return p.key.empty() ? p.problem : p.key + " " + p.problem;
+}
+
 /// A material's density (mass/length³) is >= 0 (0 for a material only boundaries use):
 /// "must be >= 0 (got -1)" if @a density is not.
 std::optional<std::string> densityProblem(double density);

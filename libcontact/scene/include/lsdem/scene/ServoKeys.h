@@ -5,6 +5,7 @@
 ///        at fault in the same words.
 #pragma once
 
+#include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/Scene.h"
 
 #include <optional>
@@ -24,15 +25,9 @@ struct ServoKeys
     bool velocityGiven = false;                         ///< the entry moves the wall itself
 };
 
-/// A rule the keys break: the key at fault, what is wrong, the fix.
-struct ServoProblem
-{
-    std::string key, problem, fix;
-};
-
 /// The first rule @a keys break, checked in the order a reader meets them; if none, the servo
 /// is set on @a wall (its servo and areaWallNames) and nothing is returned. Without a stress the
 /// other keys are refused and the wall is left as it was.
-std::optional<ServoProblem> applyServoKeys(const ServoKeys& keys, BoundarySpec& wall);
+std::optional<KeyProblem> applyServoKeys(const ServoKeys& keys, BoundarySpec& wall);
 
 } // namespace lsdem

@@ -57,6 +57,7 @@ std::vector<Vec3> pointsOf(const py::array_t<double, py::array::c_style | py::ar
 
 } // namespace
 
+// Long by nature: one .def per function, each with its keyword arguments and docstring.
 void bindMicromechanics(py::module_& m)
 {
     m.def(

@@ -65,6 +65,7 @@ void removeEarlierSceneAssets(const std::string& outDir, bool quiet)
 
 } // namespace
 
+// Long by nature: one entry per option, in the order --help lists them.
 TriaxialCommand::TriaxialCommand(CLI::App& study)
     : mCommand(study.add_subcommand(
           "triaxial",

@@ -210,17 +210,11 @@ std::vector<Case> generateCases(Formulation f)
     return cases;
 }
 
-std::vector<std::string> plausibilityChecks(Formulation f, const std::vector<Case>& cases)
-{
-    std::vector<std::string> lines = {
-        "(\"elastic part\": the first state at rest without shear and damping; n: the direction",
-        "pushing the grain out; closed forms: k·π·R·δ² = k·∫d dA over a sphere's cap behind a",
-        "flat face, exact for a plane; w·kn·N·δ/2 for N nodes with depths uniform on [0, δ]",
-        "(Archimedes) at weight w; kn·δ for the deepest node; ∫d(n·e)dA the continuum",
-        "integral for the indenter)"};
-    const bool shear = f == Formulation::Original || f == Formulation::Adapted;
+namespace {
 
-    // Newton's third law and the balance of moments, in every evaluation.
+/// Newton's third law and the balance of moments, in every evaluation of @a cases: two lines.
+std::vector<std::string> balanceChecks(const std::vector<Case>& cases)
+{
     double worstForce = 0.0, worstMoment = 0.0;
     int fewest = 1 << 30, most = 0;
     for (const Case& c : cases)
@@ -246,16 +240,90 @@ std::vector<std::string> plausibilityChecks(Formulation f, const std::vector<Cas
     EXPECT_LT(worstForce, 1e-12);
     EXPECT_LT(worstMoment, 1e-12);
     EXPECT_GT(fewest, 0);
-    lines.push_back("every evaluation: forces on the two bodies opposite (|F1 + F2|/|F1| = " +
-                    fixed(worstForce, 2) + "),");
-    lines.push_back("  total moment about the origin zero (" + fixed(worstMoment, 2) +
-                    " relative), " + std::to_string(fewest) + " to " + std::to_string(most) +
-                    " penetrating nodes");
+    return {"every evaluation: forces on the two bodies opposite (|F1 + F2|/|F1| = " +
+                fixed(worstForce, 2) + "),",
+            "  total moment about the origin zero (" + fixed(worstMoment, 2) + " relative), " +
+                std::to_string(fewest) + " to " + std::to_string(most) + " penetrating nodes"};
+}
+
+/// A case's elastic force against the closed form of law @a f: the closed form's value, the
+/// band its ratio must lie in, and its name; no value where none applies.
+struct ClosedForm
+{
+    double expected = 0.0, low = 0.0, high = 0.0;
+    std::string what;
+};
+
+/// The depth δ of case @a c, the direction n pushing its grain out, the force on that grain and
+/// the share w of it one grain's nodes carry: what the closed forms need.
+struct Contact
+{
+    double delta = 0.0;
+    Vec3 n = Vec3::Zero();
+    Vec3 onGrain = Vec3::Zero();
+    double weight = 1.0;
+};
+
+Contact contactOf(const Case& c, const Outcome& elastic)
+{
+    Contact k;
+    k.onGrain = elastic.forceFirst;
+    if (isGrainPair(c)) {  // the sphere on a face of the box: a flat contact
+        k.delta = 0.08;
+        k.n = c.evaluations[0].first.pose.orientation * Vec3::UnitX();  // out of the box
+        k.onGrain = elastic.forceSecond;
+        k.weight = c.model.testing == NodeTesting::Symmetric ? 0.5 : 1.0;
+    } else if (c.boundary.shape == BoundaryShape::Plane) {
+        k.delta = 0.1;
+        k.n = c.boundary.plane.normal;
+    } else if (c.boundary.shape == BoundaryShape::Sphere) {
+        k.delta = 0.08;
+        k.n = (c.evaluations[0].first.pose.position - c.boundary.center - kMoved).normalized();
+    } else {
+        k.delta = 0.09;
+        k.n = c.boundary.pose.orientation * Vec3::UnitZ();
+    }
+    return k;
+}
+
+ClosedForm closedFormOf(Formulation f, const Case& c, const Contact& contact, int nodes)
+{
+    const double k = c.model.normalStiffness, delta = contact.delta;
+    // Flat contacts (plane, box face): ∫ d dA over the cap = π·R·δ², exactly for a plane;
+    // the depth of a node of the cap is uniform on [0, δ] (Archimedes), so the mean is δ/2.
+    const double capIntegral = kPi * kRadius * delta * delta;
+    const bool flat = c.kind == "grain-plane" || isGrainPair(c);
+    if (f == Formulation::SingleNode)  // the deepest nodes of a patch are beyond it
+        return {k * delta, c.kind == "grain-patch" ? 0.5 : 0.8, 1.0 + 1e-9, "kn·δ"};
+    if (c.kind == "grain-sphere" && f != Formulation::Original) {
+        const auto [projected, plain] = indenterIntegrals(kRadius, 0.6, kRadius + 0.6 - 0.08);
+        if (f == Formulation::Adapted) return {k * projected, 0.85, 1.15, "kn*·∫d(n·e)dA"};
+        return {k * plain, 0.85, 1.15, "kv·∫d dA"};
+    }
+    if (flat && f == Formulation::Original)
+        return {contact.weight * k * nodes * delta / 2, 0.8, 1.2, "w·kn·N·δ/2"};
+    if (flat) return {k * capIntegral, 0.85, 1.15, "k·π·R·δ²"};
+    if (f != Formulation::Original)  // patch and edge: part of the cap is missing
+        return {k * capIntegral, 0.2, 1.0, "k·π·R·δ² (part of the cap)"};
+    return {};
+}
+
+} // namespace
+
+std::vector<std::string> plausibilityChecks(Formulation f, const std::vector<Case>& cases)
+{
+    std::vector<std::string> lines = {
+        "(\"elastic part\": the first state at rest without shear and damping; n: the direction",
+        "pushing the grain out; closed forms: k·π·R·δ² = k·∫d dA over a sphere's cap behind a",
+        "flat face, exact for a plane; w·kn·N·δ/2 for N nodes with depths uniform on [0, δ]",
+        "(Archimedes) at weight w; kn·δ for the deepest node; ∫d(n·e)dA the continuum",
+        "integral for the indenter)"};
+    const bool shear = f == Formulation::Original || f == Formulation::Adapted;
+    for (const std::string& line : balanceChecks(cases)) lines.push_back(line);
 
     for (const Case& c : cases) {
         const Outcome elastic = elasticOnly(c);
         const Outcome& full = c.expected[0];
-        const double k = c.model.normalStiffness;
         std::string line = c.kind + ": |F| " + fixed(full.forceFirst.norm()) + ", elastic part " +
                            fixed(elastic.forceFirst.norm()) + " (" + std::to_string(elastic.nodes) +
                            " nodes)";
@@ -271,56 +339,16 @@ std::vector<std::string> plausibilityChecks(Formulation f, const std::vector<Cas
         }
         line += "; history moves eval 2 by " + fixed(100 * history, 2) + " %";
 
-        // Closed forms for the elastic part. δ and the direction n pushing the grain out.
-        double delta = 0.0;
-        Vec3 n = Vec3::Zero();
-        Vec3 onGrain = elastic.forceFirst;
-        double weight = 1.0;
-        if (isGrainPair(c)) {  // the sphere on a face of the box: a flat contact
-            delta = 0.08;
-            n = c.evaluations[0].first.pose.orientation * Vec3::UnitX();  // out of the box
-            onGrain = elastic.forceSecond;
-            weight = c.model.testing == NodeTesting::Symmetric ? 0.5 : 1.0;
-        } else if (c.boundary.shape == BoundaryShape::Plane) {
-            delta = 0.1;
-            n = c.boundary.plane.normal;
-        } else if (c.boundary.shape == BoundaryShape::Sphere) {
-            delta = 0.08;
-            n = (c.evaluations[0].first.pose.position - c.boundary.center - kMoved).normalized();
-        } else {
-            delta = 0.09;
-            n = c.boundary.pose.orientation * Vec3::UnitZ();
-        }
-        const double along = onGrain.dot(n);
-        EXPECT_GT(along, 0.9 * onGrain.norm()) << c.kind << ": pushes the grain out";
-        // Flat contacts (plane, box face): ∫ d dA over the cap = π·R·δ², exactly for a plane;
-        // the depth of a node of the cap is uniform on [0, δ] (Archimedes), so the mean is δ/2.
-        const double capIntegral = kPi * kRadius * delta * delta;
-        double expected = 0.0, low = 0.0, high = 0.0;
-        std::string what;
-        const bool flat = c.kind == "grain-plane" || isGrainPair(c);
-        if (f == Formulation::SingleNode) {
-            expected = k * delta, low = 0.8, high = 1.0 + 1e-9, what = "kn·δ";
-            if (c.kind == "grain-patch") low = 0.5;  // the deepest nodes are beyond the patch
-        } else if (c.kind == "grain-sphere" && f != Formulation::Original) {
-            const auto [projected, plain] = indenterIntegrals(kRadius, 0.6, kRadius + 0.6 - 0.08);
-            expected = f == Formulation::Adapted ? k * projected : k * plain;
-            low = 0.85, high = 1.15;
-            what = f == Formulation::Adapted ? "kn*·∫d(n·e)dA" : "kv·∫d dA";
-        } else if (flat && f == Formulation::Original) {
-            expected = weight * k * elastic.nodes * delta / 2, low = 0.8, high = 1.2;
-            what = "w·kn·N·δ/2";
-        } else if (flat) {
-            expected = k * capIntegral, low = 0.85, high = 1.15, what = "k·π·R·δ²";
-        } else if (f != Formulation::Original) {  // patch and edge: part of the cap is missing
-            expected = k * capIntegral, low = 0.2, high = 1.0, what = "k·π·R·δ² (part of the cap)";
-        }
-        if (expected > 0.0) {
-            const double ratio = along / expected;
-            EXPECT_GT(ratio, low) << c.kind << " against " << what;
-            EXPECT_LT(ratio, high) << c.kind << " against " << what;
+        const Contact contact = contactOf(c, elastic);
+        const double along = contact.onGrain.dot(contact.n);
+        EXPECT_GT(along, 0.9 * contact.onGrain.norm()) << c.kind << ": pushes the grain out";
+        const ClosedForm form = closedFormOf(f, c, contact, elastic.nodes);
+        if (form.expected > 0.0) {
+            const double ratio = along / form.expected;
+            EXPECT_GT(ratio, form.low) << c.kind << " against " << form.what;
+            EXPECT_LT(ratio, form.high) << c.kind << " against " << form.what;
             lines.push_back(line);
-            line = "  elastic force along n / " + what + " = " + fixed(ratio, 4);
+            line = "  elastic force along n / " + form.what + " = " + fixed(ratio, 4);
         }
         lines.push_back(line);
     }

@@ -29,6 +29,7 @@ void expectSameDirection(const Vector& a, const Vector& b, const std::string& wh
     EXPECT_LE((a - b).norm(), 1e-15) << what;
 }
 
+// Long by nature: one comparison per field of a Scene.
 void expectSameScene(const Scene& a, const Scene& b)
 {
     EXPECT_EQ(a.units.length, b.units.length);
@@ -138,6 +139,7 @@ Scene roundTrip(const Scene& scene, const ScratchDir& dir)
 }
 
 /// A scene with every feature the writer knows, in a folder with a baked-looking asset file.
+/// Long by nature: one entry per feature.
 Scene everyFeature(const ScratchDir& dir)
 {
     Scene s;

@@ -64,19 +64,12 @@ ContactModel lawFor(Formulation f, const Setup& setup, const GrainAsset& asset, 
 {
     ContactModel m;
     m.formulation = f;
+    // The suite's tractions k* and ks* in each law's own stiffness (per node area for original);
+    // a law with no traction (single node) takes the spring it is given.
     const double area = meanNodeArea(asset);
-    switch (f) {
-    case Formulation::Adapted:
-        m.normalStiffness = setup.knStar;
-        m.shearStiffness = setup.ksStar;
-        break;
-    case Formulation::Original:
-        m.normalStiffness = setup.knStar * area;
-        m.shearStiffness = setup.ksStar * area;
-        break;
-    case Formulation::Volume: m.normalStiffness = setup.knStar; break;
-    case Formulation::SingleNode: m.normalStiffness = singleNodeStiffness; break;
-    }
+    const NormalModel& normal = m.normal();
+    m.normalStiffness = normal.stiffnessForTraction(setup.knStar, area).value_or(singleNodeStiffness);
+    m.shearStiffness = normal.stiffnessForTraction(setup.ksStar, area).value_or(0.0);
     if (!m.normal().perNodeForces() || !(friction > 0.0)) m.shearStiffness = 0.0;
     m.friction = m.shearStiffness > 0.0 ? friction : 0.0;
     m.damping = ViscousDamping(restitution);

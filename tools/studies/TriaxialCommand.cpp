@@ -15,12 +15,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace lsdem {
 
@@ -182,6 +184,8 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->group(output);
     cli::addThreads(*mCommand, o.threads, "worker threads (default: all cores)")->group(output);
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the summary");
+    mCommand->add_flag("--estimate", o.estimateOnly, "print the cost of the runs and stop")
+        ->group(output);
     mCommand->footer("Units: mm, tonne, s, N (stresses in MPa). Writes DIR/triaxial.csv (rows of "
                      "every run),\nDIR/triaxial_runs.csv (one row per run) and, with "
                      "python3-matplotlib, DIR/*.png.");
@@ -290,7 +294,17 @@ int TriaxialCommand::run(RunDistributor& ranks) const
                     row.state.p, row.state.q, row.state.voidRatio);
         std::fflush(stdout);
     };
-    const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress);
+    // The estimate, with the threads each run gets (all cores unless --threads says fewer).
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    const int threadsPerRun =
+        threads.threads() > 0 ? int(std::min<long long>(threads.threads(), cores)) : cores;
+    auto onPlan = [&](const std::vector<TriaxialRunPlan>& plans) {
+        if (o.quiet && !o.estimateOnly) return;
+        std::printf("%s", describeTriaxialCost(plans, threadsPerRun, ranks.ranks()).c_str());
+        std::fflush(stdout);
+    };
+    const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress, onPlan);
+    if (o.estimateOnly) return 0;
     removeEarlierSceneAssets(o.outDir, o.quiet);
     cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);
     const std::string csv = o.outDir + "/triaxial.csv";

@@ -54,6 +54,7 @@ struct TriaxialOptions
     long long threads = 0;
     std::string outDir = "results/triaxial";
     bool plots = true, quiet = false;
+    bool estimateOnly = false;     ///< plan the runs, print their cost (TriaxialCost.h), stop
 };
 
 /// @throw Error naming the option and the fix for anything out of range, or for meshes that

@@ -1,5 +1,7 @@
 #include "studies/TriaxialStudy.h"
 
+#include "studies/TriaxialCost.h"
+
 #include "lsdem/core/NumberText.h"
 #include "studies/RunDistributor.h"
 #include "lsdem/core/ByteReader.h"
@@ -14,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <initializer_list>
 
 namespace lsdem {
@@ -182,14 +185,23 @@ void refuseNonPhysicalRun(const TriaxialRun& run)
                 "--confining-stress, --density, --kn-star, --lattice-spacing, --inertial-number");
 }
 
-/// One run: bake (or reuse) the assets, build the cloud and its scene, consolidate and shear.
-/// A time step the simulation finds unstable is halved and the run started again.
-TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& files,
-                   Formulation f, double sdp, long long seed, double spacing, double kn,
-                   const std::function<void(const TriaxialRow&)>& progress)
+/// A run set up and not yet stepped: its assets, world, time step and protocol.
+struct PlannedRun
+{
+    TriaxialRun run;  ///< what is known before it is stepped
+    World world;
+    TriaxialProtocol protocol;
+    long long shearSteps = 0;
+};
+
+/// Bake (or reuse) the assets of a run, build the cloud, its scene and world, and choose the
+/// time step: all but the stepping, which is what a run and the study's estimate share.
+PlannedRun planRun(const TriaxialOptions& o, const std::vector<std::string>& files, Formulation f,
+                   double sdp, long long seed, double spacing, double kn)
 {
     const std::shared_ptr<const TriaxialAssets> assets = sharedTriaxialAssets(files, o.vdp, sdp);
-    TriaxialRun run;
+    PlannedRun plan;
+    TriaxialRun& run = plan.run;
     run.formulation = f;
     run.sdp = sdp;
     run.seed = seed;
@@ -200,7 +212,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     run.strainRate = triaxialStrainRate(o, assets->meanDiameter);
     run.path = o.path;
 
-    TriaxialProtocol p;
+    TriaxialProtocol& p = plan.protocol;
     p.confiningStress = o.confiningStress;
     p.strainRate = run.strainRate;
     p.consolidationRate = 10.0 * run.strainRate;
@@ -227,16 +239,71 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
                           static_cast<std::uint64_t>(seed));
     const Scene scene = triaxialScene(o, *assets, cloud, f, kn);
     std::vector<std::string> warnings;
-    World world = buildWorld(scene, warnings);
-    double dt = triaxialTimeStep(world, o, f, *assets, kn);
-    triaxialShearSteps(p, dt);  // a plan too long is refused now, not retried with half the step
+    plan.world = buildWorld(scene, warnings);
+    run.dt = triaxialTimeStep(plan.world, o, f, *assets, kn);
+    // A plan too long is refused now, not retried with half the step.
+    plan.shearSteps = triaxialShearSteps(p, run.dt);
+    return plan;
+}
+
+/// The shearing of @a consolidated (a copy of the simulation's world once consolidated, and the
+/// test so far), again with half the step each time @a first's step proves unstable: the
+/// consolidation is kept, not done again. The first try shears on @a first (the consolidating
+/// simulation itself, so a run that needs no second try steps exactly as before). @a dt ends
+/// as the step that sheared, @a stabilityLimit as the least limit any try saw.
+TriaxialTestResult shearWithSteadyStep(Simulation& first, const World& consolidated,
+                                       const TriaxialTestResult& test, const TriaxialWalls& walls,
+                                       const TriaxialProtocol& p, double& dt,
+                                       double& stabilityLimit,
+                                       const std::function<void(const TriaxialRow&)>& progress)
+{
+    for (int attempt = 0;; ++attempt) {
+        TriaxialTestResult result = test;
+        try {
+            if (attempt == 0) {
+                shearTriaxial(first, walls, p, result, progress);
+            } else {
+                Simulation again(consolidated, dt);
+                try {
+                    shearTriaxial(again, walls, p, result, progress);
+                } catch (const Error&) {
+                    stabilityLimit = std::min(stabilityLimit, again.stabilityLimitSeen());
+                    throw;
+                }
+                stabilityLimit = std::min(stabilityLimit, again.stabilityLimitSeen());
+            }
+            stabilityLimit = std::min(stabilityLimit, first.stabilityLimitSeen());
+            return result;
+        } catch (const Error&) {
+            if (attempt >= 3) throw;  // not a matter of the step
+            dt *= 0.5;
+        }
+    }
+}
+
+/// One run: planned, consolidated and sheared. A step the simulation finds unstable while
+/// consolidating is halved and the run started again; while shearing, halved and the shearing
+/// started again from the consolidated sample (shearWithSteadyStep).
+TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& files,
+                   Formulation f, double sdp, long long seed, double spacing, double kn,
+                   const std::function<void(const TriaxialRow&)>& progress)
+{
+    PlannedRun plan = planRun(o, files, f, sdp, seed, spacing, kn);
+    TriaxialRun& run = plan.run;
+    const TriaxialWalls walls = o.periodic ? periodicTriaxialCell() : triaxialWalls();
+    double dt = run.dt;
     const Stopwatch runClock;
     for (int attempt = 0;; ++attempt) {
         try {
-            Simulation sim(world, dt);
-            run.test = runTriaxialTest(sim, o.periodic ? periodicTriaxialCell() : triaxialWalls(),
-                                       p, progress);
-            run.stabilityLimit = sim.stabilityLimitSeen();
+            Simulation sim(plan.world, dt);
+            triaxialShearSteps(plan.protocol, dt);  // refused before consolidating
+            const TriaxialTestResult consolidated =
+                consolidateTriaxial(sim, walls, plan.protocol, progress);
+            const World afterConsolidation = sim.world();
+            double limit = std::numeric_limits<double>::infinity();
+            run.test = shearWithSteadyStep(sim, afterConsolidation, consolidated, walls,
+                                           plan.protocol, dt, limit, progress);
+            run.stabilityLimit = limit;
             break;
         } catch (const Error&) {
             if (attempt >= 3) throw;  // not a matter of the step
@@ -251,6 +318,23 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     return run;
 }
 
+/// What the estimate needs of run @a plan, named @a name.
+TriaxialRunPlan costPlanOf(const PlannedRun& plan, const TriaxialOptions& o, std::string name)
+{
+    TriaxialRunPlan c;
+    c.name = std::move(name);
+    c.grains = o.grains;
+    c.nodesPerGrain = plan.run.nodesPerGrain;
+    c.timeStep = plan.run.dt;
+    c.startVoidRatio =
+        measureTriaxialCell(plan.world, o.periodic ? periodicTriaxialCell() : triaxialWalls(), {})
+            .voidRatio;
+    c.approachRate = plan.protocol.approachRate;
+    c.settledSteps = plan.protocol.settledSteps;
+    c.shearSteps = plan.shearSteps;
+    return c;
+}
+
 } // namespace
 
 double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter)
@@ -261,7 +345,8 @@ double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter)
 TriaxialStudyResult runTriaxialStudy(
     const TriaxialOptions& o, RunDistributor& ranks,
     const std::function<void(const TriaxialRun&)>& onRun,
-    const std::function<void(Formulation, double, long long, const TriaxialRow&)>& progress)
+    const std::function<void(Formulation, double, long long, const TriaxialRow&)>& progress,
+    const std::function<void(const std::vector<TriaxialRunPlan>&)>& onPlan)
 {
     checkTriaxialOptions(o);
     const std::vector<std::string> files = triaxialMeshFiles(o);
@@ -301,9 +386,10 @@ TriaxialStudyResult runTriaxialStudy(
     };
 
     std::vector<std::string> descriptions;
-    std::vector<double> costs;
+    std::vector<TriaxialRunPlan> plans;
     // Every seed's sample on the lattice of the coarsest assets (the lattice's spacing does
-    // not depend on the seed, only which mesh and orientation each site gets).
+    // not depend on the seed, only which mesh and orientation each site gets). Each run is
+    // planned here (its assets baked, its world built, its step chosen) for the estimate.
     for (Formulation f : o.formulations)
         for (double sdp : o.sdps)
             for (long long seed : o.seeds) {
@@ -311,11 +397,20 @@ TriaxialStudyResult runTriaxialStudy(
                 w.text(formulationName(f)).number(sdp).integer(seed).number(result.spacing);
                 w.number(stiffnessOf(f));
                 descriptions.push_back(w.bytes());
-                // Nodes grow as 1/SDP²; a law per node also stiffens, and its step shrinks,
-                // with the SDP.
-                costs.push_back(
-                    std::pow(o.sdps.front() / sdp, normalModel(f).stiffnessPerArea() ? 2.0 : 3.0));
+                char name[80];
+                std::snprintf(name, sizeof name, "%s SDP %g seed %lld", formulationName(f).c_str(),
+                              sdp, seed);
+                plans.push_back(costPlanOf(
+                    planRun(o, files, f, sdp, seed, result.spacing, stiffnessOf(f)), o, name));
             }
+    if (onPlan) onPlan(plans);
+    if (o.estimateOnly) {  // the plans were all it asked for
+        ranks.finish();
+        return result;
+    }
+    // The runs handed out largest first, by the estimate (threads alike on every rank).
+    std::vector<double> costs;
+    for (const TriaxialRunPlan& p : plans) costs.push_back(triaxialRunCost(p, 2).seconds);
     result.runs.resize(descriptions.size());
     ranks.runAll(descriptions, costs, job, [&](size_t index, int, const std::string& bytes) {
         result.runs[index] = decodeRun(bytes, o.maxAxialStrain);

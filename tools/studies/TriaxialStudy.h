@@ -6,6 +6,7 @@
 ///        spread over the ranks (RunDistributor.h).
 #pragma once
 
+#include "studies/TriaxialCost.h"
 #include "studies/TriaxialOptions.h"
 #include "studies/TriaxialTest.h"
 
@@ -45,13 +46,15 @@ struct TriaxialStudyResult
 
 /// Run the study, its runs spread by @a ranks (rank 0 returns every run; the other ranks only
 /// do the runs they are handed and return an empty result). @a onRun, if set, is told each run
-/// on rank 0 as it arrives; @a progress, if set, each row of the runs done on rank 0.
+/// on rank 0 as it arrives; @a progress, if set, each row of the runs done on rank 0; @a onPlan,
+/// if set, every run's plan (for the cost estimate, TriaxialCost.h) before the first starts.
 /// @throw Error for bad options or meshes, or a run that failed.
 TriaxialStudyResult runTriaxialStudy(
     const TriaxialOptions& o, RunDistributor& ranks,
     const std::function<void(const TriaxialRun&)>& onRun = {},
     const std::function<void(Formulation, double sdp, long long seed, const TriaxialRow&)>&
-        progress = {});
+        progress = {},
+    const std::function<void(const std::vector<TriaxialRunPlan>&)>& onPlan = {});
 
 /// ε̇ from the inertial number: I = ε̇·d·sqrt(ρ/σ₃).
 double triaxialStrainRate(const TriaxialOptions& o, double meanDiameter);

@@ -151,8 +151,31 @@ TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
     o.sdps = {0.2, 0.15};
     o.maxAxialStrain = 0.01;
     o.records = 10;
-    const TriaxialStudyResult r = runTriaxialStudy(o, serialRunDistributor());
+    std::vector<TriaxialRunPlan> plans;
+    const TriaxialStudyResult r = runTriaxialStudy(
+        o, serialRunDistributor(), {}, {},
+        [&](const std::vector<TriaxialRunPlan>& p) { plans = p; });
     ASSERT_EQ(r.runs.size(), 4u);
+    // The estimate's plan is each run's own: its nodes, its step and its shearing's steps
+    // exactly, unless the step proved unstable and was halved (the consolidation's count is a
+    // forecast: TriaxialCost.h).
+    ASSERT_EQ(plans.size(), r.runs.size());
+    for (size_t k = 0; k < plans.size(); ++k) {
+        EXPECT_EQ(plans[k].nodesPerGrain, r.runs[k].nodesPerGrain);
+        const double halvings = std::log2(plans[k].timeStep / r.runs[k].dt);
+        EXPECT_EQ(halvings, std::round(halvings)) << "run " << k;
+        EXPECT_GE(halvings, 0.0) << "run " << k;
+        if (halvings == 0.0) {
+            EXPECT_EQ(plans[k].shearSteps, r.runs[k].test.shearSteps) << k;
+        } else {
+            // Halved while shearing: the consolidation was kept, made at the planned step.
+            const TriaxialRow& row = r.runs[k].test.rows.front();
+            ASSERT_EQ(row.stage, 0);
+            EXPECT_NEAR(row.time / double(row.step), plans[k].timeStep, 1e-9 * plans[k].timeStep);
+        }
+        EXPECT_EQ(plans[k].grains, 27);
+        EXPECT_GT(plans[k].startVoidRatio, 1.0) << "the cloud starts loose";
+    }
     EXPECT_EQ(r.runs[0].formulation, Formulation::Adapted);
     EXPECT_EQ(r.runs[1].sdp, 0.15);
     EXPECT_EQ(r.runs[2].formulation, Formulation::Original);
@@ -279,8 +302,26 @@ TEST(TriaxialStudy, EachSeedIsASampleAndTheSummaryTakesTheirMeans)
     o.seeds = {1, 2};
     o.maxAxialStrain = 0.01;
     o.records = 10;
-    const TriaxialStudyResult r = runTriaxialStudy(o, serialRunDistributor());
+    std::vector<TriaxialRunPlan> plans;
+    const TriaxialStudyResult r = runTriaxialStudy(
+        o, serialRunDistributor(), {}, {},
+        [&](const std::vector<TriaxialRunPlan>& p) { plans = p; });
     ASSERT_EQ(r.runs.size(), 4u);
+    // The estimate's plan is each run's own: its nodes, its step and its shearing's steps
+    // exactly, unless the step proved unstable and was halved (the consolidation's count is a
+    // forecast: TriaxialCost.h).
+    ASSERT_EQ(plans.size(), r.runs.size());
+    for (size_t k = 0; k < plans.size(); ++k) {
+        EXPECT_EQ(plans[k].nodesPerGrain, r.runs[k].nodesPerGrain);
+        const double halvings = std::log2(plans[k].timeStep / r.runs[k].dt);
+        EXPECT_EQ(halvings, std::round(halvings)) << "run " << k;
+        EXPECT_GE(halvings, 0.0) << "run " << k;
+        if (halvings == 0.0) {
+            EXPECT_EQ(plans[k].shearSteps, r.runs[k].test.shearSteps) << k;
+        }
+        EXPECT_EQ(plans[k].grains, 27);
+        EXPECT_GT(plans[k].startVoidRatio, 1.0) << "the cloud starts loose";
+    }
     const double sdps[4] = {0.2, 0.2, 0.15, 0.15};
     const long long seeds[4] = {1, 2, 1, 2};
     for (size_t k = 0; k < 4; ++k) {

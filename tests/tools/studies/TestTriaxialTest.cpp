@@ -142,6 +142,34 @@ TEST(TriaxialTest, HundredGrainsConsolidateHoldSigma3AndReportWallStresses)
                 o.inertialNumber, 0.05 * o.inertialNumber);
 }
 
+namespace {
+
+/// The estimate's plan is each run's own: its nodes, its step and its shearing's steps exactly,
+/// unless the step proved unstable while shearing and was halved; then the consolidation was
+/// kept, made at the planned step (the consolidation's count is a forecast: TriaxialCost.h).
+void expectPlansAreTheRuns(const std::vector<TriaxialRunPlan>& plans, const TriaxialStudyResult& r,
+                           long long grains)
+{
+    ASSERT_EQ(plans.size(), r.runs.size());
+    for (size_t k = 0; k < plans.size(); ++k) {
+        EXPECT_EQ(plans[k].nodesPerGrain, r.runs[k].nodesPerGrain);
+        const double halvings = std::log2(plans[k].timeStep / r.runs[k].dt);
+        EXPECT_EQ(halvings, std::round(halvings)) << "run " << k;
+        EXPECT_GE(halvings, 0.0) << "run " << k;
+        if (halvings == 0.0) {
+            EXPECT_EQ(plans[k].shearSteps, r.runs[k].test.shearSteps) << k;
+        } else {
+            const TriaxialRow& row = r.runs[k].test.rows.front();
+            ASSERT_EQ(row.stage, 0);
+            EXPECT_NEAR(row.time / double(row.step), plans[k].timeStep, 1e-9 * plans[k].timeStep);
+        }
+        EXPECT_EQ(plans[k].grains, grains);
+        EXPECT_GT(plans[k].startVoidRatio, 1.0) << "the cloud starts loose";
+    }
+}
+
+} // namespace
+
 // The study: runs in the order formulations × SDPs, original's kn from the coarsest node area,
 // the same lattice for every run, and the files with a row per run and per record.
 TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
@@ -156,26 +184,7 @@ TEST(TriaxialStudy, RunsEachFormulationAtEachSpacingAndWritesItsFiles)
         o, serialRunDistributor(), {}, {},
         [&](const std::vector<TriaxialRunPlan>& p) { plans = p; });
     ASSERT_EQ(r.runs.size(), 4u);
-    // The estimate's plan is each run's own: its nodes, its step and its shearing's steps
-    // exactly, unless the step proved unstable and was halved (the consolidation's count is a
-    // forecast: TriaxialCost.h).
-    ASSERT_EQ(plans.size(), r.runs.size());
-    for (size_t k = 0; k < plans.size(); ++k) {
-        EXPECT_EQ(plans[k].nodesPerGrain, r.runs[k].nodesPerGrain);
-        const double halvings = std::log2(plans[k].timeStep / r.runs[k].dt);
-        EXPECT_EQ(halvings, std::round(halvings)) << "run " << k;
-        EXPECT_GE(halvings, 0.0) << "run " << k;
-        if (halvings == 0.0) {
-            EXPECT_EQ(plans[k].shearSteps, r.runs[k].test.shearSteps) << k;
-        } else {
-            // Halved while shearing: the consolidation was kept, made at the planned step.
-            const TriaxialRow& row = r.runs[k].test.rows.front();
-            ASSERT_EQ(row.stage, 0);
-            EXPECT_NEAR(row.time / double(row.step), plans[k].timeStep, 1e-9 * plans[k].timeStep);
-        }
-        EXPECT_EQ(plans[k].grains, 27);
-        EXPECT_GT(plans[k].startVoidRatio, 1.0) << "the cloud starts loose";
-    }
+    expectPlansAreTheRuns(plans, r, 27);
     EXPECT_EQ(r.runs[0].formulation, Formulation::Adapted);
     EXPECT_EQ(r.runs[1].sdp, 0.15);
     EXPECT_EQ(r.runs[2].formulation, Formulation::Original);
@@ -307,21 +316,7 @@ TEST(TriaxialStudy, EachSeedIsASampleAndTheSummaryTakesTheirMeans)
         o, serialRunDistributor(), {}, {},
         [&](const std::vector<TriaxialRunPlan>& p) { plans = p; });
     ASSERT_EQ(r.runs.size(), 4u);
-    // The estimate's plan is each run's own: its nodes, its step and its shearing's steps
-    // exactly, unless the step proved unstable and was halved (the consolidation's count is a
-    // forecast: TriaxialCost.h).
-    ASSERT_EQ(plans.size(), r.runs.size());
-    for (size_t k = 0; k < plans.size(); ++k) {
-        EXPECT_EQ(plans[k].nodesPerGrain, r.runs[k].nodesPerGrain);
-        const double halvings = std::log2(plans[k].timeStep / r.runs[k].dt);
-        EXPECT_EQ(halvings, std::round(halvings)) << "run " << k;
-        EXPECT_GE(halvings, 0.0) << "run " << k;
-        if (halvings == 0.0) {
-            EXPECT_EQ(plans[k].shearSteps, r.runs[k].test.shearSteps) << k;
-        }
-        EXPECT_EQ(plans[k].grains, 27);
-        EXPECT_GT(plans[k].startVoidRatio, 1.0) << "the cloud starts loose";
-    }
+    expectPlansAreTheRuns(plans, r, 27);
     const double sdps[4] = {0.2, 0.2, 0.15, 0.15};
     const long long seeds[4] = {1, 2, 1, 2};
     for (size_t k = 0; k < 4; ++k) {

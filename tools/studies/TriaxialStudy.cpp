@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <initializer_list>
 
 namespace lsdem {
@@ -294,21 +295,25 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     double dt = run.dt;
     const Stopwatch runClock;
     for (int attempt = 0;; ++attempt) {
+        std::optional<Simulation> sim;
+        TriaxialTestResult consolidated;
         try {
-            Simulation sim(plan.world, dt);
+            sim.emplace(plan.world, dt);
             triaxialShearSteps(plan.protocol, dt);  // refused before consolidating
-            const TriaxialTestResult consolidated =
-                consolidateTriaxial(sim, walls, plan.protocol, progress);
-            const World afterConsolidation = sim.world();
-            double limit = std::numeric_limits<double>::infinity();
-            run.test = shearWithSteadyStep(sim, afterConsolidation, consolidated, walls,
-                                           plan.protocol, dt, limit, progress);
-            run.stabilityLimit = limit;
-            break;
+            consolidated = consolidateTriaxial(*sim, walls, plan.protocol, progress);
         } catch (const Error&) {
             if (attempt >= 3) throw;  // not a matter of the step
             dt *= 0.5;
+            continue;
         }
+        // The shearing has its own tries (from the consolidated sample): an error it gives up
+        // on is the run's.
+        const World afterConsolidation = sim->world();
+        double limit = std::numeric_limits<double>::infinity();
+        run.test = shearWithSteadyStep(*sim, afterConsolidation, consolidated, walls,
+                                       plan.protocol, dt, limit, progress);
+        run.stabilityLimit = limit;
+        break;
     }
     run.dt = dt;
     run.runSeconds = runClock.seconds();

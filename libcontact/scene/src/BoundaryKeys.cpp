@@ -65,7 +65,8 @@ std::string listed(const std::vector<std::string>& words)
 /// The keys @a k gives that its type does not take, then those it needs and lacks.
 std::optional<KeyProblem> keysProblem(const BoundaryKeys& k, const BoundaryType& type)
 {
-    for (const std::string& key : givenKeys(k)) {
+    const std::vector<std::string> given = givenKeys(k);
+    for (const std::string& key : given) {
         if (contains(type.required, key) || contains(type.optional, key)) continue;
         if (contains(kServoKeyNames, key))
             return KeyProblem{key, "only a plane can keep a stress",
@@ -76,7 +77,6 @@ std::optional<KeyProblem> keysProblem(const BoundaryKeys& k, const BoundaryType&
                                "remove it; a " + type.name + " takes " + listed(keys) +
                                    " (and name, type, material, velocity)"};
     }
-    const std::vector<std::string> given = givenKeys(k);
     for (const std::string& key : type.required)
         if (!contains(given, key))
             return KeyProblem{"", "missing key '" + key + "'", "add " + key + " = ..."};
@@ -98,21 +98,14 @@ std::optional<KeyProblem> directionProblem(const char* key, const std::optional<
     return std::nullopt;
 }
 
-std::optional<KeyProblem> pointProblem(const char* key, const std::optional<Vec3>& v)
-{
-    if (v && !v->allFinite())
-        return KeyProblem{key, "holds a value that is not finite", "give finite numbers"};
-    return std::nullopt;
-}
-
-/// The values' rules, key by key in the order the type lists them.
+/// The values' rules: finite vectors, non-zero directions, a patch's widths and axis, sizes.
 std::optional<KeyProblem> valuesProblem(const BoundaryKeys& k)
 {
     for (const auto& [key, v] : {std::pair<const char*, const std::optional<Vec3>*>{"velocity", &k.velocity},
                                  {"point", &k.point}, {"normal", &k.normal}, {"axis_u", &k.axisU},
                                  {"center", &k.center}, {"axis", &k.axis},
                                  {"position", &k.position}})
-        if (auto p = pointProblem(key, *v)) return p;
+        if (auto p = nonFiniteProblem(key, *v)) return p;
     for (const auto& [key, v] : {std::pair<const char*, const std::optional<Vec3>*>{"normal", &k.normal},
                                  {"axis", &k.axis}, {"axis_u", &k.axisU}})
         if (auto p = directionProblem(key, *v)) return p;

@@ -6,13 +6,6 @@ namespace lsdem {
 
 namespace {
 
-std::optional<KeyProblem> finiteProblem(const char* key, const std::optional<Vec3>& v)
-{
-    if (v && !v->allFinite())
-        return KeyProblem{key, "holds a value that is not finite", "give finite numbers"};
-    return std::nullopt;
-}
-
 std::string motionChoices()
 {
     std::string s;
@@ -27,7 +20,7 @@ std::optional<KeyProblem> applyGrainKeys(const GrainKeys& k, GrainSpec& out)
     if (!k.position) return KeyProblem{"", "missing key 'position'", "add position = [x, y, z]"};
     for (const auto& [key, v] : {std::pair{"position", &k.position}, {"velocity", &k.velocity},
                                  {"angular_velocity", &k.angularVelocity}})
-        if (auto p = finiteProblem(key, *v)) return p;
+        if (auto p = nonFiniteProblem(key, *v)) return p;
     if (k.orientation)
         if (std::optional<std::string> p = orientationProblem(*k.orientation))
             return KeyProblem{"orientation", *p, kOrientationFix};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
+#include "lsdem/core/Vec3.h"
 
 #include <optional>
 #include <string>
@@ -18,6 +19,14 @@ struct KeyProblem
 {
     std::string key, problem, fix;
 };
+
+/// A vector given under @a key that holds a NaN or an infinity, if it is given and does.
+inline std::optional<KeyProblem> nonFiniteProblem(const char* key, const std::optional<Vec3>& v)
+{
+    if (v && !v->allFinite())
+        return KeyProblem{key, "holds a value that is not finite", "give finite numbers"};
+    return std::nullopt;
+}
 
 /// "radius must be > 0 (got 0)": the key, then the problem.
 inline std::string keyProblemText(const KeyProblem& p)

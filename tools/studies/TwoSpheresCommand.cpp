@@ -68,6 +68,8 @@ int TwoSpheresCommand::run(RunDistributor& ranks) const
     cli::checkOutputFolder(o.outDir);  // made once the runs are done: a bake may refuse --voxel
     if (ranks.ranks() > 1) std::printf("%s\n", describeRanks(ranks, threads).c_str());
 
+    if (!o.quiet) std::printf("%s\n", twoSpheresPlanText(o, ranks.ranks()).c_str());
+    std::fflush(stdout);
     const Stopwatch wall;
     const TwoSpheresResult result = runTwoSpheres(o, ranks);
     cli::prepareOutputFolder(o.outDir, kOwnFiles, o.quiet);

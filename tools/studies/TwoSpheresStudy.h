@@ -51,6 +51,13 @@ struct TwoSpheresResult
 /// Check @a o and throw Error naming the bad option and the fix.
 void checkTwoSpheresOptions(const TwoSpheresOptions& o);
 
+/// What the run of one node count takes on 2 cores of this machine, seconds: the sphere's
+/// bake (sphereBakeSeconds), then its contacts.
+double twoSpheresRunSeconds(const TwoSpheresOptions& o, int nodes);
+/// The plan printed before the runs: what is baked and pressed, and the time it will take (on
+/// @a ranks ranks of 2 cores, the runs handed out largest first).
+std::string twoSpheresPlanText(const TwoSpheresOptions& o, int ranks);
+
 /// Run the study (no files written), one run per node count spread by @a ranks. On rank 0 the
 /// result, the same on any number of ranks; the other ranks do the runs rank 0 hands them and
 /// get an empty result.

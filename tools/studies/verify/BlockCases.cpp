@@ -26,10 +26,7 @@ std::shared_ptr<const GrainAsset> issueBox(Context& c)
 /// face's hundreds (all equally deep) is off the centre and tips the box.
 std::vector<Formulation> faceLaws(const Context& c)
 {
-    std::vector<Formulation> laws;
-    for (Formulation f : c.formulations)
-        if (f != Formulation::SingleNode) laws.push_back(f);
-    return laws;
+    return lawsOfCase(c, CaseLaws::Face);
 }
 
 } // namespace
@@ -39,8 +36,7 @@ void boxOnAnIncline(Context& c)
     const Setup& s = c.bodies.setup();
     const auto box = issueBox(c);
     const double friction = 0.3, time = c.quick ? 0.02 : 0.05;
-    for (const Formulation f : c.formulations) {
-        if (!normalModel(f).perNodeForces()) continue;  // friction needs shear springs
+    for (const Formulation f : lawsOfCase(c, CaseLaws::Frictional)) {
         for (const double degreesAngle : {30.0, 10.0}) {
             const double angle = degreesAngle * kPi / 180.0;
             const ContactModel law = lawFor(f, s, *box, friction, 0.3);

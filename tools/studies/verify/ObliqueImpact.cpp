@@ -14,10 +14,7 @@ namespace lsdem::verify {
 /// The laws of @a c that carry shear springs.
 std::vector<Formulation> frictionalLaws(const Context& c)
 {
-    std::vector<Formulation> laws;
-    for (Formulation f : c.formulations)
-        if (normalModel(f).perNodeForces()) laws.push_back(f);
-    return laws;
+    return lawsOfCase(c, CaseLaws::Frictional);
 }
 
 std::string degrees(double radians)

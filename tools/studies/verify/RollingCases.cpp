@@ -219,7 +219,7 @@ void rollBall(Context& c, const SlideCase& slide, const Ball& b, int resolving)
                   restingCapRadius(s), restingCapRadius(s) / spacing, resolving);
     const bool patches = b.quadrature == NodeQuadrature::Patch;
     for (const Formulation f : c.formulations) {
-        if (!normalModel(f).perNodeForces()) continue;  // friction needs shear springs
+        if (!caseRunsLaw(CaseLaws::Frictional, f)) continue;
         if (patches && !normalModel(f).integratesPatches()) continue;
         for (const double restitution : {0.3, 1.0}) {
             const RollingRun run = slideAndRoll(c, ball, f, slide.speed, slide.friction,

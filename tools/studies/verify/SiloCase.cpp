@@ -5,6 +5,7 @@
 #include "studies/verify/BeverlooChecks.h"
 #include "studies/verify/BeverlooFit.h"
 #include "studies/verify/SiloParking.h"
+#include "studies/verify/SiloPlan.h"
 #include "studies/verify/VerifyCases.h"
 
 #include "lsdem/ls/Bake.h"
@@ -23,51 +24,6 @@
 namespace lsdem::verify {
 
 namespace {
-
-/// The silo, its grains' law and what is measured; lengths in grain sizes d ≈ 1 mm.
-struct SiloPlan
-{
-    /// mm: Beverloo's premise wants the silo at least 2.5 orifices and D + 30 d wide (the
-    /// default's 20 d is not the second: see addBeverlooChecks)
-    double siloRadius = 10.0;
-    double fillHeight = 12.0;      ///< mm above the floor
-    double plateThickness = 0.5;   ///< mm: ≫ any overlap
-    std::vector<double> orifices;  ///< D, mm
-    long long grains = 0;
-    /// The flow is measured from the countFrom-th grain out to the countTo-th: past the start's
-    /// transient, and while the silo is still more than ~3/4 full.
-    int countFrom = 200, countTo = 900;
-    double settleTime = 0.05;      ///< s under the real law before the orifice opens
-    double clogTime = 0.1;         ///< s without a grain out: the orifice has clogged
-    double framePeriod = 0.02;     ///< s between frames (of the largest orifice)
-    int frames = 20;
-    // The law: soft enough that a step resolves collisions at a few m/s with overlaps of ~1 %
-    // of d, stiff enough that the weight of the column presses contacts by ~1 % of d.
-    double knStar = 10.0;          ///< N/mm³
-    double ksStar = 5.0;           ///< N/mm³
-    double friction = 0.5;
-    double restitution = 0.5;
-    double density = 2.65e-9;      ///< t/mm³ (quartz)
-};
-
-SiloPlan planFor(bool quick)
-{
-    SiloPlan p;
-    if (quick) {
-        p.siloRadius = 4.0;
-        p.fillHeight = 8.0;
-        p.orifices = {4.0, 5.0};
-        p.grains = 450;
-        p.countFrom = 50;
-        p.countTo = 200;
-        p.settleTime = 0.02;
-        p.frames = 0;
-    } else {
-        p.orifices = {5.0, 6.0, 7.0, 8.0};
-        p.grains = 4300;
-    }
-    return p;
-}
 
 /// Grains of one kind: the packing's mixture and their size d for Beverloo's law.
 struct GrainKind
@@ -295,7 +251,8 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     Simulation settling(buildCase(scene), dt);
     while (settling.world().time < p.settleTime) settling.step();
     const double rho = bulkDensity(settling.world(), p, kind.size);
-    c.note("  silo " + kind.name + ": " + std::to_string(p.grains) + " grains, dt " +
+    c.note("  silo " + kind.name + ": " + std::to_string(p.grains) + " grains, packed in " +
+           roundedText(packed.seconds, 3) + " s wall, dt " +
            numberText(dt) + " s, settled in " + roundedText(settleClock.seconds(), 3) +
            " s wall; bulk density " + roundedText(rho, 4) + " t/mm³");
 
@@ -335,25 +292,10 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
 
 void siloDischarge(Context& c)
 {
-    SiloPlan p = planFor(c.quick);
-    // A wider or taller silo holds grains in proportion to its fill's volume.
-    const double radius = c.siloRadius > 0.0 ? c.siloRadius : p.siloRadius;
-    const double height = c.siloHeight > 0.0 ? c.siloHeight : p.fillHeight;
-    p.grains = std::llround(double(p.grains) * (radius * radius * height) /
-                            (p.siloRadius * p.siloRadius * p.fillHeight));
-    p.siloRadius = radius;
-    p.fillHeight = height;
-    if (!c.siloOrifices.empty()) {
-        p.orifices = c.siloOrifices;
-        std::sort(p.orifices.begin(), p.orifices.end());
-        p.orifices.erase(std::unique(p.orifices.begin(), p.orifices.end()), p.orifices.end());
-    }
-    auto wanted = [&](const char* kind) {
-        return std::find(c.siloGrains.begin(), c.siloGrains.end(), kind) != c.siloGrains.end();
-    };
-    if (wanted("spheres")) runKind(c, p, spheres(c, c.quick));
+    const SiloPlan p = planAsAsked(c.quick, c.siloRadius, c.siloHeight, c.siloOrifices);
+    if (wantsKind(c.siloGrains, "spheres")) runKind(c, p, spheres(c, c.quick));
     // (The quick version leaves the sand out: its packing alone takes minutes.)
-    if (wanted("sand") && !c.quick) runKind(c, p, sand(c));
+    if (wantsKind(c.siloGrains, "sand") && !c.quick) runKind(c, p, sand(c));
 }
 
 } // namespace lsdem::verify

@@ -6,9 +6,11 @@
 
 #include "studies/verify/VerifyReport.h"
 #include "studies/verify/VerifySetup.h"
+#include "studies/verify/VerifyStudy.h"
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lsdem::verify {
@@ -32,6 +34,18 @@ struct Context
         if (progress) progress(line);
     }
 };
+
+/// Which of the laws asked for a case runs (its cost is shared among them: VerifyCost.h).
+enum class CaseLaws {
+    Every,       ///< every law asked for
+    Frictional,  ///< those with shear springs (per-node forces): friction needs them
+    Face,        ///< all but the single-node law, whose one node of a face's hundreds tips a box
+    Own,         ///< the case's own law (adapted), whatever is asked
+};
+/// Whether a case of @a laws runs @a f when it is asked for.
+bool caseRunsLaw(CaseLaws laws, Formulation f);
+/// The laws of @a c that a case of @a laws runs, in their order.
+std::vector<Formulation> lawsOfCase(const Context& c, CaseLaws laws);
 
 /// Chung & Ooi test 2: a ball's elastic normal impact on a wall; overlap, force, duration.
 void normalImpactOnWall(Context& c);
@@ -63,5 +77,8 @@ void spinImpactOnHeavyBall(Context& c);
 /// A flat-bottomed silo emptied through orifices of several sizes: Beverloo's law, with
 /// spheres and with the sand grains.
 void siloDischarge(Context& c);
+/// What siloDischarge will take with @a o on 2 cores of this machine: least and most seconds
+/// (the packing's time is the least certain part).
+std::pair<double, double> siloDischargeSeconds(const VerifyOptions& o);
 
 } // namespace lsdem::verify

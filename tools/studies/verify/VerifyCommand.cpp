@@ -1,5 +1,7 @@
 #include "studies/verify/VerifyCommand.h"
 
+#include "studies/verify/VerifyCost.h"
+
 #include "studies/RunDistributor.h"
 #include "studies/StudyCommandOptions.h"
 #include "studies/ThreadLimit.h"
@@ -130,6 +132,8 @@ int VerifyCommand::run(RunDistributor& ranks) const
     if (!ranks.isRoot()) return 0;  // the cases are short: rank 0 runs them all
     const ThreadLimit threads(mThreads, ranks);
     cli::checkOutputFolder(o.outDir);
+    if (!o.quiet)
+        std::printf("verify plan: %s\n", verify::estimateVerification(o).text().c_str());
     const Stopwatch wall;
     const verify::Report report = verify::runVerification(o, [&](const std::string& line) {
         if (!o.quiet) std::printf("%s\n", line.c_str()), std::fflush(stdout);

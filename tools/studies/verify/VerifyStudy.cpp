@@ -4,37 +4,79 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/core/NumberText.h"
+#include "lsdem/core/Stopwatch.h"
 
 #include <algorithm>
 
 namespace lsdem::verify {
 
+bool caseRunsLaw(CaseLaws laws, Formulation f)
+{
+    switch (laws) {
+    case CaseLaws::Every: return true;
+    case CaseLaws::Frictional: return normalModel(f).perNodeForces();
+    case CaseLaws::Face: return f != Formulation::SingleNode;
+    case CaseLaws::Own: return f == Formulation::Adapted;
+    }
+    return false;
+}
+
+std::vector<Formulation> lawsOfCase(const Context& c, CaseLaws laws)
+{
+    std::vector<Formulation> run;
+    for (Formulation f : c.formulations)
+        if (caseRunsLaw(laws, f)) run.push_back(f);
+    return run;
+}
+
 const std::vector<CaseEntry>& caseList()
 {
+    // The costs: seconds of each case's full version, apart from any law and per law
+    // (original, adapted, single-node, volume), on the setup's ball (4000 nodes, voxel 0.1 mm)
+    // without its bake, and the quick version's share of that; measured on this machine's 2
+    // idle cores (2026-11-29: `lsdem-study verify` with every law and with each alone, and
+    // `verify --quick`, each case's time as printed).
+    using L = CaseLaws;
     static const std::vector<CaseEntry> cases = {
-        {"normal-wall", "Chung & Ooi 2: a ball's normal impact on a wall", normalImpactOnWall},
-        {"normal-pair", "Chung & Ooi 1: two balls' normal impact", normalImpactOfTwoSpheres},
-        {"restitution", "Chung & Ooi 3: rebound over restitutions 0.1 … 1", restitutionSweep},
-        {"oblique-wall", "Chung & Ooi 4: oblique impact on a wall, 5° … 85°", obliqueImpactOnWall},
+        {"normal-wall", "Chung & Ooi 2: a ball's normal impact on a wall", normalImpactOnWall,
+         L::Every, {0.0, {0.08, 0.08, 0.08, 0.08}, 0.6, true, {}}},
+        {"normal-pair", "Chung & Ooi 1: two balls' normal impact", normalImpactOfTwoSpheres,
+         L::Every, {0.15, {0.24, 0.24, 0.1, 0.2}, 0.96, true, {}}},
+        {"restitution", "Chung & Ooi 3: rebound over restitutions 0.1 … 1", restitutionSweep,
+         L::Every, {0.8, {0.2, 0.2, 0.25, 0.3}, 0.23, true, {}}},
+        {"oblique-wall", "Chung & Ooi 4: oblique impact on a wall, 5° … 85°", obliqueImpactOnWall,
+         L::Frictional, {0.0, {7.6, 25.6, 0.0, 0.0}, 0.053, true, {}}},
         {"oblique-normal-speed", "Chung & Ooi 5: normal speed fixed, tangential swept",
-         obliqueImpactAtNormalSpeed},
-        {"spin-wall", "Chung & Ooi 6: a spinning ball's impact on a wall", spinImpactOnWall},
+         obliqueImpactAtNormalSpeed, L::Frictional, {0.0, {5.3, 29.7, 0.0, 0.0}, 0.044, true, {}}},
+        {"spin-wall", "Chung & Ooi 6: a spinning ball's impact on a wall", spinImpactOnWall,
+         L::Frictional, {0.0, {5.5, 55.2, 0.0, 0.0}, 0.037, true, {}}},
         {"spin-pair", "Chung & Ooi 7: two balls spinning oppositely meet: no slip",
-         spinImpactOfTwoBalls},
+         spinImpactOfTwoBalls, L::Frictional, {0.0, {0.1, 0.1, 0.0, 0.0}, 0.15, true, {}}},
         {"spin-heavy-ball", "Chung & Ooi 8: a spinning ball's impact on a heavy ball",
-         spinImpactOnHeavyBall},
-        {"slide-to-roll", "a ball slides, then rolls on at 5/7 of its speed", slideToRollOnAFloor},
-        {"incline", "a box sliding down an incline", boxOnAnIncline},
-        {"box-landing", "a box landing flat: automatic step, restitution", boxLandingFlat},
-        {"free-rotation", "a box turning over about its intermediate axis", freeRotation},
+         spinImpactOnHeavyBall, L::Frictional, {0.0, {9.1, 90.6, 0.0, 0.0}, 0.04, true, {}}},
+        {"slide-to-roll", "a ball slides, then rolls on at 5/7 of its speed", slideToRollOnAFloor,
+         L::Frictional, {12.0, {1.5, 1.5, 0.0, 0.0}, 0.96, true, {}}},
+        {"incline", "a box sliding down an incline", boxOnAnIncline, L::Frictional,
+         {0.0, {24.0, 24.0, 0.0, 0.0}, 0.094, false, {}}},
+        {"box-landing", "a box landing flat: automatic step, restitution", boxLandingFlat, L::Face,
+         {0.0, {0.43, 0.42, 0.0, 0.21}, 0.21, false, {}}},
+        {"free-rotation", "a box turning over about its intermediate axis", freeRotation, L::Own,
+         {0.09, {0.0, 0.0, 0.0, 0.0}, 0.2, false, {}}},
         {"convergence", "the adapted law's errors as the ball's nodes refine, 1000 … 16,000",
-         convergence},
+         convergence, L::Own, {16.3, {0.0, 0.0, 0.0, 0.0}, 0.44, false, {}}},
         {"silo",
          "a silo emptied through 4 orifices: Beverloo's law, spheres and sand (run when named: "
-         "spheres about 35 min, sand about 3 h on 2 cores; in --quick, a small silo of spheres)",
-         siloDischarge, true},
+         "spheres about 25 min, sand about 3 h on 2 cores; in --quick, a small silo of spheres)",
+         siloDischarge, L::Own, {0.0, {0.0, 0.0, 0.0, 0.0}, 1.0, false, siloDischargeSeconds},
+         true},
     };
     return cases;
+}
+
+bool runsCase(const VerifyOptions& o, const CaseEntry& e)
+{
+    return o.cases.empty() ? !(e.onlyWhenNamed && !o.quick)
+                           : std::find(o.cases.begin(), o.cases.end(), e.name) != o.cases.end();
 }
 
 void checkVerifyOptions(const VerifyOptions& o)
@@ -82,11 +124,11 @@ Report runVerification(const VerifyOptions& o,
                     o.sandMeshes, o.siloGrains,    o.siloOrifices, o.siloRadius,
                     o.siloHeight, progress};
     for (const CaseEntry& e : caseList()) {
-        if (o.cases.empty() ? e.onlyWhenNamed && !o.quick
-                            : std::find(o.cases.begin(), o.cases.end(), e.name) == o.cases.end())
-            continue;
+        if (!runsCase(o, e)) continue;
         context.note("running " + e.name + " ...");
+        const Stopwatch clock;
         e.run(context);
+        context.note("  " + e.name + ": " + roundedText(clock.seconds(), 3) + " s");
     }
     return report;
 }

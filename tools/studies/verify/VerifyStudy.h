@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lsdem::verify {
@@ -32,12 +33,33 @@ struct VerifyOptions
     bool plots = true, quiet = false;
 };
 
+enum class CaseLaws;
+
+/// What a case costs on 2 cores of this machine, for the estimate printed before the suite
+/// (VerifyCost.h): measured, not derived (docs/verification.md#cost).
+struct CaseCost
+{
+    double fixed = 0.0;  ///< seconds of the full version whatever the laws (references, bakes)
+    /// Seconds of the full version for each law it runs, in allFormulations()' order
+    /// (original, adapted, single-node, volume); 0 for a law it does not run.
+    double perLaw[4] = {0.0, 0.0, 0.0, 0.0};
+    double quickShare = 1.0;  ///< the quick version's time over the full one's
+    /// Whether it runs the setup's ball (then its cost follows the ball's nodes, and the ball's
+    /// bake is counted once, apart).
+    bool ball = false;
+    /// For a case whose cost follows its own options (the silo): its least and most seconds,
+    /// in place of the above.
+    std::function<std::pair<double, double>(const VerifyOptions&)> model;
+};
+
 /// One case of the suite.
 struct CaseEntry
 {
     std::string name;
     std::string title;  ///< what it checks, for --help and the summary
     std::function<void(Context&)> run;
+    CaseLaws laws;      ///< which of the laws asked for it runs
+    CaseCost cost;
     /// Run only when named (--case), or in the quick version: a bulk case that costs hours,
     /// not minutes.
     bool onlyWhenNamed = false;
@@ -45,6 +67,8 @@ struct CaseEntry
 
 /// Every case, in the order the suite runs them.
 const std::vector<CaseEntry>& caseList();
+/// Whether @a o runs @a entry.
+bool runsCase(const VerifyOptions& o, const CaseEntry& entry);
 
 /// Check @a o; throw Error naming the bad option and the fix.
 void checkVerifyOptions(const VerifyOptions& o);

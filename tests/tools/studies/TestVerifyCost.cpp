@@ -7,10 +7,13 @@
 #include "studies/verify/VerifyCases.h"
 #include "studies/verify/VerifyCost.h"
 
+#include "support/TestSupport.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 using namespace lsdem;
 using namespace lsdem::verify;
@@ -148,4 +151,16 @@ TEST(SphereStudiesCost, BakesGrowWithVoxelsAndNodesAndEveryRunIsCounted)
     // Two ranks: the larger run's time at least, less than the sum.
     const std::string ranks = twoSpheresPlanText(o, 2);
     EXPECT_NE(ranks.find("on 2 ranks"), std::string::npos) << ranks;
+}
+
+TEST(VerifyCost, EstimatePrintsThePlanWithoutRunningOrWriting)
+{
+    lsdem::test::ScratchDir dir;
+    const auto r = lsdem::test::runCommand(std::string(LSDEM_STUDY_EXE) +
+                                           " verify --case silo --estimate --out '" + dir.file("x") + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("verify plan: about "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(silo "), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("running silo"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x")));
 }

@@ -114,6 +114,7 @@ VerifyCommand::VerifyCommand(CLI::App& study)
         ->type_name("H")
         ->group(bodies);
     mCommand->add_flag("--quick", o.quick, "the fast version run by ctest: fewer points");
+    mCommand->add_flag("--estimate", o.estimateOnly, "print what the run will take, and stop");
     cli::addThreads(*mCommand, mThreads, "worker threads (0: all cores)");
     addOutputOptions(*mCommand, o.outDir, o.plots, o.quiet, "print only the failures and the tally");
     mCommand->footer("Exit codes as every study's, and 5: a check failed (the table says which).");
@@ -132,8 +133,9 @@ int VerifyCommand::run(RunDistributor& ranks) const
     if (!ranks.isRoot()) return 0;  // the cases are short: rank 0 runs them all
     const ThreadLimit threads(mThreads, ranks);
     cli::checkOutputFolder(o.outDir);
-    if (!o.quiet)
+    if (!o.quiet || o.estimateOnly)
         std::printf("verify plan: %s\n", verify::estimateVerification(o).text().c_str());
+    if (o.estimateOnly) return 0;
     const Stopwatch wall;
     const verify::Report report = verify::runVerification(o, [&](const std::string& line) {
         if (!o.quiet) std::printf("%s\n", line.c_str()), std::fflush(stdout);

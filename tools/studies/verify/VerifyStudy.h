@@ -31,6 +31,7 @@ struct VerifyOptions
     double siloRadius = 0.0, siloHeight = 0.0;
     std::string outDir = "results/verify";
     bool plots = true, quiet = false;
+    bool estimateOnly = false;  ///< print what the run would take, and stop
 };
 
 enum class CaseLaws;

@@ -55,7 +55,7 @@ std::pair<double, double> kindSeconds(const SiloPlan& p, const KindCost& k)
     double discharges = 0.0;
     const double grainMass = p.density * kPi / 6.0 * k.size * k.size * k.size;
     for (double d : p.orifices) {
-        // Beverloo's flow at C = 0.58 (the measured durations were 0.84 to 1.19 times what it
+        // Beverloo's flow at C = 0.58 (the measured durations were 0.83 to 1.19 times what it
         // gives). The grains stepped: the fill less those set aside once out, about half the
         // counted ones on average.
         const double open = std::max(d - k.annulus * k.size, 0.5 * k.size);

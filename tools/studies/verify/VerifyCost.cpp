@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 namespace lsdem::verify {
 
@@ -30,7 +31,7 @@ double caseSeconds(const VerifyOptions& o, const CaseCost& cost, double lawScale
 {
     double laws = 0.0;
     const std::vector<Formulation>& every = allFormulations();
-    for (size_t i = 0; i < every.size(); ++i)
+    for (size_t i = 0; i < every.size() && i < std::size(cost.perLaw); ++i)
         if (std::find(o.formulations.begin(), o.formulations.end(), every[i]) != o.formulations.end())
             laws += cost.perLaw[i];
     const double seconds = cost.fixed + lawScale * laws;

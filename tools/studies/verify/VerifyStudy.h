@@ -42,7 +42,8 @@ struct CaseCost
 {
     double fixed = 0.0;  ///< seconds of the full version whatever the laws (references, bakes)
     /// Seconds of the full version for each law it runs, in allFormulations()' order
-    /// (original, adapted, single-node, volume); 0 for a law it does not run.
+    /// (original, adapted, single-node, volume); 0 for a law it does not run. A law added
+    /// later costs nothing here until it is measured.
     double perLaw[4] = {0.0, 0.0, 0.0, 0.0};
     double quickShare = 1.0;  ///< the quick version's time over the full one's
     /// Whether it runs the setup's ball (then its cost follows the ball's nodes, and the ball's

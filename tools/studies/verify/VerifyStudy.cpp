@@ -66,7 +66,8 @@ const std::vector<CaseEntry>& caseList()
          convergence, L::Own, {16.3, {0.0, 0.0, 0.0, 0.0}, 0.44, false, {}}},
         {"silo",
          "a silo emptied through 4 orifices: Beverloo's law, spheres and sand (run when named: "
-         "spheres about 15 min, sand about 3 h on 2 cores (--estimate); in --quick, a small silo of spheres)",
+         "spheres 13-20 min, sand 3-4 h on 2 cores, estimated (--estimate); in --quick, a "
+         "small silo of spheres)",
          siloDischarge, L::Own, {0.0, {0.0, 0.0, 0.0, 0.0}, 1.0, false, siloDischargeSeconds},
          true},
     };

@@ -7,7 +7,7 @@
 namespace lsdem::verify {
 
 void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Discharge>& flows,
-                       double rho, double grainSize, double siloWidth)
+                       double rho, double gravity, double grainSize, double siloWidth)
 {
     // Beverloo's law holds where the silo's walls do not reach the flow: at least 2.5 orifices
     // and D + 30 d wide (Nedderman 1992; Mankoc et al., Granular Matter 9 (2007) 407). Shown
@@ -20,7 +20,7 @@ void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Di
                   "walls slow the flow and C and k are not Beverloo's"};
     premise.informative = true;
     c.report.add(premise);
-    const BeverlooFit fit = fitBeverloo(flows, rho, 9810.0, grainSize);
+    const BeverlooFit fit = fitBeverloo(flows, rho, gravity, grainSize);
     // Two orifices (the quick version) fix the line exactly: its fit is shown, not judged.
     const bool judged = flows.size() >= 3;
     // Over D = 5–8 d the exponent is weakly determined (a law W ∝ D³ still gives R² 0.9996 for

@@ -14,9 +14,9 @@
 namespace lsdem::verify {
 
 /// Add to @a c's report the checks of @a flows (at least two, by diameter) of grains of size
-/// @a grainSize and bulk density @a rho from a silo @a siloWidth wide (mm); C and k are judged
-/// from three orifices on (two fix a line exactly: shown).
+/// @a grainSize and bulk density @a rho under gravity @a gravity from a silo @a siloWidth wide
+/// (mm); C and k are judged from three orifices on (two fix a line exactly: shown).
 void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Discharge>& flows,
-                       double rho, double grainSize, double siloWidth);
+                       double rho, double gravity, double grainSize, double siloWidth);
 
 } // namespace lsdem::verify

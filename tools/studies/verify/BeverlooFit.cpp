@@ -56,6 +56,12 @@ LineFit fitLine(const std::vector<double>& x, const std::vector<double>& y)
     return fit;
 }
 
+double beverlooFlow(double c, double bulkDensity, double gravity, double diameter,
+                    double emptyAnnulus)
+{
+    return c * bulkDensity * std::sqrt(gravity) * std::pow(diameter - emptyAnnulus, 2.5);
+}
+
 BeverlooFit fitBeverloo(const std::vector<Discharge>& flows, double bulkDensity, double gravity,
                         double grainSize)
 {

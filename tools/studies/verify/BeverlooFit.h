@@ -48,6 +48,11 @@ struct BeverlooFit
     double cHalfWidth95 = 0.0, kHalfWidth95 = 0.0;
 };
 
+/// Beverloo's flow W = C·ρ_b·sqrt(g)·(D − k·d)^(5/2) through an orifice of diameter @a diameter,
+/// for an empty annulus k·d = @a emptyAnnulus (below the diameter).
+double beverlooFlow(double c, double bulkDensity, double gravity, double diameter,
+                    double emptyAnnulus);
+
 /// Beverloo's law with the exponent 5/2 fitted to @a flows (at least two diameters) for bulk
 /// density @a bulkDensity, gravity @a gravity and grain size @a grainSize.
 BeverlooFit fitBeverloo(const std::vector<Discharge>& flows, double bulkDensity, double gravity,

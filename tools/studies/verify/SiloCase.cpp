@@ -114,7 +114,7 @@ Scene filledSilo(const SiloPlan& p, const GrainKind& kind, const PackingResult& 
     side.material = 1;
     side.radius = p.siloRadius;
     s.boundaries.push_back(side);
-    s.gravity = Vec3(0, 0, -9810.0);
+    s.gravity = Vec3(0, 0, -p.gravity);
     return s;
 }
 
@@ -285,7 +285,8 @@ void runKind(Context& c, const SiloPlan& p, const GrainKind& kind)
     for (const Discharge& f : flows) rates.rows.push_back({f.diameter, f.massFlow, rho, kind.size});
     c.report.series.push_back(rates);
     c.report.series.push_back(curves);
-    if (flows.size() >= 2) addBeverlooChecks(c, name, flows, rho, kind.size, 2.0 * p.siloRadius);
+    if (flows.size() >= 2) addBeverlooChecks(c, name, flows, rho, p.gravity, kind.size,
+                                           2.0 * p.siloRadius);
 }
 
 } // namespace

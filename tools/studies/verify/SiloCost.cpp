@@ -1,6 +1,7 @@
 // What the silo case will take (VerifyCases.h: siloDischargeSeconds): each kind of grain's
 // packing, settling and discharges, from costs measured on this machine and the discharges'
 // durations from Beverloo's law.
+#include "studies/verify/BeverlooFit.h"
 #include "studies/verify/SiloPlan.h"
 #include "studies/verify/VerifyCases.h"
 
@@ -58,8 +59,8 @@ std::pair<double, double> kindSeconds(const SiloPlan& p, const KindCost& k)
         // Beverloo's flow at C = 0.58 (the measured durations were 0.83 to 1.19 times what it
         // gives). The grains stepped: the fill less those set aside once out, about half the
         // counted ones on average.
-        const double open = std::max(d - k.annulus * k.size, 0.5 * k.size);
-        const double flow = 0.58 * k.bulkDensity * std::sqrt(9810.0) * std::pow(open, 2.5);
+        const double annulus = std::min(k.annulus * k.size, d - 0.5 * k.size);
+        const double flow = beverlooFlow(0.58, k.bulkDensity, p.gravity, d, annulus);
         const double duration = p.countTo * grainMass / flow;
         discharges += duration / k.timeStep * (grains - 0.5 * p.countTo) * k.grainStep;
     }

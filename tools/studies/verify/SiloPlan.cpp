@@ -5,6 +5,9 @@
 
 namespace lsdem::verify {
 
+namespace {
+
+/// The quick or full version's plan (the orifices 4 and 5 mm or 5 … 8 mm).
 SiloPlan planFor(bool quick)
 {
     SiloPlan p;
@@ -23,6 +26,8 @@ SiloPlan planFor(bool quick)
     }
     return p;
 }
+
+} // namespace
 
 SiloPlan planAsAsked(bool quick, double siloRadius, double siloHeight,
                      const std::vector<double>& orifices)

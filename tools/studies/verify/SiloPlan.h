@@ -32,10 +32,8 @@ struct SiloPlan
     double friction = 0.5;
     double restitution = 0.5;
     double density = 2.65e-9;      ///< t/mm³ (quartz)
+    double gravity = 9810.0;       ///< mm/s²
 };
-
-/// The quick or full version's plan (the orifices 4 and 5 mm or 5 … 8 mm).
-SiloPlan planFor(bool quick);
 
 /// The plan of the quick or full version with the silo's radius, fill height and orifices as
 /// asked (0 or none: the plan's own).

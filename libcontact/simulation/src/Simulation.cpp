@@ -87,6 +87,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
+    checkMembranes();
     if (evaluateInitialForces) {
         evaluateForces(0.0);
         const Energies e = energies();
@@ -94,6 +95,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
         // Grains that start in contact: a step too large for that contact would throw them
         // apart in the very first kick, before any later check could see the contact.
         checkStability(true);
+        judgeMembraneStep();
     }
 }
 
@@ -105,6 +107,9 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
+    if (!mWorld.membranes.empty())
+        throw Error("", "membranes cannot yet be split by space over MPI ranks",
+                    "run a world with a membrane in one process");
     for (const Grain& g : mWorld.grains) mHasPrescribed |= g.motion == GrainMotion::Prescribed;
     // The whole simulation's skin, so this rank's list is the one-process list's part.
     const double skin = mContacts.skinFor(mWorld);
@@ -156,12 +161,15 @@ void Simulation::step()
         if (wraps && g.motion != GrainMotion::Fixed) keepInCell(g, cell, stretch, deforms);
     });
     for (Boundary& b : mWorld.boundaries) b.displacement += b.velocity * dt;
+    moveMembranes(dt);
+    const double membraneWorkBefore = membraneExternalPower();
     mWorld.time = static_cast<double>(mWorld.step + 1) * dt;  // no drift from summing dt
     ++mWorld.step;
     mCounters.integrateSeconds +=
         secondsSince(integrateStart) - (exchangedSeconds() - integrateExchanged);
 
     evaluateForces(dt);
+    const double membraneWorkAfter = membraneExternalPower();
 
     const auto kickStart = SteadyClock::now();
     const double kickExchanged = exchangedSeconds();
@@ -175,9 +183,12 @@ void Simulation::step()
     double workAfter = cell.strainRate.dot(mWorld.energy.cellMoment);
     for (const Boundary& b : mWorld.boundaries) workAfter -= b.force.dot(b.velocity);
     subtractPrescribedPower(workAfter);
-    mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt;
+    kickMembranes(0.5 * dt);
+    mWorld.energy.boundaryWork += 0.5 * (workBefore + workAfter) * dt +
+                                  0.5 * (membraneWorkBefore + membraneWorkAfter) * dt;
     ++mCounters.steps;
     judgeStepLimits(mStepLimits, false);
+    judgeMembraneStep();
     mCounters.integrateSeconds += secondsSince(kickStart) - (exchangedSeconds() - kickExchanged);
 }
 

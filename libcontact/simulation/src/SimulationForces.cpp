@@ -116,12 +116,15 @@ void Simulation::evaluateForces(double slipStep)
 
     const auto narrowStart = SteadyClock::now();
     computeContacts(slipStep);
+    computeMembranes(slipStep);
     mCounters.narrowSeconds += secondsSince(narrowStart);
 
     const auto reduceStart = SteadyClock::now();
     const double reduceExchanged = exchangedSeconds();
     sumGrainForces(slipStep);
     sumContactCounts();
+    mContactNodes += mMembraneNodes;
+    mCounters.nodes += mMembraneStats;
     collectReactionsAndPointForces();
     measureCell();
     mCounters.integrateSeconds +=
@@ -210,6 +213,15 @@ void Simulation::sumGrainForces(double dt)
             stiffness.translation += share * f.translationalStiffness;
             stiffness.rotation +=
                 share * (r->first ? f.rotationalStiffnessOfFirst : f.rotationalStiffnessOfSecond);
+        }
+        // The membranes press on it as walls do (their vertices' own step is checked apart).
+        for (const std::vector<MembraneGrainContact>& onMembrane : mMembraneContacts) {
+            const PairForces& f = onMembrane[size_t(i)].result;
+            force += f.forceOnFirst;
+            torque += f.torqueOnFirst;
+            dashpot += f.dashpotWork;
+            stiffness.translation += f.translationalStiffness;
+            stiffness.rotation += f.rotationalStiffnessOfFirst;
         }
         if (g.isFree()) {
             force += g.body.mass * w.gravity;

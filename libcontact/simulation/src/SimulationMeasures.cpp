@@ -169,6 +169,10 @@ Energies Simulation::energies() const
         }
         e.elastic = mElastic;
     }
+    double membraneKinetic = 0.0;
+    e.elastic += membraneEnergy(membraneKinetic);
+    e.kinetic += membraneKinetic;
+    for (const Membrane& m : mWorld.membranes) e.globalDamping += m.dampedWork;
     e.boundaryWork = mWorld.energy.boundaryWork;
     e.dissipated = e.boundaryWork - (e.kinetic + e.elastic + e.potential -
                                      mWorld.energy.initialTotal);

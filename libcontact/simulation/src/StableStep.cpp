@@ -182,6 +182,8 @@ double automaticTimeStep(const World& world, double safety)
 {
     double step = std::numeric_limits<double>::infinity();
     for (const double s : stiffestContactSteps(world)) step = std::min(step, s);
+    // A membrane's rubber (its vertices on the grains' contacts are checked as it runs).
+    for (const Membrane& m : world.membranes) step = std::min(step, membraneStableStep(m));
     if (!std::isfinite(step))
         throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
                     "give [simulation] time_step explicitly");

@@ -7,9 +7,11 @@
 
 #include "lsdem/simulation/ContactBackend.h"
 #include "lsdem/simulation/ContactList.h"
+#include "lsdem/simulation/MembraneContact.h"
 #include "lsdem/simulation/StableStep.h"
 #include "lsdem/simulation/World.h"
 
+#include <string>
 #include <vector>
 
 namespace lsdem {
@@ -177,6 +179,26 @@ private:
     /// Whether grain @a i of this world is integrated here (not a ghost).
     bool integratesGrain(size_t i) const;
 
+    // The membranes (SimulationMembranes.cpp).
+    /// @throw Error if a membrane is unfinished or names a material or boundary not there.
+    void checkMembranes() const;
+    /// Their vertices' first half kick and drift (held ones follow their boundaries).
+    void moveMembranes(double dt);
+    void kickMembranes(double halfStep);
+    /// Their forces: rubber, pressure and the grains' contacts (each grain's kept for
+    /// sumGrainForces), with global damping on their free vertices.
+    void computeMembranes(double dt);
+    /// The power that the pressure and the holders of held vertices put in (at the vertices'
+    /// velocities now and the forces of the last evaluation).
+    double membraneExternalPower() const;
+    /// Their stable step (rubber and the grains' contacts on free vertices); @a which gets
+    /// the membrane that sets it.
+    double membraneStepLimit(std::string* which = nullptr) const;
+    /// @throw Error if the step exceeds membraneStepLimit().
+    void judgeMembraneStep() const;
+    /// Their elastic energy (rubber and contacts with grains); @a kinetic gets their vertices'.
+    double membraneEnergy(double& kinetic) const;
+
     World mWorld;
     double mDt = 0.0;
     bool mRecordForces = false;
@@ -197,6 +219,16 @@ private:
     bool mHasPrescribed = false;  ///< some grain of the whole simulation is prescribed
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
     ContactBackendHolder mBackend;  ///< computes the contact slots (the CPU's by default)
+
+    // Per membrane: its triangles binned, each grain's contact with it, the pressure's part
+    // of its vertices' forces and the grains' contact stiffness on each vertex.
+    std::vector<MembraneTriangleGrid> mMembraneGrids;
+    std::vector<std::vector<MembraneGrainContact>> mMembraneContacts;
+    std::vector<std::vector<Vec3>> mMembranePressureForces;
+    std::vector<std::vector<double>> mMembraneContactStiffness;
+    double mMembraneElastic = 0.0;  ///< of the grains' contacts with membranes
+    long long mMembraneNodes = 0;   ///< grains' nodes in contact with membranes
+    NodeCheckStats mMembraneStats;
 };
 
 } // namespace lsdem

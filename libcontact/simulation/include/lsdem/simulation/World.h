@@ -9,6 +9,7 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/simulation/RigidBody.h"
 #include "lsdem/simulation/GrainMotion.h"
+#include "lsdem/simulation/Membrane.h"
 #include "lsdem/simulation/PeriodicCell.h"
 
 #include <map>
@@ -74,6 +75,7 @@ struct World
     std::vector<std::shared_ptr<const GrainAsset>> assets;  ///< per Scene::assets entry
     std::vector<Grain> grains;
     std::vector<Boundary> boundaries;
+    std::vector<Membrane> membranes;  ///< flexible shells (Membrane.h); not yet split by space
     int materialCount = 0;
     std::vector<ContactModel> models;          ///< materialCount², symmetric
     std::vector<std::string> materialNames;

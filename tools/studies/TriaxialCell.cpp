@@ -30,35 +30,90 @@ const Boundary& wall(const World& world, const TriaxialWalls& walls, int which)
     return b;
 }
 
+/// The platens' distance and their mean compressive force: the cell's size and stress along z
+/// (@a stress still to be divided by the area).
+void measureAxis(const World& world, const TriaxialWalls& walls, int axis, double& size,
+                 double& force)
+{
+    const Boundary& low = wall(world, walls, 2 * axis);
+    const Boundary& high = wall(world, walls, 2 * axis + 1);
+    const Vec3 n = low.plane.normal;
+    // Opposite walls: parallel, facing each other, the low one's normal along +axis.
+    if (n.dot(high.plane.normal) > -1.0 + 1e-9 || n[axis] < 1.0 - 1e-9)
+        throw Error("triaxial cell",
+                    "walls '" + low.name + "' and '" + high.name + "' are not a pair of "
+                    "opposite planes facing into the cell along " + "xyz"[axis],
+                    "use planes with normals +e and -e of that axis");
+    const Vec3 lowPoint = low.plane.point + low.displacement;
+    const Vec3 highPoint = high.plane.point + high.displacement;
+    size = (highPoint - lowPoint).dot(n);
+    // The grains push a wall against its normal: compression is -F·n.
+    force = 0.5 * (-low.force.dot(n) - high.force.dot(high.plane.normal));
+}
+
 /// The cell's size and principal stresses from @a walls' positions and forces.
 void measureWalls(const World& world, const TriaxialWalls& walls, TriaxialState& s)
 {
-    double force[6];
-    for (int axis = 0; axis < 3; ++axis) {
-        const Boundary& low = wall(world, walls, 2 * axis);
-        const Boundary& high = wall(world, walls, 2 * axis + 1);
-        const Vec3 n = low.plane.normal;
-        // Opposite walls: parallel, facing each other, the low one's normal along +axis.
-        if (n.dot(high.plane.normal) > -1.0 + 1e-9 || n[axis] < 1.0 - 1e-9)
-            throw Error("triaxial cell",
-                        "walls '" + low.name + "' and '" + high.name + "' are not a pair of "
-                        "opposite planes facing into the cell along " + "xyz"[axis],
-                        "use planes with normals +e and -e of that axis");
-        const Vec3 lowPoint = low.plane.point + low.displacement;
-        const Vec3 highPoint = high.plane.point + high.displacement;
-        s.size[axis] = (highPoint - lowPoint).dot(n);
-        // The grains push a wall against its normal: compression is -F·n.
-        force[2 * axis] = -low.force.dot(n);
-        force[2 * axis + 1] = -high.force.dot(high.plane.normal);
-    }
+    double force[3];
+    for (int axis = 0; axis < 3; ++axis) measureAxis(world, walls, axis, s.size[axis], force[axis]);
     const double volume = s.size.prod();
     for (int axis = 0; axis < 3; ++axis) {
         const double area = volume / s.size[axis];
-        s.stress[axis] = 0.5 * (force[2 * axis] + force[2 * axis + 1]) / area;
+        s.stress[axis] = force[axis] / area;
     }
 }
 
+/// A cylindrical sample in a membrane between two platens (walls 4 and 5). Its lateral stress
+/// is what the grains put on the membrane: the radial part of their push on its vertices over
+/// the side of the sample's mean cylinder (2π·R·H, π·R²·H its volume); before any evaluation,
+/// the membrane's pressure.
+void measureMembrane(const World& world, const TriaxialWalls& walls, TriaxialState& s)
+{
+    if (walls.membrane >= static_cast<int>(world.membranes.size()))
+        throw Error("triaxial cell", "the world has no membrane " + std::to_string(walls.membrane));
+    const Membrane& m = world.membranes[size_t(walls.membrane)];
+    double height = 0.0, force = 0.0;
+    measureAxis(world, walls, 2, height, force);
+    const double volume = enclosedVolume(m);
+    const double side = std::sqrt(volume / height);
+    double lateral = m.pressure;
+    if (m.grainForces.size() == m.positions.size()) {
+        Vec3 axis = Vec3::Zero();  // a point of the sample's axis: the vertices' mean
+        for (const Vec3& x : m.positions) axis += x;
+        axis /= static_cast<double>(m.positions.size());
+        double radialForce = 0.0;
+        for (size_t i = 0; i < m.positions.size(); ++i) {
+            const Vec3 out(m.positions[i].x() - axis.x(), m.positions[i].y() - axis.y(), 0.0);
+            if (out.norm() > 0.0) radialForce += m.grainForces[i].dot(out.normalized());
+        }
+        const double radius = std::sqrt(volume / (kPi * height));
+        lateral = radialForce / (2.0 * kPi * radius * height);
+    }
+    s.size = Vec3(side, side, height);
+    s.stress = Vec3(lateral, lateral, force / (side * side));
+}
 } // namespace
+
+void steerMembranePressure(World& world, const TriaxialWalls& walls, double gain)
+{
+    Membrane& m = world.membranes[size_t(walls.membrane)];
+    if (!(m.targetStress > 0.0)) return;
+    TriaxialState s;
+    measureMembrane(world, walls, s);
+    // From half to three times the target: the rubber's hold on a sample ten grains across is
+    // a correction of up to half of σ₃ (measured: 5 % on 182 grains, 50 % on 27 with a membrane
+    // a grain thick), and a membrane still closing in on the grains measures no stress at all
+    // (steered by that alone, its pressure would wind up).
+    m.pressure = std::clamp(m.pressure + gain * (m.targetStress - s.stress.x()),
+                            0.5 * m.targetStress, 3.0 * m.targetStress);
+}
+
+double membraneSampleArea(const World& world, const TriaxialWalls& walls)
+{
+    TriaxialState s;
+    measureMembrane(world, walls, s);
+    return s.size.x() * s.size.y();
+}
 
 TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
                                   const std::vector<ContactRecord>& contacts)
@@ -70,6 +125,8 @@ TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls
                         "give the scene periodic_cell = [Lx, Ly, Lz]");
         s.size = world.periodic.size;
         s.stress = world.periodic.stress;  // the contacts' Love–Weber stress, as the cell measures it
+    } else if (walls.hasMembrane()) {
+        measureMembrane(world, walls, s);
     } else {
         measureWalls(world, walls, s);
     }

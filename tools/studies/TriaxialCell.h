@@ -17,11 +17,16 @@ namespace lsdem {
 /// The boundary indices of the six walls, each a plane whose normal points into the cell:
 /// x min, x max, y min, y max, z min (bottom), z max (top). Or none: a periodic cell
 /// (PeriodicCell.h, periodic along all three axes) bounds the sample, its size and stress the
-/// cell's.
+/// cell's. Or a membrane (Membrane.h, the world's membrane of index @a membrane) round a
+/// cylindrical sample between the bottom and top walls (the platens), the four side walls none:
+/// the cell pressure σ₃ is its pressure.
 struct TriaxialWalls
 {
     std::array<int, 6> index = {-1, -1, -1, -1, -1, -1};
     bool periodic = false;
+    int membrane = -1;
+
+    bool hasMembrane() const { return membrane >= 0; }
 };
 
 /// The sample in the world's periodic cell: no walls.
@@ -44,9 +49,16 @@ std::array<int, 4> areaWallsOf(const TriaxialWalls& walls, int axis);
 
 struct TriaxialState
 {
-    Vec3 size = Vec3::Zero();     ///< edge lengths along x, y, z (distances between walls)
+    /// Edge lengths along x, y, z (distances between walls); in a membrane, the platens'
+    /// distance along z and across, the side of the square of the sample's mean cross-section
+    /// (volume / height), so that size.prod() is its volume.
+    Vec3 size = Vec3::Zero();
     double volume = 0.0;          ///< size.x · size.y · size.z
-    /// σ_x, σ_y, σ_z: each the mean of its two walls' normal force over their current area.
+    /// σ_x, σ_y, σ_z: each the mean of its two walls' normal force over their current area; in
+    /// a membrane, σ_x = σ_y the grains' radial push on it over the side of the sample's mean
+    /// cylinder (the cell pressure less the rubber's own hold, which a laboratory corrects
+    /// for: here it is measured) and σ_z the platens' mean force (the grains' and the
+    /// membrane's pull on its rims, as a load cell reads it) over the mean cross-section.
     Vec3 stress = Vec3::Zero();
     double p = 0.0;               ///< mean stress (σ_x + σ_y + σ_z) / 3
     double q = 0.0;               ///< deviator σ_z − (σ_x + σ_y) / 2
@@ -67,6 +79,14 @@ struct TriaxialState
 /// (Simulation::contactRecords; empty leaves the coordination and what comes from contacts 0).
 TriaxialState measureTriaxialCell(const World& world, const TriaxialWalls& walls,
                                   const std::vector<ContactRecord>& contacts);
+
+/// Move the pressure of the membrane of @a walls by @a gain times what the grains' lateral
+/// stress lacks of its target stress (Membrane::targetStress; none: nothing), kept from half to
+/// three times the target.
+void steerMembranePressure(World& world, const TriaxialWalls& walls, double gain);
+
+/// The mean cross-section (volume / height) of the sample in the membrane of @a walls.
+double membraneSampleArea(const World& world, const TriaxialWalls& walls);
 
 /// The grains' solid volume: Σ of their assets' volumes.
 double solidVolume(const World& world);

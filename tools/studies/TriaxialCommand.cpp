@@ -154,12 +154,25 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
     mCommand
         ->add_option_function<std::string>(
             "--boundary",
-            [&o](const std::string& name) { o.periodic = name == "periodic"; },
-            "what bounds the sample: walls (six servo walls) or periodic (a periodic cell, "
-            "no walls)")
-        ->check(CLI::IsMember({"walls", "periodic"}))
+            [&o](const std::string& name) {
+                o.periodic = name == "periodic";
+                o.membrane = name == "membrane";
+            },
+            "what bounds the sample: walls (six servo walls), periodic (a periodic cell, "
+            "no walls) or membrane (a latex membrane round a cylinder cut from the sample "
+            "consolidated between walls, the top and bottom walls its platens)")
+        ->check(CLI::IsMember({"walls", "periodic", "membrane"}))
         ->type_name("B")
         ->default_str("walls")
+        ->group(test);
+    addNumber(*mCommand, "--membrane-youngs", o.membraneYoungs,
+              "membrane: E of its rubber, MPa (latex about 1.4)")
+        ->type_name("E")
+        ->group(test);
+    addNumber(*mCommand, "--membrane-thickness", o.membraneThickness,
+              "membrane: its thickness, mm (0: half the grains' mean diameter; "
+              "docs/triaxial.md#a-membrane-instead-of-side-walls)")
+        ->type_name("T")
         ->group(test);
     addNumber(*mCommand, "--b", o.b, "true-triaxial: b = (sigma_2 - sigma_3)/(sigma_1 - sigma_3)")
         ->type_name("B")
@@ -322,7 +335,9 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
     std::printf("time %.0f s\nwrote %s, %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str(),
                 convergenceCsv.c_str());
-    if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
+    if (o.membrane) {
+        std::printf("no scene for lsdem-run: scenes cannot hold a membrane yet\n");
+    } else if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
         const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
         std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",
                     scene.c_str(), runName(finest->formulation, finest->sdp, finest->seed).c_str());

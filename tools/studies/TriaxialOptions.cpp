@@ -141,6 +141,15 @@ void checkTriaxialLoading(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             roundedText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
+    if (o.membrane && (o.path == TriaxialPath::TrueTriaxial || o.path == TriaxialPath::Undrained))
+        throw Error("", "--boundary membrane cannot follow --path " + triaxialPathName(o.path) +
+                            " yet (a membrane's cylinder has one lateral stress; an undrained "
+                            "membrane would need its pressure servoed to the volume)",
+                    "use walls or periodic for this path");
+    requirePositive(o.membraneYoungs, "--membrane-youngs", "latex is about 1.4 MPa");
+    if (!(o.membraneThickness >= 0.0 && std::isfinite(o.membraneThickness)))
+        throw Error("", "--membrane-thickness must be zero (the laboratory's proportion) or "
+                        "positive, got " + roundedText(o.membraneThickness));
 }
 
 } // namespace

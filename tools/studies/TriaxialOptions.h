@@ -44,8 +44,14 @@ struct TriaxialOptions
     double maxAxialStrain = 0.2;   ///< the path's end (its amplitude for cycles)
     TriaxialPath path = TriaxialPath::Compression;  ///< the loading path after consolidation
     /// What bounds the sample: six servo walls, or a periodic cell (no walls: its axes are
-    /// strained and stress-controlled as the walls would be).
+    /// strained and stress-controlled as the walls would be), or (membrane) a rubber membrane
+    /// round a cylinder cut from the sample consolidated between walls, between the top and
+    /// bottom walls as platens (TriaxialMembrane.h).
     bool periodic = false;
+    bool membrane = false;
+    double membraneYoungs = 1.4;     ///< E of the membrane's rubber, MPa (latex)
+    /// Its thickness, mm; 0: half the grains' mean diameter (TriaxialMembrane.h says why).
+    double membraneThickness = 0.0;
     double b = 0.5;                ///< true triaxial: (σ₂ − σ₃)/(σ₁ − σ₃)
     double unloadStrain = 0.0;     ///< unload–reload: where unloading starts (0: half the end)
     int cycles = 2;                ///< cyclic: cycles of ±maxAxialStrain

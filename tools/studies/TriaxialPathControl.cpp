@@ -13,10 +13,17 @@ void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialPr
         w.periodic.maxStrainRate[axis] = 2.0 * maxSpeed / w.periodic.size[axis];
         return;
     }
+    if (walls.hasMembrane() && axis < 2) {  // the cell pressure does it, steered
+        w.membranes[size_t(walls.membrane)].targetStress = p.confiningStress;
+        steerMembranePressure(w, walls, kMembraneGain);
+        return;
+    }
     for (int side = 0; side < 2; ++side) {
         StressServo& s = wallOf(w, walls, 2 * axis + side).servo;
         s.targetStress = p.confiningStress;
-        s.area = 0.0;
+        // In a membrane, the platens push on the sample's mean cross-section now (renewed
+        // at each call: the stages call this every hundred steps).
+        s.area = walls.hasMembrane() ? membraneSampleArea(w, walls) : 0.0;
         s.areaWalls = areaWallsOf(walls, axis);
         s.gain = p.servoGain;
         s.maxSpeed = maxSpeed;
@@ -27,6 +34,10 @@ void setTargetStress(World& w, const TriaxialWalls& walls, int axis, double stre
 {
     if (walls.periodic) {
         w.periodic.targetStress[axis] = stress;
+        return;
+    }
+    if (walls.hasMembrane() && axis < 2) {
+        w.membranes[size_t(walls.membrane)].targetStress = stress;
         return;
     }
     for (int side = 0; side < 2; ++side) wallOf(w, walls, 2 * axis + side).servo.targetStress = stress;

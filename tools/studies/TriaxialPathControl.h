@@ -7,6 +7,11 @@
 
 namespace lsdem {
 
+/// A membrane's pressure moves by this fraction of what the grains' lateral stress lacks of its
+/// target, at each of the stages' checks (every hundred steps consolidating, every ten
+/// shearing): slow beside the membrane's own response, so it does not chase its vibrations.
+inline constexpr double kMembraneGain = 0.5;
+
 /// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed (in a periodic cell: its
 /// axis, at most at the strain rate of two walls at that speed).
 void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialProtocol& p,

@@ -1,5 +1,7 @@
 #include "studies/TriaxialStudy.h"
 
+#include "studies/TriaxialMembrane.h"
+
 #include "studies/TriaxialCost.h"
 
 #include "lsdem/core/NumberText.h"
@@ -247,6 +249,13 @@ PlannedRun planRun(const TriaxialOptions& o, const std::vector<std::string>& fil
     return plan;
 }
 
+/// Say on stderr why a run's step @a dt is halved while @a stage (its time and its results
+/// change with it, and a step that keeps failing is then the run's error).
+void tellHalvedStep(const char* stage, double dt, const Error& why)
+{
+    std::fprintf(stderr, "  step %.3g s halved while %s: %s\n", dt, stage, why.what());
+}
+
 /// The shearing of @a consolidated (a copy of the simulation's world once consolidated, and the
 /// test so far), again with half the step each time @a first's step proves unstable: the
 /// consolidation is kept, not done again. The first try shears on @a first (the consolidating
@@ -275,11 +284,45 @@ TriaxialTestResult shearWithSteadyStep(Simulation& first, const World& consolida
             }
             stabilityLimit = std::min(stabilityLimit, first.stabilityLimitSeen());
             return result;
-        } catch (const Error&) {
+        } catch (const Error& e) {
             if (attempt >= 3) throw;  // not a matter of the step
+            tellHalvedStep("shearing", dt, e);
             dt *= 0.5;
         }
     }
+}
+
+/// --boundary membrane: the sample consolidated between walls (@a between) cut into a cylinder
+/// and wrapped in a membrane (TriaxialMembrane.h), which @a sim then runs, consolidated again
+/// under the cell pressure and the platens' servo. Its rows follow the walls' (both stage 0);
+/// @a walls becomes the platens and the membrane.
+TriaxialTestResult consolidateInMembrane(const TriaxialOptions& o, const PlannedRun& plan,
+                                         std::optional<Simulation>& sim,
+                                         const TriaxialTestResult& between, double dt,
+                                         TriaxialWalls& walls,
+                                         const std::function<void(const TriaxialRow&)>& progress)
+{
+    const std::shared_ptr<const TriaxialAssets> assets =
+        sharedTriaxialAssets(triaxialMeshFiles(o), o.vdp, plan.run.sdp);
+    const bool perArea = normalModel(plan.run.formulation).stiffnessPerArea();
+    const double stiffnessPerArea =
+        perArea ? plan.run.stiffness : plan.run.stiffness / assets->meanNodeArea;
+    // Its density set for the planned step: a step halved on a retry then has room to spare.
+    TriaxialMembraneSample sample = wrapInMembrane(sim->world(), walls, o, assets->meanDiameter,
+                                                   plan.run.dt, stiffnessPerArea,
+                                                   plan.run.strainRate);
+    std::printf("  %s SDP %g: membrane round %zu grains (%lld cut off), radius %.3g mm, "
+                "t %.3g mm, %zu triangles, its mass %.3g times the grains'\n",
+                formulationName(plan.run.formulation).c_str(), plan.run.sdp,
+                sample.world.grains.size(), sample.grainsCut, sample.radius,
+                sample.world.membranes[0].rubber.thickness,
+                sample.world.membranes[0].triangles.size(), sample.massRatio);
+    walls = sample.walls;
+    sim.emplace(std::move(sample.world), dt);
+    TriaxialTestResult inMembrane = consolidateTriaxial(*sim, walls, plan.protocol, progress);
+    inMembrane.rows.insert(inMembrane.rows.begin(), between.rows.begin(), between.rows.end());
+    inMembrane.consolidationSteps += between.consolidationSteps;
+    return inMembrane;
 }
 
 /// One run: planned, consolidated and sheared. A step the simulation finds unstable while
@@ -297,12 +340,16 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
     for (int attempt = 0;; ++attempt) {
         std::optional<Simulation> sim;
         TriaxialTestResult consolidated;
+        TriaxialWalls shearWalls = walls;
         try {
             sim.emplace(plan.world, dt);
             triaxialShearSteps(plan.protocol, dt);  // refused before consolidating
             consolidated = consolidateTriaxial(*sim, walls, plan.protocol, progress);
-        } catch (const Error&) {
+            if (o.membrane) consolidated = consolidateInMembrane(o, plan, sim, consolidated,
+                                                                 dt, shearWalls, progress);
+        } catch (const Error& e) {
             if (attempt >= 3) throw;  // not a matter of the step
+            tellHalvedStep("consolidating", dt, e);
             dt *= 0.5;
             continue;
         }
@@ -310,7 +357,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
         // on is the run's.
         const World afterConsolidation = sim->world();
         double limit = std::numeric_limits<double>::infinity();
-        run.test = shearWithSteadyStep(*sim, afterConsolidation, consolidated, walls,
+        run.test = shearWithSteadyStep(*sim, afterConsolidation, consolidated, shearWalls,
                                        plan.protocol, dt, limit, progress);
         run.stabilityLimit = limit;
         break;

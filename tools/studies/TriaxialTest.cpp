@@ -110,7 +110,10 @@ TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& wal
         for (int axis = 0; axis < 3; ++axis)
             holdStress(w, walls, axis, p, 0.5 * rate * start.size[axis]);
     };
-    limitSpeeds(p.approachRate);
+    // (A sample in a membrane was cut from one consolidated between walls: it is dense already,
+    // and its platens must not rush at it while the membrane closes in.)
+    const double approachRate = walls.hasMembrane() ? p.consolidationRate : p.approachRate;
+    limitSpeeds(approachRate);
     grainFriction(w) = p.consolidationFriction;
     sim.invalidateContacts();
     const long long firstStep = w.step;
@@ -124,7 +127,7 @@ TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& wal
     while (w.step - firstStep < p.maxConsolidationSteps) {
         for (long long k = 0; k < kCheckEvery; ++k) sim.step();
         const TriaxialState now = measureTriaxialCell(w, walls, {});
-        limitSpeeds(now.p < 0.5 * p.confiningStress ? p.approachRate : p.consolidationRate);
+        limitSpeeds(now.p < 0.5 * p.confiningStress ? approachRate : p.consolidationRate);
         if (withinTolerance(now, p)) {
             if (settledSince < 0) settledSince = w.step;
             if (w.step - settledSince >= p.settledSteps) {
@@ -152,6 +155,7 @@ TriaxialTestResult consolidateTriaxial(Simulation& sim, const TriaxialWalls& wal
     result.consolidated = measureTriaxialCell(w, walls, sim.contactRecords());
     for (const Grain& g : w.grains) result.consolidatedPoses.push_back(g.body.pose);
     for (int k = 0; k < 6 && !walls.periodic; ++k) {
+        if (walls.index[size_t(k)] < 0) continue;  // a membrane's sides
         const Boundary& b = wallOf(w, walls, k);
         result.consolidatedWallPoints[size_t(k)] = b.plane.point + b.displacement;
     }
@@ -190,6 +194,7 @@ void shearTriaxial(Simulation& sim, const TriaxialWalls& walls, const TriaxialPr
     while (going && w.step - shearStart < limit) {
         sim.step();
         const long long done = w.step - shearStart;
+        if (walls.hasMembrane() && done % 10 == 0) steerMembranePressure(w, walls, kMembraneGain);
         if (!counted) {
             const TriaxialState now = measureTriaxialCell(w, walls, {});
             going = control.update(now, axialStrain(reference, now));

@@ -95,24 +95,26 @@ Eigen::Matrix2d greenStrain(const Eigen::Matrix<double, 3, 2>& f)
     return 0.5 * (f.transpose() * f - Eigen::Matrix2d::Identity());
 }
 
-/// A bound on ω² of triangle @a t's vertices on its own stiffness, stretched by largest
-/// principal Green strain @a e1. With lumped masses ρ·t·A/3 and stiffness t·A·BᵀCB,
-/// ω² ≤ 3/(ρ·t·A)·t·A·λmax(C)·trace(BᵀB) = 3·E/(1−ν)/ρ·2·Σ|∇Nᵢ|², |∇Nᵢ| = ℓᵢ/(2A); the whole
+/// A bound on ω² of triangle @a t's vertices on its own stiffness, at largest principal Green
+/// strain @a e1. With lumped masses ρ·t·A/3 and stiffness t·A·BᵀCB (A, B of the unstretched
+/// triangle), ω² ≤ 3/(ρ·t·A)·t·A·λmax(C)·trace(BᵀB) = 3·E/(1−ν)/ρ·2·Σ|∇Nᵢ|²; the whole
 /// shell's ω² is at most its triangles' largest. Stretched, St Venant–Kirchhoff's tangent
-/// grows by at most 1 + 3·e1; the follower pressure adds a load stiffness of at most
-/// (2/3)·p·ℓmax per vertex.
+/// grows by at most 1 + 3·e1 (compressed it only softens, and a slack triangle has none). The
+/// follower pressure adds a load stiffness of at most (2/3)·p·ℓmax per vertex, ℓmax its
+/// longest edge now.
 double triangleOmegaSquared(const Membrane& m, const MembraneTriangle& t, double e1)
 {
     const MembraneMaterial& r = m.rubber;
-    double sumSquares = 0.0, longest = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        const double l =
-            (m.positions[size_t(t.vertices[k])] - m.positions[size_t(t.vertices[(k + 1) % 3])]).norm();
-        sumSquares += l * l;
-        longest = std::max(longest, l);
-    }
-    const double elastic = 3.0 * r.youngs / (1.0 - r.poisson) / r.density * 2.0 * sumSquares /
-                           (4.0 * t.area * t.area) * (1.0 + 3.0 * std::max(0.0, e1));
+    // The shape functions' gradients in the triangle's own frame: ∇N₁, ∇N₂ the rows of the
+    // inverse shape, ∇N₀ = −∇N₁ − ∇N₂.
+    const Eigen::Vector2d g1 = t.inverseShape.row(0), g2 = t.inverseShape.row(1);
+    const double gradients = g1.squaredNorm() + g2.squaredNorm() + (g1 + g2).squaredNorm();
+    double longest = 0.0;
+    for (int k = 0; k < 3; ++k)
+        longest = std::max(longest, (m.positions[size_t(t.vertices[k])] -
+                                     m.positions[size_t(t.vertices[(k + 1) % 3])]).norm());
+    const double elastic = 3.0 * r.youngs / (1.0 - r.poisson) / r.density * 2.0 * gradients *
+                           (1.0 + 3.0 * std::max(0.0, e1));
     const double load =
         2.0 / 3.0 * std::abs(m.pressure) * longest / (r.density * r.thickness * t.area / 3.0);
     return elastic + load;
@@ -164,7 +166,7 @@ void finishMembrane(Membrane& m)
     for (const MembraneTriangle& t : m.triangles)
         for (int k = 0; k < 3; ++k)
             edges += (m.positions[size_t(t.vertices[k])] - m.positions[size_t(t.vertices[(k + 1) % 3])]).norm();
-    m.contactReach = 0.5 * edges / (3.0 * static_cast<double>(m.triangles.size()));
+    m.contactReach = 0.25 * edges / (3.0 * static_cast<double>(m.triangles.size()));
 }
 
 Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, double height,

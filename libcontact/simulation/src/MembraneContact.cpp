@@ -57,9 +57,19 @@ std::int64_t MembraneTriangleGrid::keyOf(long long i, long long j, long long k) 
 
 std::int64_t MembraneTriangleGrid::cellOf(const Vec3& x) const
 {
+    if (mKeys.empty() || (x.array() < mLow.array()).any() || (x.array() > mHigh.array()).any())
+        return -1;
     return keyOf(static_cast<long long>(std::floor((x.x() - mLow.x()) / mCell)),
                  static_cast<long long>(std::floor((x.y() - mLow.y()) / mCell)),
                  static_cast<long long>(std::floor((x.z() - mLow.z()) / mCell)));
+}
+
+const std::vector<int>& MembraneTriangleGrid::inCell(std::int64_t key) const
+{
+    if (key < 0) return mNone;
+    const auto found = std::lower_bound(mKeys.begin(), mKeys.end(), key);
+    if (found == mKeys.end() || *found != key) return mNone;
+    return mTriangles[size_t(found - mKeys.begin())];
 }
 
 void MembraneTriangleGrid::build(const Membrane& m, double reach)
@@ -68,12 +78,14 @@ void MembraneTriangleGrid::build(const Membrane& m, double reach)
     mKeys.clear();
     mTriangles.clear();
     if (m.triangles.empty()) return;
-    // Cells as wide as the largest grown triangle box: each triangle lies in at most 8.
-    mCell = 0.0;
+    // Cells as wide as the mean grown triangle box: a triangle lies in a few, a cell holds
+    // a few dozen (the largest box would make every cell hold all of a stretched membrane's).
     mLow = Vec3::Constant(std::numeric_limits<double>::infinity());
     mHigh = -mLow;
-    std::vector<std::pair<Vec3, Vec3>> boxes;
+    std::vector<std::pair<Vec3, Vec3>>& boxes = mBoxes;
+    boxes.clear();
     boxes.reserve(m.triangles.size());
+    double extent = 0.0;
     for (const MembraneTriangle& t : m.triangles) {
         Vec3 low = m.positions[size_t(t.vertices[0])], high = low;
         for (int v : t.vertices) {
@@ -82,11 +94,12 @@ void MembraneTriangleGrid::build(const Membrane& m, double reach)
         }
         low.array() -= reach;
         high.array() += reach;
-        mCell = std::max(mCell, (high - low).maxCoeff());
+        extent += (high - low).maxCoeff();
         mLow = mLow.cwiseMin(low);
         mHigh = mHigh.cwiseMax(high);
         boxes.emplace_back(low, high);
     }
+    mCell = extent / static_cast<double>(boxes.size());
     std::vector<std::pair<std::int64_t, int>> binned;
     for (size_t t = 0; t < boxes.size(); ++t) {
         const Vec3 low = ((boxes[t].first - mLow) / mCell).array().floor();
@@ -104,14 +117,6 @@ void MembraneTriangleGrid::build(const Membrane& m, double reach)
         }
         mTriangles.back().push_back(triangle);
     }
-}
-
-const std::vector<int>& MembraneTriangleGrid::near(const Vec3& x) const
-{
-    if ((x.array() < mLow.array()).any() || (x.array() > mHigh.array()).any()) return mNone;
-    const auto found = std::lower_bound(mKeys.begin(), mKeys.end(), cellOf(x));
-    if (found == mKeys.end() || *found != cellOf(x)) return mNone;
-    return mTriangles[size_t(found - mKeys.begin())];
 }
 
 bool MembraneTriangleGrid::mayTouch(const Vec3& c, double r) const
@@ -149,16 +154,25 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     hits.clear();
     const Eigen::Matrix3d rotation = grain.pose.orientation.toRotationMatrix();
     const double reach = grid.reach();
+    // Neighbouring nodes mostly share a cell: its triangles are looked up once for a run.
+    std::int64_t lastCell = -1;
+    const std::vector<int>* lastNear = &grid.inCell(-1);
     auto visit = [&](int begin, int end) {
         for (int i = begin; i < end; ++i) {
             const Vec3 x = rotation * a.nodes.positions[i] + grain.pose.position;
-            const std::vector<int>& near = grid.near(x);
+            const std::int64_t cell = grid.cellOf(x);
+            if (cell != lastCell) {
+                lastCell = cell;
+                lastNear = &grid.inCell(cell);
+            }
+            const std::vector<int>& near = *lastNear;
             if (near.empty()) continue;
             ++stats.nodesSampled;
             // The nearest triangle, ties to the lower index (the same on any thread count).
             double best = std::numeric_limits<double>::infinity();
             MembraneHit hit;
             for (int t : near) {
+                if (!grid.holds(t, x)) continue;
                 const auto& v = m.triangles[size_t(t)].vertices;
                 const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
                            &p2 = m.positions[size_t(v[2])];

@@ -126,6 +126,7 @@ void Simulation::evaluateForces(double slipStep)
     mContactNodes += mMembraneNodes;
     mCounters.nodes += mMembraneStats;
     collectReactionsAndPointForces();
+    addMembraneRimForces();
     measureCell();
     mCounters.integrateSeconds +=
         secondsSince(reduceStart) - (exchangedSeconds() - reduceExchanged);

@@ -23,14 +23,6 @@ Vec3 vertexVelocity(const Membrane& m, size_t i, const std::vector<Boundary>& bo
     return m.heldBy[i] >= 0 ? boundaries[size_t(m.heldBy[i])].velocity : m.velocities[i];
 }
 
-/// What acts on vertex @a i from outside the grains and the membrane's own rubber: the
-/// pressure's share on a free vertex; on a held one, also what its holder must add to keep it
-/// on its course (the opposite of every other force on it).
-Vec3 externalForce(const Membrane& m, size_t i, const Vec3& pressure)
-{
-    return m.heldBy[i] >= 0 ? Vec3(pressure - m.forces[i]) : pressure;
-}
-
 } // namespace
 
 void Simulation::checkMembranes() const
@@ -53,8 +45,8 @@ double Simulation::membraneExternalPower() const
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         for (size_t i = 0; i < m.positions.size(); ++i)
-            power += externalForce(m, i, mMembranePressureForces[k][i])
-                         .dot(vertexVelocity(m, i, mWorld.boundaries));
+            // (A held vertex's holder is a boundary, whose work counts its pull.)
+            power += mMembranePressureForces[k][i].dot(vertexVelocity(m, i, mWorld.boundaries));
     }
     return power;
 }
@@ -112,13 +104,26 @@ void Simulation::computeMembranes(double dt)
         // Their reactions on the vertices, in grain order.
         std::vector<double>& stiffness = mMembraneContactStiffness[k];
         stiffness.assign(m.positions.size(), 0.0);
+        m.grainForces.assign(m.positions.size(), Vec3::Zero());
         for (size_t i = 0; i < w.grains.size(); ++i) {
             mMembraneStats += stats[i];
             mMembraneNodes += contacts[i].result.contactNodes;
             mMembraneElastic += contacts[i].result.elasticEnergy;
-            for (const auto& [vertex, force] : contacts[i].reactions) m.forces[size_t(vertex)] += force;
+            for (const auto& [vertex, force] : contacts[i].reactions) {
+                m.forces[size_t(vertex)] += force;
+                m.grainForces[size_t(vertex)] += force;
+            }
             for (const auto& [vertex, kv] : contacts[i].stiffness) stiffness[size_t(vertex)] += kv;
         }
+        // The cell fluid's drag, then numerical damping as the grains have it.
+        if (m.drag > 0.0)
+            for (size_t i = 0; i < m.positions.size(); ++i) {
+                if (m.heldBy[i] >= 0) continue;
+                const double area = m.masses[i] / (m.rubber.density * m.rubber.thickness);
+                const Vec3 drag = -m.drag * area * m.velocities[i];
+                m.forces[i] += drag;
+                m.dampedWork -= drag.dot(m.velocities[i]) * dt;
+            }
         // Numerical damping as the grains have it (World::globalDamping), on free vertices.
         if (w.globalDamping > 0.0)
             for (size_t i = 0; i < m.positions.size(); ++i) {
@@ -134,27 +139,47 @@ void Simulation::computeMembranes(double dt)
     }
 }
 
+void Simulation::addMembraneRimForces()
+{
+    for (const Membrane& m : mWorld.membranes)
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            if (m.heldBy[i] >= 0) mWorld.boundaries[size_t(m.heldBy[i])].force += m.forces[i];
+}
+
 double Simulation::membraneStepLimit(std::string* which) const
 {
     double limit = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
-        // The rubber's bound, and each free vertex on the grains' contacts as on springs.
-        double omegaSquared = m.rubberOmegaSquared;
-        double contact = 0.0;
-        if (k < mMembraneContactStiffness.size())
-            for (size_t i = 0; i < m.positions.size(); ++i)
-                if (m.heldBy[i] < 0)
-                    contact = std::max(contact, mMembraneContactStiffness[k][i] / m.masses[i]);
-        omegaSquared += contact;
+        const MembraneStepParts parts = membraneStepParts(k);
+        const double omegaSquared = parts.rubber + parts.contacts;
         const double step = omegaSquared > 0.0 ? 2.0 / std::sqrt(omegaSquared)
                                                : std::numeric_limits<double>::infinity();
         if (step < limit) {
             limit = step;
-            if (which) *which = m.name;
+            if (which) {
+                std::ostringstream text;
+                text << "membrane '" << m.name << "' (ω² of its rubber " << parts.rubber
+                     << " /s², of the grains pressing on its vertices " << parts.contacts
+                     << " /s²)";
+                *which = text.str();
+            }
         }
     }
     return limit;
+}
+
+Simulation::MembraneStepParts Simulation::membraneStepParts(size_t k) const
+{
+    // The rubber's bound, and each free vertex on the grains' contacts as on springs.
+    const Membrane& m = mWorld.membranes[k];
+    MembraneStepParts parts;
+    parts.rubber = m.rubberOmegaSquared;
+    if (k < mMembraneContactStiffness.size())
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            if (m.heldBy[i] < 0)
+                parts.contacts = std::max(parts.contacts, mMembraneContactStiffness[k][i] / m.masses[i]);
+    return parts;
 }
 
 void Simulation::judgeMembraneStep() const
@@ -162,9 +187,23 @@ void Simulation::judgeMembraneStep() const
     std::string which;
     const double limit = membraneStepLimit(&which);
     if (!(mDt > limit)) return;
+    {  // DEBUG
+        const Membrane& m = mWorld.membranes[0];
+        size_t worst = 0; double best = 0;
+        for (size_t i = 0; i < m.positions.size(); ++i) if (m.heldBy[i] < 0 && mMembraneContactStiffness[0][i] / m.masses[i] > best) { best = mMembraneContactStiffness[0][i] / m.masses[i]; worst = i; }
+        fprintf(stderr, "DEBUG step %lld vertex %zu at %g %g %g k %g mass %g\n", mWorld.step, worst, m.positions[worst].x(), m.positions[worst].y(), m.positions[worst].z(), mMembraneContactStiffness[0][worst], m.masses[worst]);
+        for (size_t g = 0; g < mMembraneContacts[0].size(); ++g) {
+            const auto& c = mMembraneContacts[0][g];
+            double k = 0; int n = 0;
+            for (const auto& e : c.stiffness) if (size_t(e.first) == worst) { k += e.second; ++n; }
+            if (n == 0) continue;
+            double deepest = 0; for (const auto& f : c.pointForces) deepest = std::max(deepest, f.force.norm() / std::max(f.stiffness, 1e-30));
+            fprintf(stderr, "  grain %zu at %g %g %g: %d entries, k %g, its nodes in contact %d, deepest %g, grain force %g\n", g, mWorld.grains[g].body.pose.position.x(), mWorld.grains[g].body.pose.position.y(), mWorld.grains[g].body.pose.position.z(), n, k, c.result.contactNodes, deepest, c.result.forceOnFirst.norm());
+        }
+    }
     std::ostringstream problem;
-    problem << "the time step " << mDt << " exceeds the stability limit " << limit
-            << " of membrane '" << which << "' (its rubber and the grains pressing on it)";
+    problem << "the time step " << mDt << " exceeds the stability limit " << limit << " of "
+            << which;
     throw Error("", problem.str(),
                 "give a smaller time_step, or a larger membrane density (mass scaling)");
 }

@@ -35,7 +35,8 @@ struct Boundary
     RigidPose pose;                               ///< LevelSet: where it started
     Vec3 velocity = Vec3::Zero();                 ///< prescribed, world
     Vec3 displacement = Vec3::Zero();             ///< moved so far
-    Vec3 force = Vec3::Zero();                    ///< reaction: the grains' force on it
+    /// Reaction: the grains' force on it (and a membrane's whose rim it holds).
+    Vec3 force = Vec3::Zero();
     /// Σ k n·n of its contacts at the last force evaluation (force/length, along its normal;
     /// planes only, 0 for the others): what a servo wall's gain is based on.
     double normalStiffness = 0.0;

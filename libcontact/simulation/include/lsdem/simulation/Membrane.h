@@ -55,6 +55,13 @@ struct Membrane
     MembraneMaterial rubber;
     int material = 0;        ///< the contact material that grains meet it with
     double pressure = 0.0;   ///< on its outer side, pushing in (force/area); may change in a run
+    /// Viscous drag on its free vertices, as the fluid of a triaxial cell gives: a traction
+    /// −drag·v over each vertex's tributary area (force·time/length³; 0: none). Counted as
+    /// damping in the energy balance.
+    double drag = 0.0;
+    /// The stress a controller (e.g. a triaxial study's) wants the grains to put on it; it
+    /// steers the pressure towards it between steps. 0: none. The simulation does not read it.
+    double targetStress = 0.0;
 
     std::vector<Vec3> positions, velocities;  ///< per vertex, world
     std::vector<double> masses;               ///< per vertex: a third of each triangle's
@@ -68,11 +75,13 @@ struct Membrane
     int rimCount = 0;
 
     /// How far outside it a grain's node is still pushed back (length): beyond, a node has
-    /// escaped (or lies across a thin sample). finishMembrane makes it half the mean edge.
+    /// escaped (or lies across a thin sample). finishMembrane makes it a quarter of the mean edge.
     double contactReach = 0.0;
 
-    /// Force on each vertex at the last evaluation (rubber, pressure and grains together).
+    /// Force on each vertex at the last evaluation (rubber, pressure and grains together) ...
     std::vector<Vec3> forces;
+    /// ... and the grains' part of it (their push on the membrane; empty outside a Simulation).
+    std::vector<Vec3> grainForces;
     double strainEnergy = 0.0;  ///< at the last evaluation (force·length)
     /// The rubber's bound on ω² of its vertices at the last evaluation (membraneStableStep).
     double rubberOmegaSquared = 0.0;

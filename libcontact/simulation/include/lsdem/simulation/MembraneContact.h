@@ -20,27 +20,39 @@ namespace lsdem {
 
 /// The membrane's triangles binned in a uniform grid of cells, rebuilt as it moves, so a node
 /// finds the triangles near it in its own cell: each triangle is binned in every cell its box,
-/// grown by the reach, overlaps.
+/// grown by the reach, overlaps. The cells are as wide as the mean grown box, so a node's cell
+/// holds a few dozen triangles, of which it tests those whose box holds it.
 class MembraneTriangleGrid
 {
 public:
     /// Bin @a m's triangles now; a node is tested against the triangles within @a reach
     /// (> 0, length): a node that far outside the membrane has escaped and is not pushed back.
     void build(const Membrane& m, double reach);
-    /// The triangles whose grown box holds @a x (none: empty).
-    const std::vector<int>& near(const Vec3& x) const;
+    /// The triangles binned in the cell of @a x (none: empty): those whose grown box may hold
+    /// it (holds() tells).
+    const std::vector<int>& near(const Vec3& x) const { return inCell(cellOf(x)); }
+    /// The same in two parts, so a run of nodes in one cell looks it up once: the key of the
+    /// cell of @a x (-1 outside every grown box), and the triangles binned in cell @a key.
+    std::int64_t cellOf(const Vec3& x) const;
+    const std::vector<int>& inCell(std::int64_t key) const;
+    /// Whether triangle @a t's grown box holds @a x.
+    bool holds(int t, const Vec3& x) const
+    {
+        const auto& [low, high] = mBoxes[size_t(t)];
+        return (x.array() >= low.array()).all() && (x.array() <= high.array()).all();
+    }
     /// Whether a sphere (centre @a c, radius @a r) may hold a node near a triangle.
     bool mayTouch(const Vec3& c, double r) const;
     double reach() const { return mReach; }
 
 private:
     std::int64_t keyOf(long long i, long long j, long long k) const;
-    std::int64_t cellOf(const Vec3& x) const;
 
     double mReach = 0.0, mCell = 0.0;
     Vec3 mLow = Vec3::Zero(), mHigh = Vec3::Zero();  ///< the grown boxes' union
     std::vector<std::int64_t> mKeys;                 ///< sorted cell keys ...
     std::vector<std::vector<int>> mTriangles;        ///< ... and their triangles
+    std::vector<std::pair<Vec3, Vec3>> mBoxes;       ///< each triangle's grown box
     std::vector<int> mNone;
 };
 

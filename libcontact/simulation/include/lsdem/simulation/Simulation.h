@@ -188,12 +188,23 @@ private:
     /// Their forces: rubber, pressure and the grains' contacts (each grain's kept for
     /// sumGrainForces), with global damping on their free vertices.
     void computeMembranes(double dt);
-    /// The power that the pressure and the holders of held vertices put in (at the vertices'
-    /// velocities now and the forces of the last evaluation).
+    /// The power that the pressure puts in (at the vertices' velocities now and the forces of
+    /// the last evaluation). The holders' is the boundaries' (addMembraneRimForces).
     double membraneExternalPower() const;
+    /// A held vertex pulls on the boundary that holds it (a membrane sealed to a platen): its
+    /// force added to the boundary's (Boundary::force), where the boundaries' work and servos
+    /// see it.
+    void addMembraneRimForces();
     /// Their stable step (rubber and the grains' contacts on free vertices); @a which gets
-    /// the membrane that sets it.
+    /// the membrane that sets it, and its parts.
     double membraneStepLimit(std::string* which = nullptr) const;
+    /// Membrane @a k's ω² bounds: of its rubber, and the largest of a free vertex on the
+    /// grains' contacts (stiffness over mass).
+    struct MembraneStepParts
+    {
+        double rubber = 0.0, contacts = 0.0;
+    };
+    MembraneStepParts membraneStepParts(size_t k) const;
     /// @throw Error if the step exceeds membraneStepLimit().
     void judgeMembraneStep() const;
     /// Their elastic energy (rubber and contacts with grains); @a kinetic gets their vertices'.

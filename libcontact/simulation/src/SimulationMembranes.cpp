@@ -115,7 +115,7 @@ void Simulation::computeMembranes(double dt)
             }
             for (const auto& [vertex, kv] : contacts[i].stiffness) stiffness[size_t(vertex)] += kv;
         }
-        // The cell fluid's drag, then numerical damping as the grains have it.
+        // The cell fluid's drag.
         if (m.drag > 0.0)
             for (size_t i = 0; i < m.positions.size(); ++i) {
                 if (m.heldBy[i] >= 0) continue;

@@ -132,3 +132,49 @@ TEST(TriaxialCell, RefusesWallsThatDoNotBoundACuboid)
         EXPECT_NE(std::string(e.what()).find("top"), std::string::npos) << e.what();
     }
 }
+
+// A sample in a membrane (a tube of 24 facets, R 2, between platens 5 apart): its volume is the
+// faceted prism's; σ_z the platens' force over volume / height; σ_r the grains' radial push on
+// the membrane's vertices over 2π·R·H of the mean cylinder (R from the volume), here a push of
+// 0.3 N on each of its 24 × 6 vertices, so 43.2 N in all; before any push is recorded, the
+// membrane's pressure.
+TEST(TriaxialCell, AMembraneSampleReadsItsVolumeAndTheGrainsPush)
+{
+    World w;
+    w.boundaries = {plane("bottom", Vec3(1, -1, 0), Vec3::UnitZ()),
+                    plane("top", Vec3(1, -1, 5), -Vec3::UnitZ())};
+    MembraneMaterial rubber;
+    rubber.youngs = 1.4;
+    rubber.poisson = 0.45;
+    rubber.thickness = 0.1;
+    rubber.density = 1e-6;
+    const int segments = 24, rings = 5;
+    w.membranes = {makeTubeMembrane(Vec3(1, -1, 0), Vec3::UnitZ(), 2.0, 5.0, segments, rings, rubber)};
+    w.membranes[0].pressure = 0.2;
+    w.boundaries[0].force = Vec3(0, 0, -1.5);  // the grains push each platen out by 1.5 N
+    w.boundaries[1].force = Vec3(0, 0, 1.5);
+    TriaxialWalls t;
+    t.index = {-1, -1, -1, -1, 0, 1};
+    t.membrane = 0;
+
+    const double volume = 0.5 * segments * 4.0 * std::sin(2.0 * kPi / segments) * 5.0;
+    TriaxialState s = measureTriaxialCell(w, t, {});
+    EXPECT_NEAR(s.volume / volume, 1.0, 1e-12);
+    EXPECT_NEAR(s.size.z(), 5.0, 1e-12);
+    EXPECT_NEAR(s.stress.z(), 1.5 / (volume / 5.0), 1e-12);
+    EXPECT_EQ(s.stress.x(), 0.2);  // no push recorded: the pressure
+    EXPECT_NEAR(membraneSampleArea(w, t), volume / 5.0, 1e-12);
+
+    Membrane& m = w.membranes[0];
+    m.grainForces.assign(m.positions.size(), Vec3::Zero());
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        const Vec3 out(m.positions[i].x() - 1.0, m.positions[i].y() + 1.0, 0.0);
+        m.grainForces[i] = 0.3 * out.normalized() + Vec3(0, 0, 0.7);  // (the axial part is not lateral)
+    }
+    s = measureTriaxialCell(w, t, {});
+    const double radius = std::sqrt(volume / (kPi * 5.0));
+    const double lateral = 0.3 * segments * (rings + 1) / (2.0 * kPi * radius * 5.0);
+    EXPECT_NEAR(s.stress.x(), lateral, 1e-12);
+    EXPECT_NEAR(s.stress.y(), lateral, 1e-12);
+    EXPECT_NEAR(s.q, s.stress.z() - lateral, 1e-12);
+}

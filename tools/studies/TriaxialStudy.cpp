@@ -296,14 +296,16 @@ TriaxialTestResult shearWithSteadyStep(Simulation& first, const World& consolida
 /// and wrapped in a membrane (TriaxialMembrane.h), which @a sim then runs, consolidated again
 /// under the cell pressure and the platens' servo. Its rows follow the walls' (both stage 0);
 /// @a walls becomes the platens and the membrane.
-TriaxialTestResult consolidateInMembrane(const TriaxialOptions& o, const PlannedRun& plan,
+TriaxialTestResult consolidateInMembrane(const TriaxialOptions& o,
+                                         const std::vector<std::string>& files,
+                                         const PlannedRun& plan,
                                          std::optional<Simulation>& sim,
                                          const TriaxialTestResult& between, double dt,
                                          TriaxialWalls& walls,
                                          const std::function<void(const TriaxialRow&)>& progress)
 {
     const std::shared_ptr<const TriaxialAssets> assets =
-        sharedTriaxialAssets(triaxialMeshFiles(o), o.vdp, plan.run.sdp);
+        sharedTriaxialAssets(files, o.vdp, plan.run.sdp);
     const bool perArea = normalModel(plan.run.formulation).stiffnessPerArea();
     const double stiffnessPerArea =
         perArea ? plan.run.stiffness : plan.run.stiffness / assets->meanNodeArea;
@@ -345,7 +347,7 @@ TriaxialRun runOne(const TriaxialOptions& o, const std::vector<std::string>& fil
             sim.emplace(plan.world, dt);
             triaxialShearSteps(plan.protocol, dt);  // refused before consolidating
             consolidated = consolidateTriaxial(*sim, walls, plan.protocol, progress);
-            if (o.membrane) consolidated = consolidateInMembrane(o, plan, sim, consolidated,
+            if (o.membrane) consolidated = consolidateInMembrane(o, files, plan, sim, consolidated,
                                                                  dt, shearWalls, progress);
         } catch (const Error& e) {
             if (attempt >= 3) throw;  // not a matter of the step

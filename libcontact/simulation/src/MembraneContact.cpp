@@ -135,10 +135,11 @@ bool MembraneTriangleGrid::mayTouch(const Vec3& c, double r) const
 
 void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
                             const MembraneTriangleGrid& grid, const ContactModel& model,
-                            double dt, MembraneGrainContact& out, NodeCheckStats& stats,
-                            ContactScratch& scratch)
+                            double dt, MembraneGrainContact& out, ContactScratch& scratch)
 {
     out.result = PairForces();
+    out.stats = NodeCheckStats();
+    NodeCheckStats& stats = out.stats;
     out.reactions.clear();
     out.stiffness.clear();
     const GrainAsset& a = *grain.asset;

@@ -5,6 +5,7 @@
 
 #include "lsdem/core/Stopwatch.h"
 #include "lsdem/simulation/BoundaryContact.h"
+#include "GlobalDamping.h"
 #include "lsdem/simulation/GhostDecomposition.h"
 
 #include <tbb/parallel_for.h>
@@ -37,24 +38,6 @@ ContactGrain contactView(const Boundary& b)
     c.velocity = b.velocity;
     c.mass = 0.0;
     return c;
-}
-
-/// YADE's non-viscous damping: each component loses λ·|F| against the motion.
-Vec3 dampComponents(const Vec3& force, const Vec3& velocity, double lambda)
-{
-    Vec3 damped = force;
-    for (int k = 0; k < 3; ++k) {
-        const double sign = force[k] * velocity[k] > 0.0 ? 1.0 : force[k] * velocity[k] < 0.0 ? -1.0 : 0.0;
-        damped[k] = force[k] * (1.0 - lambda * sign);
-    }
-    return damped;
-}
-
-/// What dampComponents takes from a body moving at @a velocity over @a dt: each component's
-/// λ·|F_k| against the motion, λ·Σ|F_k·v_k|·dt.
-double dampedWork(const Vec3& force, const Vec3& velocity, double lambda, double dt)
-{
-    return lambda * force.cwiseProduct(velocity).cwiseAbs().sum() * dt;
 }
 
 /// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,

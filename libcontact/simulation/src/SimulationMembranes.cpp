@@ -7,6 +7,8 @@
 
 #include "lsdem/core/Error.h"
 
+#include "GlobalDamping.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -14,16 +16,6 @@
 #include <sstream>
 
 namespace lsdem {
-
-namespace {
-
-/// Velocity of vertex @a i of @a m: its own, or its holder's.
-Vec3 vertexVelocity(const Membrane& m, size_t i, const std::vector<Boundary>& boundaries)
-{
-    return m.heldBy[i] >= 0 ? boundaries[size_t(m.heldBy[i])].velocity : m.velocities[i];
-}
-
-} // namespace
 
 void Simulation::checkMembranes() const
 {
@@ -45,8 +37,9 @@ double Simulation::membraneExternalPower() const
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         for (size_t i = 0; i < m.positions.size(); ++i)
-            // (A held vertex's holder is a boundary, whose work counts its pull.)
-            power += mMembranePressureForces[k][i].dot(vertexVelocity(m, i, mWorld.boundaries));
+            // (A held vertex moves at its holder's velocity, set as it moved; the holder is a
+            // boundary, whose work counts its pull.)
+            power += mMembranePressureForces[k][i].dot(m.velocities[i]);
     }
     return power;
 }
@@ -92,21 +85,20 @@ void Simulation::computeMembranes(double dt)
         grid.build(m, m.contactReach);
         std::vector<MembraneGrainContact>& contacts = mMembraneContacts[k];
         contacts.resize(w.grains.size());
-        std::vector<NodeCheckStats> stats(w.grains.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, w.grains.size()),
                           [&](const tbb::blocked_range<size_t>& range) {
                               ContactScratch scratch;
                               for (size_t i = range.begin(); i != range.end(); ++i)
                                   computeMembraneContact(mViews[i], m, grid,
                                                          w.model(w.grains[i].material, m.material),
-                                                         dt, contacts[i], stats[i], scratch);
+                                                         dt, contacts[i], scratch);
                           });
         // Their reactions on the vertices, in grain order.
         std::vector<double>& stiffness = mMembraneContactStiffness[k];
         stiffness.assign(m.positions.size(), 0.0);
         m.grainForces.assign(m.positions.size(), Vec3::Zero());
         for (size_t i = 0; i < w.grains.size(); ++i) {
-            mMembraneStats += stats[i];
+            mMembraneStats += contacts[i].stats;
             mMembraneNodes += contacts[i].result.contactNodes;
             mMembraneElastic += contacts[i].result.elasticEnergy;
             for (const auto& [vertex, force] : contacts[i].reactions) {
@@ -128,13 +120,8 @@ void Simulation::computeMembranes(double dt)
         if (w.globalDamping > 0.0)
             for (size_t i = 0; i < m.positions.size(); ++i) {
                 if (m.heldBy[i] >= 0) continue;
-                Vec3& f = m.forces[i];
-                for (int c = 0; c < 3; ++c) {
-                    const double along = f[c] * m.velocities[i][c];
-                    const double sign = along > 0.0 ? 1.0 : along < 0.0 ? -1.0 : 0.0;
-                    m.dampedWork += w.globalDamping * std::abs(along) * dt;
-                    f[c] *= 1.0 - w.globalDamping * sign;
-                }
+                m.dampedWork += dampedWork(m.forces[i], m.velocities[i], w.globalDamping, dt);
+                m.forces[i] = dampComponents(m.forces[i], m.velocities[i], w.globalDamping);
             }
     }
 }

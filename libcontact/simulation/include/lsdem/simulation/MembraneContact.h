@@ -71,6 +71,7 @@ struct MembraneGrainContact
     std::vector<std::pair<int, Vec3>> reactions;
     /// Σ (barycentric weight × node stiffness) per vertex touched, for the membrane's step.
     std::vector<std::pair<int, double>> stiffness;
+    NodeCheckStats stats;  ///< of this evaluation's node checks
     // Working memory, kept from step to step: where each node met the membrane, and the
     // point forces on the grain as the law gave them.
     std::vector<MembraneHit> hits;
@@ -84,7 +85,6 @@ struct MembraneGrainContact
 /// @param dt the step (for the dashpot's dissipation; no shear is carried)
 void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
                             const MembraneTriangleGrid& grid, const ContactModel& model,
-                            double dt, MembraneGrainContact& out, NodeCheckStats& stats,
-                            ContactScratch& scratch);
+                            double dt, MembraneGrainContact& out, ContactScratch& scratch);
 
 } // namespace lsdem

@@ -141,10 +141,9 @@ void checkTriaxialLoading(const TriaxialOptions& o)
         throw Error("", "--stress-tolerance must be in (0, 0.5), got " +
                             roundedText(o.stressTolerance));
     if (o.records < 2) throw Error("", "--records must be at least 2");
-    if (o.membrane && (o.path == TriaxialPath::TrueTriaxial || o.path == TriaxialPath::Undrained))
-        throw Error("", "--boundary membrane cannot follow --path " + triaxialPathName(o.path) +
-                            " yet (a membrane's cylinder has one lateral stress; an undrained "
-                            "membrane would need its pressure servoed to the volume)",
+    if (o.membrane && o.path == TriaxialPath::TrueTriaxial)
+        throw Error("", "--boundary membrane cannot follow --path true-triaxial (a membrane's "
+                        "cylinder has one lateral stress, so σ₂ cannot differ from σ₃)",
                     "use walls or periodic for this path");
     requirePositive(o.membraneYoungs, "--membrane-youngs", "latex is about 1.4 MPa");
     if (!(o.membraneThickness >= 0.0 && std::isfinite(o.membraneThickness)))

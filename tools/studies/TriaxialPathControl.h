@@ -12,6 +12,11 @@ namespace lsdem {
 /// shearing): slow beside the membrane's own response, so it does not chase its vibrations.
 inline constexpr double kMembraneGain = 0.5;
 
+/// Undrained in a membrane: after each step the pressure grows by this·σ₃ times the relative
+/// change of the enclosed volume (an integral servo on the volume), so the sample keeps its
+/// volume while the grains' lateral stress goes where it must.
+inline constexpr double kUndrainedVolumeGain = 0.5;
+
 /// Make the walls of @a axis keep σ₃ with limit speed @a maxSpeed (in a periodic cell: its
 /// axis, at most at the strain rate of two walls at that speed).
 void holdStress(World& w, const TriaxialWalls& walls, int axis, const TriaxialProtocol& p,
@@ -47,6 +52,9 @@ private:
     /// L_x·L_y·H (each in proportion to its consolidated size): each side wall moves half the
     /// difference.
     void moveSidesKeepingTheVolume(const TriaxialState& now);
+    /// Undrained in a membrane: the target of the grains' lateral stress from the volume's
+    /// change (kUndrainedFluidStiffness).
+    void holdVolumeByPressure(const TriaxialState& now);
 
     World& mWorld;
     const TriaxialWalls& mWalls;

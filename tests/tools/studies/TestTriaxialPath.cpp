@@ -340,6 +340,7 @@ TEST(TriaxialPath, AMembraneHoldsSigma3RoundACylinderCutFromTheSample)
     EXPECT_GT(s.voidRatio, 0.2);
     EXPECT_LT(s.voidRatio, 1.0);
 
+    const World consolidatedWorld = sim.world();
     TriaxialTestResult r = base;
     shearTriaxial(sim, sample.walls, p, r);
     const std::vector<TriaxialRow> rows = shearingRows(r);
@@ -355,4 +356,27 @@ TEST(TriaxialPath, AMembraneHoldsSigma3RoundACylinderCutFromTheSample)
                 sample.world.grains.size(), sample.grainsCut, sample.radius, sample.massRatio,
                 s.voidRatio, pressure, s.stress.x(), rows.back().axialStrain,
                 rows.back().state.q, rows.back().volumetricStrain);
+
+    // Undrained from the same consolidated sample: the pressure servoed on the enclosed volume
+    // keeps it (the drained run above changed it far more), and the grains' lateral stress
+    // moves the way the drained volume tried to: a sample that contracted drained loses
+    // effective stress undrained (its pore pressure rises), one that dilated gains.
+    Simulation undrainedSim(World(consolidatedWorld), sim.timeStep());
+    TriaxialProtocol u = p;
+    u.path = TriaxialPath::Undrained;
+    TriaxialTestResult ur = base;
+    shearTriaxial(undrainedSim, sample.walls, u, ur);
+    const std::vector<TriaxialRow> undrained = shearingRows(ur);
+    const double drainedChange = rows.back().volumetricStrain;
+    double worst = 0.0;
+    for (const TriaxialRow& row : undrained) worst = std::max(worst, std::abs(row.volumetricStrain));
+    EXPECT_LT(worst, 0.25 * std::abs(drainedChange));
+    const double effectiveChange = lateral(undrained.back()) - p.confiningStress;
+    EXPECT_GT(std::abs(effectiveChange), 0.05 * p.confiningStress);
+    EXPECT_EQ(effectiveChange < 0.0, drainedChange > 0.0);
+    EXPECT_GT(undrained.back().state.q, 0.0);
+    std::printf("[ measured ] undrained membrane: |eps_v| at most %.3g (drained %.3g); at eps_a "
+                "%.4f sigma_r %.4g MPa, q %.4g MPa\n",
+                worst, drainedChange, undrained.back().axialStrain, lateral(undrained.back()),
+                undrained.back().state.q);
 }

@@ -275,6 +275,14 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions single = o;
     single.formulations = {Formulation::SingleNode};
     EXPECT_NE(message(single).find("original and adapted"), std::string::npos);
+    // A cylinder in a membrane has one lateral stress; undrained it keeps its volume instead.
+    TriaxialOptions membraneTrue = o;
+    membraneTrue.membrane = true;
+    membraneTrue.path = TriaxialPath::TrueTriaxial;
+    EXPECT_NE(message(membraneTrue).find("cannot follow --path true-triaxial"), std::string::npos);
+    TriaxialOptions membraneUndrained = membraneTrue;
+    membraneUndrained.path = TriaxialPath::Undrained;
+    EXPECT_EQ(message(membraneUndrained), "accepted");
     TriaxialOptions missing = o;
     missing.meshes = {"/nonexistent/sand"};
     EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);

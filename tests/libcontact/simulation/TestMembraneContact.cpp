@@ -5,12 +5,15 @@
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/StableStep.h"
+#include "lsdem/core/Constants.h"
 #include "lsdem/ls/Bake.h"
+#include "lsdem/mesh/TriangleMesh.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -123,7 +126,111 @@ World sphereIntoTube()
     return w;
 }
 
+/// Half of a round cylinder (radius @a r, length @a length along z, centred on the origin):
+/// the x ≤ 0 half, its flat face on x = 0, as a closed mesh (the curve in 64 facets).
+TriangleMesh halfCylinder(double r, double length)
+{
+    TriangleMesh mesh;
+    const int facets = 64;
+    const double h = 0.5 * length;
+    for (int k = 0; k <= facets; ++k) {  // θ from 90° to 270°: bottom and top vertex of each
+        const double theta = 0.5 * kPi + kPi * k / facets;
+        mesh.vertices.emplace_back(r * std::cos(theta), r * std::sin(theta), -h);
+        mesh.vertices.emplace_back(r * std::cos(theta), r * std::sin(theta), h);
+    }
+    const int bottomCentre = int(mesh.vertices.size());
+    mesh.vertices.emplace_back(-0.5 * r, 0.0, -h);
+    mesh.vertices.emplace_back(-0.5 * r, 0.0, h);
+    const int topCentre = bottomCentre + 1;
+    for (int k = 0; k < facets; ++k) {
+        const int b0 = 2 * k, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
+        mesh.triangles.push_back({b0, b1, t1});  // the curved side, facing out
+        mesh.triangles.push_back({b0, t1, t0});
+        mesh.triangles.push_back({bottomCentre, b1, b0});  // the ends, facing −z and +z
+        mesh.triangles.push_back({topCentre, t0, t1});
+    }
+    // The flat face x = 0 (facing +x) and the ends' strips between it and the centres.
+    const int bLast = 2 * facets, tLast = bLast + 1;
+    mesh.triangles.push_back({bLast, 0, 1});
+    mesh.triangles.push_back({bLast, 1, tLast});
+    mesh.triangles.push_back({bottomCentre, 0, bLast});
+    mesh.triangles.push_back({topCentre, tLast, 1});
+    return mesh;
+}
+
 } // namespace
+
+// A membrane under pressure round a rigid cylinder presses on it with the pressure over its
+// area: the cylinder (R 5, 24 long) is two fixed halves (x < 0 and x > 0, 0.02 mm apart) in a
+// free latex tube 20 mm long, so each half's net force is the pressure over its projected area,
+// p·2R·H along x, by hydrostatics. The tube starts 0.002 mm clear of the cylinder, a little
+// wider than it, and wrinkles as it closes (its hoop strain is then negative): the rubber
+// carries nothing, and the grains take all of the pressure. The tolerance, 1 %, covers the
+// tube's 40 flat facets: their vertices stand R·(1/cos(π/40) − 1) = 0.3 % beyond the cylinder,
+// and the two vertices on the cut split their facets' push between the halves.
+TEST(MembraneContact, PressedRoundARigidCylinderItPushesWithThePressureOverTheArea)
+{
+    const double radius = 5.0, height = 20.0, pressure = 0.1, gap = 0.02;
+    BakeOptions o;
+    o.voxelSize = 0.2;
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = 3000;
+    std::vector<std::string> warnings;
+    const auto half = std::make_shared<const GrainAsset>(
+        bakeMesh(halfCylinder(radius, 24.0), "half cylinder", o, warnings));
+    Scene s;
+    AssetSpec a;
+    a.name = "half";
+    a.loaded = half;
+    a.where = "TestMembraneContact";
+    s.assets.push_back(a);
+    MaterialSpec steel;
+    steel.name = "steel";
+    steel.density = 7.85e-9;
+    s.materials.push_back(steel);
+    ContactSpec c;
+    c.model.formulation = Formulation::Adapted;
+    c.model.normalStiffness = 1e3;
+    s.contacts.push_back(c);
+    for (int side = 0; side < 2; ++side) {  // the x < 0 half, and the same turned to x > 0
+        GrainSpec g;
+        g.motion = GrainMotion::Fixed;
+        // Placed as the mesh was (the asset's frame is the mesh's principal frame), then the
+        // second half turned half a turn about z; each moved gap/2 from x = 0.
+        const Quat turn = side == 0 ? Quat::Identity() : Quat(Eigen::AngleAxisd(kPi, Vec3::UnitZ()));
+        const Vec3 offset(side == 0 ? -0.5 * gap : 0.5 * gap, 0.0, 0.0);
+        g.pose.orientation = turn * Quat(Mat3(half->inputFrame.rotation.transpose()));
+        g.pose.position = offset + turn * half->inputFrame.centroid;
+        s.grains.push_back(g);
+    }
+    std::vector<std::string> buildWarnings;
+    World w = buildWorld(s, buildWarnings);
+    const int segments = 40;
+    Membrane tube = makeTubeMembrane(Vec3(0, 0, -0.5 * height), Vec3::UnitZ(),
+                                     (radius + 0.002 + 0.5 * gap) / std::cos(kPi / segments),
+                                     height, segments, 10, latex());
+    tube.name = "tube";
+    tube.pressure = pressure;
+    tube.drag = 0.05;  // about critical for a vertex on the cylinder's contact stiffness
+    w.membranes.push_back(tube);
+    Simulation run(std::move(w), 2e-6);
+    for (int step = 0; step < 5000; ++step) run.step();  // settled by 4000 (measured)
+    const double expected = pressure * 2.0 * radius * height;
+    const Vec3 left = run.world().grains[0].force, right = run.world().grains[1].force;
+    std::printf("[ measured ] a tube at %g MPa round a cylinder: the halves feel %.6g and %.6g "
+                "N along x (p*2R*H = %.6g N); the membrane moves at most %.3g mm/s\n",
+                pressure, left.x(), right.x(), expected,
+                [&] {
+                    double v = 0.0;
+                    for (const Vec3& u : run.world().membranes[0].velocities) v = std::max(v, u.norm());
+                    return v;
+                }());
+    EXPECT_NEAR(left.x(), expected, 0.01 * expected);
+    EXPECT_NEAR(right.x(), -expected, 0.01 * expected);
+    // Sideways, only what the halves' nodes, not mirror images of each other, leave (0.3 %).
+    EXPECT_LT(std::abs(left.y()) + std::abs(left.z()), 0.01 * expected);
+    EXPECT_LT(run.world().membranes[0].strainEnergy, 1e-6 * expected * radius);
+}
 
 // A membrane whose every vertex is held still is a rigid wall: a sphere pressed 0.1 mm into
 // a held flat sheet feels the force (and no torque) that it feels from a plane boundary at

@@ -99,12 +99,8 @@ TriaxialMembraneSample wrapInMembrane(const World& consolidated, const TriaxialW
     const double edge = meanDiameter / 3.0, height = zHigh - zLow;
     const int segments = std::max(12, int(std::ceil(2.0 * kPi * radius / edge)));
     const int rings = std::max(2, int(std::ceil(height / edge)));
-    Membrane m = makeTubeMembrane(Vec3(cx, cy, zLow), Vec3::UnitZ(), radius / kPrestretch, height,
-                                  segments, rings, rubber);
-    for (Vec3& x : m.positions) {
-        x.x() = cx + kPrestretch * (x.x() - cx);
-        x.y() = cy + kPrestretch * (x.y() - cy);
-    }
+    Membrane m = makeTubeMembrane(Vec3(cx, cy, zLow), Vec3::UnitZ(), radius, height, segments,
+                                  rings, rubber, kPrestretch);
     m.name = "membrane";
     m.pressure = o.confiningStress;
     m.rubber.density = stableDensity(m, dt, stiffnessPerArea);

@@ -8,6 +8,7 @@
 #include "lsdem/core/NumberText.h"
 #include "lsdem/core/RunInParallel.h"
 #include "lsdem/simulation/GrainOverlaps.h"
+#include "lsdem/scene/MembraneKeys.h"
 
 #include <algorithm>
 #include <map>
@@ -267,6 +268,9 @@ World buildWorld(const Scene& scene, std::vector<std::string>& warnings)
     for (const BoundarySpec& spec : scene.boundaries)
         w.boundaries.push_back(
             makeBoundary(spec, spec.asset >= 0 ? w.assets.at(spec.asset) : nullptr));
+
+    for (const MembraneSpec& spec : scene.membranes)
+        w.membranes.push_back(makeMembrane(spec, scene.boundaries));
 
     addNodeShapesWherePatchesAre(scene, w);
     w.gravity = scene.gravity;

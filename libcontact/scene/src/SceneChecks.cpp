@@ -52,6 +52,7 @@ void checkContactPairs(const Scene& scene)
             if (other != g.material || grainsOf[static_cast<size_t>(other)] >= 2)
                 require(g.material, other, g.where);
         for (const BoundarySpec& b : scene.boundaries) require(g.material, b.material, b.where);
+        for (const MembraneSpec& b : scene.membranes) require(g.material, b.material, b.where);
     }
 }
 
@@ -86,6 +87,13 @@ void checkUniqueNames(const Scene& scene)
         if (!fresh)
             throw Error(b.where, "a second boundary named '" + b.name + "'",
                         "the first is at " + *it->second + "; give boundaries distinct names");
+    }
+    seen.clear();  // (a membrane's name names its history file, membrane_NAME.csv)
+    for (const MembraneSpec& m : scene.membranes) {
+        const auto [it, fresh] = seen.emplace(m.name, &m.where);
+        if (!fresh)
+            throw Error(m.where, "a second membrane named '" + m.name + "'",
+                        "the first is at " + *it->second + "; give membranes distinct names");
     }
 }
 

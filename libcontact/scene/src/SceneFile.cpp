@@ -73,7 +73,7 @@ toml::table parseSceneRoot(const std::string& text, const std::string& path)
     const std::vector<std::string> sections = {"units",      "assets",      "asset_sets",
                                                "materials",  "contacts",    "grains",
                                                "lattices",   "grain_files", "boundaries",
-                                               "simulation", "output"};
+                                               "membranes",  "simulation", "output"};
     for (auto&& [key, value] : root) {
         const std::string k(key.str());
         if (std::find(sections.begin(), sections.end(), k) == sections.end())
@@ -154,6 +154,11 @@ Scene parseScene(const std::string& text, const std::string& path)
     for (const toml::table* t : arrayOfTables(root, "boundaries", path)) {
         TableReader r(*t, "[[boundaries]] #" + std::to_string(++n), path);
         scene.boundaries.push_back(readBoundary(r, scene));
+    }
+    n = 0;
+    for (const toml::table* t : arrayOfTables(root, "membranes", path)) {
+        TableReader r(*t, "[[membranes]] #" + std::to_string(++n), path);
+        scene.membranes.push_back(readMembrane(r, scene));
     }
     readSimulation(root["simulation"].as_table(), scene);
     readOutput(root["output"].as_table(), scene);

@@ -50,6 +50,10 @@ ContactSpec readContact(TableReader& t, const Scene& scene);
 /// [[boundaries]]: a plane, a sphere or a level-set obstacle.
 BoundarySpec readBoundary(TableReader& t, const Scene& scene);
 
+/// [[membranes]]: a membrane round the grains (MembraneKeys.h), its holding boundaries
+/// looked up among those read before it.
+MembraneSpec readMembrane(TableReader& t, const Scene& scene);
+
 /// [simulation]: gravity, damping, time step and the end condition (required).
 void readSimulation(const toml::table* table, Scene& scene);
 /// [output]: history, ParaView and checkpoint periods (optional).

@@ -7,6 +7,7 @@
 #include "lsdem/scene/BoundaryKeys.h"
 #include "lsdem/scene/EntryRules.h"
 #include "lsdem/scene/GrainKeys.h"
+#include "lsdem/scene/MembraneKeys.h"
 #include "lsdem/scene/SceneSettings.h"
 
 #include "lsdem/contact/ContactCoefficients.h"
@@ -90,6 +91,29 @@ void validateBoundaries(const Scene& s)
     }
 }
 
+void validateMembranes(const Scene& s)
+{
+    for (size_t i = 0; i < s.membranes.size(); ++i) {
+        const MembraneSpec& m = s.membranes[i];
+        const std::string where = placeOf(m.where, "membrane " + std::to_string(i));
+        if (m.name.empty()) throw Error(where, "a membrane without a name", "give it a name");
+        if (!inRange(m.material, s.materials.size()))
+            throw Error(where, "membrane '" + m.name + "': its material index is out of range",
+                        "name a material");
+        for (int b : m.hold)
+            if (!inRange(b, s.boundaries.size()))
+                throw Error(where, "membrane '" + m.name + "': a holding boundary's index is "
+                                   "out of range", "name the scene's plane boundaries");
+        if (std::optional<KeyProblem> p = membraneProblem(m))
+            throw Error(where, "membrane '" + m.name + "': " + keyProblemText(*p), p->fix);
+    }
+    if (!s.membranes.empty() && s.output.checkpointPeriod > 0.0)
+        throw Error(s.membranes.front().where.empty() ? "[output]" : s.membranes.front().where,
+                    "a checkpoint cannot hold a membrane's state yet, and [output] asks for "
+                    "checkpoints every " + numberText(s.output.checkpointPeriod),
+                    "set checkpoint_period = 0 (or remove it) for a scene with a membrane");
+}
+
 /// "[simulation]", or "scene.toml: [simulation]" for a scene read from a file.
 std::string sectionPlace(const Scene& s, const std::string& section)
 {
@@ -128,6 +152,7 @@ void validateScene(const Scene& scene)
     validateContacts(scene);
     validateGrains(scene);
     validateBoundaries(scene);
+    validateMembranes(scene);
     validateSettings(scene);
     scenefile::checkUniqueNames(scene);
     scenefile::checkContactPairs(scene);

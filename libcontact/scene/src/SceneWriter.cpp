@@ -250,6 +250,32 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
     vector("velocity", k.velocity);
 }
 
+void writeMembrane(TomlText& t, const Scene& scene, const MembraneSpec& m)
+{
+    t.arrayTable("membranes");
+    t.string("name", m.name);
+    t.string("material", scene.materials[size_t(m.material)].name);
+    t.string("shape", "tube");
+    t.number("youngs", m.rubber.youngs);
+    t.number("poisson", m.rubber.poisson);
+    t.number("thickness", m.rubber.thickness);
+    t.number("density", m.rubber.density);
+    t.number("pressure", m.pressure);
+    t.number("drag", m.drag);
+    t.vec3("base", m.base);
+    t.vec3("axis", m.axis);
+    t.number("radius", m.radius);
+    t.number("height", m.height);
+    t.integer("segments", m.segments);
+    t.integer("rings", m.rings);
+    t.number("prestretch", m.prestretch);
+    if (!m.hold.empty()) {
+        std::vector<std::string> names;
+        for (int b : m.hold) names.push_back(scene.boundaries[size_t(b)].name);
+        t.strings("hold", names);
+    }
+}
+
 /// The settings of @a section (SceneSettings.h) in the schema's order, those that the file
 /// must give; @a special writes the ones with a form of their own in a file.
 template <class Special>
@@ -338,6 +364,7 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
         if (f.maxOverlap >= 0.0) t.number("max_overlap", f.maxOverlap);
     }
     for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
+    for (const MembraneSpec& m : scene.membranes) writeMembrane(t, scene, m);
     writeSimulation(t, scene);
     writeOutput(t, scene);
     return t.str();

@@ -170,11 +170,16 @@ void finishMembrane(Membrane& m)
 }
 
 Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, double height,
-                          int segments, int rings, const MembraneMaterial& rubber)
+                          int segments, int rings, const MembraneMaterial& rubber,
+                          double prestretch)
 {
     if (!(radius > 0.0) || !(height > 0.0) || segments < 3 || rings < 1)
         throw Error("tube membrane", "its radius and height must be positive, with at least 3 "
                                      "segments and 1 ring of triangles");
+    if (!(prestretch >= 1.0 && std::isfinite(prestretch)))
+        throw Error("tube membrane", "its prestretch must be at least 1 (got " +
+                                         std::to_string(prestretch) + ")",
+                    "1 puts it on unstretched; 1.05 stretches it 5 % round");
     Membrane m;
     m.rubber = rubber;
     const Vec3 z = axis.normalized();
@@ -185,7 +190,7 @@ Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, dou
         for (int i = 0; i < segments; ++i) {
             const double angle = 2.0 * kPi * i / segments;
             m.positions.push_back(base + height * j / rings * z +
-                                  radius * (std::cos(angle) * x + std::sin(angle) * y));
+                                  radius / prestretch * (std::cos(angle) * x + std::sin(angle) * y));
         }
     auto vertex = [&](int i, int j) { return j * segments + (i % segments); };
     for (int j = 0; j < rings; ++j)
@@ -205,7 +210,11 @@ Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, dou
             m.triangles.push_back(t1);
             m.triangles.push_back(t2);
         }
-    finishMembrane(m);
+    finishMembrane(m);  // (its reference shapes the unstretched tube's) ...
+    for (Vec3& p : m.positions) {  // ... then stretched round to the radius as placed
+        const Vec3 out = (p - base) - (p - base).dot(z) * z;
+        p += (prestretch - 1.0) * out;
+    }
     return m;
 }
 

@@ -10,6 +10,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/simulation/BoundaryShape.h"
 #include "lsdem/simulation/GrainMotion.h"
+#include "lsdem/simulation/Membrane.h"
 #include "lsdem/simulation/StressServo.h"
 
 #include <memory>
@@ -134,6 +135,31 @@ struct BoundarySpec
     std::string where;
 };
 
+/// [[membranes]]: a flexible membrane (Membrane.h), for now a tube: the side of a cylinder
+/// as placed, its vertices at rest. Grains meet it through the law between their material and
+/// its @a material. Its rims are held by the plane boundaries named in @a holdNames, each rim
+/// by the nearest of them (a triaxial sample's membrane sealed to its platens).
+struct MembraneSpec
+{
+    std::string name;
+    int material = 0;           ///< index into Scene::materials
+    MembraneMaterial rubber;    ///< E, ν, thickness, density (mass scaling: Membrane.h)
+    double pressure = 0.0;      ///< on its outer side, pushing in (force/area), >= 0
+    double drag = 0.0;          ///< the cell fluid's viscous drag (Membrane::drag), >= 0
+    // The tube: its axis from @a base along @a axis, its radius and height as placed, @a
+    // segments vertices round each of @a rings + 1 rings.
+    Vec3 base = Vec3::Zero();
+    Vec3 axis = Vec3::UnitZ();
+    double radius = 0.0, height = 0.0;
+    int segments = 0, rings = 0;
+    /// Its hoop stretch as placed (>= 1): the rubber's unstretched radius is radius/prestretch,
+    /// so it is taut round what it wraps from the start (a slack membrane has no stiffness).
+    double prestretch = 1.0;
+    std::vector<std::string> holdNames;
+    std::vector<int> hold;  ///< the boundaries of holdNames, resolved once all are read
+    std::string where;
+};
+
 /// When a run stops: the first of the conditions given.
 struct EndCondition
 {
@@ -172,6 +198,7 @@ struct Scene
     std::vector<GrainSpec> grains;
     std::vector<GrainFileSpec> grainFiles;  ///< which grains came from CSV files
     std::vector<BoundarySpec> boundaries;
+    std::vector<MembraneSpec> membranes;
     Vec3 gravity = Vec3::Zero();
     /// Global non-viscous damping λ in [0, 1): each force component on a free grain is
     /// reduced by λ·|F| against the velocity (as YADE's NewtonIntegrator).

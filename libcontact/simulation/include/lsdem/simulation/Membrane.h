@@ -96,9 +96,12 @@ void finishMembrane(Membrane& m);
 
 /// A tube: the side of a cylinder of @a radius and @a height whose axis runs from @a base
 /// along unit @a axis, with @a segments vertices round each of @a rings + 1 rings; the
-/// vertices start at rest, free, unstretched. @throw Error on a non-positive size.
+/// vertices start at rest and free, stretched round by @a prestretch (>= 1: its rubber's
+/// unstretched radius is radius/prestretch). @throw Error on a non-positive size or a
+/// prestretch below 1.
 Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, double height,
-                          int segments, int rings, const MembraneMaterial& rubber);
+                          int segments, int rings, const MembraneMaterial& rubber,
+                          double prestretch = 1.0);
 
 /// Set @a m.forces to the triangles' elastic forces plus the pressure's follower forces
 /// (−p·a/3 on each vertex of a triangle of area vector a), @a m.strainEnergy and

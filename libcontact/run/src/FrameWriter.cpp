@@ -97,8 +97,8 @@ void FrameWriter::write(const Simulation& sim)
     if (split)
         mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, split->rank(),
                                    split->rankCount(), grains, forces, mMeasures);
-    else
-        mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces);
+    else  // (the membranes too: a simulation split over ranks has none)
+        mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces, w.membranes);
 }
 
 } // namespace lsdem

@@ -1,5 +1,5 @@
 // The ParaView output of a run (private to the run library): each asset's surface extracted
-// once, then a frame of posed grains and contact forces whenever asked.
+// once, then a frame of posed grains, contact forces and the world's membranes whenever asked.
 #pragma once
 
 #include "lsdem/run/VtkSeries.h"

@@ -29,7 +29,8 @@ bool isRunOutputName(const std::string& name)
 {
     if (name == kEnergyFileName || name == kGrainsFileName || name == kCheckpointFileName ||
         name == kMicromechanicsFileName ||
-        name == kFramesBaseName + ".pvd" || isBoundaryHistoryFileName(name))
+        name == kFramesBaseName + ".pvd" || isBoundaryHistoryFileName(name) ||
+        isMembraneHistoryFileName(name))
         return true;
     // The frames and, split over ranks, their pieces: frames_grains_3.vtu, ..._3.pvtu, ..._3_1.vtu
     return name.rfind(kFramesBaseName + "_", 0) == 0 &&
@@ -37,13 +38,21 @@ bool isRunOutputName(const std::string& name)
 }
 
 /// Whether a run of @a scene may write a file called @a name into its output folder: its own
-/// boundaries' histories, and every other output name (frames counted whatever vtk_period).
+/// boundaries' and membranes' histories, and every other output name (frames counted whatever
+/// vtk_period).
 bool runWrites(const Scene& scene, const std::string& name)
 {
-    if (!isBoundaryHistoryFileName(name)) return isRunOutputName(name);
-    for (const BoundarySpec& b : scene.boundaries)
-        if (name == boundaryHistoryFileName(b.name)) return true;
-    return false;
+    if (isBoundaryHistoryFileName(name)) {
+        for (const BoundarySpec& b : scene.boundaries)
+            if (name == boundaryHistoryFileName(b.name)) return true;
+        return false;
+    }
+    if (isMembraneHistoryFileName(name)) {
+        for (const MembraneSpec& m : scene.membranes)
+            if (name == membraneHistoryFileName(m.name)) return true;
+        return false;
+    }
+    return isRunOutputName(name);
 }
 
 /// Whether the file at @a path begins as a VTK XML file does (frames.pvd and the frames).

@@ -3,6 +3,7 @@
 #include "lsdem/core/AtomicFile.h"
 #include "lsdem/core/CsvText.h"
 #include "lsdem/simulation/GhostDecomposition.h"
+#include "lsdem/simulation/Membrane.h"
 #include "lsdem/simulation/Micromechanics.h"
 
 #include <cctype>
@@ -14,7 +15,8 @@ namespace lsdem {
 
 namespace {
 
-const std::string kBoundaryHistoryPrefix = "boundary_", kBoundaryHistorySuffix = ".csv";
+const std::string kBoundaryHistoryPrefix = "boundary_", kMembraneHistoryPrefix = "membrane_",
+                  kHistorySuffix = ".csv";
 
 /// The first lines of the text outputs (isRunTextOutput knows a run's files by them).
 const std::string kEnergyHeader =
@@ -23,6 +25,9 @@ const std::string kEnergyHeader =
 const std::string kBoundaryHeader = "step,time,ux,uy,uz,fx,fy,fz";
 const std::string kServoBoundaryHeader =
     "step,time,ux,uy,uz,fx,fy,fz,px,py,pz,area,stress,target_stress,speed";
+const std::string kMembraneHeader =
+    "step,time,pressure,volume,strain_energy,kinetic,grain_fx,grain_fy,grain_fz,"
+    "grain_force_magnitude_sum";
 const std::string kGrainsHeader = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved";
 const std::string kMicromechanicsHeader =
     "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,fabric_anisotropy,"
@@ -47,6 +52,37 @@ std::string rowsToCsv(const std::string& header, const std::vector<std::vector<d
         text += line + "\n";
     }
     return text;
+}
+
+/// A membrane's history row now (the header kMembraneHeader names its columns).
+std::vector<double> membraneRow(const World& w, const Membrane& m)
+{
+    Vec3 push = Vec3::Zero();
+    double magnitudes = 0.0;
+    for (const Vec3& f : m.grainForces) {
+        push += f;
+        magnitudes += f.norm();
+    }
+    return {static_cast<double>(w.step), w.time, m.pressure, enclosedVolume(m), m.strainEnergy,
+            membraneKineticEnergy(m), push.x(), push.y(), push.z(), magnitudes};
+}
+
+/// "<prefix><name>.csv", with characters unsafe in a file name as '_'.
+std::string historyFileName(const std::string& prefix, const std::string& name)
+{
+    std::string safe = name;
+    for (char& c : safe)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+    return prefix + safe + kHistorySuffix;
+}
+
+/// Whether @a fileName is "<prefix><something>.csv".
+bool isHistoryFileName(const std::string& prefix, const std::string& fileName)
+{
+    const size_t affixes = prefix.size() + kHistorySuffix.size();
+    return fileName.size() > affixes && fileName.rfind(prefix, 0) == 0 &&
+           fileName.compare(fileName.size() - kHistorySuffix.size(), kHistorySuffix.size(),
+                            kHistorySuffix) == 0;
 }
 
 } // namespace
@@ -75,6 +111,9 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
         }
         record.boundaryRows[b].push_back(std::move(row));
     }
+    record.membraneRows.resize(w.membranes.size());
+    for (size_t k = 0; k < w.membranes.size(); ++k)
+        record.membraneRows[k].push_back(membraneRow(w, w.membranes[k]));
     if (record.micromechanics) record.micromechanicsRows.push_back(micromechanicsRow(sim));
 }
 
@@ -110,10 +149,12 @@ std::vector<double> micromechanicsRow(const Simulation& sim)
 
 std::string boundaryHistoryFileName(const std::string& name)
 {
-    std::string safe = name;
-    for (char& c : safe)
-        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
-    return kBoundaryHistoryPrefix + safe + kBoundaryHistorySuffix;
+    return historyFileName(kBoundaryHistoryPrefix, name);
+}
+
+std::string membraneHistoryFileName(const std::string& name)
+{
+    return historyFileName(kMembraneHistoryPrefix, name);
 }
 
 bool isRunTextOutput(const std::string& path)
@@ -122,15 +163,18 @@ bool isRunTextOutput(const std::string& path)
     std::string first;
     if (!std::getline(in, first)) return false;
     return first == kEnergyHeader || first == kGrainsHeader || first == kBoundaryHeader ||
-           first == kServoBoundaryHeader || first == kMicromechanicsHeader;
+           first == kServoBoundaryHeader || first == kMicromechanicsHeader ||
+           first == kMembraneHeader;
 }
 
 bool isBoundaryHistoryFileName(const std::string& fileName)
 {
-    const size_t affixes = kBoundaryHistoryPrefix.size() + kBoundaryHistorySuffix.size();
-    return fileName.size() > affixes && fileName.rfind(kBoundaryHistoryPrefix, 0) == 0 &&
-           fileName.compare(fileName.size() - kBoundaryHistorySuffix.size(),
-                            kBoundaryHistorySuffix.size(), kBoundaryHistorySuffix) == 0;
+    return isHistoryFileName(kBoundaryHistoryPrefix, fileName);
+}
+
+bool isMembraneHistoryFileName(const std::string& fileName)
+{
+    return isHistoryFileName(kMembraneHistoryPrefix, fileName);
 }
 
 void writeHistoryFiles(const std::string& directory, const World& world,
@@ -145,6 +189,9 @@ void writeHistoryFiles(const std::string& directory, const World& world,
             (dir / boundaryHistoryFileName(world.boundaries[b].name)).string(),
             rowsToCsv(world.boundaries[b].servo.active() ? kServoBoundaryHeader : kBoundaryHeader,
                       record.boundaryRows[b]));
+    for (size_t k = 0; k < world.membranes.size() && k < record.membraneRows.size(); ++k)
+        writeTextFileAtomically((dir / membraneHistoryFileName(world.membranes[k].name)).string(),
+                                rowsToCsv(kMembraneHeader, record.membraneRows[k]));
     if (record.micromechanics)
         writeTextFileAtomically((dir / kMicromechanicsFileName).string(),
                                 rowsToCsv(kMicromechanicsHeader, record.micromechanicsRows));

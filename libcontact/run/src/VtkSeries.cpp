@@ -218,6 +218,46 @@ std::string contactsFile(const std::vector<VtkForcePoint>& forces)
     return file.contents(forces.size(), forces.size());
 }
 
+/// Every membrane's triangles in one grid (their vertices numbered on from the previous
+/// membrane's), each vertex with its velocity, the grains' push on it and whether it is held,
+/// each triangle with its membrane's index.
+std::string membranesFile(const std::vector<Membrane>& membranes)
+{
+    std::vector<double> points, velocities, grainForces;
+    std::vector<std::int32_t> held, membraneIds;
+    std::vector<std::int64_t> connectivity, offsets;
+    for (size_t k = 0; k < membranes.size(); ++k) {
+        const Membrane& m = membranes[k];
+        const std::int64_t first = static_cast<std::int64_t>(points.size() / 3);
+        for (size_t v = 0; v < m.positions.size(); ++v) {
+            appendXyz(points, m.positions[v]);
+            appendXyz(velocities, v < m.velocities.size() ? m.velocities[v] : Vec3::Zero());
+            // Outside a Simulation nothing has filled the grains' push: none, then.
+            appendXyz(grainForces, v < m.grainForces.size() ? m.grainForces[v] : Vec3::Zero());
+            held.push_back(v < m.heldBy.size() && m.heldBy[v] >= 0 ? 1 : 0);
+        }
+        for (const MembraneTriangle& t : m.triangles) {
+            for (int corner : t.vertices) connectivity.push_back(first + corner);
+            offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+            membraneIds.push_back(static_cast<std::int32_t>(k));
+        }
+    }
+    const std::vector<std::uint8_t> types(offsets.size(), kVtkTriangle);
+
+    UnstructuredGridFile file;
+    file.setSectionAttributes(UnstructuredGridFile::PointData, "Vectors=\"velocity\"");
+    file.setSectionAttributes(UnstructuredGridFile::CellData, "Scalars=\"membrane\"");
+    file.addArray(UnstructuredGridFile::PointData, "velocity", 3, velocities);
+    file.addArray(UnstructuredGridFile::PointData, "grain_force", 3, grainForces);
+    file.addArray(UnstructuredGridFile::PointData, "held", 1, held);
+    file.addArray(UnstructuredGridFile::CellData, "membrane", 1, membraneIds);
+    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
+    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
+    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
+    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    return file.contents(points.size() / 3, offsets.size());
+}
+
 std::string frameFileName(const std::string& baseName, const char* kind, size_t frame,
                           bool parallel = false)
 {
@@ -270,10 +310,11 @@ std::string parallelFile(const std::string& baseName, const char* kind, size_t f
     return xml;
 }
 
-/// The collection: per frame, its time and the two files (part 0 grains, part 1 contacts),
-/// named relative to the .pvd so the output folder can be moved.
+/// The collection: per frame, its time and its files (part 0 grains, part 1 contacts and, for
+/// a frame with membranes, part 2 membranes), named relative to the .pvd so the output folder
+/// can be moved.
 std::string collectionFile(const std::string& baseName, const std::vector<double>& times,
-                           const std::vector<char>& parallel)
+                           const std::vector<char>& parallel, const std::vector<char>& membranes)
 {
     std::string xml = "<?xml version=\"1.0\"?>\n"
                       "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -282,8 +323,8 @@ std::string collectionFile(const std::string& baseName, const std::vector<double
     for (size_t k = 0; k < times.size(); ++k) {
         char timestep[40];
         std::snprintf(timestep, sizeof timestep, "%.17g", times[k]);  // round-trips the double
-        const char* const kinds[] = {"grains", "contacts"};
-        for (int part = 0; part < 2; ++part)
+        const char* const kinds[] = {"grains", "contacts", "membranes"};
+        for (int part = 0; part < (membranes[k] ? 3 : 2); ++part)
             xml += "    <DataSet timestep=\"" + std::string(timestep) + "\" part=\"" +
                    std::to_string(part) + "\" file=\"" +
                    xmlEscape(frameFileName(baseName, kinds[part], k, parallel[k])) + "\"/>\n";
@@ -300,7 +341,8 @@ VtkSeries::VtkSeries(std::string directory, std::string baseName)
 }
 
 void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& grains,
-                           const std::vector<VtkForcePoint>& forces)
+                           const std::vector<VtkForcePoint>& forces,
+                           const std::vector<Membrane>& membranes)
 {
     // The .pvd names frames by their index, so a frame past the end would leave a hole in it.
     if (frame < 0 || frame > framesWritten())
@@ -311,7 +353,10 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
     writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(),
                             grainsFile(grains, allMeasured(grains)));
     writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
-    list(frame, time, false, true);
+    if (!membranes.empty())
+        writeTextFileAtomically((dir / frameFileName(mBaseName, "membranes", k)).string(),
+                                membranesFile(membranes));
+    list(frame, time, false, !membranes.empty(), true);
 }
 
 void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces,
@@ -336,32 +381,40 @@ void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces
         for (const char* kind : {"grains", "contacts"})
             writeTextFileAtomically((dir / frameFileName(mBaseName, kind, k, true)).string(),
                                     parallelFile(mBaseName, kind, k, pieces, measured));
-    list(frame, time, true, piece == 0);
+    list(frame, time, true, false, piece == 0);
 }
 
-void VtkSeries::list(int frame, double time, bool parallel, bool writeCollection)
+void VtkSeries::list(int frame, double time, bool parallel, bool membranes, bool writeCollection)
 {
     // The list changes only once the .pvd naming it is written, so a failure leaves the
     // series as it was and the frame can be written again.
     std::vector<double> times(mTimes.begin(), mTimes.begin() + frame);
     std::vector<char> kinds(mParallel.begin(), mParallel.begin() + frame);
+    std::vector<char> withMembranes(mMembranes.begin(), mMembranes.begin() + frame);
     times.push_back(time);
     kinds.push_back(parallel);
+    withMembranes.push_back(membranes);
     const std::filesystem::path dir(mDirectory);
     if (writeCollection)
         writeTextFileAtomically((dir / (mBaseName + ".pvd")).string(),
-                                collectionFile(mBaseName, times, kinds));
+                                collectionFile(mBaseName, times, kinds, withMembranes));
     mTimes = std::move(times);
     mParallel = std::move(kinds);
+    mMembranes = std::move(withMembranes);
 }
 
 void VtkSeries::restoreFrameTimes(std::vector<double> times)
 {
     mTimes = std::move(times);
     mParallel.assign(mTimes.size(), 0);
-    for (size_t k = 0; k < mTimes.size(); ++k)
-        mParallel[k] = std::filesystem::exists(std::filesystem::path(mDirectory) /
-                                               frameFileName(mBaseName, "grains", k, true));
+    mMembranes.assign(mTimes.size(), 0);
+    const std::filesystem::path dir(mDirectory);
+    for (size_t k = 0; k < mTimes.size(); ++k) {
+        mParallel[k] = std::filesystem::exists(dir / frameFileName(mBaseName, "grains", k, true));
+        // (A parallel frame has no membranes: the split simulation refuses them.)
+        mMembranes[k] = !mParallel[k] &&
+                        std::filesystem::exists(dir / frameFileName(mBaseName, "membranes", k));
+    }
 }
 
 } // namespace lsdem

@@ -2,8 +2,9 @@
 /// @brief The text outputs of a run, each written whole and atomically: `energy.csv` (global
 ///        energies per history step), `boundary_<name>.csv` (displacement and reaction force of
 ///        each boundary; for a servo wall also the current point of its plane, its area, stress,
-///        target stress and speed along its normal), `grains.csv` (every grain's final state and
-///        displacement) and, when asked, `micromechanics.csv`.
+///        target stress and speed along its normal), `membrane_<name>.csv` (each membrane's
+///        pressure, enclosed volume, energies and the grains' push on it), `grains.csv` (every
+///        grain's final state and displacement) and, when asked, `micromechanics.csv`.
 ///        Numbers are printed with 17 significant digits so they read back exactly.
 #pragma once
 
@@ -21,6 +22,8 @@ inline const std::string kGrainsFileName = "grains.csv";
 inline const std::string kMicromechanicsFileName = "micromechanics.csv";
 
 /// Append the rows of the current state to @a record (one energy row, one row per boundary,
+/// one row per membrane: step, time, pressure, enclosed volume, strain energy, kinetic energy,
+/// the sum of the grains' push on its vertices (x, y, z) and the sum of that push's magnitudes,
 /// and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
 /// nine entries row by row, the fabric's six, its anisotropy, the contact and grain counts and
 /// the mechanical coordination number).
@@ -32,8 +35,8 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record);
 /// split by space: computed on rank 0 from the whole simulation, the same on every rank.
 std::vector<double> micromechanicsRow(const Simulation& sim);
 
-/// Write energy.csv, boundary_<name>.csv and (with record.micromechanics) micromechanics.csv in
-/// @a directory from @a record.
+/// Write energy.csv, boundary_<name>.csv, membrane_<name>.csv and (with record.micromechanics)
+/// micromechanics.csv in @a directory from @a record.
 void writeHistoryFiles(const std::string& directory, const World& world,
                        const RunRecord& record);
 
@@ -48,9 +51,15 @@ std::string boundaryHistoryFileName(const std::string& name);
 /// Whether @a fileName is the history of some boundary (as boundaryHistoryFileName names it).
 bool isBoundaryHistoryFileName(const std::string& fileName);
 
+/// The file name used for membrane @a name ("membrane_<name>.csv", unsafe characters as '_').
+std::string membraneHistoryFileName(const std::string& name);
+
+/// Whether @a fileName is the history of some membrane (as membraneHistoryFileName names it).
+bool isMembraneHistoryFileName(const std::string& fileName);
+
 /// Whether the file at @a path is a text output of a run (energy.csv, grains.csv, a boundary's
-/// history): its first line is a header lsdem writes. A file of such a name holding anything
-/// else is somebody else's.
+/// or a membrane's history): its first line is a header lsdem writes. A file of such a name
+/// holding anything else is somebody else's.
 bool isRunTextOutput(const std::string& path);
 
 } // namespace lsdem

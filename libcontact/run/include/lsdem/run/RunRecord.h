@@ -13,6 +13,9 @@ struct RunRecord
 {
     std::vector<std::vector<double>> energyRows;
     std::vector<std::vector<std::vector<double>>> boundaryRows;  ///< per boundary
+    /// Per membrane. Not kept in checkpoints, which refuse a world with membranes (once they
+    /// hold a membrane's state they must keep these rows too, as they keep the boundaries').
+    std::vector<std::vector<std::vector<double>>> membraneRows;
     std::vector<double> vtkFrameTimes;
     /// Whether each history row also records the micromechanics ([output] micromechanics).
     bool micromechanics = false;

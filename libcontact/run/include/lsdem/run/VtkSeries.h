@@ -1,9 +1,10 @@
 /// @file VtkSeries.h
 /// @brief A ParaView time series: one `.pvd` collection naming, per output step, a `.vtu` file
 ///        of every grain's surface (its asset's zero isosurface, posed) and a `.vtu` file of
-///        the contact forces as points with force vectors. Every file is written atomically
-///        and the `.pvd` is rewritten after each frame, so an interrupted run leaves a valid
-///        series of the frames written so far.
+///        the contact forces as points with force vectors, and, when the world has membranes, a
+///        `.vtu` file of their triangles. Every file is written atomically and the `.pvd` is
+///        rewritten after each frame, so an interrupted run leaves a valid series of the frames
+///        written so far.
 ///
 /// A simulation split over ranks writes each frame as a parallel one: every rank a piece
 /// (`<base>_grains_<frame>_<rank>.vtu`, the grains it owns and the forces on them), rank 0 a
@@ -13,6 +14,7 @@
 
 #include "lsdem/contact/RigidPose.h"
 #include "lsdem/mesh/TriangleMesh.h"
+#include "lsdem/simulation/Membrane.h"
 
 #include <string>
 #include <vector>
@@ -55,14 +57,21 @@ class VtkSeries
 {
 public:
     /// Frames go to @a directory as `<baseName>_grains_<frame>.vtu` and
-    /// `<baseName>_contacts_<frame>.vtu`, listed in `<baseName>.pvd`.
+    /// `<baseName>_contacts_<frame>.vtu` (and `<baseName>_membranes_<frame>.vtu` for a frame
+    /// with membranes), listed in `<baseName>.pvd`.
     VtkSeries(std::string directory, std::string baseName);
 
     /// Write frame number @a frame (0, 1, 2, ...) at simulated @a time and rewrite the .pvd.
     /// Frames numbered @a frame and above that were listed before are dropped from the .pvd
     /// (a restart rewrites them).
+    /// Given @a membranes, the frame also holds them all in one grid of triangles, listed as
+    /// part 2: per vertex its `velocity`, `grain_force` (the grains' push on it, Membrane::
+    /// grainForces; zero where that is empty) and `held` (1 if a boundary holds it, else 0),
+    /// per triangle the `membrane` it belongs to (its index). Without membranes the frame is
+    /// written as it always was (no file, no part).
     void writeFrame(int frame, double time, const std::vector<VtkGrain>& grains,
-                    const std::vector<VtkForcePoint>& forces);
+                    const std::vector<VtkForcePoint>& forces,
+                    const std::vector<Membrane>& membranes = {});
 
     /// Write frame @a frame as a parallel one of @a pieces pieces: this rank's piece
     /// @a piece (its grains and forces); piece 0 also writes the `.pvtu` files and rewrites
@@ -76,17 +85,19 @@ public:
     int framesWritten() const { return static_cast<int>(mTimes.size()); }
 
     /// The times of the frames listed so far (kept in checkpoints) and, on restart, restored;
-    /// a restored frame is listed as parallel if its `.pvtu` is in the folder.
+    /// a restored frame is listed as parallel if its `.pvtu` is in the folder, and with its
+    /// membranes if their `.vtu` is.
     const std::vector<double>& frameTimes() const { return mTimes; }
     void restoreFrameTimes(std::vector<double> times);
 
 private:
     /// Frame @a frame at @a time is written: list it (rewriting the .pvd if @a writeCollection).
-    void list(int frame, double time, bool parallel, bool writeCollection);
+    void list(int frame, double time, bool parallel, bool membranes, bool writeCollection);
 
     std::string mDirectory, mBaseName;
-    std::vector<double> mTimes;   ///< time of each frame listed in the .pvd
-    std::vector<char> mParallel;  ///< whether each is a parallel frame (.pvtu)
+    std::vector<double> mTimes;    ///< time of each frame listed in the .pvd
+    std::vector<char> mParallel;   ///< whether each is a parallel frame (.pvtu)
+    std::vector<char> mMembranes;  ///< whether each has a membranes part
 };
 
 } // namespace lsdem

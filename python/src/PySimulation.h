@@ -260,6 +260,35 @@ struct BoundariesView
     }
 };
 
+struct MembraneView
+{
+    py::object owner;
+    int index = 0;
+    const Membrane& membrane() const
+    {
+        return owner.cast<const PySimulation&>().world().membranes[static_cast<size_t>(index)];
+    }
+};
+
+/// sim.membranes: by name, as sim.boundaries.
+struct MembranesView
+{
+    py::object owner;
+    const std::vector<Membrane>& all() const
+    {
+        return owner.cast<const PySimulation&>().world().membranes;
+    }
+    MembraneView at(const std::string& name) const
+    {
+        for (size_t i = 0; i < all().size(); ++i)
+            if (all()[i].name == name) return {owner, static_cast<int>(i)};
+        throw py::key_error("no membrane called '" + name + "'");
+    }
+};
+
+/// The Membrane and Membranes classes of sim.membranes (MembraneViews.cpp).
+void bindMembraneViews(py::module_& m);
+
 /// The Grains, Boundary and Boundaries classes of sim.grains and sim.boundaries
 /// (SimulationViews.cpp).
 void bindSimulationViews(py::module_& m);

@@ -216,6 +216,7 @@ void bindScenes(py::module_& m)
     bindSceneSettings(scene);
     bindSceneContents(scene);
     bindSceneBoundaries(scene);
+    bindSceneMembranes(scene);
     bindSceneFileSources(scene);
 }
 

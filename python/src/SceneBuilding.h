@@ -62,6 +62,8 @@ void bindSceneSettings(py::class_<Scene>& scene);
 void bindSceneContents(py::class_<Scene>& scene);
 /// Walls, containers, an orifice plate and an indenter (SceneBoundaryBindings.cpp).
 void bindSceneBoundaries(py::class_<Scene>& scene);
+/// A rubber membrane round the grains (SceneMembraneBindings.cpp).
+void bindSceneMembranes(py::class_<Scene>& scene);
 /// Assets and grains from files: a catalogue's asset set and a grains CSV
 /// (SceneSourceBindings.cpp).
 void bindSceneFileSources(py::class_<Scene>& scene);

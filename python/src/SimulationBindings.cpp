@@ -25,6 +25,7 @@ std::unique_ptr<tbb::task_arena> makeArena(std::optional<int> threads)
 void bindSimulation(py::module_& m)
 {
     bindSimulationViews(m);
+    bindMembraneViews(m);
     py::class_<PySimulation>(
         m, "Simulation",
         "A running simulation of a Scene: the world lsdem-run builds, the same time step "
@@ -117,6 +118,9 @@ void bindSimulation(py::module_& m)
         .def_property_readonly(
             "boundaries", [](py::object self) { return BoundariesView{self}; },
             "The boundaries by name: sim.boundaries['top'].reaction.")
+        .def_property_readonly(
+            "membranes", [](py::object self) { return MembranesView{self}; },
+            "The membranes by name: sim.membranes['sleeve'].volume.")
         .def_property_readonly(
             "contacts",
             [](const PySimulation& s) {

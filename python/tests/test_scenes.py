@@ -415,3 +415,44 @@ def test_patch_quadrature_is_written_refused_where_it_has_no_meaning_and_resolve
     assert np.ptp(node) > 0.3
     assert np.ptp(patch) < np.ptp(node) / 5
     assert np.abs(patch).max() < 0.06
+
+
+def test_a_membrane_from_python(tmp_path):
+    """add_membrane follows the [[membranes]] rules (MembraneKeys.h), the scene writes it, and
+    a running simulation shows it: a tube of 24 facets round a ball, held by floor and lid."""
+    ball = lsdem.bake_sphere(1.0, voxel=0.25, nodes=100)
+    ball.save(str(tmp_path / "ball.vdb"))  # (a scene names its assets' files in TOML)
+    scene = lsdem.Scene()
+    scene.add_asset("ball", ball)
+    scene.add_material("steel", density=7.85e-9)
+    scene.add_material("latex")
+    scene.add_contact("steel", "latex", normal_stiffness=1e3)
+    scene.add_contact("steel", "steel", normal_stiffness=1e3)
+    scene.add_grain("ball", "steel", [0, 0, 5])
+    scene.add_plane("floor", "latex", point=[0, 0, 0], normal=[0, 0, 1])
+    scene.add_plane("lid", "latex", point=[0, 0, 10], normal=[0, 0, -1])
+    with pytest.raises(lsdem.Error, match=r"poisson must be in \[0, 0.5\)"):
+        scene.add_membrane("sleeve", "latex", youngs=1.4, poisson=0.5, thickness=0.3,
+                           density=1e-6, base=[0, 0, 0], radius=1.5, height=10, segments=24,
+                           rings=8)
+    with pytest.raises(lsdem.Error, match="no boundary called 'top'"):
+        scene.add_membrane("sleeve", "latex", youngs=1.4, poisson=0.45, thickness=0.3,
+                           density=1e-6, base=[0, 0, 0], radius=1.5, height=10, segments=24,
+                           rings=8, hold=["top"])
+    scene.add_membrane("sleeve", "latex", youngs=1.4, poisson=0.45, thickness=0.3, density=1e-6,
+                       base=[0, 0, 0], radius=1.5, height=10, segments=24, rings=8,
+                       pressure=0.01, prestretch=1.05, hold=["floor", "lid"])
+    assert "[[membranes]]" in scene.to_toml()
+    scene.end_steps = 5
+    sim = lsdem.Simulation(scene)
+    assert list(sim.membranes.keys()) == ["sleeve"] and "sleeve" in sim.membranes
+    sleeve = sim.membranes["sleeve"]
+    assert sleeve.positions.shape == (24 * 9, 3) and sleeve.triangles.shape == (24 * 8 * 2, 3)
+    assert np.allclose(np.hypot(sleeve.positions[:, 0], sleeve.positions[:, 1]), 1.5)
+    held = np.array(sleeve.held_by)
+    assert (held[:24] == 0).all() and (held[-24:] == 1).all() and (held[24:-24] == -1).all()
+    # A prism of 24 sides in a circle of radius 1.5: 12·r²·sin(2π/24)·h.
+    assert sleeve.volume == pytest.approx(12 * 1.5**2 * math.sin(2 * math.pi / 24) * 10, rel=1e-12)
+    assert sleeve.pressure == 0.01
+    with pytest.raises(KeyError):
+        sim.membranes["none"]

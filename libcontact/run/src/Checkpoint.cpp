@@ -31,7 +31,10 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 ///    size, strain rates and stress and the moment its power comes from. An earlier file's
 ///    grains restart from none, and its energy rows gain empty (NaN) columns for the
 ///    dissipation.
-const uint32_t kVersion = 7;
+/// 8: the record ends with each membrane's history rows, and the state with each membrane's
+///    (its vertices' positions, velocities and forces, its pressure and energies). An earlier
+///    file has none, and restarts a world without membranes only.
+const uint32_t kVersion = 8;
 const uint32_t kOldestVersion = 1;
 
 using namespace checkpointbytes;
@@ -48,6 +51,29 @@ void writeRecord(Writer& w, const RunRecord& r)
     w.numbers(r.vtkFrameTimes);
     w.value<uint64_t>(r.micromechanicsRows.size());
     for (const auto& row : r.micromechanicsRows) w.numbers(row);
+    w.value<uint64_t>(r.membraneRows.size());
+    for (const auto& rows : r.membraneRows) {
+        w.value<uint64_t>(rows.size());
+        for (const auto& row : rows) w.numbers(row);
+    }
+}
+
+/// A membrane's state: what the scene does not give (its shape as stretched and moving, its
+/// forces from the last evaluation, which the next step's first kick and work start from).
+void writeMembrane(Writer& w, const Membrane& m)
+{
+    w.value<uint64_t>(m.positions.size());
+    const auto vectors = [&](const std::vector<Vec3>& v) {
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            putVec(w, i < v.size() ? v[i] : Vec3::Zero());
+    };
+    vectors(m.positions);
+    vectors(m.velocities);
+    vectors(m.forces);
+    vectors(m.grainForces);
+    vectors(m.pressureForces);
+    w.number(m.pressure).number(m.targetStress).number(m.strainEnergy);
+    w.number(m.rubberOmegaSquared).number(m.dampedWork);
 }
 
 RunRecord readRecord(Reader& r, uint32_t version)
@@ -69,6 +95,13 @@ RunRecord readRecord(Reader& r, uint32_t version)
     if (version >= 6) {
         rec.micromechanicsRows.resize(r.count(rowBytes));
         for (auto& row : rec.micromechanicsRows) row = r.numbers();
+    }
+    if (version >= 8) {
+        rec.membraneRows.resize(r.count(rowBytes));
+        for (auto& rows : rec.membraneRows) {
+            rows.resize(r.count(rowBytes));
+            for (auto& row : rows) row = r.numbers();
+        }
     }
     return rec;
 }
@@ -132,9 +165,6 @@ void readHeader(Reader& r, const std::string& path, Checkpoint& checkpoint, uint
 
 void saveCheckpoint(const std::string& path, const World& world, const Checkpoint& checkpoint)
 {
-    if (!world.membranes.empty())
-        throw Error(path, "a checkpoint cannot yet hold a membrane's state",
-                    "run a world with a membrane without checkpoints");
     std::string bytes;
     Writer w(bytes);
     w.raw(kMagic, sizeof kMagic);
@@ -179,6 +209,8 @@ void saveCheckpoint(const std::string& path, const World& world, const Checkpoin
         w.value<uint64_t>(world.boundaries.size());
         for (const Boundary& b : world.boundaries)
             putVec(w, b.displacement), putVec(w, b.force), w.value(b.normalStiffness), w.value(b.normalDashpot);
+        w.value<uint64_t>(world.membranes.size());
+        for (const Membrane& m : world.membranes) writeMembrane(w, m);
         // Only histories that hold shear are state: the empty ones are bookkeeping of the
         // contact list, which a restarted run rebuilds.
         uint64_t pairs = 0, boundaryContacts = 0;
@@ -340,6 +372,46 @@ void readBoundaries(Reader& r, const std::string& path, uint32_t version, World&
     }
 }
 
+/// Every membrane's state (version 8 on), as many as the scene makes, each with as many
+/// vertices.
+void readMembranes(Reader& r, const std::string& path, uint32_t version, World& w)
+{
+    const uint64_t count = version >= 8 ? r.count(sizeof(uint64_t) + 5 * sizeof(double)) : 0;
+    if (count != w.membranes.size())
+        throw Error(path, "the checkpoint holds " + std::to_string(count) +
+                              " membranes and its scene makes " +
+                              std::to_string(w.membranes.size()),
+                    version < 8 ? "the checkpoint predates membranes: start the run again"
+                                : "the scene's [[membranes]] may have changed; start the run again");
+    for (Membrane& m : w.membranes) {
+        if (r.count(15 * sizeof(double)) != m.positions.size())
+            throw Error(path, "the checkpoint's membrane '" + m.name + "' has another number "
+                              "of vertices than its scene makes",
+                        "the scene's [[membranes]] may have changed; start the run again");
+        const auto vectors = [&](std::vector<Vec3>& v) {
+            v.resize(m.positions.size());
+            for (Vec3& x : v) {
+                x = r.vec();
+                if (!allFinite(x)) r.fail();
+            }
+        };
+        vectors(m.positions);
+        vectors(m.velocities);
+        vectors(m.forces);
+        vectors(m.grainForces);
+        vectors(m.pressureForces);
+        m.pressure = r.number();
+        m.targetStress = r.number();
+        m.strainEnergy = r.number();
+        m.rubberOmegaSquared = r.number();
+        m.dampedWork = r.number();
+        if (!(std::isfinite(m.pressure) && m.pressure >= 0.0) || !std::isfinite(m.targetStress) ||
+            !std::isfinite(m.strainEnergy) || !std::isfinite(m.rubberOmegaSquared) ||
+            !std::isfinite(m.dampedWork))
+            r.fail();
+    }
+}
+
 /// The shear histories that hold shear, of grain pairs and of grains on boundaries. Grain and
 /// boundary indices are checked here: a damaged one would index past the world.
 void readShearHistories(Reader& r, World& w)
@@ -380,6 +452,7 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     if (version >= 7) readPeriodicCell(r, path, w);
     readGrains(r, path, version, w);
     readBoundaries(r, path, version, w);
+    readMembranes(r, path, version, w);
     readShearHistories(r, w);
     if (!r.magic(kMagic)) r.fail();  // the trailer: a complete file ends with the magic
     return w;

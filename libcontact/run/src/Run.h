@@ -49,8 +49,7 @@ private:
     /// The histories, and unless @a withGrains is false grains.csv. Split over ranks it is
     /// collective (the grains are gathered to rank 0), unless @a withGrains is false.
     void writeTextOutputs(bool withGrains = true);
-    /// The checkpoint and the text outputs (collective when split over ranks); the text
-    /// outputs alone for a world with membranes.
+    /// The checkpoint and the text outputs (collective when split over ranks).
     void writeCheckpoint();
     /// The whole world: the simulation's own, or split over ranks, gathered from them into
     /// @a gathered on rank 0 (collective; the other ranks get no grains).
@@ -75,9 +74,6 @@ private:
     Scene mScene;
     Checkpoint mCheckpoint;
     std::string mOutDir, mCheckpointPath;
-    /// False for a world with membranes: a checkpoint cannot hold their state yet (the scene
-    /// refuses checkpoint_period then), so the run ends, or stops, without one.
-    bool mCheckpoints = true;
     /// The output folder, locked by the process that writes it for as long as the run lasts.
     FolderLock mOutLock;
     /// Each grain's pose at the run's start (the scene's): grains.csv's displacements, the

@@ -117,7 +117,6 @@ double Run::makeSimulation(const RunOptions& options)
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
-    mCheckpoints = world.membranes.empty();
     if (mWrites)  // for grains.csv's displacements and the frames' micromechanics
         for (const Grain& g : world.grains) mStartPoses.push_back(g.body.pose);
 

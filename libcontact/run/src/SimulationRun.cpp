@@ -75,7 +75,7 @@ void Run::writeCheckpoint()
     // The histories first: a kill between the two leaves files a little ahead of the
     // checkpoint, never behind it (a restart rewrites them from the checkpoint's rows).
     writeFiles(whole);
-    if (mCheckpoints) saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
+    saveCheckpoint(mCheckpointPath, whole, mCheckpoint);
 }
 
 bool Run::stepToEnd()
@@ -158,7 +158,7 @@ void Run::fillResult(RunResult& result) const
     result.timeStep = mSim->timeStep();
     result.grains = mDecomposition ? mDecomposition->globalCount()
                                    : static_cast<int>(mSim->world().grains.size());
-    result.checkpointPath = mCheckpoints ? mCheckpointPath : std::string();
+    result.checkpointPath = mCheckpointPath;
     result.setupSeconds = mSetupSeconds;
     result.outputSeconds = mOutputSeconds;
     result.step = mSim->world().step;
@@ -214,11 +214,7 @@ RunResult runSimulation(const RunOptions& options, std::ostream& log)
     if (options.progress) std::fputs("\n", stderr);
     if (!result.interrupted) run.finish();
     run.fillResult(result);
-    if (result.interrupted && result.checkpointPath.empty())
-        log << "stopped at step " << result.step << " (t = " << result.time
-            << "); a world with membranes writes no checkpoint, so this run cannot be "
-               "continued\n";
-    else if (result.interrupted)
+    if (result.interrupted)
         log << "stopped at step " << result.step << " (t = " << result.time
             << "); continue with: lsdem-run --restart " << result.checkpointPath << "\n";
     else

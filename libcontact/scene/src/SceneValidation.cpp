@@ -107,11 +107,6 @@ void validateMembranes(const Scene& s)
         if (std::optional<KeyProblem> p = membraneProblem(m))
             throw Error(where, "membrane '" + m.name + "': " + keyProblemText(*p), p->fix);
     }
-    if (!s.membranes.empty() && s.output.checkpointPeriod > 0.0)
-        throw Error(s.membranes.front().where.empty() ? "[output]" : s.membranes.front().where,
-                    "a checkpoint cannot hold a membrane's state yet, and [output] asks for "
-                    "checkpoints every " + numberText(s.output.checkpointPeriod),
-                    "set checkpoint_period = 0 (or remove it) for a scene with a membrane");
 }
 
 /// "[simulation]", or "scene.toml: [simulation]" for a scene read from a file.

@@ -36,10 +36,11 @@ double Simulation::membraneExternalPower() const
     double power = 0.0;
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
+        if (m.pressureForces.size() != m.positions.size()) continue;  // (none evaluated yet)
         for (size_t i = 0; i < m.positions.size(); ++i)
             // (A held vertex moves at its holder's velocity, set as it moved; the holder is a
             // boundary, whose work counts its pull.)
-            power += mMembranePressureForces[k][i].dot(m.velocities[i]);
+            power += m.pressureForces[i].dot(m.velocities[i]);
     }
     return power;
 }
@@ -70,7 +71,6 @@ void Simulation::computeMembranes(double dt)
     const size_t membranes = w.membranes.size();
     mMembraneContacts.resize(membranes);
     mMembraneGrids.resize(membranes);
-    mMembranePressureForces.resize(membranes);
     mMembraneContactStiffness.resize(membranes);
     mMembraneElastic = 0.0;
     mMembraneNodes = 0;
@@ -78,7 +78,7 @@ void Simulation::computeMembranes(double dt)
     for (size_t k = 0; k < membranes; ++k) {
         Membrane& m = w.membranes[k];
         // The rubber and the pressure; the pressure's part kept for the work it does.
-        computeMembraneForces(m, &mMembranePressureForces[k]);
+        computeMembraneForces(m, &m.pressureForces);
 
         // The grains' contacts, grain by grain in parallel.
         MembraneTriangleGrid& grid = mMembraneGrids[k];

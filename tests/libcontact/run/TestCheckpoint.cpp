@@ -625,12 +625,16 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         // Format 4 had no micromechanics rows (format 6 put their count after the frame times)
         // and no periodic cell nor dissipated energies or periods per grain (format 7 put the
         // cell's four vectors after the energies and six numbers after each grain's torque): a
-        // checkpoint saved with marker values there (seen nowhere else) loses them.
+        // checkpoint saved with marker values there (seen nowhere else) loses them. Nor had it
+        // membranes (format 8 put their rows' count after the micromechanics rows and their
+        // count after the boundaries, here after a marked dashpot).
         World marked = steppedWorld(10);
         for (size_t i = 0; i < marked.grains.size(); ++i)
             marked.grains[i].dissipated = {1e5 + double(i), 2e5, 3e5};
         const Vec3 markedCell(7.25e5, 7.5e5, 7.75e5);  // format 7's cell size, also cut out
         marked.periodic.size = markedCell;
+        const double markedDashpot = 8.125e5;
+        marked.boundaries.back().normalDashpot = markedDashpot;
         Checkpoint markedHeader = plain;
         const double marker = 12345.678901;
         markedHeader.record.micromechanicsRows = {{marker}};
@@ -639,6 +643,9 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         const auto find = [&](double value) {
             return bytes.find(std::string(reinterpret_cast<const char*>(&value), sizeof value));
         };
+        const size_t dashpotAt = find(markedDashpot);
+        ASSERT_NE(dashpotAt, std::string::npos);
+        bytes.erase(dashpotAt + sizeof(double), sizeof(uint64_t));  // no membranes
         for (size_t i = marked.grains.size(); i-- > 0;) {
             const size_t at = find(1e5 + double(i));
             ASSERT_NE(at, std::string::npos);
@@ -649,7 +656,7 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         bytes.erase(cellAt, 12 * sizeof(double));  // its size, strain rate, stress, moment
         const size_t at = find(marker);
         ASSERT_NE(at, std::string::npos);
-        bytes.erase(at - 16, 24);  // the rows' count, the row's count and the row
+        bytes.erase(at - 16, 32);  // the rows' count, the row's count, the row, no membranes' rows
         const uint32_t four = 4;
         std::memcpy(bytes.data() + 8, &four, sizeof four);  // after the magic
         const std::string older = dir.file("format4.lsdem");

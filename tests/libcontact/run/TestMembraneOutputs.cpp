@@ -4,12 +4,17 @@
 // push, the held vertices and the triangles; each membrane's history (membrane_<name>.csv)
 // reads back its pressure, enclosed volume, energies and the grains' push. A world without
 // membranes writes no such file and the .pvd it always wrote. A whole run of a scene with a
-// membrane writes both, and no checkpoint (which cannot hold a membrane yet).
+// membrane writes both, and its checkpoint holds the membrane: a run stopped and continued
+// writes what a run straight through writes.
+#include "lsdem/run/Checkpoint.h"
 #include "lsdem/run/RunOutputs.h"
 #include "lsdem/run/SimulationRun.h"
 #include "lsdem/run/VtkSeries.h"
 
 #include "lsdem/core/CsvText.h"
+#include "lsdem/core/Error.h"
+#include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/SceneFile.h"
 
 #include "support/TestSupport.h"
 #include "VtuReader.h"
@@ -308,9 +313,10 @@ TEST(MembraneOutputs, AWorldWithoutMembranesWritesWhatItAlwaysWrote)
 }
 
 // A scene with a membrane, run as lsdem-run runs it: every frame lists its membranes part,
-// the membrane's history has a row per history step, and the run ends without a checkpoint
-// (one cannot hold a membrane's state yet) rather than failing at its end.
-TEST(MembraneOutputs, ASceneWithAMembraneRunsToItsEndWithoutACheckpoint)
+// the membrane's history has a row per history step, and a run stopped half-way and continued
+// from its checkpoint ends with the same bytes in every history file as a run straight through
+// (the membrane's state and rows are in the checkpoint).
+TEST(MembraneOutputs, ASceneWithAMembraneRunsAndRestartsAsOneRun)
 {
     ScratchDir dir;
     const std::string scene = dir.file("scene.toml");
@@ -378,8 +384,42 @@ vtk_period = 5e-5
     const RunResult result = runSimulation(options, log);
     EXPECT_FALSE(result.interrupted);
     EXPECT_EQ(result.step, 100);
-    EXPECT_EQ(result.checkpointPath, "");
-    EXPECT_FALSE(std::filesystem::exists(dir.file("out/checkpoint.lsdem")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("out/checkpoint.lsdem")));
+
+    RunOptions stopped = options;
+    stopped.outDir = dir.file("halves");
+    stopped.stopAtStep = 60;
+    const RunResult first = runSimulation(stopped, log);
+    ASSERT_TRUE(first.interrupted);
+    EXPECT_EQ(first.step, 60);
+    RunOptions resumed;
+    resumed.restartPath = first.checkpointPath;
+    const RunResult second = runSimulation(resumed, log);
+    EXPECT_FALSE(second.interrupted);
+    EXPECT_EQ(second.step, 100);
+    for (const char* file : {"membrane_sleeve.csv", "energy.csv", "boundary_floor.csv", "grains.csv"})
+        EXPECT_EQ(readFile(dir.file(std::string("halves/") + file)),
+                  readFile(dir.file(std::string("out/") + file)))
+            << file;
+    // A world the scene no longer makes is refused: one without the membrane, or with another
+    // number of vertices.
+    std::vector<std::string> warnings;
+    const Scene read = readSceneFile(scene);
+    for (int change = 0; change < 2; ++change) {
+        Scene other = read;
+        if (change == 0) other.membranes.clear();
+        else other.membranes[0].segments += 1;
+        World w = buildWorld(other, warnings);
+        try {
+            restoreWorldState(first.checkpointPath, w);
+            ADD_FAILURE() << "restored into a changed scene";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(change == 0 ? "holds 1 membranes and its scene makes 0"
+                                                              : "membrane 'sleeve' has another number of vertices"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
 
     EXPECT_EQ(csvLines(dir.file("out/membrane_sleeve.csv")).size(), 1u + 5u);  // steps 0 ... 100
     const std::vector<DataSetEntry> entries = parsePvd(dir.file("out/frames.pvd"));

@@ -13,8 +13,7 @@ struct RunRecord
 {
     std::vector<std::vector<double>> energyRows;
     std::vector<std::vector<std::vector<double>>> boundaryRows;  ///< per boundary
-    /// Per membrane. Not kept in checkpoints, which refuse a world with membranes (once they
-    /// hold a membrane's state they must keep these rows too, as they keep the boundaries').
+    /// Per membrane (kept in checkpoints from version 8, as the boundaries' are).
     std::vector<std::vector<std::vector<double>>> membraneRows;
     std::vector<double> vtkFrameTimes;
     /// Whether each history row also records the micromechanics ([output] micromechanics).

@@ -44,7 +44,7 @@ struct RunResult
     long long step = 0;
     double time = 0.0;
     double timeStep = 0.0;
-    std::string checkpointPath;  ///< "" for a world with membranes: it writes none
+    std::string checkpointPath;
     StepCounters counters;
     double outputSeconds = 0.0, setupSeconds = 0.0, wallSeconds = 0.0;
     int grains = 0;

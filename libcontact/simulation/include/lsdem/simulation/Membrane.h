@@ -80,8 +80,10 @@ struct Membrane
 
     /// Force on each vertex at the last evaluation (rubber, pressure and grains together) ...
     std::vector<Vec3> forces;
-    /// ... and the grains' part of it (their push on the membrane; empty outside a Simulation).
-    std::vector<Vec3> grainForces;
+    /// ... and the grains' part of it (their push on the membrane; empty outside a Simulation),
+    /// and the pressure's (whose power a Simulation books as boundary work; kept with the
+    /// state, since the next step's work starts from it).
+    std::vector<Vec3> grainForces, pressureForces;
     double strainEnergy = 0.0;  ///< at the last evaluation (force·length)
     /// The rubber's bound on ω² of its vertices at the last evaluation (membraneStableStep).
     double rubberOmegaSquared = 0.0;

@@ -231,11 +231,10 @@ private:
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
     ContactBackendHolder mBackend;  ///< computes the contact slots (the CPU's by default)
 
-    // Per membrane: its triangles binned, each grain's contact with it, the pressure's part
-    // of its vertices' forces and the grains' contact stiffness on each vertex.
+    // Per membrane: its triangles binned, each grain's contact with it and the grains'
+    // contact stiffness on each vertex.
     std::vector<MembraneTriangleGrid> mMembraneGrids;
     std::vector<std::vector<MembraneGrainContact>> mMembraneContacts;
-    std::vector<std::vector<Vec3>> mMembranePressureForces;
     std::vector<std::vector<double>> mMembraneContactStiffness;
     double mMembraneElastic = 0.0;  ///< of the grains' contacts with membranes
     long long mMembraneNodes = 0;   ///< grains' nodes in contact with membranes

@@ -139,16 +139,14 @@ double Simulation::membraneStepLimit(std::string* which) const
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         const MembraneStepParts parts = membraneStepParts(k);
-        const double omegaSquared = parts.rubber + parts.contacts;
-        const double step = omegaSquared > 0.0 ? 2.0 / std::sqrt(omegaSquared)
-                                               : std::numeric_limits<double>::infinity();
+        const double step = dampedStableStep(parts.rubber + parts.contacts, membraneDragRate(m));
         if (step < limit) {
             limit = step;
             if (which) {
                 std::ostringstream text;
                 text << "membrane '" << m.name << "' (ω² of its rubber " << parts.rubber
                      << " /s², of the grains pressing on its vertices " << parts.contacts
-                     << " /s²)";
+                     << " /s², its drag's rate " << membraneDragRate(m) << " /s)";
                 *which = text.str();
             }
         }
@@ -174,25 +172,11 @@ void Simulation::judgeMembraneStep() const
     std::string which;
     const double limit = membraneStepLimit(&which);
     if (!(mDt > limit)) return;
-    {  // DEBUG
-        const Membrane& m = mWorld.membranes[0];
-        size_t worst = 0; double best = 0;
-        for (size_t i = 0; i < m.positions.size(); ++i) if (m.heldBy[i] < 0 && mMembraneContactStiffness[0][i] / m.masses[i] > best) { best = mMembraneContactStiffness[0][i] / m.masses[i]; worst = i; }
-        fprintf(stderr, "DEBUG step %lld vertex %zu at %g %g %g k %g mass %g\n", mWorld.step, worst, m.positions[worst].x(), m.positions[worst].y(), m.positions[worst].z(), mMembraneContactStiffness[0][worst], m.masses[worst]);
-        for (size_t g = 0; g < mMembraneContacts[0].size(); ++g) {
-            const auto& c = mMembraneContacts[0][g];
-            double k = 0; int n = 0;
-            for (const auto& e : c.stiffness) if (size_t(e.first) == worst) { k += e.second; ++n; }
-            if (n == 0) continue;
-            double deepest = 0; for (const auto& f : c.pointForces) deepest = std::max(deepest, f.force.norm() / std::max(f.stiffness, 1e-30));
-            fprintf(stderr, "  grain %zu at %g %g %g: %d entries, k %g, its nodes in contact %d, deepest %g, grain force %g\n", g, mWorld.grains[g].body.pose.position.x(), mWorld.grains[g].body.pose.position.y(), mWorld.grains[g].body.pose.position.z(), n, k, c.result.contactNodes, deepest, c.result.forceOnFirst.norm());
-        }
-    }
     std::ostringstream problem;
     problem << "the time step " << mDt << " exceeds the stability limit " << limit << " of "
             << which;
     throw Error("", problem.str(),
-                "give a smaller time_step, or a larger membrane density (mass scaling)");
+                "give a smaller time_step, a larger membrane density (mass scaling) or less drag");
 }
 
 double Simulation::membraneEnergy(double& kinetic) const

@@ -6,6 +6,7 @@
 #include "lsdem/simulation/Simulation.h"
 #include "lsdem/simulation/StableStep.h"
 #include "lsdem/core/Constants.h"
+#include "lsdem/core/Error.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/mesh/TriangleMesh.h"
 
@@ -306,4 +307,45 @@ TEST(MembraneContact, SameNumbersOnAnyThreadCount)
     EXPECT_EQ(one.grains[0].body.velocity, two.grains[0].body.velocity);
     EXPECT_EQ(one.membranes[0].positions, two.membranes[0].positions);
     EXPECT_LT(one.grains[0].body.velocity.x(), 199.0);  // it has met the tube
+}
+
+// The cell fluid's drag is explicit, so it bounds the step as a spring does: a free vertex's
+// velocity loses γ·dt of itself each step (γ = drag/(density·thickness)), which overshoots
+// and grows beyond dt = 2/γ. A tube whose drag dominates its rubber (γ 1e6 /s, rubber
+// ω ≈ 400 /s) shaken at 1 mm/s: at 0.95 of the limit the motion dies away; beyond it the
+// simulation refuses to start, and the automatic step stays within it. (Found running a
+// scene: at 35 times the limit the tube flew apart in five steps.)
+TEST(MembraneContact, DragLimitsTheStepAsASpringDoes)
+{
+    auto shaken = [] {
+        World w = oneSphere(Vec3(0, 0, 100), Vec3::Zero(), -1000.0);
+        Membrane tube = makeTubeMembrane(Vec3(0, 0, -20), Vec3::UnitZ(), 20.0, 40.0, 40, 10, latex());
+        tube.name = "tube";
+        tube.drag = 0.3;
+        for (size_t i = 0; i < tube.velocities.size(); ++i)
+            tube.velocities[i] = Vec3(0, 0, i % 2 == 0 ? 1.0 : -1.0);
+        w.membranes.push_back(tube);
+        return w;
+    };
+    const World w = shaken();
+    const Membrane& tube = w.membranes[0];
+    EXPECT_EQ(membraneDragRate(tube), 0.3 / (1e-6 * 0.3));
+    const double limit = membraneStableStep(tube);
+    EXPECT_LT(limit, 2.0 / membraneDragRate(tube));
+    EXPECT_GT(limit, 0.99 * 2.0 / membraneDragRate(tube));
+    EXPECT_LE(automaticTimeStep(w, 1.0), limit);  // (at safety 1: the bound itself)
+
+    Simulation run(shaken(), 0.95 * limit);
+    for (int s = 0; s < 300; ++s) run.step();
+    double fastest = 0.0;
+    for (const Vec3& v : run.world().membranes[0].velocities) fastest = std::max(fastest, v.norm());
+    std::cout << "[ measured ] drag-dominated tube at 0.95 of 2/gamma: fastest vertex after 300 "
+                 "steps " << fastest << " mm/s (from 1)\n";
+    EXPECT_LT(fastest, 0.5);
+    try {
+        Simulation tooLong(shaken(), 1.05 * limit);
+        ADD_FAILURE() << "started beyond the drag's limit";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("its drag's rate 1e+06 /s"), std::string::npos) << e.what();
+    }
 }

@@ -119,8 +119,19 @@ double enclosedVolume(const Membrane& m);
 double membraneKineticEnergy(const Membrane& m);
 
 /// The largest stable step of its vertices' explicit integration with the triangles'
-/// stiffness and the pressure's alone (a bound: ω² ≤ the largest of its triangles' lumped-mass
-/// eigenvalue bounds), at its stretch now. The grains' contacts on it are checked at run time.
+/// stiffness, the pressure's and its drag (a bound: ω² ≤ the largest of its triangles'
+/// lumped-mass eigenvalue bounds, with the drag's rate, dampedStableStep), at its stretch now.
+/// The grains' contacts on it are checked at run time.
 double membraneStableStep(const Membrane& m);
+
+/// The drag's rate on a free vertex, c/m = drag/(density·thickness) (1/time): the same for
+/// every vertex, whose drag and mass both follow its tributary area.
+double membraneDragRate(const Membrane& m);
+
+/// The largest stable step of an explicit oscillator of ω² (1/time²) damped at the rate
+/// γ = c/m (1/time): 2/ω·(√(1+ζ²) − ζ) with ζ = γ/(2ω); 2/γ without a spring, 2/ω without
+/// damping. A drag evaluated from the velocity at the step's start is unstable beyond it, as a
+/// spring is beyond 2/ω.
+double dampedStableStep(double omegaSquared, double dampingRate);
 
 } // namespace lsdem

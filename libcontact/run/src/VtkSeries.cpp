@@ -140,6 +140,17 @@ bool allMeasured(const std::vector<VtkGrain>& grains)
     });
 }
 
+/// A grid's points and cells (its connectivity, offsets and cell types), after its data.
+void addGeometry(UnstructuredGridFile& file, const std::vector<double>& points,
+                 const std::vector<std::int64_t>& connectivity,
+                 const std::vector<std::int64_t>& offsets, const std::vector<std::uint8_t>& types)
+{
+    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
+    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
+    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
+    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+}
+
 /// Every grain's surface triangles in world coordinates, each vertex carrying its rigid-body
 /// velocity (and, @a measured, its grain's measures) and each triangle the id of its grain.
 std::string grainsFile(const std::vector<VtkGrain>& grains, bool measured)
@@ -183,10 +194,7 @@ std::string grainsFile(const std::vector<VtkGrain>& grains, bool measured)
         file.addArray(UnstructuredGridFile::PointData, "stress", 9, stresses);
     }
     file.addArray(UnstructuredGridFile::CellData, "grain", 1, grainIds);
-    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
-    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
-    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
-    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    addGeometry(file, points, connectivity, offsets, types);
     return file.contents(points.size() / 3, offsets.size());
 }
 
@@ -211,10 +219,7 @@ std::string contactsFile(const std::vector<VtkForcePoint>& forces)
                               "Vectors=\"force\" Scalars=\"grain\"");
     file.addArray(UnstructuredGridFile::PointData, "force", 3, forceVectors);
     file.addArray(UnstructuredGridFile::PointData, "grain", 1, grainIds);
-    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
-    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
-    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
-    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    addGeometry(file, points, connectivity, offsets, types);
     return file.contents(forces.size(), forces.size());
 }
 
@@ -251,10 +256,7 @@ std::string membranesFile(const std::vector<Membrane>& membranes)
     file.addArray(UnstructuredGridFile::PointData, "grain_force", 3, grainForces);
     file.addArray(UnstructuredGridFile::PointData, "held", 1, held);
     file.addArray(UnstructuredGridFile::CellData, "membrane", 1, membraneIds);
-    file.addArray(UnstructuredGridFile::Points, "Points", 3, points);
-    file.addArray(UnstructuredGridFile::Cells, "connectivity", 1, connectivity);
-    file.addArray(UnstructuredGridFile::Cells, "offsets", 1, offsets);
-    file.addArray(UnstructuredGridFile::Cells, "types", 1, types);
+    addGeometry(file, points, connectivity, offsets, types);
     return file.contents(points.size() / 3, offsets.size());
 }
 

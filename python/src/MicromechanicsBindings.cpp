@@ -101,6 +101,7 @@ void bindMicromechanics(py::module_& m)
             d["first"] = columnOf(records, &ContactRecord::first);
             d["second"] = columnOf(records, &ContactRecord::second);
             d["boundary"] = columnOf(records, &ContactRecord::boundary);
+            d["membrane"] = columnOf(records, &ContactRecord::membrane);
             d["forces"] = rowsOf(records, &ContactRecord::force);
             d["centres"] = rowsOf(records, &ContactRecord::centre);
             d["normals"] = rowsOf(records, &ContactRecord::normal);
@@ -110,7 +111,8 @@ void bindMicromechanics(py::module_& m)
         },
         "Every contact of the last evaluation as a whole (copies; K contacts, grain pairs "
         "first): .first (K,) grain index; .second (K,) the other grain's index or -1, and then "
-        ".boundary (K,) the boundary's index (else -1); .forces (K, 3) the resultant on the "
+        ".boundary (K,) the boundary's index (else -1), or .membrane (K,) the membrane's (else "
+        "-1); .forces (K, 3) the resultant on the "
         "first grain (the other body gets the opposite); .centres (K, 3) where it acts (the "
         "stiffness-weighted centre of its point forces); .normals (K, 3) unit, pushing the first "
         "grain out; .nodes (K,) its penetrating nodes; .shifts (K, 3) in a periodic cell the "

@@ -12,17 +12,21 @@ bool inSample(const World& world, int index)
     return index >= 0 && world.grains[size_t(index)].isFree();
 }
 
-/// Calls @a act(grain, position, force) for each free grain that contact @a r acts on: @a
-/// r.force on its first grain, the opposite on its second, each at its position as the contact
-/// sees it (second's image across a periodic cell's face).
+/// Calls @a act(grain, moment) for each free grain that contact @a r acts on, with the
+/// contact's moment about that grain's position (second's image across a periodic cell's face):
+/// (centre − x) ⊗ r.force and r.spread on the first grain, the opposite forces at the same
+/// points on the second.
 template <typename Act>
 void forEachSampleGrain(const World& world, const ContactRecord& r, Act&& act)
 {
-    if (inSample(world, r.first))
-        act(r.first, world.grains[size_t(r.first)].body.pose.position, r.force);
-    if (inSample(world, r.second))
-        act(r.second, Vec3(world.grains[size_t(r.second)].body.pose.position + r.shift),
-            Vec3(-r.force));
+    if (inSample(world, r.first)) {
+        const Vec3& x = world.grains[size_t(r.first)].body.pose.position;
+        act(r.first, Mat3((r.centre - x) * r.force.transpose() + r.spread));
+    }
+    if (inSample(world, r.second)) {
+        const Vec3 x = world.grains[size_t(r.second)].body.pose.position + r.shift;
+        act(r.second, Mat3(-(r.centre - x) * r.force.transpose() - r.spread));
+    }
 }
 
 /// sqrt(3/2·a:a) of a = 15/2·(@a fabric − I/3): 0 for an isotropic fabric.
@@ -39,9 +43,7 @@ Micromechanics micromechanicsOf(const World& world, const std::vector<ContactRec
     Micromechanics m;
     std::vector<int> contacts(world.grains.size(), 0);
     for (const ContactRecord& r : records) {
-        forEachSampleGrain(world, r, [&](int, const Vec3& x, const Vec3& f) {
-            m.stressMoment += (r.centre - x) * f.transpose();
-        });
+        forEachSampleGrain(world, r, [&](int, const Mat3& moment) { m.stressMoment += moment; });
         if (inSample(world, r.first) && inSample(world, r.second)) {
             ++m.grainContacts;
             ++contacts[size_t(r.first)];
@@ -87,9 +89,7 @@ std::vector<Mat3> grainStresses(const World& world, const std::vector<ContactRec
 {
     std::vector<Mat3> stress(world.grains.size(), Mat3::Zero());
     for (const ContactRecord& r : records)
-        forEachSampleGrain(world, r, [&](int p, const Vec3& x, const Vec3& f) {
-            stress[size_t(p)] += (r.centre - x) * f.transpose();
-        });
+        forEachSampleGrain(world, r, [&](int p, const Mat3& moment) { stress[size_t(p)] += moment; });
     for (size_t p = 0; p < world.grains.size(); ++p) {
         const Grain& g = world.grains[p];
         if (g.isFree()) stress[p] /= g.asset->mass.volume;

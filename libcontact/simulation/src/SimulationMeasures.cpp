@@ -103,6 +103,23 @@ std::vector<ContactRecord> Simulation::contactRecords() const
         r.nodes = s.result.contactNodes;
         records.push_back(r);
     }
+    // Then each grain's contact with each membrane (its nodes against the triangles), so the
+    // grains' equilibrium, and the Love–Weber stress made of it, counts the membrane's push.
+    for (size_t k = 0; k < mMembraneContacts.size(); ++k)
+        for (size_t i = 0; i < mMembraneContacts[k].size(); ++i) {
+            const PairForces& c = mMembraneContacts[k][i].result;
+            if (c.contactNodes <= 0) continue;
+            ContactRecord r;
+            r.first = static_cast<int>(i);
+            r.membrane = static_cast<int>(k);
+            r.force = c.forceOnFirst;
+            r.centre = c.centre;
+            r.normal = c.normal;
+            r.nodes = c.contactNodes;
+            for (const PointForce& f : mMembraneContacts[k][i].pointForces)
+                r.spread += (f.point - r.centre) * f.force.transpose();
+            records.push_back(r);
+        }
     return records;
 }
 

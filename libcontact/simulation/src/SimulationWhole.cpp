@@ -15,11 +15,12 @@ namespace lsdem {
 namespace {
 
 /// One process's list order: grain pairs by (first, second), then grain–boundary contacts by
-/// (grain, boundary).
+/// (grain, boundary), then grain–membrane contacts by (membrane, grain).
 auto listKey(const ContactRecord& r)
 {
-    return r.boundary < 0 ? std::make_tuple(0, r.first, r.second)
-                          : std::make_tuple(1, r.first, r.boundary);
+    return r.membrane >= 0  ? std::make_tuple(2, r.membrane, r.first)
+           : r.boundary < 0 ? std::make_tuple(0, r.first, r.second)
+                            : std::make_tuple(1, r.first, r.boundary);
 }
 
 } // namespace
@@ -35,7 +36,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         if (!integratesGrain(size_t(r.first))) continue;
         r.first = ids[size_t(r.first)];
         if (r.second >= 0) r.second = ids[size_t(r.second)];
-        out.value(r.first).value(r.second).value(r.boundary).value(r.nodes);
+        out.value(r.first).value(r.second).value(r.boundary).value(r.membrane).value(r.nodes);
         out.values(r.force.data(), 3).values(r.centre.data(), 3).values(r.normal.data(), 3);
         out.values(r.shift.data(), 3);
     }
@@ -49,6 +50,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         r.first = in.value<int>();
         r.second = in.value<int>();
         r.boundary = in.value<int>();
+        r.membrane = in.value<int>();
         r.nodes = in.value<int>();
         in.values(r.force.data(), 3);
         in.values(r.centre.data(), 3);

@@ -255,6 +255,18 @@ TEST(MembraneContact, HeldFlatSheetPushesAsAWall)
     Vec3 reaction = Vec3::Zero();
     for (const Vec3& f : sheet.world().membranes[0].forces) reaction += f;
     EXPECT_LT((reaction + onSheet.force).norm(), 1e-12 * onWall.force.norm());
+    // The contact is recorded as the wall's is (its Love–Weber moment counts it), naming the
+    // membrane instead of a boundary.
+    const std::vector<ContactRecord> onWallRecords = wall.contactRecords();
+    const std::vector<ContactRecord> records = sheet.contactRecords();
+    ASSERT_EQ(records.size(), 1u);
+    ASSERT_EQ(onWallRecords.size(), 1u);
+    EXPECT_EQ(records[0].membrane, 0);
+    EXPECT_EQ(records[0].boundary, -1);
+    EXPECT_EQ(records[0].second, -1);
+    EXPECT_EQ(records[0].force, onSheet.force);
+    EXPECT_LT((records[0].centre - onWallRecords[0].centre).norm(), 1e-9);
+    EXPECT_EQ(records[0].nodes, onWallRecords[0].nodes);
 }
 
 // A sphere flying into a free tube: grain and membrane exchange equal and opposite forces

@@ -28,10 +28,7 @@ void bindSceneMembranes(py::class_<Scene>& scene)
             m.radius = radius, m.height = height;
             m.segments = segments, m.rings = rings;
             m.pressure = pressure, m.drag = drag, m.prestretch = prestretch;
-            for (const std::string& b : hold) {
-                m.holdNames.push_back(b);
-                m.hold.push_back(indexOf(s.boundaries, b, "boundary"));
-            }
+            for (const std::string& b : hold) m.hold.push_back(indexOf(s.boundaries, b, "boundary"));
             if (std::optional<KeyProblem> p = membraneProblem(m))
                 throw Error("", "membrane '" + name + "': " + keyProblemText(*p), p->fix);
             s.membranes.push_back(m);

@@ -79,16 +79,11 @@ Membrane makeMembrane(const MembraneSpec& spec, const std::vector<BoundarySpec>&
     if (spec.hold.empty()) return m;
 
     // Each rim by the nearest of the holding planes.
-    std::vector<Vec3> centroid(size_t(m.rimCount), Vec3::Zero());
-    std::vector<int> count(size_t(m.rimCount), 0);
-    for (size_t e = 0; e < m.rimEdges.size(); ++e) {  // (each rim vertex starts one edge)
-        centroid[size_t(m.rimOfEdge[e])] += m.positions[size_t(m.rimEdges[e][0])];
-        ++count[size_t(m.rimOfEdge[e])];
-    }
+    const std::vector<Vec3> centroid = rimCentroids(m);
     std::vector<int> holder(size_t(m.rimCount), -1);
     std::vector<char> holds(spec.hold.size(), 0);
     for (size_t r = 0; r < holder.size(); ++r) {
-        const Vec3 c = centroid[r] / double(count[r]);
+        const Vec3& c = centroid[r];
         double nearest = std::numeric_limits<double>::infinity();
         for (size_t k = 0; k < spec.hold.size(); ++k) {
             const BoundarySpec& b = boundaries.at(size_t(spec.hold[k]));

@@ -55,7 +55,6 @@ MembraneSpec readMembrane(TableReader& t, const Scene& scene)
             if (i < 0)
                 t.fail("hold", "no boundary named '" + name + "'",
                        "name one of the scene's [[boundaries]]");
-            m.holdNames.push_back(name);
             m.hold.push_back(i);
         }
     }

@@ -254,6 +254,18 @@ void computeMembraneForces(Membrane& m, std::vector<Vec3>* pressureForces)
     m.rubberOmegaSquared = omegaSquared;
 }
 
+std::vector<Vec3> rimCentroids(const Membrane& m)
+{
+    std::vector<Vec3> centroid(size_t(m.rimCount), Vec3::Zero());
+    std::vector<int> count(size_t(m.rimCount), 0);
+    for (size_t k = 0; k < m.rimEdges.size(); ++k) {  // (each rim vertex starts one edge)
+        centroid[size_t(m.rimOfEdge[k])] += m.positions[size_t(m.rimEdges[k][0])];
+        ++count[size_t(m.rimOfEdge[k])];
+    }
+    for (int r = 0; r < m.rimCount; ++r) centroid[size_t(r)] /= count[size_t(r)];
+    return centroid;
+}
+
 double enclosedVolume(const Membrane& m)
 {
     // Σ over closed faces of x₀·(x₁ × x₂)/6: the triangles, then each rim edge's fan triangle
@@ -262,13 +274,7 @@ double enclosedVolume(const Membrane& m)
     for (const MembraneTriangle& t : m.triangles)
         sixVolume += m.positions[size_t(t.vertices[0])].dot(
             m.positions[size_t(t.vertices[1])].cross(m.positions[size_t(t.vertices[2])]));
-    std::vector<Vec3> centroid(size_t(m.rimCount), Vec3::Zero());
-    std::vector<int> count(size_t(m.rimCount), 0);
-    for (size_t k = 0; k < m.rimEdges.size(); ++k) {
-        centroid[size_t(m.rimOfEdge[k])] += m.positions[size_t(m.rimEdges[k][0])];
-        ++count[size_t(m.rimOfEdge[k])];
-    }
-    for (int r = 0; r < m.rimCount; ++r) centroid[size_t(r)] /= count[size_t(r)];
+    const std::vector<Vec3> centroid = rimCentroids(m);
     for (size_t k = 0; k < m.rimEdges.size(); ++k) {
         const Vec3& c = centroid[size_t(m.rimOfEdge[k])];
         sixVolume += c.dot(m.positions[size_t(m.rimEdges[k][1])].cross(

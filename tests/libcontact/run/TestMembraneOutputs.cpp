@@ -17,6 +17,7 @@
 #include "lsdem/scene/SceneFile.h"
 
 #include "support/TestSupport.h"
+#include "support/TestAssets.h"
 #include "VtuReader.h"
 
 #include <gtest/gtest.h>
@@ -30,32 +31,6 @@ using namespace lsdem;
 using namespace lsdem::test;
 
 namespace {
-
-/// Six nodes on the axes of a ball of radius 1 (no level set: nothing here needs one).
-std::shared_ptr<const GrainAsset> sixNodes()
-{
-    auto a = std::make_shared<GrainAsset>();
-    for (int axis = 0; axis < 3; ++axis)
-        for (double s : {1.0, -1.0}) {
-            Vec3 p = Vec3::Zero();
-            p[axis] = s;
-            a->nodes.positions.push_back(p);
-            a->nodes.normals.push_back(p);
-            a->nodes.areas.push_back(2.0);
-        }
-    a->boundingRadius = 1.0;
-    return a;
-}
-
-MembraneMaterial latex()
-{
-    MembraneMaterial r;
-    r.youngs = 1.4;
-    r.poisson = 0.45;
-    r.thickness = 0.3;
-    r.density = 1e-6;
-    return r;
-}
 
 /// A ball of six nodes (radius 1) in a latex tube of radius 0.99 (12 segments, so four of its
 /// vertices face the ball's sideways nodes, which press 0.01 into it), under pressure 0.05,
@@ -71,7 +46,7 @@ World ballInTubes()
     w.models = {law};
     Grain ball;
     ball.name = "ball";
-    ball.asset = sixNodes();
+    ball.asset = std::make_shared<const GrainAsset>(lsdem::test::sixNodeAsset(2.0));
     ball.body.mass = 3.3e-8;
     ball.body.principalInertia = Vec3::Constant(1.3e-8);
     w.grains.push_back(ball);
@@ -80,12 +55,12 @@ World ballInTubes()
     floor.plane.point = Vec3(0, 0, -2);
     w.boundaries.push_back(floor);
 
-    Membrane tube = makeTubeMembrane(Vec3(0, 0, -2), Vec3::UnitZ(), 0.99, 4.0, 12, 4, latex());
+    Membrane tube = makeTubeMembrane(Vec3(0, 0, -2), Vec3::UnitZ(), 0.99, 4.0, 12, 4, lsdem::test::latexRubber());
     tube.name = "tube";
     tube.pressure = 0.05;
     for (size_t v = 0; v < 12; ++v) tube.heldBy[v] = 0;
     w.membranes.push_back(tube);
-    Membrane other = makeTubeMembrane(Vec3(10, 0, -2), Vec3::UnitZ(), 0.5, 1.0, 6, 2, latex());
+    Membrane other = makeTubeMembrane(Vec3(10, 0, -2), Vec3::UnitZ(), 0.5, 1.0, 6, 2, lsdem::test::latexRubber());
     other.name = "other tube";
     w.membranes.push_back(other);
     return w;

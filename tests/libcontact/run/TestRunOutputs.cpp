@@ -7,6 +7,7 @@
 #include "lsdem/simulation/Micromechanics.h"
 
 #include "support/TestSupport.h"
+#include "support/TestAssets.h"
 
 #include <gtest/gtest.h>
 
@@ -20,22 +21,6 @@ using namespace lsdem;
 
 namespace {
 
-/// Six nodes on the axes of a unit ball: enough for a plane to press on (no level set needed).
-std::shared_ptr<const GrainAsset> sixNodes()
-{
-    auto a = std::make_shared<GrainAsset>();
-    for (int axis = 0; axis < 3; ++axis)
-        for (double s : {1.0, -1.0}) {
-            Vec3 p = Vec3::Zero();
-            p[axis] = s;
-            a->nodes.positions.push_back(p);
-            a->nodes.normals.push_back(p);
-            a->nodes.areas.push_back(2.0);
-        }
-    a->boundingRadius = 1.0;
-    return a;
-}
-
 /// One free grain pressed ~0.014 into a floor (by one node) under gravity, a moving side wall
 /// that does not touch it, and a second grain fixed far away; numbers with many digits.
 World smallWorld()
@@ -47,7 +32,7 @@ World smallWorld()
     m.normalStiffness = 1000.0;
     w.models = {m};
     w.gravity = Vec3(0, 0, -9.81);
-    const auto asset = sixNodes();
+    const auto asset = std::make_shared<const GrainAsset>(lsdem::test::sixNodeAsset(2.0));
     Grain ball;
     ball.name = "ball";
     ball.asset = asset;

@@ -7,6 +7,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/NodeShape.h"
 #include "lsdem/core/Constants.h"
+#include "support/TestAssets.h"
 
 #include <gtest/gtest.h>
 
@@ -18,23 +19,6 @@
 using namespace lsdem;
 
 namespace {
-
-/// A grain of six nodes on the axes at distance 1 (areas 0.5 each), no level set: enough for
-/// planes and spheres, which only look at nodes.
-GrainAsset sixNodes()
-{
-    GrainAsset a;
-    for (int axis = 0; axis < 3; ++axis)
-        for (double s : {1.0, -1.0}) {
-            Vec3 p = Vec3::Zero();
-            p[axis] = s;
-            a.nodes.positions.push_back(p);
-            a.nodes.normals.push_back(p);
-            a.nodes.areas.push_back(0.5);
-        }
-    a.boundingRadius = 1.0;
-    return a;
-}
 
 /// A 2 × 2 × 1 box obstacle baked at coarse voxels, with its nodes (for the level-set shape).
 const GrainAsset& boxAsset()
@@ -135,7 +119,7 @@ TEST(Boundary, MayTouchASphereAndAnObstacleByTheirBoundingSpheres)
 // behind.
 TEST(Boundary, PlaneContactsAreTheNodesBehindIt)
 {
-    const GrainAsset a = sixNodes();
+    const GrainAsset a = lsdem::test::sixNodeAsset(0.5);
     RigidPose pose;
     pose.position = Vec3(0.2, 0.0, 0.6);
     const Vec3 n = Vec3(0, 0.6, 0.8);
@@ -175,7 +159,7 @@ TEST(Boundary, PlaneContactsAreTheNodesBehindIt)
 // out), point halfway to the sphere's surface; the rotation of the grain is applied to nodes.
 TEST(Boundary, SphereContactsAreTheNodesInsideIt)
 {
-    const GrainAsset a = sixNodes();
+    const GrainAsset a = lsdem::test::sixNodeAsset(0.5);
     RigidPose pose;
     pose.orientation = Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()));  // x node -> +y
     Boundary s;
@@ -242,7 +226,7 @@ TEST(Boundary, LevelSetContactsAreTheNarrowPhaseAtTheMovedPose)
     l.pose.position = Vec3(0, 0, -1.0);
     l.pose.orientation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX()));
     l.displacement = Vec3(0.1, 0, 0.2);
-    const GrainAsset grain = sixNodes();
+    const GrainAsset grain = lsdem::test::sixNodeAsset(0.5);
     // The grain's -z node 0.2 under the top face of the turned box, whose centre is now
     // (0.1, 0, -0.8); its other nodes are clear of the box.
     RigidPose pose;
@@ -260,7 +244,7 @@ TEST(Boundary, LevelSetContactsAreTheNarrowPhaseAtTheMovedPose)
     EXPECT_EQ(contacts[0].normal, direct[0].normal);
     // With the grain's nodes near it remembered (a simulation's slot keeps them; they need
     // the nodes in blocks), the same contact, and the list is made for the next call.
-    GrainAsset grouped = sixNodes();
+    GrainAsset grouped = lsdem::test::sixNodeAsset(0.5);
     grouped.nodeBlocks = groupNodesIntoBlocks(grouped.nodes);
     CandidateBlocks remembered;
     std::vector<NodeContact> withList;
@@ -309,7 +293,7 @@ TEST(Boundary, MayTouchACylinderFromInside)
 // normal pointing back to the axis, the point halfway back to the wall.
 TEST(Boundary, CylinderContactsAreTheNodesOutsideIt)
 {
-    const GrainAsset a = sixNodes();
+    const GrainAsset a = lsdem::test::sixNodeAsset(0.5);
     Boundary c;
     c.shape = BoundaryShape::Cylinder;
     c.axis = Vec3(0, 0.6, 0.8);  // in the y–z plane
@@ -469,7 +453,7 @@ TEST(Boundary, MayTouchAnOrificeOnlyNearThePlateOutsideTheHole)
     EXPECT_FALSE(o.mayTouch(Vec3(10, 0, 2.2), 1.0));
     EXPECT_EQ(o.referencePoint(), Vec3(0, 0, 0));
 
-    const GrainAsset a = sixNodes();
+    const GrainAsset a = lsdem::test::sixNodeAsset(0.5);
     RigidPose pose;
     pose.position = Vec3(0.5, 0, 0);
     std::vector<NodeContact> contacts;

@@ -4,6 +4,7 @@
 // differences of the energy, computed separately), the pressure's forces as −p times the
 // gradient of the enclosed volume, and tension-field wrinkling. Units: mm, N, s, tonne.
 #include "lsdem/simulation/Membrane.h"
+#include "support/TestAssets.h"
 
 #include "lsdem/core/Constants.h"
 #include "lsdem/core/Error.h"
@@ -17,17 +18,6 @@
 using namespace lsdem;
 
 namespace {
-
-/// Latex as in a triaxial cell: E 1.4 MPa, 0.3 mm thick; ν and the density as given.
-MembraneMaterial latex(double poisson, double density = 1e-6)
-{
-    MembraneMaterial r;
-    r.youngs = 1.4;
-    r.poisson = poisson;
-    r.thickness = 0.3;
-    r.density = density;
-    return r;
-}
 
 /// Relax @a m to rest under its own forces plus @a loads (dead loads per vertex, if given),
 /// velocities damped each step.
@@ -65,7 +55,7 @@ double height(const Membrane& m)
 Membrane octahedron()
 {
     Membrane m;
-    m.rubber = latex(0.3);
+    m.rubber = lsdem::test::latexRubber(0.3);
     m.positions = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
                    Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
     const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
@@ -100,7 +90,7 @@ TEST(Membrane, InflatedTubeGrowsAsTheThinWalledClosedForm)
     for (const double nu : {0.0, 0.3, 0.45}) {
         const double r0 = 10.0, h0 = 20.0;
         const int n = 48, rings = 12;
-        Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), r0, h0, n, rings, latex(nu));
+        Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), r0, h0, n, rings, lsdem::test::latexRubber(nu));
         const double E = m.rubber.youngs, t = m.rubber.thickness;
         const double p = 1e-3 * E * t / r0;  // a hoop strain of about 1e-3
         m.pressure = -p;                     // pushing out
@@ -141,7 +131,7 @@ TEST(Membrane, EnclosedVolumeOfATubeIsItsPrism)
     const double r = 3.0, h = 7.0;
     const int n = 20;
     const Vec3 axis = Vec3(1, 2, -0.5).normalized();
-    Membrane m = makeTubeMembrane(Vec3(4, -2, 9), axis, r, h, n, 5, latex(0.3));
+    Membrane m = makeTubeMembrane(Vec3(4, -2, 9), axis, r, h, n, 5, lsdem::test::latexRubber(0.3));
     const double prism = 0.5 * n * r * r * std::sin(2.0 * kPi / n) * h;
     EXPECT_NEAR(enclosedVolume(m) / prism, 1.0, 1e-12);
     EXPECT_EQ(m.rimCount, 2);
@@ -157,7 +147,7 @@ TEST(Membrane, EnclosedVolumeOfATubeIsItsPrism)
 // or factor in any state.
 TEST(Membrane, RubberForcesAreTheGradientOfItsEnergy)
 {
-    Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), 5.0, 6.0, 12, 4, latex(0.4));
+    Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), 5.0, 6.0, 12, 4, lsdem::test::latexRubber(0.4));
     std::mt19937 random(7);
     std::uniform_real_distribution<double> jitter(-0.05, 0.05);
     for (Vec3& x : m.positions) {
@@ -224,7 +214,7 @@ TEST(Membrane, PressureForcesAreMinusPTimesTheVolumeGradient)
 TEST(Membrane, CompressedRubberWrinklesInsteadOfPushing)
 {
     const double r = 5.0, h = 4.0, nu = 0.45;
-    Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), r, h, 16, 4, latex(nu));
+    Membrane m = makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), r, h, 16, 4, lsdem::test::latexRubber(nu));
     for (Vec3& x : m.positions) x.z() *= 0.95;
     computeMembraneForces(m);
     // (Round-off leaves the hoop's strain at ±1e-17, not 0.)
@@ -251,15 +241,15 @@ TEST(Membrane, RefusesBadRubber)
     auto tube = [](const MembraneMaterial& r) {
         return makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), 1.0, 1.0, 8, 2, r);
     };
-    MembraneMaterial r = latex(0.3);
+    MembraneMaterial r = lsdem::test::latexRubber(0.3);
     r.youngs = 0.0;
     EXPECT_THROW(tube(r), Error);
-    r = latex(0.5);
+    r = lsdem::test::latexRubber(0.5);
     EXPECT_THROW(tube(r), Error);
-    r = latex(0.3);
+    r = lsdem::test::latexRubber(0.3);
     r.thickness = std::nan("");
     EXPECT_THROW(tube(r), Error);
-    r = latex(0.3, -1.0);
+    r = lsdem::test::latexRubber(0.3, -1.0);
     EXPECT_THROW(tube(r), Error);
-    EXPECT_THROW(makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), 0.0, 1.0, 8, 2, latex(0.3)), Error);
+    EXPECT_THROW(makeTubeMembrane(Vec3::Zero(), Vec3::UnitZ(), 0.0, 1.0, 8, 2, lsdem::test::latexRubber(0.3)), Error);
 }

@@ -9,6 +9,7 @@
 #include "lsdem/core/Error.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/mesh/TriangleMesh.h"
+#include "support/TestAssets.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -34,16 +35,6 @@ std::shared_ptr<const GrainAsset> sphere()
             bakeAnalytic(AnalyticShape::sphere(5.0), o, warnings));
     }();
     return asset;
-}
-
-MembraneMaterial latex()
-{
-    MembraneMaterial r;
-    r.youngs = 1.4;
-    r.poisson = 0.45;
-    r.thickness = 0.3;
-    r.density = 1e-6;  // a thousand times rubber's: mass scaling, as a quasi-static test uses
-    return r;
 }
 
 /// One steel sphere (R 5) at @a position moving at @a velocity, adapted law (kn* 1e3, no
@@ -85,7 +76,7 @@ Membrane heldSheet()
 {
     Membrane m;
     m.name = "sheet";
-    m.rubber = latex();
+    m.rubber = lsdem::test::latexRubber();
     const int n = 11;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) m.positions.emplace_back(-10.0 + 2 * i, -10.0 + 2 * j, 0.0);
@@ -121,7 +112,7 @@ Vec3 momentum(const World& w)
 World sphereIntoTube()
 {
     World w = oneSphere(Vec3(14.9, 0.3, 1.1), Vec3(200.0, 0, 0), -1000.0);
-    Membrane tube = makeTubeMembrane(Vec3(0, 0, -20), Vec3::UnitZ(), 20.0, 40.0, 40, 10, latex());
+    Membrane tube = makeTubeMembrane(Vec3(0, 0, -20), Vec3::UnitZ(), 20.0, 40.0, 40, 10, lsdem::test::latexRubber());
     tube.name = "tube";
     w.membranes.push_back(tube);
     return w;
@@ -209,7 +200,7 @@ TEST(MembraneContact, PressedRoundARigidCylinderItPushesWithThePressureOverTheAr
     const int segments = 40;
     Membrane tube = makeTubeMembrane(Vec3(0, 0, -0.5 * height), Vec3::UnitZ(),
                                      (radius + 0.002 + 0.5 * gap) / std::cos(kPi / segments),
-                                     height, segments, 10, latex());
+                                     height, segments, 10, lsdem::test::latexRubber());
     tube.name = "tube";
     tube.pressure = pressure;
     tube.drag = 0.05;  // about critical for a vertex on the cylinder's contact stiffness
@@ -331,7 +322,7 @@ TEST(MembraneContact, DragLimitsTheStepAsASpringDoes)
 {
     auto shaken = [] {
         World w = oneSphere(Vec3(0, 0, 100), Vec3::Zero(), -1000.0);
-        Membrane tube = makeTubeMembrane(Vec3(0, 0, -20), Vec3::UnitZ(), 20.0, 40.0, 40, 10, latex());
+        Membrane tube = makeTubeMembrane(Vec3(0, 0, -20), Vec3::UnitZ(), 20.0, 40.0, 40, 10, lsdem::test::latexRubber());
         tube.name = "tube";
         tube.drag = 0.3;
         for (size_t i = 0; i < tube.velocities.size(); ++i)

@@ -137,7 +137,7 @@ struct BoundarySpec
 
 /// [[membranes]]: a flexible membrane (Membrane.h), for now a tube: the side of a cylinder
 /// as placed, its vertices at rest. Grains meet it through the law between their material and
-/// its @a material. Its rims are held by the plane boundaries named in @a holdNames, each rim
+/// its @a material. Its rims are held by the plane boundaries @a hold, each rim
 /// by the nearest of them (a triaxial sample's membrane sealed to its platens).
 struct MembraneSpec
 {
@@ -155,8 +155,7 @@ struct MembraneSpec
     /// Its hoop stretch as placed (>= 1): the rubber's unstretched radius is radius/prestretch,
     /// so it is taut round what it wraps from the start (a slack membrane has no stiffness).
     double prestretch = 1.0;
-    std::vector<std::string> holdNames;
-    std::vector<int> hold;  ///< the boundaries of holdNames, resolved once all are read
+    std::vector<int> hold;  ///< indices into Scene::boundaries (a file names them: `hold`)
     std::string where;
 };
 

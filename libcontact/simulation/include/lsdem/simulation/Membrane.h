@@ -110,6 +110,9 @@ Membrane makeTubeMembrane(const Vec3& base, const Vec3& axis, double radius, dou
 /// @a m.rubberOmegaSquared. @a pressureForces, if given, receives the pressure's part alone.
 void computeMembraneForces(Membrane& m, std::vector<Vec3>* pressureForces = nullptr);
 
+/// The centroid of each of its rims' vertices, by rim (Membrane::rimOfEdge).
+std::vector<Vec3> rimCentroids(const Membrane& m);
+
 /// The volume the membrane encloses, its rims closed by flat fans to their centroids (the
 /// platens a tube's ends are pressed against), by the divergence theorem: positive when its
 /// triangles face outward.

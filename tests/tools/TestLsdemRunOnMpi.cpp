@@ -249,6 +249,55 @@ velocity = [-100, 200, 0]
     return scene;
 }
 
+/// 64 spheres (a jittered 4 × 4 × 4 lattice, some overlapping at the start) in a periodic cell
+/// of 22.4 mm: z compressed at 8 /s, x and y servo-held at 0.02 MPa, with friction, for
+/// @a endTime seconds. Grains touch the images of grains across every face, leave through
+/// faces, and the cell's stress steers it.
+std::string periodicCell(double endTime)
+{
+    std::ostringstream s;
+    s << R"(
+[assets.ball]
+shape = "sphere"
+radius = 2.5
+voxel = 0.25
+nodes = 300
+
+[materials.rock]
+density = 2.65e-9
+
+[[contacts]]
+materials = ["rock", "rock"]
+normal_stiffness = 1e3
+shear_stiffness = 5e2
+friction = 0.5
+restitution = 0.3
+
+[[lattices]]
+asset = "ball"
+material = "rock"
+origin = [2.8, 2.8, 2.8]
+count = [4, 4, 4]
+spacing = [5.6, 5.6, 5.6]
+jitter = 0.5
+seed = 5
+
+[simulation]
+time_step = "auto"
+end_time = )" << endTime << R"(
+periodic_cell = [22.4, 22.4, 22.4]
+periodic_stress = [0.02, 0.02, 0]
+periodic_max_strain_rate = [8, 8, 0]
+periodic_strain_rate = [0, 0, -8]
+
+[output]
+history_period = 1e-3
+vtk_period = 1e-2
+micromechanics = true
+)";
+    return s.str();
+}
+
 std::string writeScene(const ScratchDir& dir, const std::string& name, const std::string& text)
 {
     const std::string path = dir.file(name);
@@ -658,17 +707,43 @@ TEST(LsdemRunOnMpi, FailuresEndTheJobWithOneMessage)
     EXPECT_NE(one.output.find("cannot create the output folder"), std::string::npos)
         << one.output;
 
-    // A periodic cell is not split by space yet: refused on two ranks, before any output.
-    std::string periodic = column(2, 0.01);
-    periodic.replace(periodic.find("[output]"), 8, "periodic_cell = [12, 12, 0]\n\n[output]");
-    const std::string cell = writeScene(dir, "cell.toml", periodic);
-    const CommandResult split = runCommand(onRanks(2, "-q " + cell + " --out " + dir.file("cell")));
-    EXPECT_EQ(split.exitCode, 1) << split.output;
-    EXPECT_EQ(count(split.output, "lsdem-run: error:"), 1u) << split.output;
-    EXPECT_NE(split.output.find("a periodic cell runs on one process"), std::string::npos)
-        << split.output;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("cell")));
+}
 
+// A periodic cell split by space: a rank holds as ghosts the grains whose images across a face
+// reach its sub-domain, and the cell's stress (which steers it) is summed in one process's
+// order. On 2 ranks of 2 threads and on 3, every file is the single process's, byte for byte
+// (cell.csv, micromechanics.csv, grains.csv, the checkpoint); and stopped on 2 ranks, continued
+// on 3, too.
+TEST(LsdemRunOnMpi, PeriodicCellGivesTheSerialBytesOnTwoAndThreeRanks)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    const std::string scene = writeScene(dir, "cell.toml", periodicCell(0.03));
+    const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    // A packing, not a gas: the cell compressed along z and the grains touching (measured:
+    // 17.6 mm, 118 contacts at the end), the servo moving x and y.
+    EXPECT_LT(lastValue(dir.file("serial/cell.csv"), "size_z"), 0.85 * 22.4);
+    EXPECT_GT(lastValue(dir.file("serial/micromechanics.csv"), "grain_contacts"), 60.0);
+    EXPECT_GT(lastValue(dir.file("serial/cell.csv"), "stress_x"), 0.0);
+    for (int ranks : {2, 3}) {
+        const int threads = ranks == 2 ? 2 : 1;
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(onRanks(
+            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
+        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
+        EXPECT_GT(numberBefore(r.output, "grains migrated in") + numberBefore(r.output, "out, "), 0)
+            << r.output;
+    }
+    const CommandResult first =
+        runCommand(onRanks(2, "-q " + scene + " --stop-at-step 6000 --out " + dir.file("two")));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    const CommandResult second =
+        runCommand(onRanks(3, "-q --restart " + dir.file("two/checkpoint.lsdem")));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    expectSameFiles(dir.file("serial"), dir.file("two"), "2 ranks, then 3");
 }
 
 // Micromechanics under MPI: rank 0 sums the whole simulation in one process's order, so

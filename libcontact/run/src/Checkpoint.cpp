@@ -34,7 +34,8 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 /// 8: the record ends with each membrane's history rows, and the state with each membrane's
 ///    (its vertices' positions, velocities and forces, its pressure and energies). An earlier
 ///    file has none, and restarts a world without membranes only.
-const uint32_t kVersion = 8;
+/// 9: the record ends with the periodic cell's history rows (none in an earlier file's).
+const uint32_t kVersion = 9;
 const uint32_t kOldestVersion = 1;
 
 using namespace checkpointbytes;
@@ -56,6 +57,8 @@ void writeRecord(Writer& w, const RunRecord& r)
         w.value<uint64_t>(rows.size());
         for (const auto& row : rows) w.numbers(row);
     }
+    w.value<uint64_t>(r.cellRows.size());
+    for (const auto& row : r.cellRows) w.numbers(row);
 }
 
 /// A membrane's state: what the scene does not give (its shape as stretched and moving, its
@@ -102,6 +105,10 @@ RunRecord readRecord(Reader& r, uint32_t version)
             rows.resize(r.count(rowBytes));
             for (auto& row : rows) row = r.numbers();
         }
+    }
+    if (version >= 9) {
+        rec.cellRows.resize(r.count(rowBytes));
+        for (auto& row : rec.cellRows) row = r.numbers();
     }
     return rec;
 }

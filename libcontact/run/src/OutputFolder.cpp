@@ -28,7 +28,7 @@ bool endsWith(const std::string& s, const std::string& end)
 bool isRunOutputName(const std::string& name)
 {
     if (name == kEnergyFileName || name == kGrainsFileName || name == kCheckpointFileName ||
-        name == kMicromechanicsFileName ||
+        name == kMicromechanicsFileName || name == kCellFileName ||
         name == kFramesBaseName + ".pvd" || isBoundaryHistoryFileName(name) ||
         isMembraneHistoryFileName(name))
         return true;

@@ -28,6 +28,9 @@ const std::string kServoBoundaryHeader =
 const std::string kMembraneHeader =
     "step,time,pressure,volume,strain_energy,kinetic,grain_fx,grain_fy,grain_fz,"
     "grain_force_magnitude_sum";
+const std::string kCellHeader =
+    "step,time,size_x,size_y,size_z,strain_rate_x,strain_rate_y,strain_rate_z,stress_x,"
+    "stress_y,stress_z";
 const std::string kGrainsHeader = "name,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz,moved";
 const std::string kMicromechanicsHeader =
     "step,time,mxx,mxy,mxz,myx,myy,myz,mzx,mzy,mzz,fxx,fyy,fzz,fxy,fxz,fyz,fabric_anisotropy,"
@@ -114,6 +117,12 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record)
     record.membraneRows.resize(w.membranes.size());
     for (size_t k = 0; k < w.membranes.size(); ++k)
         record.membraneRows[k].push_back(membraneRow(w, w.membranes[k]));
+    if (w.periodic.active()) {
+        const PeriodicCell& c = w.periodic;
+        record.cellRows.push_back({static_cast<double>(w.step), w.time, c.size.x(), c.size.y(),
+                                   c.size.z(), c.strainRate.x(), c.strainRate.y(),
+                                   c.strainRate.z(), c.stress.x(), c.stress.y(), c.stress.z()});
+    }
     if (record.micromechanics) record.micromechanicsRows.push_back(micromechanicsRow(sim));
 }
 
@@ -164,7 +173,7 @@ bool isRunTextOutput(const std::string& path)
     if (!std::getline(in, first)) return false;
     return first == kEnergyHeader || first == kGrainsHeader || first == kBoundaryHeader ||
            first == kServoBoundaryHeader || first == kMicromechanicsHeader ||
-           first == kMembraneHeader;
+           first == kMembraneHeader || first == kCellHeader;
 }
 
 bool isBoundaryHistoryFileName(const std::string& fileName)
@@ -192,6 +201,9 @@ void writeHistoryFiles(const std::string& directory, const World& world,
     for (size_t k = 0; k < world.membranes.size() && k < record.membraneRows.size(); ++k)
         writeTextFileAtomically((dir / membraneHistoryFileName(world.membranes[k].name)).string(),
                                 rowsToCsv(kMembraneHeader, record.membraneRows[k]));
+    if (world.periodic.active())
+        writeTextFileAtomically((dir / kCellFileName).string(),
+                                rowsToCsv(kCellHeader, record.cellRows));
     if (record.micromechanics)
         writeTextFileAtomically((dir / kMicromechanicsFileName).string(),
                                 rowsToCsv(kMicromechanicsHeader, record.micromechanicsRows));

@@ -109,9 +109,6 @@ double Run::makeSimulation(const RunOptions& options)
 {
     // One rank evaluates every contact: nothing to split, nothing to exchange.
     if (options.ranks && options.ranks->ranks() > 1) {
-        if (mScene.periodicCell.maxCoeff() > 0.0)
-            throw Error(mScene.path, "a periodic cell runs on one process (not yet under mpirun)",
-                        "run it without mpirun (lsdem-run --threads N shares the work)");
         mDecomposition = std::make_unique<GhostDecomposition>(*options.ranks);
     }
     std::vector<std::string> warnings;

@@ -124,21 +124,8 @@ std::vector<Image> imagesNear(const PeriodicCell& cell, const std::vector<Vec3>&
 {
     std::vector<Image> images;
     for (size_t i = 0; i < centers.size(); ++i)
-        for (int sx = -1; sx <= 1; ++sx)
-            for (int sy = -1; sy <= 1; ++sy)
-                for (int sz = -1; sz <= 1; ++sz) {
-                    const Vec3 steps(sx, sy, sz);
-                    if (steps.isZero()) continue;
-                    bool near = true;
-                    for (int a = 0; a < 3 && near; ++a) {
-                        if (steps[a] == 0.0) continue;
-                        if (!cell.periodic(a)) near = false;
-                        const double x = centers[i][a] + steps[a] * cell.size[a];
-                        near = near && x >= cell.origin[a] - reach &&
-                               x <= cell.origin[a] + cell.size[a] + reach;
-                    }
-                    if (near) images.push_back({int(i), steps});
-                }
+        for (const Vec3& periods : cell.imagePeriodsNear(centers[i], reach))
+            images.push_back({int(i), periods});
     return images;
 }
 

@@ -56,9 +56,6 @@ int GhostDecomposition::localOf(int id) const
 
 void GhostDecomposition::distribute(World& world, double skin)
 {
-    // (Its sub-domains do not wrap around, and ghosts are not yet sent as images.)
-    if (world.periodic.active())
-        throw std::invalid_argument("GhostDecomposition: a periodic cell is not split by space");
     const size_t n = world.grains.size();
     mGlobalCount = static_cast<int>(n);
     mAssetIndex.clear();
@@ -143,16 +140,28 @@ void GhostDecomposition::route(const World& world, std::vector<int>& newOwner,
     const size_t n = world.grains.size();
     newOwner.assign(n, -1);
     ghostRanks.assign(n, {});
+    const PeriodicCell& cell = world.periodic;
     std::vector<int> near;
     for (size_t i = 0; i < n; ++i) {
         if (!mOwned[i]) continue;
         const Grain& g = world.grains[i];
         const Vec3& c = g.body.pose.position;
+        const double reach = g.asset->boundingRadius + mReach;
         newOwner[i] = mDomains.partOf(c);
-        // Every rank whose sub-domain comes within this grain's reach of any grain there.
-        mDomains.partsNear(c, g.asset->boundingRadius + mReach, near);
-        for (int r : near)
-            if (r != newOwner[i]) ghostRanks[i].push_back(r);
+        // Every rank whose sub-domain comes within this grain's reach of any grain there; in
+        // a periodic cell, of the grain or of one of its images across the faces near it (a
+        // rank's own contact list makes the images of the grains it holds).
+        std::vector<int>& ranks = ghostRanks[i];
+        std::vector<Vec3> shifts{Vec3::Zero()};
+        for (const Vec3& periods : cell.imagePeriodsNear(c, reach))
+            shifts.push_back(cell.imageShift(periods));
+        for (const Vec3& shift : shifts) {
+            mDomains.partsNear(c + shift, reach, near);
+            for (int r : near)
+                if (r != newOwner[i]) ranks.push_back(r);
+        }
+        std::sort(ranks.begin(), ranks.end());
+        ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
     }
 }
 

@@ -36,24 +36,60 @@ void Simulation::measureCell()
     // image moves away at ε̇ ∘ (branch vector); a grain on a boundary moves at the affine
     // velocity of its place. And the Love–Weber moment of the same contacts along each axis.
     // In list order (the same sums on any thread count).
+    // Split by space, each contact's terms come from the rank owning its first grain, and are
+    // added in the one-process order: pairs by their grains' global indices, then boundary
+    // contacts by grain and boundary (key[2]: twice the boundary, +1 for the Love–Weber part).
     Vec3 moment = Vec3::Zero(), loveWeber = Vec3::Zero();
+    std::vector<OrderedTerm> terms;
+    const auto keep = [&](long long kind, long long first, long long second, const Vec3& term) {
+        OrderedTerm t;
+        t.key[0] = kind;
+        t.key[1] = first;
+        t.key[2] = second;
+        for (int c = 0; c < 3; ++c) t.value[c] = term[c];
+        terms.push_back(t);
+    };
+    const std::vector<int>* ids = mGhosts ? &mGhosts->globalIds() : nullptr;
     const std::vector<ContactSlot>& slots = mContacts.slots();
     for (size_t k = 0; k < slots.size(); ++k) {
         const ContactSlot& s = slots[k];
-        if (s.result.contactNodes <= 0) continue;
+        if (s.result.contactNodes <= 0 || !integratesGrain(size_t(s.first))) continue;
         const Vec3& f = s.result.forceOnFirst;
         const Vec3& first = mWorld.grains[size_t(s.first)].body.pose.position;
         if (s.boundary < 0) {
             const Vec3 branch = mWorld.grains[size_t(s.second)].body.pose.position +
                                 cell.imageShift(s.periods) - first;
             const Vec3 term = branch.cwiseProduct(f);
+            if (ids) {
+                keep(0, (*ids)[size_t(s.first)], (*ids)[size_t(s.second)], term);
+                continue;
+            }
             moment += term;
             loveWeber += term;
         } else {
-            moment -= (first - cell.origin).cwiseProduct(f);
-            loveWeber += (s.result.centre - first).cwiseProduct(f);
+            const Vec3 pull = -(first - cell.origin).cwiseProduct(f);
+            const Vec3 lever = (s.result.centre - first).cwiseProduct(f);
+            if (ids) {
+                keep(1, (*ids)[size_t(s.first)], 2LL * s.boundary, pull);
+                keep(1, (*ids)[size_t(s.first)], 2LL * s.boundary + 1, lever);
+                continue;
+            }
+            moment += pull;
+            loveWeber += lever;
         }
     }
+    if (mGhosts)
+        for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
+            const Vec3 term(t.value[0], t.value[1], t.value[2]);
+            if (t.key[0] == 0) {
+                moment += term;
+                loveWeber += term;
+            } else if (t.key[2] % 2 == 0) {
+                moment += term;
+            } else {
+                loveWeber += term;
+            }
+        }
     mWorld.energy.cellMoment = moment;
     // (A stress needs the sample's volume: a cell periodic along all three axes.)
     cell.stress = cell.volume() > 0.0 ? Vec3(-loveWeber / cell.volume()) : Vec3::Zero();

@@ -627,7 +627,8 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         // cell's four vectors after the energies and six numbers after each grain's torque): a
         // checkpoint saved with marker values there (seen nowhere else) loses them. Nor had it
         // membranes (format 8 put their rows' count after the micromechanics rows and their
-        // count after the boundaries, here after a marked dashpot).
+        // count after the boundaries, here after a marked dashpot), nor a cell's rows (format
+        // 9 put their count after the membranes' rows).
         World marked = steppedWorld(10);
         for (size_t i = 0; i < marked.grains.size(); ++i)
             marked.grains[i].dissipated = {1e5 + double(i), 2e5, 3e5};
@@ -656,7 +657,8 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         bytes.erase(cellAt, 12 * sizeof(double));  // its size, strain rate, stress, moment
         const size_t at = find(marker);
         ASSERT_NE(at, std::string::npos);
-        bytes.erase(at - 16, 32);  // the rows' count, the row's count, the row, no membranes' rows
+        // The rows' count, the row's count, the row, no membranes' rows, no cell rows.
+        bytes.erase(at - 16, 40);
         const uint32_t four = 4;
         std::memcpy(bytes.data() + 8, &four, sizeof four);  // after the magic
         const std::string older = dir.file("format4.lsdem");

@@ -4,7 +4,8 @@
 ///        each boundary; for a servo wall also the current point of its plane, its area, stress,
 ///        target stress and speed along its normal), `membrane_<name>.csv` (each membrane's
 ///        pressure, enclosed volume, energies and the grains' push on it), `grains.csv` (every
-///        grain's final state and displacement) and, when asked, `micromechanics.csv`.
+///        grain's final state and displacement), in a periodic cell `cell.csv` (its size,
+///        strain rates and stress) and, when asked, `micromechanics.csv`.
 ///        Numbers are printed with 17 significant digits so they read back exactly.
 #pragma once
 
@@ -20,11 +21,13 @@ namespace lsdem {
 inline const std::string kEnergyFileName = "energy.csv";
 inline const std::string kGrainsFileName = "grains.csv";
 inline const std::string kMicromechanicsFileName = "micromechanics.csv";
+inline const std::string kCellFileName = "cell.csv";
 
 /// Append the rows of the current state to @a record (one energy row, one row per boundary,
 /// one row per membrane: step, time, pressure, enclosed volume, strain energy, kinetic energy,
 /// the sum of the grains' push on its vertices (x, y, z) and the sum of that push's magnitudes,
-/// and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
+/// in a periodic cell one row of its size, strain rates and stress along x, y, z (the stress
+/// is measured only while the cell deforms: zero in a fixed cell), and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
 /// nine entries row by row, the fabric's six, its anisotropy, the contact and grain counts and
 /// the mechanical coordination number).
 /// Collective when the simulation is split by space (its energies and micromechanics are sums
@@ -35,8 +38,8 @@ void recordHistoryRow(const Simulation& sim, RunRecord& record);
 /// split by space: computed on rank 0 from the whole simulation, the same on every rank.
 std::vector<double> micromechanicsRow(const Simulation& sim);
 
-/// Write energy.csv, boundary_<name>.csv, membrane_<name>.csv and (with record.micromechanics)
-/// micromechanics.csv in @a directory from @a record.
+/// Write energy.csv, boundary_<name>.csv, membrane_<name>.csv, (in a periodic cell) cell.csv
+/// and (with record.micromechanics) micromechanics.csv in @a directory from @a record.
 void writeHistoryFiles(const std::string& directory, const World& world,
                        const RunRecord& record);
 

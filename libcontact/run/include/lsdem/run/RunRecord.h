@@ -15,6 +15,8 @@ struct RunRecord
     std::vector<std::vector<std::vector<double>>> boundaryRows;  ///< per boundary
     /// Per membrane (kept in checkpoints from version 8, as the boundaries' are).
     std::vector<std::vector<std::vector<double>>> membraneRows;
+    /// A periodic cell's rows (kept in checkpoints from version 9).
+    std::vector<std::vector<double>> cellRows;
     std::vector<double> vtkFrameTimes;
     /// Whether each history row also records the micromechanics ([output] micromechanics).
     bool micromechanics = false;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace lsdem {
 
@@ -73,6 +74,30 @@ struct PeriodicCell
             const double error = (stress[a] - targetStress[a]) / (targetStress[a] * band);
             strainRate[a] = maxStrainRate[a] * std::clamp(error, -1.0, 1.0);
         }
+    }
+
+    /// The images of a point @a x that come within @a reach of the cell (its box widened by
+    /// @a reach): their periods, −1 or 1 along some periodic axes and 0 along the others (the
+    /// faces, edges and corners near @a x), the point itself not included.
+    std::vector<Vec3> imagePeriodsNear(const Vec3& x, double reach) const
+    {
+        std::vector<Vec3> images;
+        if (!active()) return images;
+        for (int sx = -1; sx <= 1; ++sx)
+            for (int sy = -1; sy <= 1; ++sy)
+                for (int sz = -1; sz <= 1; ++sz) {
+                    const Vec3 steps(sx, sy, sz);
+                    if (steps.isZero()) continue;
+                    bool near = true;
+                    for (int a = 0; a < 3 && near; ++a) {
+                        if (steps[a] == 0.0) continue;
+                        const double shifted = x[a] + steps[a] * size[a];
+                        near = periodic(a) && shifted >= origin[a] - reach &&
+                               shifted <= origin[a] + size[a] + reach;
+                    }
+                    if (near) images.push_back(steps);
+                }
+        return images;
     }
 
     /// The whole periods that bring @a x into [origin, origin + size) along each periodic axis

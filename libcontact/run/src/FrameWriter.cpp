@@ -13,7 +13,7 @@
 namespace lsdem {
 
 FrameWriter::FrameWriter(const std::string& dir, const World& world,
-                         const std::vector<RigidPose>* start)
+                         const std::vector<RigidPose>* start, double spacing)
     : mSeries(dir, kFramesBaseName), mMeasures(start != nullptr)
 {
     if (start) {
@@ -22,10 +22,11 @@ FrameWriter::FrameWriter(const std::string& dir, const World& world,
     }
     // Surfaces at about the node spacing: as fine as the contact sees them, and light enough
     // for many grains and frames (at the level set's own voxels a frame of 27 spheres of 100
-    // voxels across is 150 MB).
+    // voxels across is 150 MB); or at the scene's coarser frame_spacing for very many grains.
     for (const auto& asset : world.assets)
         if (!mSurfaces.count(asset.get()))
-            mSurfaces[asset.get()] = zeroIsosurface(*asset->levelSet, asset->spacing.mean);
+            mSurfaces[asset.get()] =
+                zeroIsosurface(*asset->levelSet, spacing > 0.0 ? spacing : asset->spacing.mean);
 }
 
 std::vector<VtkGrainMeasures> FrameWriter::grainMeasures(const Simulation& sim)

@@ -21,8 +21,9 @@ public:
     /// on rank 0: the other ranks give an empty list), every frame also carries each grain's
     /// micromechanics: displacement and rotation since then, D²min among the grains near it
     /// then (centres within 1.1 times the sum of their bounding radii), its stress.
+    /// Each grain's surface is drawn at @a spacing (0: its asset's node spacing).
     FrameWriter(const std::string& dir, const World& world,
-                const std::vector<RigidPose>* start = nullptr);
+                const std::vector<RigidPose>* start = nullptr, double spacing = 0.0);
     VtkSeries& series() { return mSeries; }
     /// Collective when @a sim is split by space (each rank writes its piece; the measures
     /// need the whole simulation).

@@ -181,8 +181,8 @@ void Run::planOutputs(double firstEvaluationSeconds)
     mCheckpointEvery = out.checkpointPeriod > 0.0 ? stepsPer(out.checkpointPeriod, dt) : 0;
     // Split over ranks, every rank writes its piece of each frame.
     if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
-        mFrames = std::make_unique<FrameWriter>(mOutDir, mSim->world(),
-                                                out.micromechanics ? &mStartPoses : nullptr);
+        mFrames = std::make_unique<FrameWriter>(
+            mOutDir, mSim->world(), out.micromechanics ? &mStartPoses : nullptr, out.frameSpacing);
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }
     mCheckpoint.record.micromechanics = out.micromechanics;

@@ -97,6 +97,12 @@ std::vector<SceneSetting> outputSettings()
         {"output", "contact_forces", "Whether the ParaView frames hold the contact force points.",
          NumberRange::Finite, SettingForm::Value, "true or false",
          LSDEM_SETTING_FIELD(bool, output.contactForces)},
+        {"output", "frame_spacing",
+         "The spacing of each grain's surface in the ParaView frames, length (0: its asset's "
+         "node spacing); coarser makes lighter frames of many grains.",
+         NumberRange::NonNegative, SettingForm::OmittedWhenZero,
+         "0 for the node spacing, or a length such as half a grain's radius",
+         LSDEM_SETTING_FIELD(double, output.frameSpacing)},
         {"output", "micromechanics",
          "Whether the run writes micromechanics.csv: at each history row the sample's "
          "Love–Weber stress moment, its contact fabric and mechanical coordination.",

@@ -181,6 +181,9 @@ struct OutputSpec
     double vtkPeriod = 0.0;         ///< time between ParaView frames (0: none)
     double checkpointPeriod = 0.0;  ///< time between checkpoints (0: only at the end / signal)
     bool contactForces = true;      ///< write contact force points in the VTK frames
+    /// The spacing of each grain's surface in the VTK frames, length (0: its asset's node
+    /// spacing). Coarser makes lighter frames of many grains.
+    double frameSpacing = 0.0;
     bool micromechanics = false;    ///< write micromechanics.csv at each history row
 };
 

@@ -99,6 +99,10 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
               "coarsest SDP)")
         ->type_name("L")
         ->group(sample);
+    addNumber(*mCommand, "--height-ratio", o.heightRatio,
+              "the starting lattice's height over its width (2: a tall sample)")
+        ->type_name("H")
+        ->group(sample);
     addNumber(*mCommand, "--density", o.density, "grain density, tonne/mm^3")->type_name("RHO")->group(sample);
     const std::string resolution = "Resolution";
     addNumber(*mCommand, "--vdp", o.vdp, "voxel size, mm (every run)")->type_name("V")->group(resolution);

@@ -101,6 +101,9 @@ void checkTriaxialFormulations(const TriaxialOptions& o)
 void checkTriaxialMaterial(const TriaxialOptions& o)
 {
     requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
+    if (!(o.heightRatio >= 0.25 && o.heightRatio <= 4.0))
+        throw Error("", "--height-ratio must be from 0.25 to 4, got " + roundedText(o.heightRatio),
+                    "1 is a cube, 2 a sample twice as tall as wide");
     requirePositive(o.knStar, "--kn-star", "e.g. 1e3 N/mm³");
     if (!(o.latticeSpacing >= 0.0 && std::isfinite(o.latticeSpacing)))
         throw Error("", "--lattice-spacing must be zero (derived) or positive, got " +

@@ -23,6 +23,9 @@ struct TriaxialOptions
     /// Spacing of the starting lattice, mm (0: 2.2 times the largest bounding radius at the
     /// coarsest SDP). Give it to extend a study with finer SDPs on the same lattice.
     double latticeSpacing = 0.0;
+    /// The starting lattice's height over its width (1: as near a cube as the count allows;
+    /// 2: a tall sample, room for a shear band across it).
+    double heightRatio = 1.0;
     /// Samples, one per seed: which mesh and orientation each grain gets (each >= 0, no two
     /// alike). Every formulation and SDP is run on each; the summary takes their means.
     std::vector<long long> seeds = {1};

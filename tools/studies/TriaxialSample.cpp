@@ -92,11 +92,12 @@ double triaxialCloudSpacing(const TriaxialAssets& assets)
 }
 
 TriaxialCloud makeTriaxialCloud(long long count, int meshCount, double spacing,
-                                std::uint64_t seed)
+                                std::uint64_t seed, double heightRatio)
 {
-    // Sites per side: a cube when the count is one, else the base a cube would have and as
-    // many layers as it takes.
-    const long long side = std::max(2LL, static_cast<long long>(std::floor(std::cbrt(double(count)) + 1e-9)));
+    // Sites per side: a cube (or a prism heightRatio times as tall) when the count is one, else
+    // the base it would have and as many layers as it takes.
+    const long long side = std::max(
+        2LL, static_cast<long long>(std::floor(std::cbrt(double(count) / heightRatio) + 1e-9)));
     const long long layers = (count + side * side - 1) / (side * side);
     std::mt19937_64 rng(seed);
     TriaxialCloud c;

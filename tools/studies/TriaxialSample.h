@@ -55,11 +55,11 @@ struct TriaxialCloud
     Vec3 boxMin = Vec3::Zero(), boxMax = Vec3::Zero();  ///< where the walls start
 };
 
-/// @a count grains on a lattice of @a spacing (at least the largest bounding diameter), as
-/// near a cube as the count allows, meshes and orientations drawn from @a seed; the walls
-/// half a spacing outside the outermost sites.
+/// @a count grains on a lattice of @a spacing (at least the largest bounding diameter), its
+/// height @a heightRatio times its width as near as the count allows (1: a cube), meshes and
+/// orientations drawn from @a seed; the walls half a spacing outside the outermost sites.
 TriaxialCloud makeTriaxialCloud(long long count, int meshCount, double spacing,
-                                std::uint64_t seed);
+                                std::uint64_t seed, double heightRatio = 1.0);
 
 /// The lattice spacing for @a assets: 10 % more than the largest bounding diameter (the
 /// margin covers the bounding radius changing a little with the node spacing).

@@ -24,7 +24,8 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
     const std::shared_ptr<const TriaxialAssets> assets =
         sharedTriaxialAssets(files, run.vdp, run.sdp);
     const TriaxialCloud cloud = makeTriaxialCloud(study.grains, int(files.size()), study.spacing,
-                                                  static_cast<std::uint64_t>(run.seed));
+                                                  static_cast<std::uint64_t>(run.seed),
+                                                  o.heightRatio);
     Scene s = triaxialScene(o, *assets, cloud, run.formulation, run.stiffness);
 
     fs::create_directories(fs::path(dir) / "assets");

@@ -239,7 +239,7 @@ PlannedRun planRun(const TriaxialOptions& o, const std::vector<std::string>& fil
                     "leave --lattice-spacing at 0 (derived), or give a larger one");
     const TriaxialCloud cloud =
         makeTriaxialCloud(o.grains, int(assets->assets.size()), spacing,
-                          static_cast<std::uint64_t>(seed));
+                          static_cast<std::uint64_t>(seed), o.heightRatio);
     const Scene scene = triaxialScene(o, *assets, cloud, f, kn);
     std::vector<std::string> warnings;
     plan.world = buildWorld(scene, warnings);

@@ -283,6 +283,10 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions membraneUndrained = membraneTrue;
     membraneUndrained.path = TriaxialPath::Undrained;
     EXPECT_EQ(message(membraneUndrained), "accepted");
+    TriaxialOptions flat = o;
+    flat.heightRatio = 0.1;
+    EXPECT_NE(message(flat).find("--height-ratio must be from 0.25 to 4, got 0.1"),
+              std::string::npos);
     TriaxialOptions missing = o;
     missing.meshes = {"/nonexistent/sand"};
     EXPECT_NE(message(missing).find("/nonexistent/sand"), std::string::npos);
@@ -402,6 +406,21 @@ TEST(TriaxialSample, MeshesOfOneStemGetDistinctNames)
 {
     EXPECT_EQ(triaxialAssetNames({"a/g.obj", "b/g.stl", "c/g_2.obj", "h.obj", "d/g.off"}),
               (std::vector<std::string>{"g", "g_3", "g_2", "h", "g_4"}));
+}
+
+// The starting lattice: a cube by default; with a height ratio, a prism that tall over its
+// width as near as whole sites allow (10,000 grains at 2: 17 × 17 sites, 35 layers).
+TEST(TriaxialSample, TheLatticeIsAsTallAsAsked)
+{
+    const TriaxialCloud cube = makeTriaxialCloud(1000, 3, 1.0, 1);
+    EXPECT_EQ(cube.boxMax, Vec3(10, 10, 10));
+    const TriaxialCloud tall = makeTriaxialCloud(10000, 3, 1.0, 1, 2.0);
+    EXPECT_EQ(tall.boxMax, Vec3(17, 17, 35));
+    EXPECT_EQ(tall.pose.size(), 10000u);
+    for (const RigidPose& p : tall.pose)
+        EXPECT_TRUE((p.position.array() > 0.0).all() && (p.position.array() < tall.boxMax.array()).all());
+    const TriaxialCloud squat = makeTriaxialCloud(1000, 3, 1.0, 1, 0.5);
+    EXPECT_EQ(squat.boxMax, Vec3(12, 12, 7));  // 12² · 7 = 1008 sites: 7 · 12 ≈ 0.58 of the width
 }
 
 // Found by review: a tiny strain rate or time step gave a step count beyond any integer (0

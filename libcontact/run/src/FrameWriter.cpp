@@ -13,8 +13,9 @@
 namespace lsdem {
 
 FrameWriter::FrameWriter(const std::string& dir, const World& world,
-                         const std::vector<RigidPose>* start, double spacing)
-    : mSeries(dir, kFramesBaseName), mMeasures(start != nullptr)
+                         const std::vector<RigidPose>* start, double spacing,
+                         const Vec3& startCellSize)
+    : mSeries(dir, kFramesBaseName), mMeasures(start != nullptr), mStartCellSize(startCellSize)
 {
     if (start) {
         mStart = *start;
@@ -42,12 +43,16 @@ std::vector<VtkGrainMeasures> FrameWriter::grainMeasures(const Simulation& sim)
         if (!mNeighboursFound) {  // touching, or nearly, at the start
             std::vector<double> radii;
             for (const Grain& g : whole.grains) radii.push_back(g.asset->boundingRadius);
-            mStartNeighbours = neighboursWithin(mStartPositions, radii, 1.1);
+            // (In a periodic cell, with the images across the faces: the cell as it started.)
+            PeriodicCell startCell = whole.periodic;
+            startCell.size = mStartCellSize;
+            mStartNeighbours = neighboursWithin(mStartPositions, radii, 1.1, startCell);
             mNeighboursFound = true;
         }
         std::vector<Vec3> now;  // (in a periodic cell, where the motion took them)
         for (const Grain& g : whole.grains) now.push_back(g.unwrappedPosition());
-        const std::vector<double> d2 = nonAffineDisplacement(mStartPositions, now, mStartNeighbours);
+        const std::vector<double> d2 = nonAffineDisplacement(mStartPositions, mStartCellSize, now,
+                                                             whole.periodic.size, mStartNeighbours);
         const std::vector<Mat3> stress = grainStresses(whole, records);
         for (size_t i = 0; i < whole.grains.size(); ++i) {
             const RigidPose& p = whole.grains[i].body.pose;

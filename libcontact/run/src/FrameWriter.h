@@ -3,6 +3,7 @@
 #pragma once
 
 #include "lsdem/run/VtkSeries.h"
+#include "lsdem/simulation/NonAffineMotion.h"
 #include "lsdem/simulation/Simulation.h"
 
 #include <map>
@@ -21,9 +22,12 @@ public:
     /// on rank 0: the other ranks give an empty list), every frame also carries each grain's
     /// micromechanics: displacement and rotation since then, D²min among the grains near it
     /// then (centres within 1.1 times the sum of their bounding radii), its stress.
-    /// Each grain's surface is drawn at @a spacing (0: its asset's node spacing).
+    /// Each grain's surface is drawn at @a spacing (0: its asset's node spacing). In a periodic
+    /// cell, its size at the start is @a startCellSize (D²min counts the grains' neighbours
+    /// across the faces, which the cell's deformation moves since).
     FrameWriter(const std::string& dir, const World& world,
-                const std::vector<RigidPose>* start = nullptr, double spacing = 0.0);
+                const std::vector<RigidPose>* start = nullptr, double spacing = 0.0,
+                const Vec3& startCellSize = Vec3::Zero());
     VtkSeries& series() { return mSeries; }
     /// Collective when @a sim is split by space (each rank writes its piece; the measures
     /// need the whole simulation).
@@ -40,7 +44,8 @@ private:
     std::vector<RigidPose> mStart;
     std::vector<Vec3> mStartPositions;
     /// For D²min, found at the first frame (from the whole simulation's bounding radii).
-    std::vector<std::vector<int>> mStartNeighbours;
+    Vec3 mStartCellSize = Vec3::Zero();
+    std::vector<std::vector<PeriodicNeighbour>> mStartNeighbours;
     bool mNeighboursFound = false;
 };
 

@@ -79,6 +79,7 @@ private:
     /// Each grain's pose at the run's start (the scene's): grains.csv's displacements, the
     /// frames' micromechanics.
     std::vector<RigidPose> mStartPoses;
+    Vec3 mStartCellSize = Vec3::Zero();  ///< a periodic cell's size at the start (its D²min's)
     /// Split over ranks: this rank's part of the grains; only rank 0 writes.
     std::unique_ptr<GhostDecomposition> mDecomposition;
     bool mWrites = true;

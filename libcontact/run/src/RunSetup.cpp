@@ -116,6 +116,7 @@ double Run::makeSimulation(const RunOptions& options)
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
     if (mWrites)  // for grains.csv's displacements and the frames' micromechanics
         for (const Grain& g : world.grains) mStartPoses.push_back(g.body.pose);
+    mStartCellSize = world.periodic.size;
 
     double dt = mScene.timeStep.fixed;
     if (mRestart) {
@@ -182,7 +183,8 @@ void Run::planOutputs(double firstEvaluationSeconds)
     // Split over ranks, every rank writes its piece of each frame.
     if (mVtkEvery > 0 && (mWrites || mDecomposition)) {
         mFrames = std::make_unique<FrameWriter>(
-            mOutDir, mSim->world(), out.micromechanics ? &mStartPoses : nullptr, out.frameSpacing);
+            mOutDir, mSim->world(), out.micromechanics ? &mStartPoses : nullptr, out.frameSpacing,
+            mStartCellSize);
         mFrames->series().restoreFrameTimes(mCheckpoint.record.vtkFrameTimes);
     }
     mCheckpoint.record.micromechanics = out.micromechanics;

@@ -94,3 +94,53 @@ TEST(NonAffineMotion, NeighboursAreEveryPairWithinReach)
     }
     EXPECT_TRUE(nonAffineDisplacement({}, {}, {}).empty());
 }
+
+// In a periodic cell a grain at a face has its neighbours across it: on a 4 × 4 × 4 lattice in
+// a cell of 4 every grain has the same six, the cell stretched with its grains (an affine
+// motion of the whole space) leaves D²min nil everywhere, and a grain moved off the field at
+// a face gives its neighbours the same D²min as one moved inside gives its neighbours (the
+// periodic lattice is the same from every grain), n·|u|² = 6·|u|² for the moved grain itself.
+TEST(NonAffineMotion, APeriodicCellCountsNeighboursAcrossItsFaces)
+{
+    PeriodicCell cell;
+    cell.size = Vec3(4, 4, 4);
+    std::vector<Vec3> reference;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+            for (int c = 0; c < 4; ++c) reference.emplace_back(a + 0.5, b + 0.5, c + 0.5);
+    const size_t n = reference.size();
+    const std::vector<double> radii(n, 0.5);
+    const auto neighbours = neighboursWithin(reference, radii, 1.1, cell);
+    for (size_t i = 0; i < n; ++i) EXPECT_EQ(neighbours[i].size(), 6u) << i;
+
+    const Vec3 stretch(1.05, 0.97, 0.9);
+    std::vector<Vec3> stretched;
+    for (const Vec3& x : reference) stretched.push_back(x.cwiseProduct(stretch));
+    const Vec3 size = cell.size.cwiseProduct(stretch);
+    for (double d : nonAffineDisplacement(reference, cell.size, stretched, size, neighbours))
+        EXPECT_NEAR(d, 0.0, 1e-24);
+
+    // Grain (1,1,1) inside and grain (0,1,1) at the x face, each moved by u on the stretched
+    // field: the D²min of each grain round the moved one, taken one lattice step along x apart.
+    const Vec3 u(0.03, -0.02, 0.01);
+    const auto index = [](int a, int b, int c) { return size_t(16 * a + 4 * b + c); };
+    std::vector<Vec3> inside = stretched, atFace = stretched;
+    inside[index(1, 1, 1)] += u;
+    atFace[index(0, 1, 1)] += u;
+    const std::vector<double> dInside = nonAffineDisplacement(reference, cell.size, inside, size, neighbours);
+    const std::vector<double> dFace = nonAffineDisplacement(reference, cell.size, atFace, size, neighbours);
+    EXPECT_NEAR(dInside[index(1, 1, 1)], 6.0 * u.squaredNorm(), 1e-15);
+    EXPECT_NEAR(dFace[index(0, 1, 1)], 6.0 * u.squaredNorm(), 1e-15);
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+            for (int c = 0; c < 4; ++c)
+                EXPECT_NEAR(dFace[index(a, b, c)], dInside[index((a + 1) % 4, b, c)], 1e-15)
+                    << a << b << c;
+    // Across the face: grain (3,1,1) is the moved grain's neighbour through its image.
+    EXPECT_GT(dFace[index(3, 1, 1)], 0.1 * u.squaredNorm());
+
+    // Without the cell the face grain has five neighbours, and its far neighbour sees nothing.
+    const auto open = neighboursWithin(reference, radii, 1.1);
+    EXPECT_EQ(open[index(0, 1, 1)].size(), 5u);
+    EXPECT_LT(nonAffineDisplacement(reference, atFace, open)[index(3, 1, 1)], 1e-24);
+}

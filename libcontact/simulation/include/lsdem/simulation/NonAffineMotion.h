@@ -12,6 +12,7 @@
 #pragma once
 
 #include "lsdem/core/Vec3.h"
+#include "lsdem/simulation/PeriodicCell.h"
 
 #include <vector>
 
@@ -27,5 +28,28 @@ std::vector<std::vector<int>> neighboursWithin(const std::vector<Vec3>& centres,
 std::vector<double> nonAffineDisplacement(const std::vector<Vec3>& reference,
                                           const std::vector<Vec3>& current,
                                           const std::vector<std::vector<int>>& neighbours);
+
+/// A grain's neighbour in a periodic cell: which grain, and the periods (−1, 0 or 1 along each
+/// axis) of the image of it that is the neighbour.
+struct PeriodicNeighbour
+{
+    int grain = 0;
+    Vec3 periods = Vec3::Zero();
+};
+
+/// The same in periodic @a cell: a grain near a face has neighbours among the images of the
+/// grains at the other face, each list in the order of the grains and then of their images.
+std::vector<std::vector<PeriodicNeighbour>> neighboursWithin(const std::vector<Vec3>& centres,
+                                                             const std::vector<double>& radii,
+                                                             double reach, const PeriodicCell& cell);
+
+/// D²min in a deforming periodic cell: an image neighbour sits at the grain's position plus
+/// the periods times the cell's size then, @a referenceSize in the reference and
+/// @a currentSize now (@a current unwrapped: Grain::unwrappedPosition).
+std::vector<double> nonAffineDisplacement(const std::vector<Vec3>& reference,
+                                          const Vec3& referenceSize,
+                                          const std::vector<Vec3>& current,
+                                          const Vec3& currentSize,
+                                          const std::vector<std::vector<PeriodicNeighbour>>& neighbours);
 
 } // namespace lsdem

@@ -737,6 +737,19 @@ TEST(LsdemRunOnMpi, PeriodicCellGivesTheSerialBytesOnTwoAndThreeRanks)
         EXPECT_GT(numberBefore(r.output, "grains migrated in") + numberBefore(r.output, "out, "), 0)
             << r.output;
     }
+    // tools/plots/shear_band.py reads a frame split into pieces whole (where matplotlib is).
+    if (runCommand("/usr/bin/python3 -c 'import matplotlib, numpy'").exitCode == 0) {
+        const std::string png = dir.file("band.png");
+        const CommandResult band = runCommand("/usr/bin/python3 " LSDEM_SOURCE_DIR
+                                              "/tools/plots/shear_band.py " +
+                                              dir.file("ranks2") + " --out " + png);
+        EXPECT_EQ(band.exitCode, 0) << band.output;
+        EXPECT_NE(band.output.find("frame 3 at t = 0.03"), std::string::npos) << band.output;
+        // (z strained at 8 /s for 0.03 s: 1 − e^(−0.24) = 0.2134.)
+        EXPECT_NE(band.output.find(": 64 grains, axial strain 0.2134"), std::string::npos)
+            << band.output;
+        EXPECT_TRUE(std::filesystem::exists(png));
+    }
     const CommandResult first =
         runCommand(onRanks(2, "-q " + scene + " --stop-at-step 6000 --out " + dir.file("two")));
     ASSERT_EQ(first.exitCode, 130) << first.output;

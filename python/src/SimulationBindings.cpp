@@ -79,6 +79,23 @@ void bindSimulation(py::module_& m)
                                "Simulated time.")
         .def_property_readonly("step", [](const PySimulation& s) { return s.world().step; },
                                "Steps taken since the start (a restart continues the count).")
+        .def_property_readonly(
+            "periodic_cell",
+            [](const PySimulation& s) -> py::object {
+                const PeriodicCell& c = s.world().periodic;
+                if (!c.active()) return py::none();
+                const auto triple = [](const Vec3& v) {
+                    return py::array_t<double>(py::ssize_t{3}, v.data());
+                };
+                py::dict d;
+                d["origin"] = triple(c.origin);
+                d["size"] = triple(c.size);
+                d["strain_rate"] = triple(c.strainRate);
+                d["stress"] = triple(c.stress);
+                return std::move(d);
+            },
+            "None, or in a periodic cell a dict of copies (3,): origin, size (its periods now), "
+            "strain_rate (1/time) and stress (compressive positive, measured while it deforms).")
         .def_property_readonly("time_step",
                                [](const PySimulation& s) { return s.sim().timeStep(); })
         .def_property_readonly("threads", &PySimulation::threads,

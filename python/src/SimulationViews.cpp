@@ -43,6 +43,21 @@ void bindSimulationViews(py::module_& m)
             },
             "(N, 3) float64 view: centroid positions (length).")
         .def_property_readonly(
+            "unwrapped_positions",
+            [](const GrainsView& g) {
+                const std::vector<Grain>& grains = g.world().grains;
+                py::array_t<double> out({static_cast<py::ssize_t>(grains.size()), py::ssize_t{3}});
+                auto o = out.mutable_unchecked<2>();
+                for (size_t i = 0; i < grains.size(); ++i) {
+                    const Vec3 x = grains[i].unwrappedPosition();
+                    for (int k = 0; k < 3; ++k) o(static_cast<py::ssize_t>(i), k) = x[k];
+                }
+                return out;
+            },
+            "(N, 3) float64 copy: in a periodic cell, where each grain's motion took it (its "
+            "position less the periods it was brought back by, which the cell's deformation "
+            "stretches); elsewhere the positions.")
+        .def_property_readonly(
             "velocities",
             [](const GrainsView& g) {
                 return g.vectors([](const Grain& x) -> const Vec3& { return x.body.velocity; });

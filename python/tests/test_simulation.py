@@ -346,3 +346,77 @@ def test_nonaffine_displacement_is_falk_and_langers_computed_in_numpy():
         lsdem.nonaffine_displacement(start[:, :2], now, radii)
     with pytest.raises(lsdem.Error, match="radii"):
         lsdem.nonaffine_displacement(start, now, radii[:-1])
+
+
+def test_a_periodic_cell_its_unwrapped_positions_and_d2min_across_its_faces(tmp_path):
+    """sim.periodic_cell and sim.grains.unwrapped_positions: a sphere streaming through the
+    faces of a cell stays inside it while its unwrapped position is start + v·t; a cell strained
+    along z has the size (1 + ε̇·dt)^n gives. nonaffine_displacement with the cell's sizes finds
+    a face grain's neighbours across it: a grain moved at a face gives its neighbours what one
+    moved inside gives its own, one lattice step along."""
+    scene_file = tmp_path / "cell.toml"
+    scene_file.write_text("""
+[assets.ball]
+shape = "sphere"
+radius = 2.5
+voxel = 0.25
+nodes = 200
+
+[materials.rock]
+density = 2.65e-9
+
+[[contacts]]
+materials = ["rock", "rock"]
+normal_stiffness = 1e3
+
+[[grains]]
+asset = "ball"
+material = "rock"
+position = [3, 3, 3]
+velocity = [700, -300, 200]
+
+[simulation]
+time_step = 1e-5
+end_steps = 2000
+periodic_cell = [12, 12, 12]
+periodic_strain_rate = [0, 0, -2]
+""")
+    sim = lsdem.Simulation(lsdem.Scene.from_toml(str(scene_file)), threads=1)
+    sim.run()
+    cell = sim.periodic_cell
+    assert np.allclose(cell["size"][:2], 12.0)
+    assert cell["size"][2] == pytest.approx(12.0 * (1 - 2e-5) ** 2000, rel=1e-12)
+    assert np.allclose(cell["strain_rate"], [0, 0, -2])
+    x = sim.grains.positions[0]
+    assert np.all(x >= 0) and np.all(x < cell["size"])
+    # The sphere moved 14, 6 and 4 mm: through the x face at least once, and z carried by the
+    # cell's shrinking as well (its unwrapped z is the start plus v_z·t, scaled with the cell).
+    unwrapped = sim.grains.unwrapped_positions[0]
+    assert unwrapped[0] == pytest.approx(3 + 700 * 0.02, rel=1e-9)
+    assert unwrapped[1] == pytest.approx(3 - 300 * 0.02, rel=1e-9)
+    assert not np.allclose(unwrapped, x)
+    plain = lsdem.Simulation(lsdem.Scene.from_toml(str(SCENES / "cube27.toml")), threads=1)
+    assert plain.periodic_cell is None
+
+    # D²min on a 4 × 4 × 4 lattice in a cell of 4, stretched, one grain moved off the field.
+    site = np.array([(a, b, c) for a in range(4) for b in range(4) for c in range(4)], float) + 0.5
+    stretch = np.array([1.05, 0.97, 0.9])
+    now = site * stretch
+    radii = np.full(len(site), 0.5)
+    sizes = dict(reference_size=[4, 4, 4], current_size=4 * stretch)
+    assert np.max(lsdem.nonaffine_displacement(site, now, radii, **sizes)) < 1e-24
+    index = {tuple(s - 0.5): k for k, s in enumerate(site)}
+    u = np.array([0.03, -0.02, 0.01])
+    inside, at_face = now.copy(), now.copy()
+    inside[index[(1, 1, 1)]] += u
+    at_face[index[(0, 1, 1)]] += u
+    d_inside = lsdem.nonaffine_displacement(site, inside, radii, **sizes)
+    d_face = lsdem.nonaffine_displacement(site, at_face, radii, **sizes)
+    assert d_face[index[(0, 1, 1)]] == pytest.approx(6 * u @ u, rel=1e-9)
+    for (a, b, c), k in index.items():
+        assert d_face[k] == pytest.approx(d_inside[index[((a + 1) % 4, b, c)]], abs=1e-15)
+    assert d_face[index[(3, 1, 1)]] > 0.1 * u @ u  # the neighbour across the x face
+    assert lsdem.nonaffine_displacement(site, at_face, radii)[index[(3, 1, 1)]] < 1e-24
+    with pytest.raises(lsdem.Error, match="different axes"):
+        lsdem.nonaffine_displacement(site, now, radii, reference_size=[4, 4, 4],
+                                     current_size=[4, 4, 0])

@@ -15,6 +15,10 @@
 
 namespace lsdem {
 
+/// The shear scene's step over the least stable step the run met (a margin the run's own step,
+/// which it may halve and retry, does not keep).
+constexpr double kShearSceneStepOverLimit = 0.6;
+
 /// Write @a dir/triaxial_shear.toml with @a dir/grains.csv and @a dir/assets/NAME.vdb for
 /// @a run of @a study (options @a o). Returns the scene's path. @throw Error if the run kept no
 /// consolidated state or a file cannot be written.

@@ -759,6 +759,46 @@ TEST(LsdemRunOnMpi, PeriodicCellGivesTheSerialBytesOnTwoAndThreeRanks)
     expectSameFiles(dir.file("serial"), dir.file("two"), "2 ranks, then 3");
 }
 
+// A membrane split by space: every rank holds it whole and moves it alike, each grain's contact
+// with it is its owner's, and the grains' reactions on its vertices are gathered and added in
+// one process's order. The bundled sleeve (12 beads in a latex sleeve pressed by a lid, with
+// micromechanics) on 2 ranks of 2 threads and on 3 gives the single process's bytes: the
+// membrane's history and frames, the lid's, the energies, the checkpoint; and stopped on 3,
+// continued on 2, too.
+TEST(LsdemRunOnMpi, MembraneGivesTheSerialBytesOnTwoAndThreeRanks)
+{
+    SKIP_WITHOUT_MPI();
+    ScratchDir dir;
+    std::string text = readFile(LSDEM_SOURCE_DIR "/assets/scenes/sleeve.toml");
+    ASSERT_FALSE(text.empty());
+    text += "micromechanics = true\n";  // (the last section is [output])
+    const std::string scene = writeScene(dir, "sleeve.toml", text);
+    const CommandResult serial = runCommand(kRun + " -q " + scene + " --out " + dir.file("serial"));
+    ASSERT_EQ(serial.exitCode, 0) << serial.output;
+    // The beads press on the membrane by the end (measured: 2.29 N summed over its vertices).
+    EXPECT_GT(lastValue(dir.file("serial/membrane_sleeve.csv"), "grain_force_magnitude_sum"), 0.5);
+    EXPECT_TRUE(std::filesystem::exists(dir.file("serial/frames_membranes_3.vtu")));
+    for (int ranks : {2, 3}) {
+        const int threads = ranks == 2 ? 2 : 1;
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(onRanks(
+            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
+        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
+        // The membranes' frames are whole files, listed as part 2 beside the pieces.
+        EXPECT_NE(readFile(out + "/frames.pvd").find("part=\"2\" file=\"frames_membranes_3.vtu\""),
+                  std::string::npos);
+    }
+    const CommandResult first =
+        runCommand(onRanks(3, "-q " + scene + " --stop-at-step 1000 --out " + dir.file("three")));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    const CommandResult second =
+        runCommand(onRanks(2, "-q --restart " + dir.file("three/checkpoint.lsdem")));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    expectSameFiles(dir.file("serial"), dir.file("three"), "3 ranks, then 2");
+}
+
 // Micromechanics under MPI: rank 0 sums the whole simulation in one process's order, so
 // micromechanics.csv has the single process's bytes on 2 and 3 ranks; each rank's piece of a
 // frame carries its grains' measures (worked out for the whole simulation: D²min needs

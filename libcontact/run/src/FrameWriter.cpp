@@ -102,8 +102,8 @@ void FrameWriter::write(const Simulation& sim)
         forces.push_back({f.point, f.force, f.grain});
     if (split)
         mSeries.writeParallelFrame(mSeries.framesWritten(), w.time, split->rank(),
-                                   split->rankCount(), grains, forces, mMeasures);
-    else  // (the membranes too: a simulation split over ranks has none)
+                                   split->rankCount(), grains, forces, mMeasures, w.membranes);
+    else
         mSeries.writeFrame(mSeries.framesWritten(), w.time, grains, forces, w.membranes);
 }
 

@@ -329,7 +329,8 @@ std::string collectionFile(const std::string& baseName, const std::vector<double
         for (int part = 0; part < (membranes[k] ? 3 : 2); ++part)
             xml += "    <DataSet timestep=\"" + std::string(timestep) + "\" part=\"" +
                    std::to_string(part) + "\" file=\"" +
-                   xmlEscape(frameFileName(baseName, kinds[part], k, parallel[k])) + "\"/>\n";
+                   xmlEscape(frameFileName(baseName, kinds[part], k, parallel[k] && part < 2)) +
+                   "\"/>\n";
     }
     xml += "  </Collection>\n</VTKFile>\n";
     return xml;
@@ -363,7 +364,8 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
 
 void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces,
                                    const std::vector<VtkGrain>& grains,
-                                   const std::vector<VtkForcePoint>& forces, bool measured)
+                                   const std::vector<VtkForcePoint>& forces, bool measured,
+                                   const std::vector<Membrane>& membranes)
 {
     if (measured && !grains.empty() && !allMeasured(grains))
         throw std::invalid_argument("VtkSeries::writeParallelFrame: a grain without measures");
@@ -379,11 +381,16 @@ void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces
                             grainsFile(grains, measured));
     writeTextFileAtomically((dir / pieceFileName(mBaseName, "contacts", k, piece)).string(),
                             contactsFile(forces));
-    if (piece == 0)
+    if (piece == 0) {
         for (const char* kind : {"grains", "contacts"})
             writeTextFileAtomically((dir / frameFileName(mBaseName, kind, k, true)).string(),
                                     parallelFile(mBaseName, kind, k, pieces, measured));
-    list(frame, time, true, false, piece == 0);
+        // Every rank holds the membranes whole: the first writes them, whole.
+        if (!membranes.empty())
+            writeTextFileAtomically((dir / frameFileName(mBaseName, "membranes", k)).string(),
+                                    membranesFile(membranes));
+    }
+    list(frame, time, true, !membranes.empty(), piece == 0);
 }
 
 void VtkSeries::list(int frame, double time, bool parallel, bool membranes, bool writeCollection)
@@ -413,9 +420,8 @@ void VtkSeries::restoreFrameTimes(std::vector<double> times)
     const std::filesystem::path dir(mDirectory);
     for (size_t k = 0; k < mTimes.size(); ++k) {
         mParallel[k] = std::filesystem::exists(dir / frameFileName(mBaseName, "grains", k, true));
-        // (A parallel frame has no membranes: the split simulation refuses them.)
-        mMembranes[k] = !mParallel[k] &&
-                        std::filesystem::exists(dir / frameFileName(mBaseName, "membranes", k));
+        // (A parallel frame's membranes are a whole .vtu too.)
+        mMembranes[k] = std::filesystem::exists(dir / frameFileName(mBaseName, "membranes", k));
     }
 }
 

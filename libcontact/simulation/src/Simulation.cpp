@@ -107,9 +107,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
 {
     if (!(dt > 0.0) || !std::isfinite(dt))
         throw Error("", "the time step must be a positive number", "check time_step");
-    if (!mWorld.membranes.empty())
-        throw Error("", "membranes cannot yet be split by space over MPI ranks",
-                    "run a world with a membrane in one process");
+    checkMembranes();  // (every rank holds each membrane whole)
     for (const Grain& g : mWorld.grains) mHasPrescribed |= g.motion == GrainMotion::Prescribed;
     // The whole simulation's skin, so this rank's list is the one-process list's part.
     const double skin = mContacts.skinFor(mWorld);
@@ -122,6 +120,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
         const Energies e = energies();
         mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
         checkStability(true);
+        judgeMembraneStep();
     }
 }
 

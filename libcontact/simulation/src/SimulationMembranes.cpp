@@ -5,6 +5,8 @@
 // are the same on any thread count.
 #include "lsdem/simulation/Simulation.h"
 
+#include "lsdem/simulation/GhostDecomposition.h"
+
 #include "lsdem/core/Error.h"
 
 #include "GlobalDamping.h"
@@ -80,7 +82,8 @@ void Simulation::computeMembranes(double dt)
         // The rubber and the pressure; the pressure's part kept for the work it does.
         computeMembraneForces(m, &m.pressureForces);
 
-        // The grains' contacts, grain by grain in parallel.
+        // The grains' contacts, grain by grain in parallel (split by space, each by its
+        // owner: every rank holds the whole membrane, and a ghost's contact is its owner's).
         MembraneTriangleGrid& grid = mMembraneGrids[k];
         grid.build(m, m.contactReach);
         std::vector<MembraneGrainContact>& contacts = mMembraneContacts[k];
@@ -88,25 +91,21 @@ void Simulation::computeMembranes(double dt)
         tbb::parallel_for(tbb::blocked_range<size_t>(0, w.grains.size()),
                           [&](const tbb::blocked_range<size_t>& range) {
                               ContactScratch scratch;
-                              for (size_t i = range.begin(); i != range.end(); ++i)
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  if (!integratesGrain(i)) {
+                                      contacts[i] = MembraneGrainContact();
+                                      continue;
+                                  }
                                   computeMembraneContact(mViews[i], m, grid,
                                                          w.model(w.grains[i].material, m.material),
                                                          dt, contacts[i], scratch);
+                              }
                           });
-        // Their reactions on the vertices, in grain order.
-        std::vector<double>& stiffness = mMembraneContactStiffness[k];
-        stiffness.assign(m.positions.size(), 0.0);
-        m.grainForces.assign(m.positions.size(), Vec3::Zero());
-        for (size_t i = 0; i < w.grains.size(); ++i) {
-            mMembraneStats += contacts[i].stats;
-            mMembraneNodes += contacts[i].result.contactNodes;
-            mMembraneElastic += contacts[i].result.elasticEnergy;
-            for (const auto& [vertex, force] : contacts[i].reactions) {
-                m.forces[size_t(vertex)] += force;
-                m.grainForces[size_t(vertex)] += force;
-            }
-            for (const auto& [vertex, kv] : contacts[i].stiffness) stiffness[size_t(vertex)] += kv;
+        for (const MembraneGrainContact& c : contacts) {
+            mMembraneStats += c.stats;
+            mMembraneNodes += c.result.contactNodes;  // (this rank's: contactNodes() sums them)
         }
+        addGrainReactions(k);
         // The cell fluid's drag.
         if (m.drag > 0.0)
             for (size_t i = 0; i < m.positions.size(); ++i) {
@@ -123,6 +122,64 @@ void Simulation::computeMembranes(double dt)
                 m.dampedWork += dampedWork(m.forces[i], m.velocities[i], w.globalDamping, dt);
                 m.forces[i] = dampComponents(m.forces[i], m.velocities[i], w.globalDamping);
             }
+    }
+}
+
+void Simulation::addGrainReactions(size_t k)
+{
+    // The grains' reactions on the vertices, in grain order (and each grain's in its order):
+    // split by space, gathered from the grains' owners and added in that order on every rank,
+    // so every rank moves the whole membrane alike.
+    Membrane& m = mWorld.membranes[k];
+    const std::vector<MembraneGrainContact>& contacts = mMembraneContacts[k];
+    std::vector<double>& stiffness = mMembraneContactStiffness[k];
+    stiffness.assign(m.positions.size(), 0.0);
+    m.grainForces.assign(m.positions.size(), Vec3::Zero());
+    const auto push = [&](int vertex, const Vec3& force) {
+        m.forces[size_t(vertex)] += force;
+        m.grainForces[size_t(vertex)] += force;
+    };
+    if (!mGhosts) {
+        for (const MembraneGrainContact& c : contacts) {
+            mMembraneElastic += c.result.elasticEnergy;
+            for (const auto& [vertex, force] : c.reactions) push(vertex, force);
+            for (const auto& [vertex, kv] : c.stiffness) stiffness[size_t(vertex)] += kv;
+        }
+        return;
+    }
+    // key: global grain, then 0 its elastic energy, 1 a reaction, 2 a stiffness; then its place.
+    const std::vector<int>& ids = mGhosts->globalIds();
+    std::vector<OrderedTerm> terms;
+    for (size_t i = 0; i < contacts.size(); ++i) {
+        const MembraneGrainContact& c = contacts[i];
+        if (c.result.contactNodes <= 0 && c.reactions.empty()) continue;
+        OrderedTerm t;
+        t.key[0] = ids[i];
+        t.value[0] = c.result.elasticEnergy;
+        terms.push_back(t);
+        t.key[1] = 1;
+        for (size_t r = 0; r < c.reactions.size(); ++r) {
+            t.key[2] = static_cast<long long>(r);
+            t.value[0] = c.reactions[r].first;
+            for (int a = 0; a < 3; ++a) t.value[1 + a] = c.reactions[r].second[a];
+            terms.push_back(t);
+        }
+        t.key[1] = 2;
+        for (size_t r = 0; r < c.stiffness.size(); ++r) {
+            t.key[2] = static_cast<long long>(r);
+            t.value[0] = c.stiffness[r].first;
+            t.value[1] = c.stiffness[r].second;
+            terms.push_back(t);
+        }
+    }
+    for (const OrderedTerm& t : mGhosts->gatherSorted(terms)) {
+        const int vertex = static_cast<int>(t.value[0]);
+        if (t.key[1] == 0)
+            mMembraneElastic += t.value[0];
+        else if (t.key[1] == 1)
+            push(vertex, Vec3(t.value[1], t.value[2], t.value[3]));
+        else
+            stiffness[size_t(vertex)] += t.value[1];
     }
 }
 

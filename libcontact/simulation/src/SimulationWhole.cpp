@@ -38,7 +38,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         if (r.second >= 0) r.second = ids[size_t(r.second)];
         out.value(r.first).value(r.second).value(r.boundary).value(r.membrane).value(r.nodes);
         out.values(r.force.data(), 3).values(r.centre.data(), 3).values(r.normal.data(), 3);
-        out.values(r.shift.data(), 3);
+        out.values(r.shift.data(), 3).values(r.spread.data(), 9);
     }
     std::vector<char> all;
     std::vector<size_t> starts;
@@ -56,6 +56,7 @@ std::vector<ContactRecord> Simulation::wholeContactRecords() const
         in.values(r.centre.data(), 3);
         in.values(r.normal.data(), 3);
         in.values(r.shift.data(), 3);
+        in.values(r.spread.data(), 9);
         records.push_back(r);
     }
     std::sort(records.begin(), records.end(),

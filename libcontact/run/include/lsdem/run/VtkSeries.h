@@ -77,10 +77,12 @@ public:
     /// @a piece (its grains and forces); piece 0 also writes the `.pvtu` files and rewrites
     /// the .pvd, as writeFrame does. Every rank calls it for every frame, with the same
     /// @a measured: whether the grains carry their measures (each grain must then have them;
-    /// a piece without grains gets the arrays empty, as the `.pvtu` declares them).
+    /// a piece without grains gets the arrays empty, as the `.pvtu` declares them). The
+    /// @a membranes, which every rank holds whole, piece 0 writes as a whole `.vtu` (part 2).
     void writeParallelFrame(int frame, double time, int piece, int pieces,
                             const std::vector<VtkGrain>& grains,
-                            const std::vector<VtkForcePoint>& forces, bool measured = false);
+                            const std::vector<VtkForcePoint>& forces, bool measured = false,
+                            const std::vector<Membrane>& membranes = {});
 
     int framesWritten() const { return static_cast<int>(mTimes.size()); }
 

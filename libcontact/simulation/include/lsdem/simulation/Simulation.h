@@ -194,6 +194,10 @@ private:
     /// Their forces: rubber, pressure and the grains' contacts (each grain's kept for
     /// sumGrainForces), with global damping on their free vertices.
     void computeMembranes(double dt);
+    /// Membrane @a k's share of its grains' contacts: their reactions on its vertices (forces,
+    /// grainForces), the stiffness they add and their elastic energy, in grain order (split by
+    /// space, gathered from the grains' owners so that every rank holds the same membrane).
+    void addGrainReactions(size_t k);
     /// The power that the pressure puts in (at the vertices' velocities now and the forces of
     /// the last evaluation). The holders' is the boundaries' (addMembraneRimForces).
     double membraneExternalPower() const;

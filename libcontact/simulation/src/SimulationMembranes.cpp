@@ -152,7 +152,7 @@ void Simulation::addGrainReactions(size_t k)
     std::vector<OrderedTerm> terms;
     for (size_t i = 0; i < contacts.size(); ++i) {
         const MembraneGrainContact& c = contacts[i];
-        if (c.result.contactNodes <= 0 && c.reactions.empty()) continue;
+        if (c.reactions.empty() && c.stiffness.empty() && c.result.elasticEnergy == 0.0) continue;
         OrderedTerm t;
         t.key[0] = ids[i];
         t.value[0] = c.result.elasticEnergy;

@@ -310,6 +310,38 @@ std::string onRanks(int ranks, const std::string& args)
     return kMpiexec + " --oversubscribe -n " + std::to_string(ranks) + " " + kRun + " " + args;
 }
 
+/// @a scene on 2 ranks of 2 threads and on 3, each into "ranksN" in @a dir: every file the
+/// single process's in @a serial, ghosts held. Returns the 2 ranks' folder.
+std::string expectSerialBytesOnTwoAndThreeRanks(const ScratchDir& dir, const std::string& scene,
+                                                const std::string& serial)
+{
+    for (int ranks : {2, 3}) {
+        const int threads = ranks == 2 ? 2 : 1;
+        const std::string out = dir.file("ranks" + std::to_string(ranks));
+        const CommandResult r = runCommand(onRanks(
+            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        expectSameFiles(serial, out, std::to_string(ranks) + " ranks");
+        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
+    }
+    return dir.file("ranks2");
+}
+
+/// @a scene stopped at @a step on @a before ranks and continued on @a after: the files of the
+/// uninterrupted single process in @a serial.
+void expectRestartOnOtherRanks(const ScratchDir& dir, const std::string& scene, long long step,
+                               int before, int after, const std::string& serial)
+{
+    const std::string out = dir.file("restarted");
+    const CommandResult first = runCommand(onRanks(
+        before, "-q " + scene + " --stop-at-step " + std::to_string(step) + " --out " + out));
+    ASSERT_EQ(first.exitCode, 130) << first.output;
+    const CommandResult second = runCommand(onRanks(after, "-q --restart " + out + "/checkpoint.lsdem"));
+    ASSERT_EQ(second.exitCode, 0) << second.output;
+    expectSameFiles(serial, out,
+                    std::to_string(before) + " ranks, then " + std::to_string(after));
+}
+
 /// The interlocked slab as `lsdem-study slab` writes it for lsdem-run (its 5×5 blocks in a
 /// frame of fixed level-set blocks, the indenter a prescribed sphere pushed down onto the
 /// central block), with the block baked coarse (SDP @a sdp, VDP @a vdp, adapted contacts): the
@@ -726,17 +758,7 @@ TEST(LsdemRunOnMpi, PeriodicCellGivesTheSerialBytesOnTwoAndThreeRanks)
     EXPECT_LT(lastValue(dir.file("serial/cell.csv"), "size_z"), 0.85 * 22.4);
     EXPECT_GT(lastValue(dir.file("serial/micromechanics.csv"), "grain_contacts"), 60.0);
     EXPECT_GT(lastValue(dir.file("serial/cell.csv"), "stress_x"), 0.0);
-    for (int ranks : {2, 3}) {
-        const int threads = ranks == 2 ? 2 : 1;
-        const std::string out = dir.file("ranks" + std::to_string(ranks));
-        const CommandResult r = runCommand(onRanks(
-            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
-        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
-        EXPECT_GT(numberBefore(r.output, "grains migrated in") + numberBefore(r.output, "out, "), 0)
-            << r.output;
-    }
+    expectSerialBytesOnTwoAndThreeRanks(dir, scene, dir.file("serial"));
     // tools/plots/shear_band.py reads a frame split into pieces whole (where matplotlib is).
     if (runCommand("/usr/bin/python3 -c 'import matplotlib, numpy'").exitCode == 0) {
         const std::string png = dir.file("band.png");
@@ -750,13 +772,7 @@ TEST(LsdemRunOnMpi, PeriodicCellGivesTheSerialBytesOnTwoAndThreeRanks)
             << band.output;
         EXPECT_TRUE(std::filesystem::exists(png));
     }
-    const CommandResult first =
-        runCommand(onRanks(2, "-q " + scene + " --stop-at-step 6000 --out " + dir.file("two")));
-    ASSERT_EQ(first.exitCode, 130) << first.output;
-    const CommandResult second =
-        runCommand(onRanks(3, "-q --restart " + dir.file("two/checkpoint.lsdem")));
-    ASSERT_EQ(second.exitCode, 0) << second.output;
-    expectSameFiles(dir.file("serial"), dir.file("two"), "2 ranks, then 3");
+    expectRestartOnOtherRanks(dir, scene, 6000, 2, 3, dir.file("serial"));
 }
 
 // A membrane split by space: every rank holds it whole and moves it alike, each grain's contact
@@ -778,25 +794,11 @@ TEST(LsdemRunOnMpi, MembraneGivesTheSerialBytesOnTwoAndThreeRanks)
     // The beads press on the membrane by the end (measured: 2.29 N summed over its vertices).
     EXPECT_GT(lastValue(dir.file("serial/membrane_sleeve.csv"), "grain_force_magnitude_sum"), 0.5);
     EXPECT_TRUE(std::filesystem::exists(dir.file("serial/frames_membranes_3.vtu")));
-    for (int ranks : {2, 3}) {
-        const int threads = ranks == 2 ? 2 : 1;
-        const std::string out = dir.file("ranks" + std::to_string(ranks));
-        const CommandResult r = runCommand(onRanks(
-            ranks, "-q --threads " + std::to_string(threads) + " " + scene + " --out " + out));
-        ASSERT_EQ(r.exitCode, 0) << r.output;
-        expectSameFiles(dir.file("serial"), out, std::to_string(ranks) + " ranks");
-        EXPECT_GT(numberBefore(r.output, "ghosts at the end"), 0) << r.output;
-        // The membranes' frames are whole files, listed as part 2 beside the pieces.
-        EXPECT_NE(readFile(out + "/frames.pvd").find("part=\"2\" file=\"frames_membranes_3.vtu\""),
-                  std::string::npos);
-    }
-    const CommandResult first =
-        runCommand(onRanks(3, "-q " + scene + " --stop-at-step 1000 --out " + dir.file("three")));
-    ASSERT_EQ(first.exitCode, 130) << first.output;
-    const CommandResult second =
-        runCommand(onRanks(2, "-q --restart " + dir.file("three/checkpoint.lsdem")));
-    ASSERT_EQ(second.exitCode, 0) << second.output;
-    expectSameFiles(dir.file("serial"), dir.file("three"), "3 ranks, then 2");
+    const std::string two = expectSerialBytesOnTwoAndThreeRanks(dir, scene, dir.file("serial"));
+    // The membranes' frames are whole files, listed as part 2 beside the pieces.
+    EXPECT_NE(readFile(two + "/frames.pvd").find("part=\"2\" file=\"frames_membranes_3.vtu\""),
+              std::string::npos);
+    expectRestartOnOtherRanks(dir, scene, 1000, 3, 2, dir.file("serial"));
 }
 
 // Micromechanics under MPI: rank 0 sums the whole simulation in one process's order, so

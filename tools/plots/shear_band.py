@@ -6,8 +6,13 @@ ratio q/p and volumetric strain against axial strain, from cell.csv.
     /usr/bin/python3 tools/plots/shear_band.py RUN_FOLDER [--frame K] [--out band.png]
 
 The frame is the last one unless --frame is given; a frame split over MPI ranks (a .pvtu and
-its pieces) is read whole. Prints the cell's state at the frame and how concentrated D²min is
-(the share of the sum held by the top tenth of the grains: 0.1 if it were uniform).
+its pieces) is read whole. Prints the cell's state at the frame and the band: a band in a
+periodic cell must repeat with it, so it lies along a family of the cell's lattice planes
+(h, k, l), the phase h·x/Lx + k·y/Ly + l·z/Lz (mod 1) constant along each. For every family with
+|h|, |k| <= 2, 0 <= l <= 2, the grains are binned by phase (20 bins) and the family whose
+bins' mean D²min peaks highest over the overall mean (the contrast) is the band; its
+inclination from horizontal and its width at half the peak above the mean are printed, with
+the contrast the same search finds when the values are shuffled among the grains (no band).
 """
 import argparse
 import os
@@ -90,6 +95,38 @@ def per_grain(frame):
     return ids, centres, frame["d2min"][first], frame["rotation"][first]
 
 
+def lattice_band(centres, values, size, bins=20):
+    """The cell's lattice-plane family along which values concentrate most: (contrast, (h, k,
+    l), the bins' means)."""
+    best = None
+    for h in range(-2, 3):
+        for k in range(-2, 3):
+            for l in range(0, 3):
+                if (h, k, l) == (0, 0, 0) or (l == 0 and (h < 0 or (h == 0 and k < 0))):
+                    continue  # (each family once: (h, k, l) and its negative are one)
+                phase = (h * centres[:, 0] / size[0] + k * centres[:, 1] / size[1]
+                         + l * centres[:, 2] / size[2]) % 1.0
+                b = np.minimum((phase * bins).astype(int), bins - 1)
+                means = np.array([values[b == i].mean() if np.any(b == i) else 0.0
+                                  for i in range(bins)])
+                contrast = means.max() / values.mean()
+                if best is None or contrast > best[0]:
+                    best = (contrast, (h, k, l), means)
+    return best
+
+
+def describe_band(band, size, values):
+    """Inclination from horizontal (degrees), spacing of the family and width at half height
+    (length units)."""
+    contrast, (h, k, l), means = band
+    normal = np.array([h / size[0], k / size[1], l / size[2]])
+    spacing = 1.0 / np.linalg.norm(normal)
+    inclination = np.degrees(np.arccos(abs(normal[2]) / np.linalg.norm(normal)))
+    half = values.mean() + 0.5 * (means.max() - values.mean())
+    width = spacing * np.count_nonzero(means >= half) / len(means)
+    return inclination, spacing, width
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("run", help="lsdem-run's output folder")
@@ -119,29 +156,46 @@ def main():
           % (k, t, len(ids), ea[near], ev[near], q[near] / p[near] if p[near] else float("nan")))
     print("D2min: median %.4g, 90th percentile %.4g, largest %.4g; the top tenth holds %.2f of the sum"
           % (np.median(d2min), np.percentile(d2min, 90), d2min.max(), share))
+    for name, values in (("D2min", d2min), ("rotation", rotation)):
+        band = lattice_band(centres, values, size)
+        inclination, spacing, width = describe_band(band, size, values)
+        shuffled = lattice_band(centres, np.random.default_rng(1).permutation(values), size)
+        print("%s band: lattice planes (%d, %d, %d), contrast %.2f (shuffled: %.2f), inclined "
+              "%.1f deg from horizontal, %.2f wide at half height (the planes %.2f apart)"
+              % ((name,) + band[1] + (band[0], shuffled[0], inclination, width, spacing)))
 
-    fig, axes = plt.subplots(1, 5, figsize=(19, 6.5),
-                             gridspec_kw={"width_ratios": [1, 1, 1, 1, 1.4]})
+    fig, axes = plt.subplots(2, 3, figsize=(15, 11), constrained_layout=True)
     thick = 0.12 * size[:2].min()  # a slice a few grains thick through the middle
     middle = centres.min(axis=0) + 0.5 * (centres.max(axis=0) - centres.min(axis=0))
     d2 = np.log10(np.maximum(d2min, 1e-12))
     lo, hi = np.percentile(d2, [5, 99.5])
     rmax = np.percentile(rotation, 99)
-    panels = [(d2, "log10 D²min", "viridis", lo, hi), (rotation, "rotation (rad)", "magma", 0, rmax)]
-    n = 0
-    for values, label, cmap, vmin, vmax in panels:
-        for across, along in ((1, 0), (0, 1)):
-            ax = axes[n]
-            n += 1
+    panels = [(d2, "log10 D²min (mm²)", "viridis", lo, hi), (rotation, "rotation (rad)", "magma", 0, rmax)]
+    for row, (values, label, cmap, vmin, vmax) in enumerate(panels):
+        for column, (across, along) in enumerate(((1, 0), (0, 1))):
+            ax = axes[row][column]
             inside = np.abs(centres[:, across] - middle[across]) < thick / 2
-            s = ax.scatter(centres[inside, along], centres[inside, 2], c=values[inside], s=9,
+            s = ax.scatter(centres[inside, along], centres[inside, 2], c=values[inside], s=10,
                            cmap=cmap, vmin=vmin, vmax=vmax, linewidths=0)
             ax.set_aspect("equal")
             ax.set_xlabel("xyz"[along] + " (mm)")
             ax.set_ylabel("z (mm)")
-            ax.set_title("%s, slice %s = %.1f" % (label, "xyz"[across], middle[across]), fontsize=9)
-            fig.colorbar(s, ax=ax, shrink=0.6)
-    ax = axes[4]
+            ax.set_title("%s, grains within %.1f mm of %s = %.1f"
+                         % (label, thick / 2, "xyz"[across], middle[across]), fontsize=9)
+            fig.colorbar(s, ax=ax, shrink=0.8)
+    ax = axes[0][2]
+    for name, values, colour in (("D²min", d2min, "tab:green"), ("rotation", rotation, "tab:purple")):
+        band = lattice_band(centres, values, size)
+        _, spacing, _ = describe_band(band, size, values)
+        across = (np.arange(len(band[2])) + 0.5) / len(band[2]) * spacing
+        ax.plot(across, band[2] / values.mean(), "o-", color=colour,
+                label="%s, planes (%d, %d, %d)" % ((name,) + band[1]))
+    ax.axhline(1.0, color="grey", lw=0.8)
+    ax.set_xlabel("across the band's lattice planes (mm)")
+    ax.set_ylabel("mean over the grains there / overall mean")
+    ax.set_title("the band: grains binned across the planes it lies along", fontsize=9)
+    ax.legend(fontsize=8)
+    ax = axes[1][2]
     ax.plot(100 * ea, q / p, label="q/p")
     ax.set_xlabel("axial strain (%)")
     ax.set_ylabel("q/p")
@@ -149,9 +203,9 @@ def main():
     ax2.plot(100 * ea, 100 * ev, color="tab:red", label="volumetric strain")
     ax2.set_ylabel("volumetric strain (%, compression > 0)", color="tab:red")
     ax.axvline(100 * ea[near], color="grey", lw=0.8, ls="--")
-    ax.set_title("cell: q/p and volumetric strain", fontsize=9)
-    fig.suptitle("%s, frame %d: axial strain %.1f %%" % (os.path.basename(os.path.abspath(a.run)), k,
-                                                        100 * ea[near]))
+    ax.set_title("the cell: q/p and volumetric strain", fontsize=9)
+    fig.suptitle("%s, frame %d: axial strain %.1f %%, D²min and rotation since the start"
+                 % (os.path.basename(os.path.abspath(a.run)), k, 100 * ea[near]))
     out = a.out or os.path.join(a.run, "shear_band.png")
     save(fig, os.path.dirname(os.path.abspath(out)), os.path.basename(out))
 

@@ -194,6 +194,10 @@ TriaxialCommand::TriaxialCommand(CLI::App& study)
         ->type_name("T")
         ->group(test);
     const std::string output = "Output";
+    addNumber(*mCommand, "--scene-strain", o.sceneStrain,
+              "the axial strain the shear scene for lsdem-run goes to (0: --axial-strain's)")
+        ->type_name("E")
+        ->group(output);
     addInteger(*mCommand, "--records", o.records,
                "rows per run over the shearing: one every floor(steps/N) steps and one at\n"
                "the end (N to 2N-1 rows)")

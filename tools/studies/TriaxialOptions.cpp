@@ -101,6 +101,9 @@ void checkTriaxialFormulations(const TriaxialOptions& o)
 void checkTriaxialMaterial(const TriaxialOptions& o)
 {
     requirePositive(o.density, "--density", "e.g. 2.65e-9 tonne/mm³ (quartz)");
+    if (!(o.sceneStrain >= 0.0 && o.sceneStrain < 0.5))
+        throw Error("", "--scene-strain must be in [0, 0.5), got " + roundedText(o.sceneStrain),
+                    "0 takes --axial-strain's");
     if (!(o.heightRatio >= 0.25 && o.heightRatio <= 4.0))
         throw Error("", "--height-ratio must be from 0.25 to 4, got " + roundedText(o.heightRatio),
                     "1 is a cube, 2 a sample twice as tall as wide");

@@ -26,6 +26,9 @@ struct TriaxialOptions
     /// The starting lattice's height over its width (1: as near a cube as the count allows;
     /// 2: a tall sample, room for a shear band across it).
     double heightRatio = 1.0;
+    /// The axial strain the shear scene for lsdem-run goes to (0: --axial-strain's), so a study
+    /// can consolidate a large sample, shear it a little, and leave the rest to lsdem-run.
+    double sceneStrain = 0.0;
     /// Samples, one per seed: which mesh and orientation each grain gets (each >= 0, no two
     /// alike). Every formulation and SDP is run on each; the summary takes their means.
     std::vector<long long> seeds = {1};

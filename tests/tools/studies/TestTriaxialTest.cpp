@@ -629,18 +629,25 @@ TEST(TriaxialStudy, APeriodicRunWritesAPeriodicShearScene)
     test::ScratchDir dir;
     const test::CommandResult r = test::runCommand(
         "timeout 120 " + kStudy + " triaxial --meshes " + std::string(LSDEM_SOURCE_DIR) +
-        "/assets/meshes/sand --grains 200 --sdps 0.2 --formulation adapted --axial-strain 0.005 "
-        "--records 2 --boundary periodic --no-plots --quiet --out " + dir.file("out"));
+        "/assets/meshes/sand --grains 250 --sdps 0.2 --formulation adapted --axial-strain 0.005 "
+        "--records 2 --boundary periodic --height-ratio 2 --scene-strain 0.2 --no-plots --quiet "
+        "--out " + dir.file("out"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const Scene scene = readSceneFile(dir.file("out/scene/triaxial_shear.toml"));
     EXPECT_TRUE(scene.boundaries.empty());
     EXPECT_GT(scene.periodicCell.minCoeff(), 0.0);
+    // A tall sample (5 x 5 sites, 10 layers: twice as tall, consolidated alike).
+    EXPECT_NEAR(scene.periodicCell.z() / scene.periodicCell.x(), 2.0, 0.2);
     EXPECT_EQ(scene.periodicStress, Vec3(0.1, 0.1, 0.0));
     EXPECT_LT(scene.periodicStrainRate.z(), 0.0);
-    EXPECT_GT(scene.end.time, 0.0);
+    // To 20 % (not the run's 0.5 %): the height H0·e^(−ε̇t) is 0.8 H0 at the end.
+    EXPECT_NEAR(std::exp(scene.periodicStrainRate.z() * scene.end.time), 0.8, 1e-12);
+    EXPECT_NEAR(scene.output.vtkPeriod, scene.end.time / 20.0, 1e-15);
+    EXPECT_TRUE(scene.output.micromechanics);
+    EXPECT_GT(scene.output.frameSpacing, 0.2);  // a quarter of the sand's 1 mm
     std::vector<std::string> warnings;
     const World w = buildWorld(scene, warnings);
-    EXPECT_EQ(w.grains.size(), 200u);
+    EXPECT_EQ(w.grains.size(), 250u);
     for (const Grain& g : w.grains)
         for (int a = 0; a < 3; ++a) {
             EXPECT_GE(g.body.pose.position[a], w.periodic.origin[a]);

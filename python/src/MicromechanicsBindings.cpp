@@ -6,6 +6,7 @@
 #include "lsdem/simulation/Micromechanics.h"
 #include "lsdem/simulation/NonAffineMotion.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -69,7 +70,7 @@ void bindMicromechanics(py::module_& m)
            const py::array_t<double, py::array::c_style | py::array::forcecast>& radii,
            double reach, const std::optional<std::array<double, 3>>& referenceSize,
            const std::optional<std::array<double, 3>>& currentSize,
-           const std::array<double, 3>& origin) {
+           const std::optional<std::array<double, 3>>& cellOrigin) {
             const std::vector<Vec3> was = pointsOf(reference, "reference");
             const std::vector<Vec3> now = pointsOf(current, "current");
             if (now.size() != was.size())
@@ -84,6 +85,9 @@ void bindMicromechanics(py::module_& m)
                     throw Error("", "radii must be finite and > 0", "e.g. the grains' bounding radii");
             if (!(reach > 0.0 && std::isfinite(reach)))
                 throw Error("", "reach must be finite and > 0", "e.g. 1.1");
+            if (!referenceSize && (currentSize || cellOrigin))
+                throw Error("", "current_size and cell_origin describe a periodic cell: give "
+                                "its reference_size too", "add reference_size=, or drop them");
             if (!referenceSize) {
                 const std::vector<double> d2 =
                     nonAffineDisplacement(was, now, neighboursWithin(was, r, reach));
@@ -91,7 +95,7 @@ void bindMicromechanics(py::module_& m)
             }
             // A periodic cell: neighbours across its faces too.
             PeriodicCell cell;
-            cell.origin = Vec3(origin[0], origin[1], origin[2]);
+            if (cellOrigin) cell.origin = Vec3((*cellOrigin)[0], (*cellOrigin)[1], (*cellOrigin)[2]);
             cell.size = Vec3((*referenceSize)[0], (*referenceSize)[1], (*referenceSize)[2]);
             const Vec3 sizeNow = currentSize ? Vec3((*currentSize)[0], (*currentSize)[1], (*currentSize)[2])
                                              : cell.size;
@@ -102,20 +106,29 @@ void bindMicromechanics(py::module_& m)
             if ((cell.size.array() > 0.0).matrix() != (sizeNow.array() > 0.0).matrix())
                 throw Error("", "reference_size and current_size are periodic along different axes",
                             "give both cells' sizes along the same periodic axes");
+            // Neighbours are looked for one period away: no grain may be near two images of
+            // another (as the simulation's own cell, 4.5 radii wide at least).
+            const double largest = *std::max_element(r.begin(), r.end());
+            for (int a = 0; a < 3; ++a)
+                if (cell.size[a] > 0.0 && !(cell.size[a] > 4.0 * reach * largest))
+                    throw Error("", std::string("the cell's period along ") + "xyz"[a] + " is " +
+                                        "less than 4·reach times the largest radius",
+                                "give the periods of a cell as wide as the simulation's");
             const std::vector<double> d2 = nonAffineDisplacement(
                 was, cell.size, now, sizeNow, neighboursWithin(was, r, reach, cell));
             return py::array_t<double>(static_cast<py::ssize_t>(d2.size()), d2.data());
         },
         py::arg("reference"), py::arg("current"), py::arg("radii"), py::arg("reach") = 1.1,
         py::arg("reference_size") = py::none(), py::arg("current_size") = py::none(),
-        py::arg("cell_origin") = std::array<double, 3>{0.0, 0.0, 0.0},
+        py::arg("cell_origin") = py::none(),
         "D²min of Falk & Langer for each grain (docs/micromechanics.md): its neighbours in the "
         "reference (centres within reach·(r_i + r_j), radii (N,)), the best local affine "
         "deformation of their offsets taken out, what is left of their motion relative to it, "
         "length². reference and current (N, 3) positions, e.g. sim.grains.positions at two "
         "times. In a periodic cell give its periods then and now (reference_size, current_size, "
-        "0 along an axis that is not periodic; and cell_origin) and current as "
-        "sim.grains.unwrapped_positions: a grain at a face then has its neighbours across it.");
+        "0 along an axis that is not periodic; and cell_origin, default 0) and both positions "
+        "unwrapped (sim.grains.unwrapped_positions: a grain that has crossed a face is a whole "
+        "period away in positions): a grain at a face then has its neighbours across it.");
 
     auto simulation = py::reinterpret_borrow<py::class_<PySimulation>>(m.attr("Simulation"));
     simulation.def_property_readonly(

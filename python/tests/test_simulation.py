@@ -417,6 +417,10 @@ periodic_strain_rate = [0, 0, -2]
         assert d_face[k] == pytest.approx(d_inside[index[((a + 1) % 4, b, c)]], abs=1e-15)
     assert d_face[index[(3, 1, 1)]] > 0.1 * u @ u  # the neighbour across the x face
     assert lsdem.nonaffine_displacement(site, at_face, radii)[index[(3, 1, 1)]] < 1e-24
+    with pytest.raises(lsdem.Error, match="give its reference_size too"):
+        lsdem.nonaffine_displacement(site, now, radii, current_size=[4, 4, 4])
+    with pytest.raises(lsdem.Error, match="period along x"):
+        lsdem.nonaffine_displacement(site, now, radii, reference_size=[2, 4, 4])
     with pytest.raises(lsdem.Error, match="different axes"):
         lsdem.nonaffine_displacement(site, now, radii, reference_size=[4, 4, 4],
                                      current_size=[4, 4, 0])

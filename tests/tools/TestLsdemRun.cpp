@@ -158,6 +158,18 @@ TEST(LsdemRun, FrameSpacingDrawsLighterSurfacesOnly)
         EXPECT_EQ(readFile(dir.file(std::string("fine/") + name)),
                   readFile(dir.file(std::string("coarse/") + name)))
             << name;
+    // A spacing beyond a grain's bounding radius (2 here) would draw it as nothing: refused,
+    // before any output.
+    std::string tooCoarse = text;
+    tooCoarse.replace(tooCoarse.find("frame_spacing = 1.0"), 19, "frame_spacing = 5.0");
+    std::ofstream(dir.file("too-coarse.toml")) << tooCoarse;
+    const CommandResult refused =
+        runCommand(kRun + " -q " + dir.file("too-coarse.toml") + " --out " + dir.file("none"));
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    EXPECT_NE(refused.output.find("frame_spacing 5 is more than the smallest grain's bounding radius"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("none")));
 }
 
 TEST(LsdemRun, OneAndTwoThreadsGiveIdenticalBytes)

@@ -5,7 +5,8 @@ ratio q/p and volumetric strain against axial strain, from cell.csv.
 
     /usr/bin/python3 tools/plots/shear_band.py RUN_FOLDER [--frame K] [--out band.png]
 
-The frame is the last one unless --frame is given; a frame split over MPI ranks (a .pvtu and
+Strains are from cell.csv's first row (a run restarted from a checkpoint older than cell.csv,
+format 9, starts its rows at the restart). The frame is the last one unless --frame is given; a frame split over MPI ranks (a .pvtu and
 its pieces) is read whole. Prints the cell's state at the frame and the band: a band in a
 periodic cell must repeat with it, so it lies along a family of the cell's lattice planes
 (h, k, l), the phase h·x/Lx + k·y/Ly + l·z/Lz (mod 1) constant along each. For every family with
@@ -122,8 +123,16 @@ def describe_band(band, size, values):
     normal = np.array([h / size[0], k / size[1], l / size[2]])
     spacing = 1.0 / np.linalg.norm(normal)
     inclination = np.degrees(np.arccos(abs(normal[2]) / np.linalg.norm(normal)))
+    # The bins at half height and above next to the peak's (the profile wraps round).
     half = values.mean() + 0.5 * (means.max() - values.mean())
-    width = spacing * np.count_nonzero(means >= half) / len(means)
+    n, top = len(means), int(np.argmax(means))
+    wide = 1
+    for step in (1, -1):
+        k = 1
+        while wide < n and means[(top + step * k) % n] >= half:
+            wide += 1
+            k += 1
+    width = spacing * wide / n
     return inclination, spacing, width
 
 

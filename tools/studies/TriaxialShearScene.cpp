@@ -94,7 +94,7 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
     s.output.historyPeriod = duration / o.records;
     s.output.vtkPeriod = duration / 20.0;
     // Every run writes its micromechanics (D²min and rotation in the frames); each grain drawn
-    // at a quarter of its diameter (about 200 triangles: 10,000 grains in 100 MB a frame).
+    // at a quarter of its diameter (about 200 triangles: 10,000 grains in 200 MB a frame).
     s.output.micromechanics = true;
     s.output.frameSpacing = 0.25 * assets->meanDiameter;
 

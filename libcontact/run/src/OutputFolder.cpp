@@ -38,10 +38,11 @@ bool isRunOutputName(const std::string& name)
 }
 
 /// Whether a run of @a scene may write a file called @a name into its output folder: its own
-/// boundaries' and membranes' histories, and every other output name (frames counted whatever
-/// vtk_period).
+/// boundaries' and membranes' histories, its cell's if it has one, and every other output name
+/// (frames counted whatever vtk_period).
 bool runWrites(const Scene& scene, const std::string& name)
 {
+    if (name == kCellFileName) return scene.periodicCell.maxCoeff() > 0.0;
     if (isBoundaryHistoryFileName(name)) {
         for (const BoundarySpec& b : scene.boundaries)
             if (name == boundaryHistoryFileName(b.name)) return true;

@@ -11,8 +11,12 @@
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/scene/SceneFile.h"
 
+#include "lsdem/core/NumberText.h"
+
+#include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <limits>
 
 namespace lsdem {
 
@@ -105,6 +109,26 @@ std::vector<std::string> Run::checkOutputFolder(const RunOptions& options, bool 
     return found.earlierRun;
 }
 
+namespace {
+
+/// A frame_spacing as large as a grain would draw no surface for it: the grain would vanish
+/// from the frames.
+void refuseFrameSpacingBeyondGrains(const Scene& scene, const World& world)
+{
+    const double spacing = scene.output.frameSpacing;
+    if (!(spacing > 0.0) || scene.output.vtkPeriod <= 0.0) return;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const auto& asset : world.assets) smallest = std::min(smallest, asset->boundingRadius);
+    if (spacing > smallest)
+        throw Error(scene.path,
+                    "[output] frame_spacing " + numberText(spacing) +
+                        " is more than the smallest grain's bounding radius " +
+                        numberText(smallest) + ": that grain would vanish from the frames",
+                    "give at most half a grain's radius (about 200 triangles a grain), or 0");
+}
+
+} // namespace
+
 double Run::makeSimulation(const RunOptions& options)
 {
     // One rank evaluates every contact: nothing to split, nothing to exchange.
@@ -114,6 +138,7 @@ double Run::makeSimulation(const RunOptions& options)
     std::vector<std::string> warnings;
     World world = buildWorld(mScene, warnings);
     for (const std::string& w : warnings) mLog << "warning: " << w << "\n";
+    refuseFrameSpacingBeyondGrains(mScene, world);
     if (mWrites)  // for grains.csv's displacements and the frames' micromechanics
         for (const Grain& g : world.grains) mStartPoses.push_back(g.body.pose);
     mStartCellSize = world.periodic.size;

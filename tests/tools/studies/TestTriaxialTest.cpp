@@ -286,6 +286,10 @@ TEST(TriaxialOptions, BadValuesNameTheOption)
     TriaxialOptions membraneUndrained = membraneTrue;
     membraneUndrained.path = TriaxialPath::Undrained;
     EXPECT_EQ(message(membraneUndrained), "accepted");
+    TriaxialOptions noScene = o;
+    noScene.sceneStrain = 0.2;
+    noScene.path = TriaxialPath::Undrained;
+    EXPECT_NE(message(noScene).find("--scene-strain is for the shear scene"), std::string::npos);
     TriaxialOptions flat = o;
     flat.heightRatio = 0.1;
     EXPECT_NE(message(flat).find("--height-ratio must be from 0.25 to 4, got 0.1"),

@@ -27,9 +27,10 @@ inline const std::string kCellFileName = "cell.csv";
 /// one row per membrane: step, time, pressure, enclosed volume, strain energy, kinetic energy,
 /// the sum of the grains' push on its vertices (x, y, z) and the sum of that push's magnitudes,
 /// in a periodic cell one row of its size, strain rates and stress along x, y, z (the stress
-/// is measured only while the cell deforms: zero in a fixed cell), and with record.micromechanics one row of Micromechanics.h's measures: the stress moment's
-/// nine entries row by row, the fabric's six, its anisotropy, the contact and grain counts and
-/// the mechanical coordination number).
+/// is measured only while the cell deforms: zero in a fixed cell), and with
+/// record.micromechanics one row of Micromechanics.h's measures: the stress moment's nine
+/// entries row by row, the fabric's six, its anisotropy, the contact and grain counts and the
+/// mechanical coordination number).
 /// Collective when the simulation is split by space (its energies and micromechanics are sums
 /// over every rank, in one process's order: the same rows on every rank).
 void recordHistoryRow(const Simulation& sim, RunRecord& record);

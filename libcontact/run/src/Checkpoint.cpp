@@ -40,25 +40,30 @@ const uint32_t kOldestVersion = 1;
 
 using namespace checkpointbytes;
 
+using Rows = std::vector<std::vector<double>>;
+
+/// History rows: their count, then each row (its own count, its numbers).
+void putRows(Writer& w, const Rows& rows)
+{
+    w.value<uint64_t>(rows.size());
+    for (const auto& row : rows) w.numbers(row);
+}
+
+/// Rows per boundary or membrane: their count, then each one's rows.
+void putRowsPerItem(Writer& w, const std::vector<Rows>& items)
+{
+    w.value<uint64_t>(items.size());
+    for (const Rows& rows : items) putRows(w, rows);
+}
+
 void writeRecord(Writer& w, const RunRecord& r)
 {
-    w.value<uint64_t>(r.energyRows.size());
-    for (const auto& row : r.energyRows) w.numbers(row);
-    w.value<uint64_t>(r.boundaryRows.size());
-    for (const auto& rows : r.boundaryRows) {
-        w.value<uint64_t>(rows.size());
-        for (const auto& row : rows) w.numbers(row);
-    }
+    putRows(w, r.energyRows);
+    putRowsPerItem(w, r.boundaryRows);
     w.numbers(r.vtkFrameTimes);
-    w.value<uint64_t>(r.micromechanicsRows.size());
-    for (const auto& row : r.micromechanicsRows) w.numbers(row);
-    w.value<uint64_t>(r.membraneRows.size());
-    for (const auto& rows : r.membraneRows) {
-        w.value<uint64_t>(rows.size());
-        for (const auto& row : rows) w.numbers(row);
-    }
-    w.value<uint64_t>(r.cellRows.size());
-    for (const auto& row : r.cellRows) w.numbers(row);
+    putRows(w, r.micromechanicsRows);
+    putRowsPerItem(w, r.membraneRows);
+    putRows(w, r.cellRows);
 }
 
 /// A membrane's state: what the scene does not give (its shape as stretched and moving, its
@@ -79,37 +84,34 @@ void writeMembrane(Writer& w, const Membrane& m)
     w.number(m.rubberOmegaSquared).number(m.dampedWork);
 }
 
+/// What putRows and putRowsPerItem wrote (a row is at least its own count).
+Rows getRows(Reader& r)
+{
+    Rows rows(r.count(sizeof(uint64_t)));
+    for (auto& row : rows) row = r.numbers();
+    return rows;
+}
+
+std::vector<Rows> getRowsPerItem(Reader& r)
+{
+    std::vector<Rows> items(r.count(sizeof(uint64_t)));
+    for (Rows& rows : items) rows = getRows(r);
+    return items;
+}
+
 RunRecord readRecord(Reader& r, uint32_t version)
 {
     RunRecord rec;
-    const uint64_t rowBytes = sizeof(uint64_t);  // a row is at least its own count
-    rec.energyRows.resize(r.count(rowBytes));
-    for (auto& row : rec.energyRows) {
-        row = r.numbers();
-        // Written before the dissipation was split by mechanism: those columns unknown.
-        if (version < 7) row.insert(row.end(), 3, std::numeric_limits<double>::quiet_NaN());
-    }
-    rec.boundaryRows.resize(r.count(rowBytes));
-    for (auto& rows : rec.boundaryRows) {
-        rows.resize(r.count(rowBytes));
-        for (auto& row : rows) row = r.numbers();
-    }
+    rec.energyRows = getRows(r);
+    // Written before the dissipation was split by mechanism: those columns unknown.
+    if (version < 7)
+        for (auto& row : rec.energyRows)
+            row.insert(row.end(), 3, std::numeric_limits<double>::quiet_NaN());
+    rec.boundaryRows = getRowsPerItem(r);
     rec.vtkFrameTimes = r.numbers();
-    if (version >= 6) {
-        rec.micromechanicsRows.resize(r.count(rowBytes));
-        for (auto& row : rec.micromechanicsRows) row = r.numbers();
-    }
-    if (version >= 8) {
-        rec.membraneRows.resize(r.count(rowBytes));
-        for (auto& rows : rec.membraneRows) {
-            rows.resize(r.count(rowBytes));
-            for (auto& row : rows) row = r.numbers();
-        }
-    }
-    if (version >= 9) {
-        rec.cellRows.resize(r.count(rowBytes));
-        for (auto& row : rec.cellRows) row = r.numbers();
-    }
+    if (version >= 6) rec.micromechanicsRows = getRows(r);
+    if (version >= 8) rec.membraneRows = getRowsPerItem(r);
+    if (version >= 9) rec.cellRows = getRows(r);
     return rec;
 }
 

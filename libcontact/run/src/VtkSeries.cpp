@@ -356,9 +356,7 @@ void VtkSeries::writeFrame(int frame, double time, const std::vector<VtkGrain>& 
     writeTextFileAtomically((dir / frameFileName(mBaseName, "grains", k)).string(),
                             grainsFile(grains, allMeasured(grains)));
     writeTextFileAtomically((dir / frameFileName(mBaseName, "contacts", k)).string(), contactsFile(forces));
-    if (!membranes.empty())
-        writeTextFileAtomically((dir / frameFileName(mBaseName, "membranes", k)).string(),
-                                membranesFile(membranes));
+    writeMembranes(k, membranes);
     list(frame, time, false, !membranes.empty(), true);
 }
 
@@ -385,12 +383,17 @@ void VtkSeries::writeParallelFrame(int frame, double time, int piece, int pieces
         for (const char* kind : {"grains", "contacts"})
             writeTextFileAtomically((dir / frameFileName(mBaseName, kind, k, true)).string(),
                                     parallelFile(mBaseName, kind, k, pieces, measured));
-        // Every rank holds the membranes whole: the first writes them, whole.
-        if (!membranes.empty())
-            writeTextFileAtomically((dir / frameFileName(mBaseName, "membranes", k)).string(),
-                                    membranesFile(membranes));
+        writeMembranes(k, membranes);  // (every rank holds them whole: the first writes them)
     }
     list(frame, time, true, !membranes.empty(), piece == 0);
+}
+
+void VtkSeries::writeMembranes(size_t frame, const std::vector<Membrane>& membranes) const
+{
+    if (membranes.empty()) return;
+    writeTextFileAtomically(
+        (std::filesystem::path(mDirectory) / frameFileName(mBaseName, "membranes", frame)).string(),
+        membranesFile(membranes));
 }
 
 void VtkSeries::list(int frame, double time, bool parallel, bool membranes, bool writeCollection)

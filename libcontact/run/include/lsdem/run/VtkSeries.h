@@ -93,6 +93,8 @@ public:
     void restoreFrameTimes(std::vector<double> times);
 
 private:
+    /// Frame @a frame's membranes as one whole `.vtu` (none if there are none).
+    void writeMembranes(size_t frame, const std::vector<Membrane>& membranes) const;
     /// Frame @a frame at @a time is written: list it (rewriting the .pvd if @a writeCollection).
     void list(int frame, double time, bool parallel, bool membranes, bool writeCollection);
 

@@ -5,6 +5,9 @@
 
 #include "lsdem/contact/NodeBlockWalk.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -48,88 +51,170 @@ Vec3 nearestWeights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 
 } // namespace
 
-std::int64_t MembraneTriangleGrid::keyOf(long long i, long long j, long long k) const
+namespace {
+/// The skin of the binning, over the reach: wider keeps a binning longer but lists more
+/// triangles whose box misses a node (a quarter was the fastest of 0.1 to 1 on a triaxial
+/// sample in its membrane).
+constexpr double kSkinOverReach = 0.25;
+} // namespace
+
+void MembraneTriangleGrid::update(const Membrane& m, double reach)
 {
-    // 21 bits a direction: 2 million cells across, far beyond a membrane's extent in cells.
-    constexpr long long kBias = 1 << 20;
-    return ((i + kBias) << 42) | ((j + kBias) << 21) | (k + kBias);
+    // The normals every time: the contact's depth is measured along them.
+    mOutward.resize(m.triangles.size());
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const auto& v = m.triangles[t].vertices;
+        const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
+                   &p2 = m.positions[size_t(v[2])];
+        mOutward[t] = (p1 - p0).cross(p2 - p0).normalized();
+    }
+    bool stale = reach != mReach || m.positions.size() != mBinnedAt.size() ||
+                 m.triangles.size() != mBinnedTriangles;
+    // A box grown by reach + skin when binned still holds every point within reach of its
+    // triangle while no vertex has moved more than the skin along any axis.
+    const double skin = kSkinOverReach * reach;
+    for (size_t i = 0; !stale && i < m.positions.size(); ++i)
+        stale = !((m.positions[i] - mBinnedAt[i]).cwiseAbs().maxCoeff() <= skin);
+    if (stale) {
+        mReach = reach;
+        bin(m);
+    }
+    markLiveCells(m);
+}
+
+bool MembraneTriangleGrid::cellRange(int a, double lo, double hi, long long& from,
+                                     long long& to) const
+{
+    const double first = std::floor((lo - mLow[a]) * mInverseCell),
+                 last = std::floor((hi - mLow[a]) * mInverseCell);
+    if (!(last >= 0.0) || !(first < double(mCells[a]))) return false;
+    from = std::max(0LL, static_cast<long long>(first));
+    to = std::min(mCells[a] - 1, static_cast<long long>(last));
+    return true;
+}
+
+void MembraneTriangleGrid::bin(const Membrane& m)
+{
+    ++mBinnings;
+    mBinnedAt = m.positions;
+    mBinnedTriangles = m.triangles.size();
+    mEntries.clear();
+    mCellStart.assign(1, 0);
+    mCells[0] = mCells[1] = mCells[2] = 0;
+    if (m.triangles.empty()) return;
+    const double grow = (1.0 + kSkinOverReach) * mReach;
+    std::vector<Entry> boxes;
+    boxes.reserve(m.triangles.size());
+    Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+    double extent = 0.0;
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const auto& v = m.triangles[t].vertices;
+        Vec3 lo = m.positions[size_t(v[0])], hi = lo;
+        for (int k : v) {
+            lo = lo.cwiseMin(m.positions[size_t(k)]);
+            hi = hi.cwiseMax(m.positions[size_t(k)]);
+        }
+        lo.array() -= grow;
+        hi.array() += grow;
+        extent += (hi - lo).maxCoeff();
+        low = low.cwiseMin(lo);
+        high = high.cwiseMax(hi);
+        Entry e;
+        e.triangle = int(t);
+        for (int a = 0; a < 3; ++a) {  // rounded outward: the float box holds the double one
+            e.low[a] = std::nextafter(float(lo[a]), -std::numeric_limits<float>::infinity());
+            e.high[a] = std::nextafter(float(hi[a]), std::numeric_limits<float>::infinity());
+        }
+        boxes.push_back(e);
+    }
+    // Cells half as wide as the mean grown box: a node's cell then lists few triangles whose
+    // box misses it. More cells than a few dozen per triangle would only cost memory (a
+    // stretched, sparse membrane): then they are widened.
+    mCell = 0.5 * extent / double(boxes.size());
+    const double cellsAllowed = 64.0 * double(boxes.size()) + 4096.0;
+    for (;;) {
+        for (int a = 0; a < 3; ++a)
+            mCells[a] = static_cast<long long>(std::floor((high[a] - low[a]) / mCell)) + 1;
+        if (double(mCells[0]) * double(mCells[1]) * double(mCells[2]) <= cellsAllowed) break;
+        mCell *= 1.25;
+    }
+    mInverseCell = 1.0 / mCell;
+    mLow = low;
+    const size_t cells = size_t(mCells[0] * mCells[1] * mCells[2]);
+    // Count, then place (a counting sort by cell; in each cell the triangles in index order).
+    auto forCellsOf = [&](const Entry& e, auto&& visit) {
+        long long from[3], to[3];
+        for (int a = 0; a < 3; ++a)
+            if (!cellRange(a, double(e.low[a]), double(e.high[a]), from[a], to[a])) return;
+        for (long long i = from[0]; i <= to[0]; ++i)
+            for (long long j = from[1]; j <= to[1]; ++j)
+                for (long long k = from[2]; k <= to[2]; ++k)
+                    visit(size_t((i * mCells[1] + j) * mCells[2] + k));
+    };
+    std::vector<std::uint32_t> count(cells + 1, 0);
+    for (const Entry& e : boxes) forCellsOf(e, [&](size_t cell) { ++count[cell + 1]; });
+    for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
+    mCellStart = count;
+    mEntries.resize(mCellStart.back());
+    for (const Entry& e : boxes) forCellsOf(e, [&](size_t cell) { mEntries[count[cell]++] = e; });
+}
+
+void MembraneTriangleGrid::markLiveCells(const Membrane& m)
+{
+    const size_t cells = mCellStart.size() - 1;
+    mLive.assign(cells, 0);
+    // A cell is live if its highest point along a triangle's outward normal lies beyond that
+    // triangle's plane: (centre − p0)·n + h·(|n_x| + |n_y| + |n_z|) > 0, h half a cell.
+    const double half = 0.5 * mCell;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells, 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t c = range.begin(); c != range.end(); ++c) {
+                              if (mCellStart[c] == mCellStart[c + 1]) continue;
+                              const long long k = (long long)c % mCells[2],
+                                              j = ((long long)c / mCells[2]) % mCells[1],
+                                              i = (long long)c / (mCells[1] * mCells[2]);
+                              const Vec3 centre =
+                                  mLow + mCell * Vec3(double(i) + 0.5, double(j) + 0.5,
+                                                      double(k) + 0.5);
+                              for (uint32_t e = mCellStart[c]; e < mCellStart[c + 1]; ++e) {
+                                  const int t = mEntries[e].triangle;
+                                  const Vec3& n = mOutward[size_t(t)];
+                                  const Vec3& p0 =
+                                      m.positions[size_t(m.triangles[size_t(t)].vertices[0])];
+                                  // (a degenerate triangle's NaN normal makes its cell live)
+                                  if (!((centre - p0).dot(n) + half * n.cwiseAbs().sum() <= 0.0)) {
+                                      mLive[c] = 1;
+                                      break;
+                                  }
+                              }
+                          }
+                      });
 }
 
 std::int64_t MembraneTriangleGrid::cellOf(const Vec3& x) const
 {
-    if (mKeys.empty() || (x.array() < mLow.array()).any() || (x.array() > mHigh.array()).any())
-        return -1;
-    return keyOf(static_cast<long long>(std::floor((x.x() - mLow.x()) / mCell)),
-                 static_cast<long long>(std::floor((x.y() - mLow.y()) / mCell)),
-                 static_cast<long long>(std::floor((x.z() - mLow.z()) / mCell)));
-}
-
-const std::vector<int>& MembraneTriangleGrid::inCell(std::int64_t key) const
-{
-    if (key < 0) return mNone;
-    const auto found = std::lower_bound(mKeys.begin(), mKeys.end(), key);
-    if (found == mKeys.end() || *found != key) return mNone;
-    return mTriangles[size_t(found - mKeys.begin())];
-}
-
-void MembraneTriangleGrid::build(const Membrane& m, double reach)
-{
-    mReach = reach;
-    mKeys.clear();
-    mTriangles.clear();
-    if (m.triangles.empty()) return;
-    // Cells as wide as the mean grown triangle box: a triangle lies in a few, a cell holds
-    // a few dozen (the largest box would make every cell hold all of a stretched membrane's).
-    mLow = Vec3::Constant(std::numeric_limits<double>::infinity());
-    mHigh = -mLow;
-    std::vector<std::pair<Vec3, Vec3>>& boxes = mBoxes;
-    boxes.clear();
-    boxes.reserve(m.triangles.size());
-    double extent = 0.0;
-    for (const MembraneTriangle& t : m.triangles) {
-        Vec3 low = m.positions[size_t(t.vertices[0])], high = low;
-        for (int v : t.vertices) {
-            low = low.cwiseMin(m.positions[size_t(v)]);
-            high = high.cwiseMax(m.positions[size_t(v)]);
-        }
-        low.array() -= reach;
-        high.array() += reach;
-        extent += (high - low).maxCoeff();
-        mLow = mLow.cwiseMin(low);
-        mHigh = mHigh.cwiseMax(high);
-        boxes.emplace_back(low, high);
+    long long index[3];
+    for (int a = 0; a < 3; ++a) {
+        const double u = (x[a] - mLow[a]) * mInverseCell;
+        if (!(u >= 0.0) || u >= double(mCells[a])) return -1;  // (NaN too)
+        index[a] = static_cast<long long>(u);
     }
-    mCell = extent / static_cast<double>(boxes.size());
-    std::vector<std::pair<std::int64_t, int>> binned;
-    for (size_t t = 0; t < boxes.size(); ++t) {
-        const Vec3 low = ((boxes[t].first - mLow) / mCell).array().floor();
-        const Vec3 high = ((boxes[t].second - mLow) / mCell).array().floor();
-        for (long long i = (long long)low.x(); i <= (long long)high.x(); ++i)
-            for (long long j = (long long)low.y(); j <= (long long)high.y(); ++j)
-                for (long long k = (long long)low.z(); k <= (long long)high.z(); ++k)
-                    binned.emplace_back(keyOf(i, j, k), static_cast<int>(t));
-    }
-    std::sort(binned.begin(), binned.end());
-    for (const auto& [key, triangle] : binned) {
-        if (mKeys.empty() || mKeys.back() != key) {
-            mKeys.push_back(key);
-            mTriangles.emplace_back();
-        }
-        mTriangles.back().push_back(triangle);
-    }
+    const std::int64_t cell = (index[0] * mCells[1] + index[1]) * mCells[2] + index[2];
+    return mLive[size_t(cell)] ? cell : -1;
 }
 
 bool MembraneTriangleGrid::mayTouch(const Vec3& c, double r) const
 {
-    if (mKeys.empty()) return false;
-    if ((c.array() + r < mLow.array()).any() || (c.array() - r > mHigh.array()).any())
-        return false;
-    const Vec3 low = ((c.array() - r - mLow.array()) / mCell).floor();
-    const Vec3 high = ((c.array() + r - mLow.array()) / mCell).floor();
-    for (long long i = (long long)low.x(); i <= (long long)high.x(); ++i)
-        for (long long j = (long long)low.y(); j <= (long long)high.y(); ++j)
-            for (long long k = (long long)low.z(); k <= (long long)high.z(); ++k)
-                if (std::binary_search(mKeys.begin(), mKeys.end(), keyOf(i, j, k))) return true;
+    if (mEntries.empty()) return false;
+    long long from[3], to[3];
+    for (int a = 0; a < 3; ++a)
+        if (!cellRange(a, c[a] - r, c[a] + r, from[a], to[a])) return false;
+    for (long long i = from[0]; i <= to[0]; ++i)
+        for (long long j = from[1]; j <= to[1]; ++j) {
+            const std::uint8_t* row = mLive.data() + size_t((i * mCells[1] + j) * mCells[2]);
+            for (long long k = from[2]; k <= to[2]; ++k)
+                if (row[k]) return true;
+        }
     return false;
 }
 
@@ -156,24 +241,33 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     const Eigen::Matrix3d rotation = grain.pose.orientation.toRotationMatrix();
     const double reach = grid.reach();
     // Neighbouring nodes mostly share a cell: its triangles are looked up once for a run.
-    std::int64_t lastCell = -1;
-    const std::vector<int>* lastNear = &grid.inCell(-1);
+    std::int64_t lastCell = -2;
+    const MembraneTriangleGrid::Entry *first = nullptr, *last = nullptr;
     auto visit = [&](int begin, int end) {
         for (int i = begin; i < end; ++i) {
             const Vec3 x = rotation * a.nodes.positions[i] + grain.pose.position;
             const std::int64_t cell = grid.cellOf(x);
             if (cell != lastCell) {
                 lastCell = cell;
-                lastNear = &grid.inCell(cell);
+                first = grid.cellBegin(cell);
+                last = grid.cellEnd(cell);
             }
-            const std::vector<int>& near = *lastNear;
-            if (near.empty()) continue;
+            if (first == last) continue;
             ++stats.nodesSampled;
+            // A node inside the plane of every triangle near it has depth ≤ 0 at whichever is
+            // nearest: it is passed over before the nearest is looked for.
+            bool outside = false;
+            for (const auto* e = first; e != last && !outside; ++e)
+                outside = e->holds(x) &&
+                          (x - m.positions[size_t(m.triangles[size_t(e->triangle)].vertices[0])])
+                                  .dot(grid.outward(e->triangle)) > 0.0;
+            if (!outside) continue;
             // The nearest triangle, ties to the lower index (the same on any thread count).
             double best = std::numeric_limits<double>::infinity();
             MembraneHit hit;
-            for (int t : near) {
-                if (!grid.holds(t, x)) continue;
+            for (const auto* e = first; e != last; ++e) {
+                if (!e->holds(x)) continue;
+                const int t = e->triangle;
                 const auto& v = m.triangles[size_t(t)].vertices;
                 const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
                            &p2 = m.positions[size_t(v[2])];
@@ -186,10 +280,8 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
                 }
             }
             if (!(best <= reach * reach)) continue;
-            const auto& v = m.triangles[size_t(hit.triangle)].vertices;
-            const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
-                       &p2 = m.positions[size_t(v[2])];
-            const Vec3 outward = (p1 - p0).cross(p2 - p0).normalized();
+            const Vec3& p0 = m.positions[size_t(m.triangles[size_t(hit.triangle)].vertices[0])];
+            const Vec3& outward = grid.outward(hit.triangle);
             const double depth = (x - p0).dot(outward);  // beyond its triangle's plane
             if (!(depth > 0.0)) continue;
             ++stats.nodesInContact;

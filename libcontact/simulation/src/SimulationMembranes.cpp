@@ -85,7 +85,7 @@ void Simulation::computeMembranes(double dt)
         // The grains' contacts, grain by grain in parallel (split by space, each by its
         // owner: every rank holds the whole membrane, and a ghost's contact is its owner's).
         MembraneTriangleGrid& grid = mMembraneGrids[k];
-        grid.build(m, m.contactReach);
+        grid.update(m, m.contactReach);
         std::vector<MembraneGrainContact>& contacts = mMembraneContacts[k];
         contacts.resize(w.grains.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, w.grains.size()),

@@ -14,7 +14,9 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -351,4 +353,101 @@ TEST(MembraneContact, DragLimitsTheStepAsASpringDoes)
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("its drag's rate 1e+06 /s"), std::string::npos) << e.what();
     }
+}
+
+namespace {
+
+/// The distance from @a p to triangle (a, b, c): to its plane where p projects inside it,
+/// else to the nearest of its edges (written apart from the library's barycentric search).
+double distanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    const Vec3 q = p - (p - a).dot(n) * n;
+    const auto inside = [&](const Vec3& u, const Vec3& v) { return (v - u).cross(q - u).dot(n) >= 0.0; };
+    if (inside(a, b) && inside(b, c) && inside(c, a)) return std::abs((p - a).dot(n));
+    const auto toSegment = [&](const Vec3& u, const Vec3& v) {
+        const double s = std::clamp((p - u).dot(v - u) / (v - u).squaredNorm(), 0.0, 1.0);
+        return (p - (u + s * (v - u))).norm();
+    };
+    return std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
+}
+
+/// Every triangle within the reach of @a x is listed in its cell with a box that holds it,
+/// and the cell is live (cellOf finds it) when @a x lies outside the plane of one of them.
+void expectGridFindsWhatIsWithinReach(const MembraneTriangleGrid& grid, const Membrane& m,
+                                      const Vec3& x)
+{
+    std::vector<int> within;
+    bool outside = false;
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const auto& v = m.triangles[t].vertices;
+        const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
+                   &p2 = m.positions[size_t(v[2])];
+        if (distanceToTriangle(x, p0, p1, p2) > grid.reach()) continue;
+        within.push_back(int(t));
+        outside = outside || (x - p0).dot((p1 - p0).cross(p2 - p0)) > 0.0;
+    }
+    const std::int64_t cell = grid.cellOf(x);
+    if (!outside) return;  // (such a node is passed over whatever its cell)
+    ASSERT_GE(cell, 0) << "a point outside a triangle within reach found no live cell";
+    EXPECT_TRUE(grid.mayTouch(x, 1e-9));
+    for (int t : within) {
+        bool listed = false;
+        for (const auto* e = grid.cellBegin(cell); e != grid.cellEnd(cell); ++e)
+            listed = listed || (e->triangle == t && e->holds(x));
+        EXPECT_TRUE(listed) << "triangle " << t << " within reach is not listed";
+    }
+}
+
+} // namespace
+
+// The grid keeps its binning while the membrane moves less than its skin, and still finds
+// every triangle within reach of a point (against a brute-force search over all triangles);
+// a larger move rebins it. Fails if the binning were kept beyond the skin, or the skin left
+// out of the boxes.
+TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMoves)
+{
+    Membrane m = makeTubeMembrane(Vec3(0.3, -0.2, 0), Vec3::UnitZ(), 3.0, 6.0, 30, 12,
+                                  lsdem::test::latexRubber());
+    const double reach = m.contactReach;
+    ASSERT_GT(reach, 0.0);
+    MembraneTriangleGrid grid;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    // Points near the side at radius @a r, within twice the reach inside or outside it.
+    const auto checkPoints = [&](double r0) {
+        for (int k = 0; k < 4000; ++k) {
+            const double angle = kPi * unit(random), z = 3.0 + 3.2 * unit(random);
+            const double r = r0 + 2.0 * reach * unit(random);
+            expectGridFindsWhatIsWithinReach(grid, m,
+                                             Vec3(0.3 + r * std::cos(angle), -0.2 + r * std::sin(angle), z));
+        }
+    };
+    grid.update(m, reach);
+    EXPECT_EQ(grid.binnings(), 1);
+    checkPoints(3.0);
+    // Vertices moved by up to a fifth of the reach along each axis (the skin is a quarter):
+    // the binning stays, the normals and live cells follow.
+    const std::vector<Vec3> start = m.positions;
+    const auto radial = [&](size_t i) {
+        return Vec3(start[i].x() - 0.3, start[i].y() + 0.2, 0.0).normalized();
+    };
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        m.positions[i] = start[i] + 0.2 * reach * Vec3(unit(random), unit(random), unit(random));
+    grid.update(m, reach);
+    EXPECT_EQ(grid.binnings(), 1);
+    checkPoints(3.0);
+    // Swollen by just under the skin: points nearly the reach outside lie beyond the boxes
+    // as binned unless they were grown by the skin too.
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        m.positions[i] = start[i] + 0.24 * reach * radial(i);
+    grid.update(m, reach);
+    EXPECT_EQ(grid.binnings(), 1);
+    checkPoints(3.0 + 0.24 * reach);
+    // Dented inward by up to the reach: rebinned.
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        m.positions[i] = start[i] - reach * std::abs(unit(random)) * radial(i);
+    grid.update(m, reach);
+    EXPECT_EQ(grid.binnings(), 2);
+    checkPoints(3.0 - 0.5 * reach);
 }

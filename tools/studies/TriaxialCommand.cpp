@@ -3,6 +3,7 @@
 #include "studies/RunDistributor.h"
 #include "studies/StudyCommandOptions.h"
 #include "studies/ThreadLimit.h"
+#include "studies/TriaxialCost.h"
 #include "studies/TriaxialOutputs.h"
 #include "studies/TriaxialShearScene.h"
 #include "studies/TriaxialStudy.h"
@@ -322,9 +323,13 @@ int TriaxialCommand::run(RunDistributor& ranks) const
     auto onPlan = [&](const std::vector<TriaxialRunPlan>& plans) {
         if (o.quiet && !o.estimateOnly) return;
         std::printf("%s", describeTriaxialCost(plans, threadsPerRun, ranks.ranks()).c_str());
-        if (o.membrane)  // (docs/triaxial.md#a-membrane-instead-of-side-walls)
-            std::printf("  (the walls' stages only: a membrane's consolidation and shearing are "
-                        "not in it; runs of 300 and 400 grains took 2.5 to 7.5 times this)\n");
+        if (o.membrane && !plans.empty()) {  // (docs/triaxial.md#cost)
+            const TriaxialRunCost c = triaxialRunCost(plans.front(), threadsPerRun);
+            std::printf("  (in the membrane: about %.0f of the %lld grains, %.0f of them next to "
+                        "it, for %lld steps of its consolidation and the shearing's; the most "
+                        "if the shearing's step is halved)\n",
+                        c.keptGrains, o.grains, c.grainsAtMembrane, c.membraneSteps);
+        }
         std::fflush(stdout);
     };
     const TriaxialStudyResult result = runTriaxialStudy(o, ranks, onRun, progress, onPlan);

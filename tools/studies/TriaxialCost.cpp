@@ -24,16 +24,44 @@ constexpr double kOneThreadOverTwo = 1.9;
 /// (the runs above consolidated in 5400–7500 steps, one in 10,200).
 constexpr long long kRampSteps = 1200;
 
+// In a membrane (fitted to 300 and 1000 grains at 431 nodes, 2026-11-29, after the membrane's
+// contact was sped up; docs/triaxial.md#cost):
+/// the cost of a node of a grain next to the membrane, tested against its triangles, beyond
+/// the grain's own contacts (36 and 42 µs a grain at 431 nodes);
+constexpr double kSecondsPerMembraneNodeStep = 9.0e-8;
+/// the consolidation in the membrane (its closing in, then the hold): 3000 and 5500 steps;
+constexpr long long kMembraneConsolidationSteps = 4300, kMembraneConsolidationSpread = 1200;
+/// the cylinder cut from a sample N grains wide (s = (N / height ratio)^(1/3) grains
+/// across): its radius in mean diameters 0.583·s − 1.12 (2.78 and 4.71 measured), and the
+/// grains it keeps N·π/4·(1 − 1.7/s)² (0.42, 0.455 and 0.541 of 300, 400 and 1000 measured).
+constexpr double kRadiusPerWidth = 0.583, kRadiusLoss = 1.12, kKeptLoss = 1.7;
+
 } // namespace
 
-double triaxialStepSeconds(long long grains, double nodesPerGrain, int threads)
+namespace {
+
+/// Seconds on @a threads threads of what takes @a twoThreads on two.
+double onThreads(double twoThreads, int threads)
 {
-    const double g = double(grains);
-    const double twoThreads = g * nodesPerGrain * kSecondsPerGrainNodeStep +
-                              std::max(0.0, g - kFreeGrains) * kSecondsPerGrainStep;
     const double oneThread = kOneThreadOverTwo * twoThreads;
     // Beyond two: the same share of each added thread as the second gives.
     return threads <= 1 ? oneThread : oneThread / (1.0 + (kOneThreadOverTwo - 1.0) * (threads - 1));
+}
+
+} // namespace
+
+double triaxialStepSeconds(double grains, double nodesPerGrain, int threads)
+{
+    return onThreads(grains * nodesPerGrain * kSecondsPerGrainNodeStep +
+                         std::max(0.0, grains - kFreeGrains) * kSecondsPerGrainStep,
+                     threads);
+}
+
+double membraneStepSeconds(double grains, double grainsAtMembrane, double nodesPerGrain,
+                           int threads)
+{
+    return triaxialStepSeconds(grains, nodesPerGrain, threads) +
+           onThreads(grainsAtMembrane * nodesPerGrain * kSecondsPerMembraneNodeStep, threads);
 }
 
 TriaxialRunCost triaxialRunCost(const TriaxialRunPlan& plan, int threads)
@@ -47,9 +75,28 @@ TriaxialRunCost triaxialRunCost(const TriaxialRunPlan& plan, int threads)
     const double approach = shrink / (plan.approachRate * plan.timeStep);
     c.consolidationSteps = static_cast<long long>(std::ceil(approach)) + kRampSteps + plan.settledSteps;
     c.shearSteps = plan.shearSteps;
-    const double step = triaxialStepSeconds(plan.grains, plan.nodesPerGrain, threads);
-    c.seconds = double(c.consolidationSteps + c.shearSteps) * step;
-    c.secondsAtMost = c.seconds + double(2 * plan.settledSteps) * step;
+    const double step = triaxialStepSeconds(double(plan.grains), plan.nodesPerGrain, threads);
+    if (!plan.membrane) {
+        c.seconds = double(c.consolidationSteps + c.shearSteps) * step;
+        c.secondsAtMost = c.seconds + double(2 * plan.settledSteps) * step;
+        return c;
+    }
+    // The walls' consolidation of the whole sample, then the cylinder's in the membrane and
+    // its shearing.
+    const double across = std::cbrt(double(plan.grains) / std::max(plan.heightRatio, 1e-9));
+    const double radius = std::max(1.0, kRadiusPerWidth * across - kRadiusLoss);
+    const double keptShare = std::max(0.0, 1.0 - kKeptLoss / across);
+    c.keptGrains = double(plan.grains) * 0.25 * 3.14159265358979 * keptShare * keptShare;
+    const double inner = 1.0 - 1.0 / radius;  // grains within a diameter of the membrane
+    c.grainsAtMembrane = c.keptGrains * (1.0 - inner * inner);
+    const double membraneStep =
+        membraneStepSeconds(c.keptGrains, c.grainsAtMembrane, plan.nodesPerGrain, threads);
+    c.membraneSteps = kMembraneConsolidationSteps;
+    const double walls = double(c.consolidationSteps) * step;
+    c.consolidationSteps += c.membraneSteps;
+    c.seconds = walls + double(c.membraneSteps + c.shearSteps) * membraneStep;
+    c.secondsAtMost = c.seconds + double(2 * plan.settledSteps) * step +
+                      double(kMembraneConsolidationSpread + 2 * c.shearSteps) * membraneStep;
     return c;
 }
 

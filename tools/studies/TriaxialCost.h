@@ -21,15 +21,25 @@ struct TriaxialRunPlan
     double approachRate = 100.0;   ///< the walls' closing rate at first, 1/s
     long long settledSteps = 2000; ///< the consolidation's hold at σ₃
     long long shearSteps = 0;
+    /// --boundary membrane: after the walls' consolidation, a cylinder of the sample is cut,
+    /// wrapped in a membrane, consolidated again and sheared (TriaxialMembrane.h).
+    bool membrane = false;
+    double heightRatio = 1.0;      ///< the sample's height over its width
 };
 
 /// One run's estimate.
 struct TriaxialRunCost
 {
     long long consolidationSteps = 0, shearSteps = 0;
+    /// In a membrane: the steps of its consolidation (included in consolidationSteps), the
+    /// grains the cylinder keeps and those of them next to the membrane.
+    long long membraneSteps = 0;
+    double keptGrains = 0.0, grainsAtMembrane = 0.0;
     double seconds = 0.0;          ///< wall time with the study's threads
     /// The same if the consolidation's hold at σ₃ is broken twice and starts again (two of
-    /// sixteen runs measured consolidated in about 10,000 steps, the others in 5400–7500).
+    /// sixteen runs measured consolidated in about 10,000 steps, the others in 5400–7500);
+    /// in a membrane also if the shearing's step is halved (its steps done twice over and
+    /// some of them wasted: 1000 grains to 20 % measured it).
     double secondsAtMost = 0.0;
 };
 
@@ -41,7 +51,12 @@ inline constexpr double kConsolidatedVoidRatio = 0.46;
 TriaxialRunCost triaxialRunCost(const TriaxialRunPlan& plan, int threads);
 
 /// Seconds a step of @a grains grains of @a nodesPerGrain nodes takes on @a threads threads.
-double triaxialStepSeconds(long long grains, double nodesPerGrain, int threads);
+double triaxialStepSeconds(double grains, double nodesPerGrain, int threads);
+
+/// The same for @a grains grains in a membrane, @a grainsAtMembrane of them next to it (their
+/// nodes are tested against its triangles).
+double membraneStepSeconds(double grains, double grainsAtMembrane, double nodesPerGrain,
+                           int threads);
 
 /// The table printed before the runs: each run's steps and minutes, and the study's wall time
 /// on @a ranks ranks (runs handed out largest first).

@@ -386,6 +386,8 @@ TriaxialRunPlan costPlanOf(const PlannedRun& plan, const TriaxialOptions& o, std
     c.approachRate = plan.protocol.approachRate;
     c.settledSteps = plan.protocol.settledSteps;
     c.shearSteps = plan.shearSteps;
+    c.membrane = o.membrane;
+    c.heightRatio = o.heightRatio;
     return c;
 }
 

@@ -83,3 +83,37 @@ TEST(TriaxialCost, TheTableListsEachRunAndTheTotal)
     const std::string spread = describeTriaxialCost({plan(), second}, 2, 2);
     EXPECT_NE(spread.find("on 2 ranks, largest runs first"), std::string::npos) << spread;
 }
+
+// A membrane run: the walls' consolidation of the whole sample, then the cylinder's grains
+// (fewer, part of them next to the membrane, whose nodes cost more) consolidated again and
+// sheared. Fails if the membrane's stage were left out (as it was until 2026-11-29) or costed
+// at the whole sample's grains.
+TEST(TriaxialCost, AMembraneRunCostsTheWallsStageThenTheCylindersInTheMembrane)
+{
+    TriaxialRunPlan walls = plan();
+    walls.nodesPerGrain = 431.0;
+    TriaxialRunPlan membrane = walls;
+    membrane.membrane = true;
+    const TriaxialRunCost w = triaxialRunCost(walls, 2), m = triaxialRunCost(membrane, 2);
+    // 1000 grains: the cylinder keeps about 541 (as measured), 206 of them within a diameter
+    // of a membrane 4.7 diameters in radius.
+    EXPECT_NEAR(m.keptGrains, 541.0, 15.0);
+    EXPECT_NEAR(m.grainsAtMembrane, 541.0 * (1.0 - std::pow(1.0 - 1.0 / 4.71, 2)), 10.0);
+    EXPECT_EQ(m.consolidationSteps, w.consolidationSteps + m.membraneSteps);
+    EXPECT_GT(m.membraneSteps, 2000);
+    const double wallStep = triaxialStepSeconds(1000.0, 431.0, 2);
+    const double membraneStep = membraneStepSeconds(m.keptGrains, m.grainsAtMembrane, 431.0, 2);
+    EXPECT_GT(membraneStep, triaxialStepSeconds(m.keptGrains, 431.0, 2));
+    EXPECT_NEAR(m.seconds,
+                double(w.consolidationSteps) * wallStep +
+                    double(m.membraneSteps + m.shearSteps) * membraneStep,
+                1e-9 * m.seconds);
+    // At most: the shearing done twice over and some of it once more.
+    EXPECT_GT(m.secondsAtMost, m.seconds + 2.0 * double(m.shearSteps) * membraneStep);
+    // A tall sample (twice as high as wide) is narrower for its grains: more of them lie next
+    // to the membrane.
+    TriaxialRunPlan tall = membrane;
+    tall.heightRatio = 2.0;
+    const TriaxialRunCost t = triaxialRunCost(tall, 2);
+    EXPECT_GT(t.grainsAtMembrane / t.keptGrains, m.grainsAtMembrane / m.keptGrains);
+}

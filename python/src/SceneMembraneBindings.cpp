@@ -7,6 +7,8 @@
 
 #include <pybind11/stl.h>
 
+#include <filesystem>
+
 namespace lsdem::python {
 
 void bindSceneMembranes(py::class_<Scene>& scene)
@@ -16,7 +18,8 @@ void bindSceneMembranes(py::class_<Scene>& scene)
         [](Scene& s, const std::string& name, const std::string& material, double youngs,
            double poisson, double thickness, double density, const py::object& base,
            double radius, double height, int segments, int rings, const py::object& axis,
-           double pressure, double drag, double prestretch, const std::vector<std::string>& hold) {
+           double pressure, double drag, double prestretch, const std::vector<std::string>& hold,
+           const std::string& state) {
             checkNewName(s.membranes, name, "membrane");
             MembraneSpec m;
             m.name = name;
@@ -29,6 +32,7 @@ void bindSceneMembranes(py::class_<Scene>& scene)
             m.segments = segments, m.rings = rings;
             m.pressure = pressure, m.drag = drag, m.prestretch = prestretch;
             for (const std::string& b : hold) m.hold.push_back(indexOf(s.boundaries, b, "boundary"));
+            if (!state.empty()) m.state = std::filesystem::absolute(state).lexically_normal().string();
             if (std::optional<KeyProblem> p = membraneProblem(m))
                 throw Error("", "membrane '" + name + "': " + keyProblemText(*p), p->fix);
             s.membranes.push_back(m);
@@ -39,12 +43,14 @@ void bindSceneMembranes(py::class_<Scene>& scene)
         py::arg("radius"), py::arg("height"), py::arg("segments"), py::arg("rings"),
         py::arg("axis") = py::make_tuple(0.0, 0.0, 1.0), py::arg("pressure") = 0.0,
         py::arg("drag") = 0.0, py::arg("prestretch") = 1.0,
-        py::arg("hold") = std::vector<std::string>{},
+        py::arg("hold") = std::vector<std::string>{}, py::arg("state") = std::string(),
         "A rubber tube round the grains (docs/scenes.md#membranes): its axis from `base` along "
         "`axis`, `radius` and `height` as placed, `segments` vertices round each of `rings` + 1 "
         "rings, stretched round by `prestretch` (>= 1); `pressure` pushes in on its outer side, "
         "`drag` is the cell fluid's; each rim is held by the nearest of the plane boundaries "
-        "named in `hold`. Grains meet it through the contact law with `material`.");
+        "named in `hold`; `state`, a CSV file of x, y, z, vx, vy, vz per vertex (as a run left "
+        "it), places its vertices, the tube keys then giving its rubber's unstretched shape. "
+        "Grains meet it through the contact law with `material`.");
 }
 
 } // namespace lsdem::python

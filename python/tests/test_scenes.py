@@ -456,3 +456,26 @@ def test_a_membrane_from_python(tmp_path):
     assert sleeve.pressure == 0.01
     with pytest.raises(KeyError):
         sim.membranes["none"]
+
+    # Placed from a state file (as a run left it): the vertices where the file puts them, the
+    # rubber still the tube's (its unstretched areas unchanged).
+    swollen = sleeve.positions * np.array([1.1, 1.1, 1.0])
+    rows = np.hstack([swollen, np.zeros_like(swollen)])
+    np.savetxt(tmp_path / "sleeve_state.csv", rows, delimiter=",", header="x,y,z,vx,vy,vz",
+               comments="", fmt="%.17g")
+    placed = lsdem.Scene()
+    placed.add_asset("ball", ball)
+    placed.add_material("steel", density=7.85e-9)
+    placed.add_material("latex")
+    placed.add_contact("steel", "latex", normal_stiffness=1e3)
+    placed.add_grain("ball", "steel", [0, 0, 5])
+    placed.add_plane("floor", "latex", point=[0, 0, 0], normal=[0, 0, 1])
+    placed.add_plane("lid", "latex", point=[0, 0, 10], normal=[0, 0, -1])
+    placed.add_membrane("sleeve", "latex", youngs=1.4, poisson=0.45, thickness=0.3,
+                        density=1e-6, base=[0, 0, 0], radius=1.5, height=10, segments=24,
+                        rings=8, prestretch=1.05, hold=["floor", "lid"],
+                        state=str(tmp_path / "sleeve_state.csv"))
+    placed.end_steps = 5
+    moved = lsdem.Simulation(placed).membranes["sleeve"]
+    assert np.array_equal(moved.positions, swollen)
+    assert moved.volume == pytest.approx(1.21 * sleeve.volume, rel=1e-12)

@@ -1,6 +1,8 @@
 // A [[membranes]] entry's rules and the membrane it makes.
 #include "lsdem/scene/MembraneKeys.h"
 
+#include "lsdem/scene/MembraneStateCsv.h"
+
 #include "lsdem/core/Error.h"
 #include "lsdem/core/NumberText.h"
 
@@ -72,6 +74,7 @@ Membrane makeMembrane(const MembraneSpec& spec, const std::vector<BoundarySpec>&
         throw Error(spec.where, "membrane '" + spec.name + "': " + keyProblemText(*p), p->fix);
     Membrane m = makeTubeMembrane(spec.base, spec.axis.normalized(), spec.radius, spec.height,
                                   spec.segments, spec.rings, spec.rubber, spec.prestretch);
+    if (!spec.state.empty()) readMembraneStateCsv(spec.state, m);  // placed as a run left it
     m.name = spec.name;
     m.material = spec.material;
     m.pressure = spec.pressure;

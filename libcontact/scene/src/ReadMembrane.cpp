@@ -58,6 +58,7 @@ MembraneSpec readMembrane(TableReader& t, const Scene& scene)
             m.hold.push_back(i);
         }
     }
+    if (t.has("state")) m.state = resolveScenePath(scene.directory, t.string("state"));
     t.rejectUnknownKeys();
     if (std::optional<KeyProblem> p = membraneProblem(m)) t.fail(p->key, p->problem, p->fix);
     return m;

@@ -250,7 +250,8 @@ void writeBoundary(TomlText& t, const Scene& scene, const BoundarySpec& b)
     vector("velocity", k.velocity);
 }
 
-void writeMembrane(TomlText& t, const Scene& scene, const MembraneSpec& m)
+void writeMembrane(TomlText& t, const Scene& scene, const MembraneSpec& m,
+                   const std::string& directory)
 {
     t.arrayTable("membranes");
     t.string("name", m.name);
@@ -274,6 +275,7 @@ void writeMembrane(TomlText& t, const Scene& scene, const MembraneSpec& m)
         for (int b : m.hold) names.push_back(scene.boundaries[size_t(b)].name);
         t.strings("hold", names);
     }
+    if (!m.state.empty()) t.string("state", pathFrom(directory, m.state));
 }
 
 /// The settings of @a section (SceneSettings.h) in the schema's order, those that the file
@@ -364,7 +366,7 @@ std::string sceneToToml(const Scene& scene, const std::string& sceneDirectory,
         if (f.maxOverlap >= 0.0) t.number("max_overlap", f.maxOverlap);
     }
     for (const BoundarySpec& b : scene.boundaries) writeBoundary(t, scene, b);
-    for (const MembraneSpec& m : scene.membranes) writeMembrane(t, scene, m);
+    for (const MembraneSpec& m : scene.membranes) writeMembrane(t, scene, m, sceneDirectory);
     writeSimulation(t, scene);
     writeOutput(t, scene);
     return t.str();

@@ -2,6 +2,7 @@
 // held by the nearest named planes, written back the same, and every bad entry is refused
 // naming its line, key and fix.
 #include "lsdem/scene/BuildWorld.h"
+#include "lsdem/scene/MembraneStateCsv.h"
 #include "lsdem/scene/SceneFile.h"
 #include "lsdem/scene/SceneWriter.h"
 #include "lsdem/core/Constants.h"
@@ -10,6 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 using namespace lsdem;
 
@@ -218,4 +223,112 @@ TEST(SceneMembranes, ARimHeldByANonPlaneOrByNothingNearIsRefusedWhenBuilt)
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("'lid' is not a plane"), std::string::npos) << e.what();
     }
+}
+
+namespace {
+
+/// A scratch folder for a test's files, removed with it.
+struct ScratchFolder
+{
+    std::filesystem::path path;
+    explicit ScratchFolder(const std::string& name)
+        : path(std::filesystem::temp_directory_path() / ("lsdem_" + name + "_" + std::to_string(::getpid())))
+    {
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~ScratchFolder() { std::filesystem::remove_all(path); }
+    std::string write(const std::string& file, const std::string& text) const
+    {
+        std::ofstream((path / file).string(), std::ios::binary) << text;
+        return (path / file).string();
+    }
+};
+
+} // namespace
+
+// A run's membrane as it left it: `state` places the tube's vertices (and their velocities)
+// where the file says, with its rubber's unstretched shape still the tube's keys'; written and
+// read back to the same bits, and the scene round-trips with the key. Fails if the state were
+// ignored, or the reference shapes made from the state instead of the tube.
+TEST(SceneMembranes, AStateFilePlacesTheVerticesWhereARunLeftThem)
+{
+    const ScratchFolder folder("membrane_state");
+    std::vector<std::string> warnings;
+    World w = buildWorld(parseScene(kTube, "membrane.toml"), warnings);
+    Membrane moved = w.membranes[0];
+    for (size_t v = 0; v < moved.positions.size(); ++v) {
+        const Vec3& x = moved.positions[v];
+        // swollen by a tenth round its middle, drifting up
+        const double bulge = 1.0 + 0.1 * std::sin(kPi * x.z() / 10.0);
+        moved.positions[v] = Vec3(bulge * x.x(), bulge * x.y(), x.z() + 1e-3 * double(v % 7) / 3.0);
+        moved.velocities[v] = Vec3(0.1 / 3.0, -double(v), 1e-17 * double(v));
+    }
+    writeMembraneStateCsv(moved, (folder.path / "sleeve_state.csv").string());
+    const std::string sceneFile =
+        folder.write("scene.toml", edited("hold = [\"lid\", \"floor\"]",
+                                          "hold = [\"lid\", \"floor\"]\nstate = \"sleeve_state.csv\""));
+    const Scene scene = readSceneFile(sceneFile);
+    ASSERT_EQ(scene.membranes[0].state, (folder.path / "sleeve_state.csv").string());
+    const World placed = buildWorld(scene, warnings);
+    const Membrane& m = placed.membranes[0];
+    EXPECT_EQ(m.positions, moved.positions);    // bit for bit (17 digits)
+    EXPECT_EQ(m.velocities, moved.velocities);
+    ASSERT_EQ(m.triangles.size(), w.membranes[0].triangles.size());
+    for (size_t t = 0; t < m.triangles.size(); ++t) {  // the tube's rubber, not the state's
+        EXPECT_EQ(m.triangles[t].area, w.membranes[0].triangles[t].area) << t;
+        EXPECT_EQ(m.triangles[t].inverseShape, w.membranes[0].triangles[t].inverseShape) << t;
+    }
+    EXPECT_EQ(m.heldBy, w.membranes[0].heldBy);
+    EXPECT_EQ(m.masses, w.membranes[0].masses);
+    // Written back, the scene names the same file (relative to its folder, as read).
+    const std::string text = sceneToToml(scene, folder.path.string());
+    EXPECT_NE(text.find("state = 'sleeve_state.csv'"), std::string::npos) << text;
+    const Scene again = parseScene(text, sceneFile);
+    EXPECT_EQ(again.membranes[0].state, scene.membranes[0].state);
+}
+
+// A state file that is missing, has a wrong header, a row too few, a word or a NaN for a
+// number is refused when the world is built, naming the file (and the line) and the fix.
+TEST(SceneMembranes, ABadStateFileIsRefusedNamingTheFileAndLine)
+{
+    const ScratchFolder folder("membrane_bad_state");
+    std::vector<std::string> warnings;
+    const World w = buildWorld(parseScene(kTube, "membrane.toml"), warnings);
+    const std::string good = membraneStateCsvText(w.membranes[0]);
+    const auto refusedWith = [&](const std::string& csv) -> std::string {
+        if (!csv.empty()) folder.write("state.csv", csv);
+        else std::filesystem::remove(folder.path / "state.csv");
+        const std::string sceneFile = folder.write(
+            "scene.toml", edited("hold = [\"lid\", \"floor\"]",
+                                 "hold = [\"lid\", \"floor\"]\nstate = \"state.csv\""));
+        try {
+            std::vector<std::string> ignored;
+            buildWorld(readSceneFile(sceneFile), ignored);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    const std::string file = (folder.path / "state.csv").string();
+    std::string message = refusedWith("");
+    EXPECT_NE(message.find(file), std::string::npos) << message;
+    EXPECT_NE(message.find("cannot read"), std::string::npos) << message;
+    message = refusedWith("x,y,z\n1,2,3\n");
+    EXPECT_NE(message.find(file + ":1"), std::string::npos) << message;
+    EXPECT_NE(message.find("header"), std::string::npos) << message;
+    message = refusedWith(good.substr(0, good.rfind('\n', good.size() - 2) + 1));
+    EXPECT_NE(message.find("215 rows for a membrane of 216 vertices"), std::string::npos) << message;
+    std::string word = good;
+    word.replace(word.find('\n') + 1, 1, "a");  // the first row's x
+    message = refusedWith(word);
+    EXPECT_NE(message.find(file + ":2"), std::string::npos) << message;
+    EXPECT_NE(message.find("column 'x'"), std::string::npos) << message;
+    std::string nan = good;
+    const size_t third = nan.find('\n', nan.find('\n', nan.find('\n') + 1) + 1) + 1;  // line 4
+    nan.replace(third, nan.find(',', third) - third, "nan");
+    message = refusedWith(nan);
+    EXPECT_NE(message.find(file + ":4"), std::string::npos) << message;
+    EXPECT_NE(message.find("not a finite number"), std::string::npos) << message;
+    EXPECT_EQ(refusedWith(good), "accepted");
 }

@@ -156,6 +156,9 @@ struct MembraneSpec
     /// so it is taut round what it wraps from the start (a slack membrane has no stiffness).
     double prestretch = 1.0;
     std::vector<int> hold;  ///< indices into Scene::boundaries (a file names them: `hold`)
+    /// Optional: a CSV of its vertices as a run left them (MembraneStateCsv.h), absolute. The
+    /// tube's keys then give only its rubber's unstretched shape and its vertices' order.
+    std::string state;
     std::string where;
 };
 

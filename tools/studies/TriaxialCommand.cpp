@@ -34,7 +34,7 @@ namespace {
 const cli::StudyFiles kOwnFiles = {"triaxial.csv", "triaxial_runs.csv",
                                    "triaxial_convergence.csv", "triaxial_curves.png",
                                    "triaxial_friction_angles.png", "scene/triaxial_shear.toml",
-                                   "scene/grains.csv"};
+                                   "scene/grains.csv", "scene/membrane_state.csv"};
 
 /// Remove the assets in DIR/scene/assets that an earlier run's shear scene names (they are
 /// named after its meshes, so a rerun with other meshes would leave them beside the new ones);
@@ -351,9 +351,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         if (r.formulation == o.formulations.front() && (!finest || r.sdp < finest->sdp)) finest = &r;
     std::printf("time %.0f s\nwrote %s, %s, %s\n", wall.seconds(), csv.c_str(), runsCsv.c_str(),
                 convergenceCsv.c_str());
-    if (o.membrane) {
-        std::printf("no scene for lsdem-run: scenes cannot hold a membrane yet\n");
-    } else if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
+    if (o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension) {
         const std::string scene = writeTriaxialShearScene(o, result, *finest, o.outDir + "/scene");
         std::printf("wrote %s: the shearing of %s for lsdem-run (ParaView frames)\n",
                     scene.c_str(), runName(finest->formulation, finest->sdp, finest->seed).c_str());

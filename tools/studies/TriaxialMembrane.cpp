@@ -62,13 +62,15 @@ TriaxialMembraneSample wrapInMembrane(const World& consolidated, const TriaxialW
     w = consolidated;
     w.grains.clear();
     double radius = 0.0, grainMass = 0.0;
-    for (const Grain& g : consolidated.grains) {
+    for (size_t i = 0; i < consolidated.grains.size(); ++i) {
+        const Grain& g = consolidated.grains[i];
         const Vec3& c = g.body.pose.position;
         const double reach = std::hypot(c.x() - cx, c.y() - cy) + g.asset->boundingRadius;
         if (reach > cut) {
             ++sample.grainsCut;
             continue;
         }
+        sample.kept.push_back(static_cast<long long>(i));
         radius = std::max(radius, reach);
         grainMass += g.body.mass;
         w.grains.push_back(g);
@@ -120,6 +122,18 @@ TriaxialMembraneSample wrapInMembrane(const World& consolidated, const TriaxialW
     double membraneMass = 0.0;
     for (double mass : m.masses) membraneMass += mass;
     w.membranes = {m};
+    MembraneSpec& tube = sample.tube;
+    tube.name = m.name;
+    tube.rubber = m.rubber;
+    tube.pressure = m.pressure;
+    tube.drag = m.drag;
+    tube.base = Vec3(cx, cy, zLow);
+    tube.axis = Vec3::UnitZ();
+    tube.radius = radius;
+    tube.height = height;
+    tube.segments = segments;
+    tube.rings = rings;
+    tube.prestretch = kPrestretch;
 
     sample.walls.index = {-1, -1, -1, -1, 0, 1};
     sample.walls.membrane = 0;

@@ -19,6 +19,7 @@
 #include "studies/TriaxialCell.h"
 #include "studies/TriaxialOptions.h"
 
+#include "lsdem/scene/Scene.h"
 #include "lsdem/simulation/World.h"
 
 namespace lsdem {
@@ -30,6 +31,10 @@ struct TriaxialMembraneSample
     long long grainsCut = 0;  ///< dropped: outside the cylinder
     double radius = 0.0;      ///< the membrane's, mm
     double massRatio = 0.0;   ///< the membrane's mass over the grains'
+    /// The index in the consolidated sample of each grain kept, in the world's order.
+    std::vector<long long> kept;
+    /// The membrane as a scene's tube makes it (material, hold and state left to the caller).
+    MembraneSpec tube;
 };
 
 /// Cut and wrap @a consolidated (in the cell of @a walls, six planes). @a meanDiameter (mm) sets

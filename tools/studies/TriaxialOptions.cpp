@@ -104,11 +104,11 @@ void checkTriaxialMaterial(const TriaxialOptions& o)
     if (!(o.sceneStrain >= 0.0 && o.sceneStrain < 0.5))
         throw Error("", "--scene-strain must be in [0, 0.5), got " + roundedText(o.sceneStrain),
                     "0 takes --axial-strain's");
-    const bool writesScene = !o.membrane && (o.path == TriaxialPath::Compression ||
-                                             o.path == TriaxialPath::Extension);
+    const bool writesScene =
+        o.path == TriaxialPath::Compression || o.path == TriaxialPath::Extension;
     if (o.sceneStrain > 0.0 && !writesScene)
         throw Error("", "--scene-strain is for the shear scene, which only drained compression "
-                        "or extension between walls or in a periodic cell writes",
+                        "or extension writes",
                     "drop --scene-strain");
     if (!(o.heightRatio >= 0.25 && o.heightRatio <= 4.0))
         throw Error("", "--height-ratio must be from 0.25 to 4, got " + roundedText(o.heightRatio),

@@ -5,6 +5,7 @@
 #include "lsdem/ls/AssetIO.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/scene/GrainsCsv.h"
+#include "lsdem/scene/MembraneStateCsv.h"
 #include "lsdem/scene/SceneWriter.h"
 
 #include <algorithm>
@@ -20,7 +21,10 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
 {
     namespace fs = std::filesystem;
     const TriaxialTestResult& t = run.test;
-    if (t.consolidatedPoses.size() != static_cast<size_t>(study.grains))
+    const bool membrane = !t.consolidatedGrains.empty();
+    if (t.consolidatedPoses.size() !=
+            (membrane ? t.consolidatedGrains.size() : static_cast<size_t>(study.grains)) ||
+        (membrane && t.consolidatedMembrane.empty()))
         throw Error(dir, "the run kept no consolidated sample to write as a scene");
     const std::vector<std::string> files = triaxialMeshFiles(o);
     const std::shared_ptr<const TriaxialAssets> assets =
@@ -37,6 +41,11 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
         saveAsset(*assets->assets[i], file.string());
         s.assets[i].file = file.string();
         smallestRadius = std::min(smallestRadius, assets->assets[i]->boundingRadius);
+    }
+    if (membrane) {  // the cylinder's grains only
+        std::vector<GrainSpec> kept;
+        for (long long i : t.consolidatedGrains) kept.push_back(s.grains.at(size_t(i)));
+        s.grains = std::move(kept);
     }
     for (size_t k = 0; k < s.grains.size(); ++k) s.grains[k].pose = t.consolidatedPoses[k];
     const std::string grainsFile = fs::absolute(fs::path(dir) / "grains.csv").string();
@@ -87,8 +96,25 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
                              ? run.stabilityLimit
                              : std::numeric_limits<double>::infinity();
     s.timeStep.fixed = std::min(run.dt, kShearSceneStepOverLimit * limit);
+    if (membrane) {
+        // The platens alone (the side walls were taken off when the membrane was put on), and
+        // the membrane as consolidation left it, at the cell pressure it had then (lsdem-run
+        // holds it; the study steers it to keep the grains' radial stress at σ₃), at rest as
+        // the grains are.
+        s.boundaries = {s.boundaries[4], s.boundaries[5]};
+        MembraneSpec m = t.consolidatedTube;
+        m.name = "membrane";
+        m.material = s.boundaries[0].material;
+        m.hold = {0, 1};
+        Membrane state;
+        state.positions = t.consolidatedMembrane;
+        state.velocities.assign(state.positions.size(), Vec3::Zero());
+        m.state = fs::absolute(fs::path(dir) / "membrane_state.csv").string();
+        writeMembraneStateCsv(state, m.state);
+        s.membranes = {m};
+    }
     if (!o.periodic) {
-        s.end.boundary = 5;
+        s.end.boundary = membrane ? 1 : 5;
         s.end.displacement = 0.5 * strain * size.z();
     }
     s.output.historyPeriod = duration / o.records;
@@ -98,16 +124,21 @@ std::string writeTriaxialShearScene(const TriaxialOptions& o, const TriaxialStud
     s.output.micromechanics = true;
     s.output.frameSpacing = 0.25 * assets->meanDiameter;
 
-    char header[512];
+    char header[1024];
     std::snprintf(header, sizeof header,
                   "The shearing stage of lsdem-study triaxial (%s, SDP %g mm, VDP %g mm): %lld "
                   "grains consolidated\nto sigma_3 = %g MPa, compressed to %g %% axial strain at "
                   "%g /s with the sides at sigma_3%s.\nThe grains start at rest with no "
                   "contact history. Run with\n  lsdem-run triaxial_shear.toml --out shear\n"
                   "Units: mm, tonne, s, N (MPa). See docs/triaxial.md.",
-                  formulationName(run.formulation).c_str(), run.sdp, run.vdp, study.grains,
+                  formulationName(run.formulation).c_str(), run.sdp, run.vdp,
+                  static_cast<long long>(s.grains.size()),
                   o.confiningStress, 100.0 * strain, run.strainRate,
-                  o.periodic ? " (a periodic cell, no walls)" : "");
+                  o.periodic   ? " (a periodic cell, no walls)"
+                  : membrane ? " (a membrane at the cell pressure consolidation left,\nheld "
+                               "constant: the study steers it to keep the grains' radial stress "
+                               "at sigma_3)"
+                             : "");
     const std::string path = (fs::path(dir) / "triaxial_shear.toml").string();
     writeSceneFile(s, path, header);
     return path;

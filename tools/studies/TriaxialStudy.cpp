@@ -91,6 +91,15 @@ std::string encodeRun(const TriaxialRun& r)
     for (const Vec3& point : t.consolidatedWallPoints)
         wallPoints.insert(wallPoints.end(), point.data(), point.data() + 3);
     w.numbers(poses).numbers(wallPoints);
+    // In a membrane: the grains kept, the tube and its vertices.
+    std::vector<double> kept(t.consolidatedGrains.begin(), t.consolidatedGrains.end()), tube,
+        vertices;
+    const MembraneSpec& m = t.consolidatedTube;
+    tube = {m.rubber.youngs, m.rubber.poisson, m.rubber.thickness, m.rubber.density, m.pressure,
+            m.drag, m.base.x(), m.base.y(), m.base.z(), m.axis.x(), m.axis.y(), m.axis.z(),
+            m.radius, m.height, double(m.segments), double(m.rings), m.prestretch};
+    for (const Vec3& x : t.consolidatedMembrane) vertices.insert(vertices.end(), x.data(), x.data() + 3);
+    w.numbers(kept).numbers(tube).numbers(vertices);
     return w.bytes();
 }
 
@@ -130,6 +139,23 @@ TriaxialRun decodeRun(const std::string& bytes, double maxAxialStrain)
     }
     for (size_t k = 0; k < 6 && 3 * k + 2 < wallPoints.size(); ++k)
         r.test.consolidatedWallPoints[k] = Vec3(wallPoints[3 * k], wallPoints[3 * k + 1], wallPoints[3 * k + 2]);
+    const std::vector<double> kept = in.numbers(), tube = in.numbers(), vertices = in.numbers();
+    for (double i : kept) r.test.consolidatedGrains.push_back(static_cast<long long>(i));
+    if (tube.size() == 17) {
+        MembraneSpec& m = r.test.consolidatedTube;
+        m.rubber = MembraneMaterial{tube[0], tube[1], tube[2], tube[3]};
+        m.pressure = tube[4];
+        m.drag = tube[5];
+        m.base = Vec3(tube[6], tube[7], tube[8]);
+        m.axis = Vec3(tube[9], tube[10], tube[11]);
+        m.radius = tube[12];
+        m.height = tube[13];
+        m.segments = int(tube[14]);
+        m.rings = int(tube[15]);
+        m.prestretch = tube[16];
+    }
+    for (size_t k = 0; k + 2 < vertices.size(); k += 3)
+        r.test.consolidatedMembrane.push_back(Vec3(vertices[k], vertices[k + 1], vertices[k + 2]));
     summariseTriaxialShearing(r.test, maxAxialStrain);
     return r;
 }
@@ -322,6 +348,11 @@ TriaxialTestResult consolidateInMembrane(const TriaxialOptions& o,
     walls = sample.walls;
     sim.emplace(std::move(sample.world), dt);
     TriaxialTestResult inMembrane = consolidateTriaxial(*sim, walls, plan.protocol, progress);
+    inMembrane.consolidatedGrains = sample.kept;
+    inMembrane.consolidatedTube = sample.tube;
+    const Membrane& consolidatedMembrane = sim->world().membranes[0];
+    inMembrane.consolidatedTube.pressure = consolidatedMembrane.pressure;  // as steered
+    inMembrane.consolidatedMembrane = consolidatedMembrane.positions;
     inMembrane.rows.insert(inMembrane.rows.begin(), between.rows.begin(), between.rows.end());
     inMembrane.consolidationSteps += between.consolidationSteps;
     return inMembrane;

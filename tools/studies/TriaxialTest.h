@@ -6,6 +6,8 @@
 ///        Records q, p, strains, void ratio, coordination and the inertial number along the way.
 #pragma once
 
+#include "lsdem/scene/Scene.h"
+
 #include "studies/TriaxialCell.h"
 #include "studies/TriaxialPath.h"
 
@@ -65,6 +67,13 @@ struct TriaxialTestResult
     TriaxialState consolidated;    ///< where the shearing starts (its reference)
     std::vector<RigidPose> consolidatedPoses;  ///< every grain's pose then
     std::array<Vec3, 6> consolidatedWallPoints;  ///< each wall's point then (walls' order)
+    /// In a membrane (--boundary membrane): the sample's index of each grain of
+    /// consolidatedPoses (empty: every grain of the sample, in order), the tube the membrane
+    /// was made as (its rubber's unstretched shape; pressure and drag as consolidation left
+    /// them) and its vertices then.
+    std::vector<long long> consolidatedGrains;
+    MembraneSpec consolidatedTube;
+    std::vector<Vec3> consolidatedMembrane;
     bool consolidatedWithinTolerance = false;
     long long consolidationSteps = 0, shearSteps = 0;
     /// The shearing's wall time, s, and what was estimated for it when it began (−1: none).

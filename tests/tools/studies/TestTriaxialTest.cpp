@@ -658,3 +658,72 @@ TEST(TriaxialStudy, APeriodicRunWritesAPeriodicShearScene)
             EXPECT_LT(g.body.pose.position[a], w.periodic.origin[a] + w.periodic.size[a]);
         }
 }
+
+// A membrane run writes its shearing as a scene too: the cylinder's grains, the two platens
+// closing, and the membrane placed as consolidation left it (a state file) over the tube it
+// was made as. Built and stepped, the membrane holds every grain. Fails if the scene kept the
+// side walls or the whole sample, or the membrane were put back as the undeformed tube.
+TEST(TriaxialStudy, AMembraneRunWritesAMembraneShearScene)
+{
+    test::ScratchDir dir;
+    const test::CommandResult r = test::runCommand(
+        "timeout 240 " + kStudy + " triaxial --meshes " + std::string(LSDEM_SOURCE_DIR) +
+        "/assets/meshes/sand --grains 150 --sdps 0.2 --formulation adapted --axial-strain 0.002 "
+        "--records 2 --boundary membrane --no-plots --out " + dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const size_t round = r.output.rfind("membrane round ");  // (the last try)
+    ASSERT_NE(round, std::string::npos) << r.output;
+    const size_t kept = std::stoul(r.output.substr(round + 15));
+    EXPECT_NE(r.output.find("out/scene/triaxial_shear.toml"), std::string::npos) << r.output;
+    const Scene scene = readSceneFile(dir.file("out/scene/triaxial_shear.toml"));
+    ASSERT_EQ(scene.grainFiles.size(), 1u);
+    EXPECT_EQ(scene.grainFiles[0].count, kept);
+    ASSERT_EQ(scene.boundaries.size(), 2u);  // the platens
+    EXPECT_GT(scene.boundaries[0].velocity.z(), 0.0);
+    EXPECT_LT(scene.boundaries[1].velocity.z(), 0.0);
+    EXPECT_EQ(scene.end.boundary, 1);
+    ASSERT_EQ(scene.membranes.size(), 1u);
+    const MembraneSpec& spec = scene.membranes[0];
+    EXPECT_EQ(spec.hold, (std::vector<int>{0, 1}));
+    EXPECT_FALSE(spec.state.empty());
+    EXPECT_GT(spec.pressure, 0.0);
+    std::vector<std::string> warnings;
+    World w = buildWorld(scene, warnings);
+    ASSERT_EQ(w.grains.size(), kept);
+    const Membrane& m = w.membranes[0];
+    // Placed as consolidation left it: no longer the tube as made (radius times 1 at every
+    // vertex), its rims still on the platens.
+    double furthest = 0.0;
+    for (const Vec3& x : m.positions)
+        furthest = std::max(furthest, std::abs(std::hypot(x.x() - spec.base.x(), x.y() - spec.base.y()) - spec.radius));
+    EXPECT_GT(furthest, 1e-3 * spec.radius);
+    const double bottom = scene.boundaries[0].point.z(), top = scene.boundaries[1].point.z();
+    for (size_t v = 0; v < m.positions.size(); ++v) {
+        if (m.heldBy[v] < 0) continue;
+        EXPECT_NEAR(m.positions[v].z(), m.heldBy[v] == 0 ? bottom : top, 1e-9 * (top - bottom));
+    }
+    // It encloses the consolidated sample: the grains fill 1/(1 + e₀) of its volume, e₀ the
+    // void ratio the run measured in its membrane (the tube as made would enclose them at
+    // under a third), and they press on it from the start.
+    std::ifstream runs(dir.file("out/triaxial_runs.csv"));
+    std::string header, row;
+    ASSERT_TRUE(std::getline(runs, header) && std::getline(runs, row));
+    const auto field = [](const std::string& line, size_t k) {
+        std::stringstream in(line);
+        std::string f;
+        for (size_t i = 0; i <= k; ++i) std::getline(in, f, ',');
+        return f;
+    };
+    size_t column = 0;
+    while (field(header, column) != "void_ratio_0") ASSERT_LT(++column, 100u) << header;
+    const double e0 = std::stod(field(row, column));
+    double solid = 0.0;
+    for (const Grain& g : w.grains) solid += g.asset->mass.volume;
+    EXPECT_NEAR(solid / enclosedVolume(m), 1.0 / (1.0 + e0), 1e-6);
+    EXPECT_LT(solid / (kPi * spec.radius * spec.radius * spec.height), 1.0 / 3.0);
+    Simulation sim(std::move(w), scene.timeStep.fixed);
+    for (int k = 0; k < 50; ++k) sim.step();
+    Vec3 push = Vec3::Zero();
+    for (const Vec3& f : sim.world().membranes[0].grainForces) push += f.cwiseAbs();
+    EXPECT_GT(push.x() + push.y(), 0.0);
+}

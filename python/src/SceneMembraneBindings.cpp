@@ -7,8 +7,6 @@
 
 #include <pybind11/stl.h>
 
-#include <filesystem>
-
 namespace lsdem::python {
 
 void bindSceneMembranes(py::class_<Scene>& scene)
@@ -32,7 +30,7 @@ void bindSceneMembranes(py::class_<Scene>& scene)
             m.segments = segments, m.rings = rings;
             m.pressure = pressure, m.drag = drag, m.prestretch = prestretch;
             for (const std::string& b : hold) m.hold.push_back(indexOf(s.boundaries, b, "boundary"));
-            if (!state.empty()) m.state = std::filesystem::absolute(state).lexically_normal().string();
+            if (!state.empty()) m.state = scenePath(s, state);  // as a file names it
             if (std::optional<KeyProblem> p = membraneProblem(m))
                 throw Error("", "membrane '" + name + "': " + keyProblemText(*p), p->fix);
             s.membranes.push_back(m);

@@ -326,7 +326,7 @@ int TriaxialCommand::run(RunDistributor& ranks) const
         if (o.membrane && !plans.empty()) {  // (docs/triaxial.md#cost)
             const TriaxialRunCost c = triaxialRunCost(plans.front(), threadsPerRun);
             std::printf("  (in the membrane: about %.0f of the %lld grains, %.0f of them next to "
-                        "it, for %lld steps of its consolidation and the shearing's; the most "
+                        "it, for its consolidation, about %lld steps, and the shearing; the most "
                         "if the shearing's step is halved)\n",
                         c.keptGrains, o.grains, c.grainsAtMembrane, c.membraneSteps);
         }

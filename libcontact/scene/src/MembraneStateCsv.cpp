@@ -45,14 +45,29 @@ void readMembraneStateCsv(const std::string& path, Membrane& m)
                     "check the path (relative to the scene's folder) and its permissions");
     std::stringstream buffer;
     buffer << in.rdbuf();
-    const std::vector<std::vector<std::string>> records = readCsvRecords(buffer.str(), path);
-    const auto at = [&](size_t record) { return path + ":" + std::to_string(record + 1); };
+    std::vector<std::vector<std::string>> records = readCsvRecords(buffer.str(), path);
+    // (blank lines, e.g. a trailing one, hold no vertex)
+    std::vector<size_t> lineOf;  // each record's line in the file (records are one line each)
+    {
+        std::vector<std::vector<std::string>> kept;
+        for (size_t r = 0; r < records.size(); ++r) {
+            if (records[r].size() == 1 && records[r][0].find_first_not_of(" \t\r") == std::string::npos)
+                continue;
+            kept.push_back(std::move(records[r]));
+            lineOf.push_back(r);
+        }
+        records = std::move(kept);
+    }
+    const auto at = [&](size_t record) {
+        return path + ":" + std::to_string((record < lineOf.size() ? lineOf[record] : 0) + 1);
+    };
     if (records.empty() || records[0] != std::vector<std::string>(std::begin(kColumns), std::end(kColumns)))
         throw Error(at(0), "the header is not x,y,z,vx,vy,vz",
                     "write a header x,y,z,vx,vy,vz and a row per vertex of the membrane");
     const size_t vertices = m.positions.size();
     if (records.size() - 1 != vertices)
-        throw Error(path, "has " + std::to_string(records.size() - 1) + " rows for a membrane of " +
+        throw Error(records.size() - 1 > vertices ? at(vertices + 1) : at(records.size() - 1),
+                    "has " + std::to_string(records.size() - 1) + " rows for a membrane of " +
                               std::to_string(vertices) + " vertices",
                     "write a row per vertex, in the order its shape makes them (a tube: ring "
                     "by ring from its base), or change segments and rings to the file's");

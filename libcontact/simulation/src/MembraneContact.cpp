@@ -4,6 +4,7 @@
 #include "lsdem/simulation/MembraneContact.h"
 
 #include "lsdem/contact/NodeBlockWalk.h"
+#include "lsdem/core/Error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace lsdem {
 
@@ -60,6 +62,13 @@ constexpr double kSkinOverReach = 0.25;
 
 void MembraneTriangleGrid::update(const Membrane& m, double reach)
 {
+    // A vertex gone to NaN or infinity would make the cells' size meaningless: say so.
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        if (!m.positions[i].allFinite())
+            throw Error("membrane '" + m.name + "'",
+                        "vertex " + std::to_string(i) + " is no longer at a finite position",
+                        "its step is too large for its rubber or its contacts: lower "
+                        "[simulation] time_step, or raise its density (mass scaling)");
     // The normals every time: the contact's depth is measured along them.
     mOutward.resize(m.triangles.size());
     for (size_t t = 0; t < m.triangles.size(); ++t) {
@@ -68,6 +77,7 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
                    &p2 = m.positions[size_t(v[2])];
         mOutward[t] = (p1 - p0).cross(p2 - p0).normalized();
     }
+    // (A membrane's triangles keep their vertices through a run: their count tells a new one.)
     bool stale = reach != mReach || m.positions.size() != mBinnedAt.size() ||
                  m.triangles.size() != mBinnedTriangles;
     // A box grown by reach + skin when binned still holds every point within reach of its
@@ -164,7 +174,8 @@ void MembraneTriangleGrid::markLiveCells(const Membrane& m)
     const size_t cells = mCellStart.size() - 1;
     mLive.assign(cells, 0);
     // A cell is live if its highest point along a triangle's outward normal lies beyond that
-    // triangle's plane: (centre − p0)·n + h·(|n_x| + |n_y| + |n_z|) > 0, h half a cell.
+    // triangle's plane: (centre − p0)·n + h·(|n_x| + |n_y| + |n_z|) > 0, h half a cell; with a
+    // margin of 1e-9 of the terms for their rounding (a node's own depth is rounded too).
     const double half = 0.5 * mCell;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, cells, 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
@@ -181,8 +192,12 @@ void MembraneTriangleGrid::markLiveCells(const Membrane& m)
                                   const Vec3& n = mOutward[size_t(t)];
                                   const Vec3& p0 =
                                       m.positions[size_t(m.triangles[size_t(t)].vertices[0])];
-                                  // (a degenerate triangle's NaN normal makes its cell live)
-                                  if (!((centre - p0).dot(n) + half * n.cwiseAbs().sum() <= 0.0)) {
+                                  // (a degenerate triangle's normal is zero: no contact)
+                                  const Vec3 offset = centre - p0;
+                                  const double reachOut = half * n.cwiseAbs().sum();
+                                  const double margin =
+                                      1e-9 * (offset.cwiseAbs().sum() + reachOut);
+                                  if (offset.dot(n) + reachOut + margin > 0.0) {
                                       mLive[c] = 1;
                                       break;
                                   }
@@ -206,6 +221,8 @@ std::int64_t MembraneTriangleGrid::cellOf(const Vec3& x) const
 bool MembraneTriangleGrid::mayTouch(const Vec3& c, double r) const
 {
     if (mEntries.empty()) return false;
+    // (widened by 1e-9 of its size and place: a node is placed with rounding)
+    r += 1e-9 * (r + c.cwiseAbs().maxCoeff());
     long long from[3], to[3];
     for (int a = 0; a < 3; ++a)
         if (!cellRange(a, c[a] - r, c[a] + r, from[a], to[a])) return false;

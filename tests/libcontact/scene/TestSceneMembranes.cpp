@@ -318,7 +318,12 @@ TEST(SceneMembranes, ABadStateFileIsRefusedNamingTheFileAndLine)
     EXPECT_NE(message.find(file + ":1"), std::string::npos) << message;
     EXPECT_NE(message.find("header"), std::string::npos) << message;
     message = refusedWith(good.substr(0, good.rfind('\n', good.size() - 2) + 1));
+    EXPECT_NE(message.find(file + ":216"), std::string::npos) << message;  // its last row
     EXPECT_NE(message.find("215 rows for a membrane of 216 vertices"), std::string::npos) << message;
+    message = refusedWith(good + "0,0,0,0,0,0\n");
+    EXPECT_NE(message.find(file + ":218"), std::string::npos) << message;  // the first row too many
+    EXPECT_NE(message.find("217 rows"), std::string::npos) << message;
+    EXPECT_EQ(refusedWith(good + "\n\n"), "accepted");  // (blank lines hold no vertex)
     std::string word = good;
     word.replace(word.find('\n') + 1, 1, "a");  // the first row's x
     message = refusedWith(word);

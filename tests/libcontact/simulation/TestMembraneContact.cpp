@@ -19,6 +19,8 @@
 #include <random>
 #include <cstdio>
 #include <iostream>
+#include <limits>
+#include <map>
 #include <memory>
 
 using namespace lsdem;
@@ -450,4 +452,84 @@ TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMove
     grid.update(m, reach);
     EXPECT_EQ(grid.binnings(), 2);
     checkPoints(3.0 - 0.5 * reach);
+}
+
+// A grain pressed through a dented membrane: the nodes the contact finds through the grid
+// (with its skin, live cells and culled blocks) are those a search of every node against
+// every triangle finds, each at the same distance from the membrane, over states that keep
+// the binning and one that rebins. Fails if a cull drops a node that touches (checked: the
+// live cells' bound without its half cell, or a node's plane test 0.05 too strict).
+TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
+{
+    const std::shared_ptr<const GrainAsset> ball = sphere();  // R 5, 2000 nodes
+    Membrane m = makeTubeMembrane(Vec3(0, 0, -6), Vec3::UnitZ(), 6.0, 12.0, 40, 12,
+                                  lsdem::test::latexRubber());
+    const double reach = m.contactReach;
+    const std::vector<Vec3> tube = m.positions;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    ContactModel model;
+    model.normalStiffness = 1e3;
+    MembraneTriangleGrid grid;
+    ContactScratch scratch;
+    MembraneGrainContact out;
+    long long checked = 0;
+    std::vector<Vec3> binned;
+    for (int state = 0; state < 6; ++state) {
+        // Dented by up to 0.8 of the reach and binned; then moved from there by up to a fifth
+        // of it (the skin is a quarter: the binning is kept), then by more (rebinned).
+        const double dent = (state == 0 || state == 5 ? 0.8 : 0.2) * reach;
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            m.positions[i] = (state == 0 ? tube[i] : binned[i]) +
+                             dent * Vec3(unit(random), unit(random), unit(random));
+        if (state == 0) binned = m.positions;
+        grid.update(m, reach);
+        ContactGrain grain;
+        grain.asset = ball.get();
+        grain.pose.position = Vec3(1.1 + 0.05 * state, 0.3 * unit(random), 0.5 * unit(random));
+        grain.pose.orientation = Quat(Eigen::AngleAxisd(kPi * unit(random), Vec3(1, 2, 3).normalized()));
+        grain.mass = 1.0;
+        computeMembraneContact(grain, m, grid, model, 1e-6, out, scratch);
+        std::map<int, double> found;  // node → its distance from the membrane
+        for (size_t k = 0; k < out.hits.size(); ++k) {
+            const MembraneHit& h = out.hits[k];
+            const auto& v = m.triangles[size_t(h.triangle)].vertices;
+            const Vec3 x = grain.pose.position + grain.pose.orientation * ball->nodes.positions[size_t(scratch.contacts[0][k].node)];
+            const Vec3 onIt = h.weights[0] * m.positions[size_t(v[0])] +
+                              h.weights[1] * m.positions[size_t(v[1])] + h.weights[2] * m.positions[size_t(v[2])];
+            found[scratch.contacts[0][k].node] = (x - onIt).norm();
+        }
+        // Every node against every triangle: the nearest within reach, touching if the node
+        // lies beyond its plane.
+        std::map<int, double> expected;
+        for (size_t i = 0; i < ball->nodes.size(); ++i) {
+            const Vec3 x = grain.pose.position + grain.pose.orientation * ball->nodes.positions[i];
+            double best = std::numeric_limits<double>::infinity();
+            double depth = 0.0;
+            for (const MembraneTriangle& t : m.triangles) {
+                const Vec3 &p0 = m.positions[size_t(t.vertices[0])], &p1 = m.positions[size_t(t.vertices[1])],
+                           &p2 = m.positions[size_t(t.vertices[2])];
+                const double d = distanceToTriangle(x, p0, p1, p2);
+                if (d < best) {
+                    best = d;
+                    depth = (x - p0).dot((p1 - p0).cross(p2 - p0).normalized());
+                }
+            }
+            if (best <= reach && depth > 0.0) expected[int(i)] = best;
+        }
+        ASSERT_EQ(grid.binnings(), state < 5 ? 1 : 2);
+        ASSERT_GT(expected.size(), 20u) << "state " << state;
+        EXPECT_EQ(found.size(), expected.size()) << "state " << state;
+        for (const auto& [node, distance] : expected) {
+            const auto f = found.find(node);
+            if (f == found.end()) {
+                ADD_FAILURE() << "state " << state << ": node " << node << " at " << distance
+                              << " from the membrane is not found";
+                continue;
+            }
+            EXPECT_NEAR(f->second, distance, 1e-12) << "state " << state << ", node " << node;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 200);
 }

@@ -687,10 +687,24 @@ TEST(TriaxialStudy, AMembraneRunWritesAMembraneShearScene)
     EXPECT_EQ(spec.hold, (std::vector<int>{0, 1}));
     EXPECT_FALSE(spec.state.empty());
     EXPECT_GT(spec.pressure, 0.0);
+    EXPECT_GT(spec.drag, 0.0);
+    EXPECT_EQ(spec.prestretch, 1.05);
+    EXPECT_EQ(spec.rubber.youngs, 1.4);  // --membrane-youngs's default
     std::vector<std::string> warnings;
     World w = buildWorld(scene, warnings);
     ASSERT_EQ(w.grains.size(), kept);
     const Membrane& m = w.membranes[0];
+    // The tube and its mass scaling as the run made them ("…, N triangles, its mass R times
+    // the grains'", R to 3 digits).
+    const std::string made = r.output.substr(round, r.output.find('\n', round) - round);
+    const size_t triangles = std::stoul(made.substr(made.rfind(", ", made.find(" triangles")) + 2));
+    EXPECT_EQ(m.triangles.size(), triangles) << made;
+    EXPECT_EQ(size_t(2 * spec.segments * spec.rings), triangles);
+    double membraneMass = 0.0, grainMass = 0.0;
+    for (double mass : m.masses) membraneMass += mass;
+    for (const Grain& g : w.grains) grainMass += g.body.mass;
+    const double ratio = std::stod(made.substr(made.find("its mass ") + 9));
+    EXPECT_NEAR(membraneMass / grainMass, ratio, 0.005 * ratio) << made;
     // Placed as consolidation left it: no longer the tube as made (radius times 1 at every
     // vertex), its rims still on the platens.
     double furthest = 0.0;

@@ -62,13 +62,21 @@ constexpr double kSkinOverReach = 0.25;
 
 void MembraneTriangleGrid::update(const Membrane& m, double reach)
 {
-    // A vertex gone to NaN or infinity would make the cells' size meaningless: say so.
-    for (size_t i = 0; i < m.positions.size(); ++i)
+    // (A membrane's triangles keep their vertices through a run: their count tells a new one.)
+    bool stale = reach != mReach || m.positions.size() != mBinnedAt.size() ||
+                 m.triangles.size() != mBinnedTriangles;
+    // One pass over the vertices: a vertex gone to NaN or infinity would make the cells' size
+    // meaningless (say so); and a box grown by reach + skin when binned still holds every point
+    // within reach of its triangle while no vertex has moved more than the skin along any axis.
+    const double skin = kSkinOverReach * reach;
+    for (size_t i = 0; i < m.positions.size(); ++i) {
         if (!m.positions[i].allFinite())
             throw Error("membrane '" + m.name + "'",
                         "vertex " + std::to_string(i) + " is no longer at a finite position",
                         "its step is too large for its rubber or its contacts: lower "
                         "[simulation] time_step, or raise its density (mass scaling)");
+        stale = stale || !((m.positions[i] - mBinnedAt[i]).cwiseAbs().maxCoeff() <= skin);
+    }
     // The normals every time: the contact's depth is measured along them.
     mOutward.resize(m.triangles.size());
     for (size_t t = 0; t < m.triangles.size(); ++t) {
@@ -77,14 +85,6 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
                    &p2 = m.positions[size_t(v[2])];
         mOutward[t] = (p1 - p0).cross(p2 - p0).normalized();
     }
-    // (A membrane's triangles keep their vertices through a run: their count tells a new one.)
-    bool stale = reach != mReach || m.positions.size() != mBinnedAt.size() ||
-                 m.triangles.size() != mBinnedTriangles;
-    // A box grown by reach + skin when binned still holds every point within reach of its
-    // triangle while no vertex has moved more than the skin along any axis.
-    const double skin = kSkinOverReach * reach;
-    for (size_t i = 0; !stale && i < m.positions.size(); ++i)
-        stale = !((m.positions[i] - mBinnedAt[i]).cwiseAbs().maxCoeff() <= skin);
     if (stale) {
         mReach = reach;
         bin(m);

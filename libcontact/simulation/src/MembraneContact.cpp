@@ -1,17 +1,14 @@
-// Grains against a membrane (MembraneContact.h): the triangles binned in a grid, each node
-// against the triangles of its cell, the law on the nodes found, and their forces handed to
-// the triangles' vertices.
+// Grains against a membrane (MembraneContact.h): the triangles binned in a grid, each grain's
+// list of the triangles near it, each node against those near its block, the law on the nodes
+// found, and their forces handed to the triangles' vertices.
 #include "lsdem/simulation/MembraneContact.h"
 
-#include "lsdem/contact/NodeBlockWalk.h"
 #include "lsdem/core/Error.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace lsdem {
@@ -58,6 +55,9 @@ namespace {
 /// triangles whose box misses a node (a quarter was the fastest of 0.1 to 1 on a triaxial
 /// sample in its membrane).
 constexpr double kSkinOverReach = 0.25;
+/// A grain's skin over the reach: its candidate nodes last until one of its nodes has moved
+/// this far (wider keeps them longer but lists more nodes to check each step).
+constexpr double kGrainSkinOverReach = 0.25;
 } // namespace
 
 void MembraneTriangleGrid::update(const Membrane& m, double reach)
@@ -77,20 +77,27 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
                         "[simulation] time_step, or raise its density (mass scaling)");
         stale = stale || !((m.positions[i] - mBinnedAt[i]).cwiseAbs().maxCoeff() <= skin);
     }
-    // The normals every time: the contact's depth is measured along them.
-    mOutward.resize(m.triangles.size());
+    // The faces every time: the contact's depth is measured along their normals.
+    mFaces.resize(m.triangles.size());
     for (size_t t = 0; t < m.triangles.size(); ++t) {
         const auto& v = m.triangles[t].vertices;
-        const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
-                   &p2 = m.positions[size_t(v[2])];
-        mOutward[t] = (p1 - p0).cross(p2 - p0).normalized();
+        MembraneFace& f = mFaces[t];
+        f.p0 = m.positions[size_t(v[0])];
+        f.p1 = m.positions[size_t(v[1])];
+        f.p2 = m.positions[size_t(v[2])];
+        f.outward = (f.p1 - f.p0).cross(f.p2 - f.p0).normalized();
+        f.centroid = (f.p0 + f.p1 + f.p2) / 3.0;
+        f.spread = std::sqrt(std::max({(f.p0 - f.centroid).squaredNorm(),
+                                       (f.p1 - f.centroid).squaredNorm(),
+                                       (f.p2 - f.centroid).squaredNorm()}));
     }
     if (stale) {
         mReach = reach;
         bin(m);
     }
-    markLiveCells(m);
 }
+
+double MembraneTriangleGrid::skin() const { return kSkinOverReach * mReach; }
 
 bool MembraneTriangleGrid::cellRange(int a, double lo, double hi, long long& from,
                                      long long& to) const
@@ -169,71 +176,145 @@ void MembraneTriangleGrid::bin(const Membrane& m)
     for (const Entry& e : boxes) forCellsOf(e, [&](size_t cell) { mEntries[count[cell]++] = e; });
 }
 
-void MembraneTriangleGrid::markLiveCells(const Membrane& m)
+void MembraneTriangleGrid::listNear(const Vec3& c, double r, std::vector<int>& out) const
 {
-    const size_t cells = mCellStart.size() - 1;
-    mLive.assign(cells, 0);
-    // A cell is live if its highest point along a triangle's outward normal lies beyond that
-    // triangle's plane: (centre − p0)·n + h·(|n_x| + |n_y| + |n_z|) > 0, h half a cell; with a
-    // margin of 1e-9 of the terms for their rounding (a node's own depth is rounded too).
-    const double half = 0.5 * mCell;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, cells, 4096),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t c = range.begin(); c != range.end(); ++c) {
-                              if (mCellStart[c] == mCellStart[c + 1]) continue;
-                              const long long k = (long long)c % mCells[2],
-                                              j = ((long long)c / mCells[2]) % mCells[1],
-                                              i = (long long)c / (mCells[1] * mCells[2]);
-                              const Vec3 centre =
-                                  mLow + mCell * Vec3(double(i) + 0.5, double(j) + 0.5,
-                                                      double(k) + 0.5);
-                              for (uint32_t e = mCellStart[c]; e < mCellStart[c + 1]; ++e) {
-                                  const int t = mEntries[e].triangle;
-                                  const Vec3& n = mOutward[size_t(t)];
-                                  const Vec3& p0 =
-                                      m.positions[size_t(m.triangles[size_t(t)].vertices[0])];
-                                  // (a degenerate triangle's normal is zero: no contact)
-                                  const Vec3 offset = centre - p0;
-                                  const double reachOut = half * n.cwiseAbs().sum();
-                                  const double margin =
-                                      1e-9 * (offset.cwiseAbs().sum() + reachOut);
-                                  if (offset.dot(n) + reachOut + margin > 0.0) {
-                                      mLive[c] = 1;
-                                      break;
-                                  }
-                              }
-                          }
-                      });
-}
-
-std::int64_t MembraneTriangleGrid::cellOf(const Vec3& x) const
-{
-    long long index[3];
-    for (int a = 0; a < 3; ++a) {
-        const double u = (x[a] - mLow[a]) * mInverseCell;
-        if (!(u >= 0.0) || u >= double(mCells[a])) return -1;  // (NaN too)
-        index[a] = static_cast<long long>(u);
-    }
-    const std::int64_t cell = (index[0] * mCells[1] + index[1]) * mCells[2] + index[2];
-    return mLive[size_t(cell)] ? cell : -1;
-}
-
-bool MembraneTriangleGrid::mayTouch(const Vec3& c, double r) const
-{
-    if (mEntries.empty()) return false;
-    // (widened by 1e-9 of its size and place: a node is placed with rounding)
-    r += 1e-9 * (r + c.cwiseAbs().maxCoeff());
+    if (mEntries.empty()) return;
     long long from[3], to[3];
     for (int a = 0; a < 3; ++a)
-        if (!cellRange(a, c[a] - r, c[a] + r, from[a], to[a])) return false;
+        if (!cellRange(a, c[a] - r, c[a] + r, from[a], to[a])) return;
+    const size_t first = out.size();
     for (long long i = from[0]; i <= to[0]; ++i)
-        for (long long j = from[1]; j <= to[1]; ++j) {
-            const std::uint8_t* row = mLive.data() + size_t((i * mCells[1] + j) * mCells[2]);
-            for (long long k = from[2]; k <= to[2]; ++k)
-                if (row[k]) return true;
-        }
-    return false;
+        for (long long j = from[1]; j <= to[1]; ++j)
+            for (long long k = from[2]; k <= to[2]; ++k) {
+                const size_t cell = size_t((i * mCells[1] + j) * mCells[2] + k);
+                for (uint32_t e = mCellStart[cell]; e < mCellStart[cell + 1]; ++e) {
+                    const Entry& box = mEntries[e];
+                    bool meets = true;
+                    for (int a = 0; a < 3; ++a)
+                        meets = meets && c[a] + r >= double(box.low[a]) &&
+                                c[a] - r <= double(box.high[a]);
+                    if (meets) out.push_back(box.triangle);
+                }
+            }
+    std::sort(out.begin() + std::ptrdiff_t(first), out.end());
+    out.erase(std::unique(out.begin() + std::ptrdiff_t(first), out.end()), out.end());
 }
+
+namespace {
+
+/// A length's rounding margin next to coordinates of size @a scale: culls use it so that a
+/// node placed with rounding is never passed over.
+double roundingMargin(double length, double scale) { return 1e-9 * (length + scale); }
+
+/// Face @a f's box (triangle @a t) grown by @a grow.
+MembraneTriangleBox triangleBox(const MembraneFace& f, int t, double grow)
+{
+    MembraneTriangleBox box;
+    box.triangle = t;
+    box.low = f.p0.cwiseMin(f.p1).cwiseMin(f.p2);
+    box.high = f.p0.cwiseMax(f.p1).cwiseMax(f.p2);
+    const double g =
+        grow + roundingMargin(grow, box.low.cwiseAbs().cwiseMax(box.high.cwiseAbs()).maxCoeff());
+    box.low.array() -= g;
+    box.high.array() += g;
+    return box;
+}
+
+/// A lower bound of the distance from @a x to face @a n: the larger of its distances from its
+/// plane and from its centroid's sphere, less @a slack for rounding.
+double distanceBound(const Vec3& x, const MembraneFace& n, double slack)
+{
+    return std::max(std::abs((x - n.p0).dot(n.outward)), (x - n.centroid).norm() - n.spread) -
+           slack;
+}
+
+/// How far a node of a grain of bounding radius @a radius may have moved since the pose
+/// (@a c0, @a q0), now at (@a c, @a q): its centre's move and the chord of its turn.
+double largestNodeMove(const Vec3& c0, const Quat& q0, const Vec3& c, const Quat& q, double radius)
+{
+    const Quat turn = q * q0.conjugate();  // (|its vector part| is sin of half the angle)
+    return (c - c0).norm() + 2.0 * turn.vec().norm() * radius;
+}
+
+/// Search @a grain's nodes for those that may come within the reach of the membrane while
+/// it and the grain move less than their skins: every node with a triangle within
+/// @a searchReach, with those triangles (in @a out's candidate lists).
+void searchCandidates(const ContactGrain& grain, const MembraneTriangleGrid& grid, double searchReach,
+                      MembraneGrainContact& out)
+{
+    const GrainAsset& a = *grain.asset;
+    const Vec3& centre = grain.pose.position;
+    ++out.searches;
+    out.searchedAt = centre;
+    out.searchedOrientation = grain.pose.orientation;
+    out.searchedAsset = grain.asset;
+    out.searchedBinning = grid.binnings();
+    out.candidateNodes.clear();
+    out.candidateStart.assign(1, 0);
+    out.candidateTriangles.clear();
+    // The triangles whose box as binned meets the grain's sphere grown by what the search adds
+    // to the grid's reach (a triangle within searchReach of a node lies within the reach of a
+    // point that far from it: its box holds that point).
+    std::vector<int>& listed = out.listed;
+    listed.clear();
+    grid.listNear(centre, a.boundingRadius + (searchReach - grid.reach()), listed);
+    std::vector<MembraneTriangleBox>& near = out.near;
+    near.clear();
+    const double sphereRadius =
+        a.boundingRadius + roundingMargin(a.boundingRadius, centre.cwiseAbs().maxCoeff());
+    for (const int t : listed) {
+        const MembraneTriangleBox box = triangleBox(grid.face(t), t, searchReach);
+        if (box.meets(centre, sphereRadius)) near.push_back(box);
+    }
+    if (near.empty()) return;
+    const Eigen::Matrix3d rotation = grain.pose.orientation.toRotationMatrix();
+    std::vector<int>& nearCluster = out.nearCluster;
+    std::vector<int>& nearBlock = out.nearBlock;
+    // Of the triangles @a from (indices into near), those whose box meets the run's sphere.
+    auto nearRun = [&](const NodeBlock& run, const std::vector<int>& from, std::vector<int>& to) {
+        const Vec3 c = rotation * run.center + centre;
+        const double r = run.radius + roundingMargin(run.radius, c.cwiseAbs().maxCoeff());
+        to.clear();
+        for (const int k : from)
+            if (near[size_t(k)].meets(c, r)) to.push_back(k);
+        return !to.empty();
+    };
+    auto visit = [&](int begin, int end) {
+        for (int i = begin; i < end; ++i) {
+            const Vec3 x = rotation * a.nodes.positions[size_t(i)] + centre;
+            const double slack = roundingMargin(searchReach, x.cwiseAbs().maxCoeff());
+            const size_t before = out.candidateTriangles.size();
+            for (const int k : nearBlock) {
+                const MembraneTriangleBox& box = near[size_t(k)];
+                if (box.holds(x) && distanceBound(x, grid.face(box.triangle), slack) <= searchReach)
+                    out.candidateTriangles.push_back(box.triangle);
+            }
+            if (out.candidateTriangles.size() == before) continue;
+            out.candidateNodes.push_back(i);
+            out.candidateStart.push_back(int(out.candidateTriangles.size()));
+        }
+    };
+    std::vector<int> inGrain(near.size());
+    for (size_t k = 0; k < near.size(); ++k) inGrain[k] = int(k);
+    const NodeBlocks& groups = a.nodeBlocks;
+    if (groups.empty()) {  // (a grain without blocks: whole, against every triangle near it)
+        nearBlock = inGrain;
+        visit(0, int(a.nodes.size()));
+        return;
+    }
+    if (!groups.matches(a.nodes.size()))
+        throw std::logic_error("grain asset: node blocks do not match the nodes; call "
+                               "groupNodesIntoBlocks after changing them");
+    for (const NodeBlock& cluster : groups.clusters) {
+        if (!nearRun(cluster, inGrain, nearCluster)) continue;
+        for (int b = cluster.begin; b < cluster.end; ++b) {
+            const NodeBlock& block = groups.blocks[size_t(b)];
+            if (nearRun(block, nearCluster, nearBlock)) visit(block.begin, block.end);
+        }
+    }
+}
+
+} // namespace
 
 void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
                             const MembraneTriangleGrid& grid, const ContactModel& model,
@@ -247,7 +328,16 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     const GrainAsset& a = *grain.asset;
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
-    if (!grid.mayTouch(grain.pose.position, a.boundingRadius)) {
+    const double reach = grid.reach();
+    // The candidate nodes hold while the grain's nodes have moved less than its skin and the
+    // membrane's vertices less than twice the grid's (each within the grid's skin of where
+    // they were binned): a node within reach now was within reach + both skins then.
+    const double grainSkin = kGrainSkinOverReach * reach;
+    if (out.searchedBinning != grid.binnings() || out.searchedAsset != grain.asset ||
+        !(largestNodeMove(out.searchedAt, out.searchedOrientation, grain.pose.position,
+                          grain.pose.orientation, a.boundingRadius) <= grainSkin))
+        searchCandidates(grain, grid, reach + grainSkin + 2.0 * grid.skin(), out);
+    if (out.candidateNodes.empty()) {
         stats.nodesCulled += count;
         return;
     }
@@ -256,66 +346,68 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     std::vector<MembraneHit>& hits = out.hits;
     hits.clear();
     const Eigen::Matrix3d rotation = grain.pose.orientation.toRotationMatrix();
-    const double reach = grid.reach();
-    // Neighbouring nodes mostly share a cell: its triangles are looked up once for a run.
-    std::int64_t lastCell = -2;
-    const MembraneTriangleGrid::Entry *first = nullptr, *last = nullptr;
-    auto visit = [&](int begin, int end) {
-        for (int i = begin; i < end; ++i) {
-            const Vec3 x = rotation * a.nodes.positions[i] + grain.pose.position;
-            const std::int64_t cell = grid.cellOf(x);
-            if (cell != lastCell) {
-                lastCell = cell;
-                first = grid.cellBegin(cell);
-                last = grid.cellEnd(cell);
-            }
-            if (first == last) continue;
-            ++stats.nodesSampled;
-            // A node inside the plane of every triangle near it has depth ≤ 0 at whichever is
-            // nearest: it is passed over before the nearest is looked for.
-            bool outside = false;
-            for (const auto* e = first; e != last && !outside; ++e)
-                outside = e->holds(x) &&
-                          (x - m.positions[size_t(m.triangles[size_t(e->triangle)].vertices[0])])
-                                  .dot(grid.outward(e->triangle)) > 0.0;
-            if (!outside) continue;
-            // The nearest triangle, ties to the lower index (the same on any thread count).
-            double best = std::numeric_limits<double>::infinity();
-            MembraneHit hit;
-            for (const auto* e = first; e != last; ++e) {
-                if (!e->holds(x)) continue;
-                const int t = e->triangle;
-                const auto& v = m.triangles[size_t(t)].vertices;
-                const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
-                           &p2 = m.positions[size_t(v[2])];
-                const Vec3 w = nearestWeights(x, p0, p1, p2);
-                const double distance = (x - (w[0] * p0 + w[1] * p1 + w[2] * p2)).squaredNorm();
-                if (distance < best || (distance == best && t < hit.triangle)) {
-                    best = distance;
-                    hit.triangle = t;
-                    hit.weights = w;
-                }
-            }
-            if (!(best <= reach * reach)) continue;
-            const Vec3& p0 = m.positions[size_t(m.triangles[size_t(hit.triangle)].vertices[0])];
-            const Vec3& outward = grid.outward(hit.triangle);
-            const double depth = (x - p0).dot(outward);  // beyond its triangle's plane
-            if (!(depth > 0.0)) continue;
-            ++stats.nodesInContact;
-            NodeContact nc;
-            nc.node = i;
-            nc.depth = depth;
-            nc.normal = -outward;
-            nc.point = x + 0.5 * depth * nc.normal;
-            nc.area = a.nodes.areas[i];
-            contacts.push_back(nc);
-            hits.push_back(hit);
+    const Vec3& centre = grain.pose.position;
+    std::vector<std::pair<int, double>>& nearNode = out.nearNode;
+    stats.nodesCulled += count - static_cast<long long>(out.candidateNodes.size());
+    for (size_t c = 0; c < out.candidateNodes.size(); ++c) {
+        const int i = out.candidateNodes[c];
+        const Vec3 x = rotation * a.nodes.positions[size_t(i)] + centre;
+        ++stats.nodesSampled;
+        // A node inside the plane of each of its triangles has depth ≤ 0 at whichever is
+        // nearest: passed over. Else its triangles, each with a lower bound of its distance,
+        // those within reach kept.
+        const int* from = out.candidateTriangles.data() + out.candidateStart[c];
+        const int* to = out.candidateTriangles.data() + out.candidateStart[c + 1];
+        bool outside = false;
+        for (const int* t = from; t != to && !outside; ++t) {
+            const MembraneFace& f = grid.face(*t);
+            outside = (x - f.p0).dot(f.outward) > 0.0;
         }
-    };
-    auto isClear = [&](const NodeBlock& run) {
-        return !grid.mayTouch(rotation * run.center + grain.pose.position, run.radius);
-    };
-    forEachBlockNotClear(a, isClear, visit, stats);
+        if (!outside) continue;
+        const double slack = roundingMargin(reach, x.cwiseAbs().maxCoeff());
+        nearNode.clear();
+        for (const int* t = from; t != to; ++t) {
+            const double bound = distanceBound(x, grid.face(*t), slack);
+            if (bound <= reach) nearNode.emplace_back(*t, bound);
+        }
+        if (nearNode.empty()) continue;
+        // The nearest triangle, ties to the lower index (the same on any thread count): the
+        // one of least bound first, then only those whose bound does not exceed the nearest
+        // so far (a triangle passed over is farther than it).
+        double best = std::numeric_limits<double>::infinity();
+        MembraneHit hit;
+        const auto measure = [&](int t) {
+            const MembraneFace& n = grid.face(t);
+            const Vec3 w = nearestWeights(x, n.p0, n.p1, n.p2);
+            const double distance = (x - (w[0] * n.p0 + w[1] * n.p1 + w[2] * n.p2)).squaredNorm();
+            if (distance < best || (distance == best && t < hit.triangle)) {
+                best = distance;
+                hit.triangle = t;
+                hit.weights = w;
+            }
+        };
+        size_t first = 0;
+        for (size_t k = 1; k < nearNode.size(); ++k)
+            if (nearNode[k].second < nearNode[first].second) first = k;
+        measure(nearNode[first].first);
+        for (size_t k = 0; k < nearNode.size(); ++k) {
+            const double bound = nearNode[k].second;
+            if (k != first && (bound <= 0.0 || bound * bound <= best)) measure(nearNode[k].first);
+        }
+        if (!(best <= reach * reach)) continue;
+        const MembraneFace& nearest = grid.face(hit.triangle);
+        const double depth = (x - nearest.p0).dot(nearest.outward);  // beyond its plane
+        if (!(depth > 0.0)) continue;
+        ++stats.nodesInContact;
+        NodeContact nc;
+        nc.node = i;
+        nc.depth = depth;
+        nc.normal = -nearest.outward;
+        nc.point = x + 0.5 * depth * nc.normal;
+        nc.area = a.nodes.areas[size_t(i)];
+        contacts.push_back(nc);
+        hits.push_back(hit);
+    }
     if (contacts.empty()) return;
 
     // The membrane under the grain: the mean velocity of the points its nodes met.

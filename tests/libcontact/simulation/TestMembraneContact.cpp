@@ -374,30 +374,19 @@ double distanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec
     return std::min({toSegment(a, b), toSegment(b, c), toSegment(c, a)});
 }
 
-/// Every triangle within the reach of @a x is listed in its cell with a box that holds it,
-/// and the cell is live (cellOf finds it) when @a x lies outside the plane of one of them.
+/// Every triangle within the reach of @a x is listed near it.
 void expectGridFindsWhatIsWithinReach(const MembraneTriangleGrid& grid, const Membrane& m,
                                       const Vec3& x)
 {
-    std::vector<int> within;
-    bool outside = false;
+    std::vector<int> listed;
+    grid.listNear(x, 0.0, listed);
     for (size_t t = 0; t < m.triangles.size(); ++t) {
         const auto& v = m.triangles[t].vertices;
-        const Vec3 &p0 = m.positions[size_t(v[0])], &p1 = m.positions[size_t(v[1])],
-                   &p2 = m.positions[size_t(v[2])];
-        if (distanceToTriangle(x, p0, p1, p2) > grid.reach()) continue;
-        within.push_back(int(t));
-        outside = outside || (x - p0).dot((p1 - p0).cross(p2 - p0)) > 0.0;
-    }
-    const std::int64_t cell = grid.cellOf(x);
-    if (!outside) return;  // (such a node is passed over whatever its cell)
-    ASSERT_GE(cell, 0) << "a point outside a triangle within reach found no live cell";
-    EXPECT_TRUE(grid.mayTouch(x, 1e-9));
-    for (int t : within) {
-        bool listed = false;
-        for (const auto* e = grid.cellBegin(cell); e != grid.cellEnd(cell); ++e)
-            listed = listed || (e->triangle == t && e->holds(x));
-        EXPECT_TRUE(listed) << "triangle " << t << " within reach is not listed";
+        if (distanceToTriangle(x, m.positions[size_t(v[0])], m.positions[size_t(v[1])],
+                               m.positions[size_t(v[2])]) > grid.reach())
+            continue;
+        EXPECT_TRUE(std::binary_search(listed.begin(), listed.end(), int(t)))
+            << "triangle " << t << " within reach is not listed";
     }
 }
 
@@ -454,11 +443,12 @@ TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMove
     checkPoints(3.0 - 0.5 * reach);
 }
 
-// A grain pressed through a dented membrane: the nodes the contact finds through the grid
-// (with its skin, live cells and culled blocks) are those a search of every node against
-// every triangle finds, each at the same distance from the membrane, over states that keep
-// the binning and one that rebins. Fails if a cull drops a node that touches (checked: the
-// live cells' bound without its half cell, or a node's plane test 0.05 too strict).
+// A grain pressed through a dented membrane: the nodes the contact finds (through the grid,
+// and then through the candidate nodes a search kept while the grain and the membrane moved
+// less than their skins) are those a search of every node against every triangle finds, each
+// at the same distance from the membrane, over states that keep the binning and the
+// candidates and ones that do not. Fails if the candidates were kept without the membrane's
+// skin or the grain's (checked), or a node's plane test were 0.05 too strict.
 TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
 {
     const std::shared_ptr<const GrainAsset> ball = sphere();  // R 5, 2000 nodes
@@ -475,21 +465,50 @@ TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
     MembraneGrainContact out;
     long long checked = 0;
     std::vector<Vec3> binned;
+    ContactGrain grain;
+    RigidPose placed;
+    const auto radial = [&](size_t i) { return Vec3(tube[i].x(), tube[i].y(), 0.0).normalized(); };
+    const auto placeAnew = [&](double x) {
+        grain.asset = ball.get();
+        grain.mass = 1.0;
+        grain.pose.position = Vec3(x, 0.3 * unit(random), 0.5 * unit(random));
+        grain.pose.orientation = Quat(Eigen::AngleAxisd(kPi * unit(random), Vec3(1, 2, 3).normalized()));
+        placed = grain.pose;
+    };
     for (int state = 0; state < 6; ++state) {
-        // Dented by up to 0.8 of the reach and binned; then moved from there by up to a fifth
-        // of it (the skin is a quarter: the binning is kept), then by more (rebinned).
-        const double dent = (state == 0 || state == 5 ? 0.8 : 0.2) * reach;
-        for (size_t i = 0; i < m.positions.size(); ++i)
-            m.positions[i] = (state == 0 ? tube[i] : binned[i]) +
-                             dent * Vec3(unit(random), unit(random), unit(random));
+        // The membrane: dented by up to 0.8 of the reach and binned (state 0); then, keeping
+        // the binning (its skin is a quarter of the reach), moved inward by 0.24 of it (1), out
+        // by as much (2), and by up to a fifth each way (3, 4); then dented anew (5: rebinned).
+        for (size_t i = 0; i < m.positions.size(); ++i) {
+            const Vec3 jitter(unit(random), unit(random), unit(random));
+            if (state == 0 || state == 5)
+                m.positions[i] = tube[i] + 0.8 * reach * jitter;
+            else if (state < 3)
+                m.positions[i] = binned[i] + (state == 1 ? -0.24 : 0.24) * reach * radial(i);
+            else
+                m.positions[i] = binned[i] + 0.2 * reach * jitter;
+        }
         if (state == 0) binned = m.positions;
         grid.update(m, reach);
-        ContactGrain grain;
-        grain.asset = ball.get();
-        grain.pose.position = Vec3(1.1 + 0.05 * state, 0.3 * unit(random), 0.5 * unit(random));
-        grain.pose.orientation = Quat(Eigen::AngleAxisd(kPi * unit(random), Vec3(1, 2, 3).normalized()));
-        grain.mass = 1.0;
+        // The grain (out beyond the membrane by up to twice the reach): placed anew at states
+        // 0, 1 and 5; from 1's place moved in by 0.24 of the reach (2), then moved and turned
+        // by up to a fifth of it at its nodes (3, 4). Its skin is a quarter: the candidates
+        // found at 1 are kept to 4, though the nodes the membrane met at 2 lay beyond the reach
+        // and the grain's skin at 1 (the membrane's two moves and the grain's add up to 0.72).
+        if (state == 0 || state == 1 || state == 5) {
+            placeAnew(state == 0 ? 1.1 : 1.5);
+        } else if (state == 2) {
+            grain.pose.position = placed.position - 0.24 * reach * Vec3::UnitX();
+        } else {
+            const double move = 0.1 * reach, radius = ball->boundingRadius;
+            grain.pose.position = placed.position + move * Vec3(unit(random), unit(random), unit(random)).normalized();
+            grain.pose.orientation =
+                Quat(Eigen::AngleAxisd(move / radius, Vec3(unit(random), unit(random), 1.0).normalized())) *
+                placed.orientation;
+        }
         computeMembraneContact(grain, m, grid, model, 1e-6, out, scratch);
+        ASSERT_EQ(grid.binnings(), state < 5 ? 1 : 2);
+        ASSERT_EQ(out.searches, state == 0 ? 1 : state < 5 ? 2 : 3) << "state " << state;
         std::map<int, double> found;  // node → its distance from the membrane
         for (size_t k = 0; k < out.hits.size(); ++k) {
             const MembraneHit& h = out.hits[k];
@@ -517,7 +536,6 @@ TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
             }
             if (best <= reach && depth > 0.0) expected[int(i)] = best;
         }
-        ASSERT_EQ(grid.binnings(), state < 5 ? 1 : 2);
         ASSERT_GT(expected.size(), 20u) << "state " << state;
         EXPECT_EQ(found.size(), expected.size()) << "state " << state;
         for (const auto& [node, distance] : expected) {

@@ -14,23 +14,27 @@
 #include "lsdem/simulation/Membrane.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace lsdem {
 
-/// The membrane's triangles binned in a uniform grid of cells, so a node finds the triangles
-/// near it in its own cell. Each triangle is binned in every cell that its box, grown by the
-/// reach and a skin, overlaps; the binning is kept until a vertex has moved more than the skin
-/// since (a membrane moves little in a step, and rebinning is a sort), so between binnings the
-/// grown boxes still hold every point within the reach of their triangles as they are now.
-/// The cells lie in a dense array over the boxes' union (one look-up finds a node's cell), each
-/// holding copies of its triangles' boxes side by side (a node tests them without reaching
-/// into other memory).
-///
-/// Only a node outside a triangle's plane can touch it, so each step a cell is marked live
-/// when some point of it lies outside the plane of one of its triangles; nodes in other cells
-/// (most of those near the membrane: it is pressed onto the grains from outside) are passed
-/// over, and so are the blocks of nodes that overlap no live cell.
+/// A membrane triangle as it is now: its vertices, its unit outward normal
+/// ((p1 − p0) × (p2 − p0) normalized; zero if degenerate), and the sphere about its centroid
+/// that holds it.
+struct MembraneFace
+{
+    Vec3 p0, p1, p2, outward, centroid;
+    double spread = 0.0;  ///< the centroid's distance to the farthest vertex
+};
+
+/// The membrane's triangles binned in a uniform grid of cells, so a grain finds the triangles
+/// near it from the cells its bounding sphere overlaps. Each triangle is binned in every cell
+/// that its box, grown by the reach and a skin, overlaps; the binning is kept until a vertex
+/// has moved more than the skin since (a membrane moves little in a step, and rebinning is a
+/// sort), so between binnings the grown boxes still hold every point within the reach of their
+/// triangles as they are now. The cells lie in a dense array over the boxes' union, each
+/// holding copies of its triangles' boxes side by side.
 class MembraneTriangleGrid
 {
 public:
@@ -40,44 +44,27 @@ public:
     {
         float low[3], high[3];
         int triangle;
-        bool holds(const Vec3& x) const
-        {
-            return x.x() >= double(low[0]) && x.x() <= double(high[0]) &&
-                   x.y() >= double(low[1]) && x.y() <= double(high[1]) &&
-                   x.z() >= double(low[2]) && x.z() <= double(high[2]);
-        }
     };
 
-    /// Bring the grid up to @a m as it is now: its triangles' outward normals always, and its
+    /// Bring the grid up to @a m as it is now: its triangles' faces always, and its
     /// binning when none was made for a reach of @a reach (> 0, length; a node that far outside
     /// the membrane has escaped and is not pushed back), when its vertices or triangles changed
-    /// in number, or when a vertex has moved more than the skin (a quarter of the
-    /// reach) since; and which cells are live.
+    /// in number, or when a vertex has moved more than the skin (a quarter of the reach) since.
     void update(const Membrane& m, double reach);
-    /// The cell of @a x (-1 outside every grown box, or in a cell not live now).
-    std::int64_t cellOf(const Vec3& x) const;
-    /// The triangles binned in cell @a cell (from cellOf): those whose grown box may hold a
-    /// point in it, each with that box (Entry::holds tells).
-    const Entry* cellBegin(std::int64_t cell) const
-    {
-        return cell < 0 ? nullptr : mEntries.data() + mCellStart[size_t(cell)];
-    }
-    const Entry* cellEnd(std::int64_t cell) const
-    {
-        return cell < 0 ? nullptr : mEntries.data() + mCellStart[size_t(cell) + 1];
-    }
-    /// Whether a sphere (centre @a c, radius @a r) overlaps a live cell.
-    bool mayTouch(const Vec3& c, double r) const;
-    /// Triangle @a t's unit outward normal now, as (p1 − p0) × (p2 − p0) normalized.
-    const Vec3& outward(int t) const { return mOutward[size_t(t)]; }
+    /// Append to @a out, sorted and once each, every triangle whose grown box as binned
+    /// overlaps the axis-aligned box of the sphere (@a c, @a r): among them every triangle
+    /// within the reach of a point of the sphere, until the next binning.
+    void listNear(const Vec3& c, double r, std::vector<int>& out) const;
+    /// Triangle @a t as it is now.
+    const MembraneFace& face(int t) const { return mFaces[size_t(t)]; }
     double reach() const { return mReach; }
-    /// How many times the triangles were binned (for tests and reports).
+    /// How far a vertex may move from where it was binned before the grid bins anew.
+    double skin() const;
+    /// How many times the triangles were binned (a grain's list of them lasts until the next).
     long long binnings() const { return mBinnings; }
 
 private:
     void bin(const Membrane& m);
-    /// Mark the cells live now (mLive), from the triangles' planes now.
-    void markLiveCells(const Membrane& m);
     /// The range of cells along axis @a a that [lo, hi] overlaps (false: none).
     bool cellRange(int a, double lo, double hi, long long& from, long long& to) const;
 
@@ -86,11 +73,28 @@ private:
     long long mCells[3] = {0, 0, 0};  ///< cells along x, y, z
     std::vector<std::uint32_t> mCellStart;  ///< per cell (x-major), then one past the last
     std::vector<Entry> mEntries;            ///< by cell
-    std::vector<std::uint8_t> mLive;        ///< per cell: 1 if live now
     std::vector<Vec3> mBinnedAt;            ///< the vertices' positions when binned
     size_t mBinnedTriangles = 0;
-    std::vector<Vec3> mOutward;             ///< per triangle, now
+    std::vector<MembraneFace> mFaces;       ///< per triangle, now
     long long mBinnings = 0;
+};
+
+/// A triangle's box grown by a reach (with a rounding margin), in a search near a grain.
+struct MembraneTriangleBox
+{
+    Vec3 low, high;
+    int triangle = -1;
+    bool holds(const Vec3& x) const
+    {
+        return (x.array() >= low.array()).all() && (x.array() <= high.array()).all();
+    }
+    /// Whether the box meets the sphere (@a c, @a r).
+    bool meets(const Vec3& c, double r) const
+    {
+        const Eigen::Array3d gap =
+            (low.array() - c.array()).max(c.array() - high.array()).max(0.0);
+        return gap.matrix().squaredNorm() <= r * r;
+    }
 };
 
 /// Where a grain's node met the membrane: its triangle and the barycentric weights there.
@@ -113,12 +117,30 @@ struct MembraneGrainContact
     // point forces on the grain as the law gave them.
     std::vector<MembraneHit> hits;
     std::vector<PointForce> pointForces;
+    // The grain's candidate nodes, from a search of its nodes kept while it holds: each node
+    // that may come within reach before the grain or the membrane has moved more than its
+    // skin, in node order, with the triangles it may meet (candidateTriangles[candidateStart[c]
+    // .. candidateStart[c + 1])).
+    std::vector<int> candidateNodes, candidateStart, candidateTriangles;
+    Vec3 searchedAt = Vec3::Zero();         ///< the grain's pose at the search
+    Quat searchedOrientation = Quat::Identity();
+    const GrainAsset* searchedAsset = nullptr;
+    long long searchedBinning = -1;         ///< the grid's binning at the search
+    long long searches = 0;                 ///< how many searches were made (for tests)
+    // Working memory: in a search, the triangles listed and near the grain, and a cluster's
+    // and a block's of those (indices into near); a node's (triangle, bound of its distance).
+    std::vector<int> listed;
+    std::vector<MembraneTriangleBox> near;
+    std::vector<int> nearCluster, nearBlock;
+    std::vector<std::pair<int, double>> nearNode;
 };
 
 /// The contact of @a grain (seen by the law) with membrane @a m, whose triangles are binned
 /// in @a grid (updated for @a m as it is now), under @a model (μ ignored): the nodes outside
 /// it within the grid's reach, depth their distance from the plane of the nearest triangle,
-/// normal that triangle's inward one.
+/// normal that triangle's inward one. Only the grain's candidate nodes are looked at: those
+/// that a search found within the reach and the skins of the grain and the membrane, kept in
+/// @a out from call to call until one of them has moved more than its skin.
 /// The membrane moves under the grain at the mean velocity of the points its nodes met.
 /// @param dt the step (for the dashpot's dissipation; no shear is carried)
 void computeMembraneContact(const ContactGrain& grain, const Membrane& m,

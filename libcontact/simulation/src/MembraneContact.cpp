@@ -67,7 +67,8 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
                  m.triangles.size() != mBinnedTriangles;
     // One pass over the vertices: a vertex gone to NaN or infinity would make the cells' size
     // meaningless (say so); and a box grown by reach + skin when binned still holds every point
-    // within reach of its triangle while no vertex has moved more than the skin along any axis.
+    // within reach of its triangle while no vertex has moved more than the skin (a distance,
+    // so that the grains' candidate nodes can count on it too).
     const double skin = kSkinOverReach * reach;
     for (size_t i = 0; i < m.positions.size(); ++i) {
         if (!m.positions[i].allFinite())
@@ -75,7 +76,7 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
                         "vertex " + std::to_string(i) + " is no longer at a finite position",
                         "its step is too large for its rubber or its contacts: lower "
                         "[simulation] time_step, or raise its density (mass scaling)");
-        stale = stale || !((m.positions[i] - mBinnedAt[i]).cwiseAbs().maxCoeff() <= skin);
+        stale = stale || !((m.positions[i] - mBinnedAt[i]).squaredNorm() <= skin * skin);
     }
     // The faces every time: the contact's depth is measured along their normals.
     mFaces.resize(m.triangles.size());

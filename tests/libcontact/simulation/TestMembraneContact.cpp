@@ -417,14 +417,15 @@ TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMove
     grid.update(m, reach);
     EXPECT_EQ(grid.binnings(), 1);
     checkPoints(3.0);
-    // Vertices moved by up to a fifth of the reach along each axis (the skin is a quarter):
+    // Vertices moved by up to 0.14 of the reach along each axis, less than the skin (a
+    // quarter) in all:
     // the binning stays, the normals and live cells follow.
     const std::vector<Vec3> start = m.positions;
     const auto radial = [&](size_t i) {
         return Vec3(start[i].x() - 0.3, start[i].y() + 0.2, 0.0).normalized();
     };
     for (size_t i = 0; i < m.positions.size(); ++i)
-        m.positions[i] = start[i] + 0.2 * reach * Vec3(unit(random), unit(random), unit(random));
+        m.positions[i] = start[i] + 0.14 * reach * Vec3(unit(random), unit(random), unit(random));
     grid.update(m, reach);
     EXPECT_EQ(grid.binnings(), 1);
     checkPoints(3.0);
@@ -440,6 +441,12 @@ TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMove
         m.positions[i] = start[i] - reach * std::abs(unit(random)) * radial(i);
     grid.update(m, reach);
     EXPECT_EQ(grid.binnings(), 2);
+    checkPoints(3.0 - 0.5 * reach);
+    // Moved by 0.2 of the reach along each axis at once: 0.35 of it in all, beyond the skin
+    // (a distance: the grains' candidate nodes count on it), though within it on each axis.
+    for (Vec3& p : m.positions) p += 0.2 * reach * Vec3(1.0, 1.0, 1.0);
+    grid.update(m, reach);
+    EXPECT_EQ(grid.binnings(), 3);
     checkPoints(3.0 - 0.5 * reach);
 }
 
@@ -478,7 +485,8 @@ TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
     for (int state = 0; state < 6; ++state) {
         // The membrane: dented by up to 0.8 of the reach and binned (state 0); then, keeping
         // the binning (its skin is a quarter of the reach), moved inward by 0.24 of it (1), out
-        // by as much (2), and by up to a fifth each way (3, 4); then dented anew (5: rebinned).
+        // by as much (2), and by up to 0.14 of it along each axis (3, 4); then dented anew (5:
+        // rebinned).
         for (size_t i = 0; i < m.positions.size(); ++i) {
             const Vec3 jitter(unit(random), unit(random), unit(random));
             if (state == 0 || state == 5)
@@ -486,7 +494,7 @@ TEST(MembraneContact, TheGridFindsTheContactsASearchOfEveryTriangleFinds)
             else if (state < 3)
                 m.positions[i] = binned[i] + (state == 1 ? -0.24 : 0.24) * reach * radial(i);
             else
-                m.positions[i] = binned[i] + 0.2 * reach * jitter;
+                m.positions[i] = binned[i] + 0.14 * reach * jitter;
         }
         if (state == 0) binned = m.positions;
         grid.update(m, reach);

@@ -86,7 +86,9 @@ void MembraneTriangleGrid::update(const Membrane& m, double reach)
         f.p0 = m.positions[size_t(v[0])];
         f.p1 = m.positions[size_t(v[1])];
         f.p2 = m.positions[size_t(v[2])];
-        f.outward = (f.p1 - f.p0).cross(f.p2 - f.p0).normalized();
+        const Vec3 e1 = f.p1 - f.p0, e2 = f.p2 - f.p0, cross = e1.cross(e2);
+        f.outward = cross.normalized();
+        f.flat = cross.norm() >= 1e-6 * e1.norm() * e2.norm();
         f.centroid = (f.p0 + f.p1 + f.p2) / 3.0;
         f.spread = std::sqrt(std::max({(f.p0 - f.centroid).squaredNorm(),
                                        (f.p1 - f.centroid).squaredNorm(),
@@ -222,10 +224,11 @@ MembraneTriangleBox triangleBox(const MembraneFace& f, int t, double grow)
 }
 
 /// A lower bound of the distance from @a x to face @a n: the larger of its distances from its
-/// plane and from its centroid's sphere, less @a slack for rounding.
+/// plane (if its normal is true) and from its centroid's sphere, less @a slack for rounding.
 double distanceBound(const Vec3& x, const MembraneFace& n, double slack)
 {
-    return std::max(std::abs((x - n.p0).dot(n.outward)), (x - n.centroid).norm() - n.spread) -
+    const double fromSphere = (x - n.centroid).norm() - n.spread;
+    return (n.flat ? std::max(std::abs((x - n.p0).dot(n.outward)), fromSphere) : fromSphere) -
            slack;
 }
 

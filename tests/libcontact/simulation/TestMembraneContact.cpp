@@ -419,7 +419,7 @@ TEST(MembraneContact, TriangleGridFindsEveryTriangleWithinReachAsTheMembraneMove
     checkPoints(3.0);
     // Vertices moved by up to 0.14 of the reach along each axis, less than the skin (a
     // quarter) in all:
-    // the binning stays, the normals and live cells follow.
+    // the binning stays.
     const std::vector<Vec3> start = m.positions;
     const auto radial = [&](size_t i) {
         return Vec3(start[i].x() - 0.3, start[i].y() + 0.2, 0.0).normalized();

@@ -26,6 +26,9 @@ struct MembraneFace
 {
     Vec3 p0, p1, p2, outward, centroid;
     double spread = 0.0;  ///< the centroid's distance to the farthest vertex
+    /// Whether the normal is true to the plane (the edges' cross product is not lost in
+    /// rounding), so that a distance from the plane bounds one from the triangle.
+    bool flat = false;
 };
 
 /// The membrane's triangles binned in a uniform grid of cells, so a grain finds the triangles
@@ -117,10 +120,11 @@ struct MembraneGrainContact
     // point forces on the grain as the law gave them.
     std::vector<MembraneHit> hits;
     std::vector<PointForce> pointForces;
-    // The grain's candidate nodes, from a search of its nodes kept while it holds: each node
-    // that may come within reach before the grain or the membrane has moved more than its
-    // skin, in node order, with the triangles it may meet (candidateTriangles[candidateStart[c]
-    // .. candidateStart[c + 1])).
+    // The grain's candidate nodes, from a search of its nodes kept while it holds (until the
+    // grain has moved more than its skin, the grid rebins, or the grain's asset changes): each
+    // node that may come within reach meanwhile, in node order, with the triangles it may meet
+    // (candidateTriangles[candidateStart[c] .. candidateStart[c + 1])). They belong to one
+    // grid: pass each grid its own MembraneGrainContact objects.
     std::vector<int> candidateNodes, candidateStart, candidateTriangles;
     Vec3 searchedAt = Vec3::Zero();         ///< the grain's pose at the search
     Quat searchedOrientation = Quat::Identity();

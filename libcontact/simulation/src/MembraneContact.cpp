@@ -3,12 +3,12 @@
 // found, and their forces handed to the triangles' vertices.
 #include "lsdem/simulation/MembraneContact.h"
 
+#include "lsdem/contact/NodeBlockWalk.h"
 #include "lsdem/core/Error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 namespace lsdem {
@@ -298,24 +298,19 @@ void searchCandidates(const ContactGrain& grain, const MembraneTriangleGrid& gri
             out.candidateStart.push_back(int(out.candidateTriangles.size()));
         }
     };
-    std::vector<int> inGrain(near.size());
-    for (size_t k = 0; k < near.size(); ++k) inGrain[k] = int(k);
-    const NodeBlocks& groups = a.nodeBlocks;
-    if (groups.empty()) {  // (a grain without blocks: whole, against every triangle near it)
-        nearBlock = inGrain;
-        visit(0, int(a.nodes.size()));
-        return;
-    }
-    if (!groups.matches(a.nodes.size()))
-        throw std::logic_error("grain asset: node blocks do not match the nodes; call "
-                               "groupNodesIntoBlocks after changing them");
-    for (const NodeBlock& cluster : groups.clusters) {
-        if (!nearRun(cluster, inGrain, nearCluster)) continue;
-        for (int b = cluster.begin; b < cluster.end; ++b) {
-            const NodeBlock& block = groups.blocks[size_t(b)];
-            if (nearRun(block, nearCluster, nearBlock)) visit(block.begin, block.end);
-        }
-    }
+    // Clusters against every triangle near the grain, their blocks against the cluster's (a
+    // grain without blocks is visited whole, against all of them).
+    std::vector<int> allNear(near.size());
+    for (size_t k = 0; k < near.size(); ++k) allNear[k] = int(k);
+    nearBlock = allNear;
+    const auto isClusterClear = [&](const NodeBlock& cluster) {
+        return !nearRun(cluster, allNear, nearCluster);
+    };
+    const auto isBlockClear = [&](const NodeBlock& block) {
+        return !nearRun(block, nearCluster, nearBlock);
+    };
+    NodeCheckStats unused;  // (the evaluation counts the nodes)
+    forEachBlockNotClear(a, isClusterClear, isBlockClear, visit, unused);
 }
 
 } // namespace

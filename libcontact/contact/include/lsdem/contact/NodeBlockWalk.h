@@ -12,13 +12,15 @@
 namespace lsdem {
 
 /// Call @a visit(begin, end) for every run of nodes [begin, end) of @a a that lies in a
-/// cluster and a block for which @a isClear(run) is false, in node order; the others count as
-/// culled in @a stats. @a isClear(const NodeBlock&) must only answer true when no node within
-/// the run's sphere can touch (it is asked of clusters and of blocks alike). The visitor takes
-/// a whole block, so its loop over the nodes is compiled inline.
-template <typename IsClear, typename Visit>
-void forEachBlockNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
-                          NodeCheckStats& stats)
+/// cluster for which @a isClusterClear(cluster) is false and a block for which
+/// @a isBlockClear(block) is false, in node order; the others count as culled in @a stats.
+/// Each test must only answer true when no node within the run's sphere can touch. A block is
+/// asked only after its cluster, and just before it is visited (so a test may keep what it
+/// learnt of a cluster for its blocks); a grain without blocks is visited whole, unasked. The
+/// visitor takes a whole block, so its loop over the nodes is compiled inline.
+template <typename IsClusterClear, typename IsBlockClear, typename Visit>
+void forEachBlockNotClear(const GrainAsset& a, IsClusterClear&& isClusterClear,
+                          IsBlockClear&& isBlockClear, Visit&& visit, NodeCheckStats& stats)
 {
     const int count = static_cast<int>(a.nodes.size());
     const NodeBlocks& groups = a.nodeBlocks;
@@ -31,20 +33,28 @@ void forEachBlockNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
         throw std::logic_error("grain asset: node blocks do not match the nodes; call "
                                "groupNodesIntoBlocks after changing them");
     for (const NodeBlock& cluster : groups.clusters) {
-        if (isClear(cluster)) {
+        if (isClusterClear(cluster)) {
             stats.nodesCulled += groups.blocks[static_cast<size_t>(cluster.end - 1)].end -
                                  groups.blocks[static_cast<size_t>(cluster.begin)].begin;
             continue;
         }
         for (int k = cluster.begin; k < cluster.end; ++k) {
             const NodeBlock& block = groups.blocks[static_cast<size_t>(k)];
-            if (isClear(block)) {
+            if (isBlockClear(block)) {
                 stats.nodesCulled += block.end - block.begin;
                 continue;
             }
             visit(block.begin, block.end);
         }
     }
+}
+
+/// The same with one test, @a isClear(run), for clusters and blocks alike.
+template <typename IsClear, typename Visit>
+void forEachBlockNotClear(const GrainAsset& a, IsClear&& isClear, Visit&& visit,
+                          NodeCheckStats& stats)
+{
+    forEachBlockNotClear(a, isClear, isClear, visit, stats);
 }
 
 } // namespace lsdem

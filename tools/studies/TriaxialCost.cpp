@@ -25,10 +25,11 @@ constexpr double kOneThreadOverTwo = 1.9;
 constexpr long long kRampSteps = 1200;
 
 // In a membrane (fitted to 300 and 1000 grains at 431 nodes, 2026-11-29, after the membrane's
-// contact was sped up; docs/triaxial.md#cost):
+// contact kept candidate nodes; docs/triaxial.md#cost):
 /// the cost of a node of a grain next to the membrane, tested against its triangles, beyond
-/// the grain's own contacts (36 and 42 µs a grain at 431 nodes);
-constexpr double kSecondsPerMembraneNodeStep = 9.0e-8;
+/// the grain's own contacts: their shearing took 2.61 and 6.30 ms a step, the grain model
+/// 0.22 and 2.62; 55 ns a node is the least-squares fit of the relative error of both.
+constexpr double kSecondsPerMembraneNodeStep = 5.5e-8;
 /// the consolidation in the membrane (its closing in, then the hold): 3000 and 5500 steps;
 constexpr long long kMembraneConsolidationSteps = 4300, kMembraneConsolidationSpread = 1200;
 /// the cylinder cut from a sample N grains wide (s = (N / height ratio)^(1/3) grains

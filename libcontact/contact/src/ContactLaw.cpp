@@ -291,6 +291,15 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
 PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel& model,
                           double dt, std::vector<PointForce>* allForces, ContactScratch* scratch)
 {
+    // Most candidate pairs of a packing touch at no node in a given step: their result is a
+    // contact without nodes (every field zero), and their shear history ends.
+    bool anyNode = false;
+    for (int s = 0; s < sideCount; ++s) anyNode = anyNode || !sides[s].contacts.empty();
+    if (!anyNode) {
+        for (int s = 0; s < sideCount; ++s)
+            if (sides[s].history) sides[s].history->clear();
+        return PairForces();
+    }
     ContactScratch temporary;
     ContactScratch& work = scratch ? *scratch : temporary;
     PairForces result;

@@ -433,3 +433,54 @@ TEST(ContactLaw, NoShearWithoutHistoryOrPerNodeForces)
     normalModel(Formulation::Volume).forces(g.aInB, kKnStar, 1.0, pooled);
     expectVecNear(r.forceOnFirst, pooled[0].force, 1e-13);
 }
+
+// A candidate pair touching at no node this step (most pairs of a packing): every field of
+// the result is zero, no point force is reported, and each side's shear history ends, as a
+// contact's does when its last node leaves. The same sides with nodes give forces and keep
+// the history, so the check is not of an empty law.
+TEST(ContactLaw, APairWithoutNodesGivesTheZeroResultAndEndsItsHistory)
+{
+    TwoGrains g;
+    g.b.velocity = Vec3(0.0, 0.0, -0.3);
+    ShearHistory onA, onB;
+    onA.append(2, Vec3(0.01, 0.0, 0.0));
+    onB.append(1, Vec3(0.0, -0.02, 0.0));
+    ContactSide sides[2];
+    g.halfWeightSides(sides);
+    sides[0].contacts.clear();
+    sides[1].contacts.clear();
+    sides[0].history = &onA;
+    sides[1].history = &onB;
+    std::vector<PointForce> all;
+    ContactScratch scratch;
+    const PairForces r = resolveContact(sides, 2, adapted(5e2, 0.5, 0.5), 1e-6, &all, &scratch);
+    const PairForces none;
+    EXPECT_EQ(r.forceOnFirst, none.forceOnFirst);
+    EXPECT_EQ(r.forceOnSecond, none.forceOnSecond);
+    EXPECT_EQ(r.torqueOnFirst, none.torqueOnFirst);
+    EXPECT_EQ(r.torqueOnSecond, none.torqueOnSecond);
+    EXPECT_EQ(r.translationalStiffness, none.translationalStiffness);
+    EXPECT_EQ(r.rotationalStiffnessOfFirst, none.rotationalStiffnessOfFirst);
+    EXPECT_EQ(r.rotationalStiffnessOfSecond, none.rotationalStiffnessOfSecond);
+    EXPECT_EQ(r.contactNodes, 0);
+    EXPECT_EQ(r.pointForcesOnFirst, 0);
+    EXPECT_EQ(r.elasticEnergy, 0.0);
+    EXPECT_EQ(r.dashpot, 0.0);
+    EXPECT_EQ(r.frictionWork, 0.0);
+    EXPECT_EQ(r.dashpotWork, 0.0);
+    EXPECT_EQ(r.centre, none.centre);
+    EXPECT_EQ(r.normal, none.normal);
+    EXPECT_TRUE(all.empty());
+    EXPECT_TRUE(onA.empty());
+    EXPECT_TRUE(onB.empty());
+
+    g.halfWeightSides(sides);
+    sides[0].history = &onA;
+    sides[1].history = &onB;
+    const PairForces touching = resolveContact(sides, 2, adapted(5e2, 0.5, 0.5), 1e-6, &all, &scratch);
+    EXPECT_GT(touching.forceOnFirst.norm(), 0.0);
+    EXPECT_EQ(touching.contactNodes, 3);
+    EXPECT_FALSE(all.empty());
+    EXPECT_FALSE(onA.empty());
+    EXPECT_FALSE(onB.empty());
+}

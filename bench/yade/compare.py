@@ -1,0 +1,175 @@
+#!/usr/bin/env python3
+"""lsdem against YADE's level-set DEM on one scene, runs interleaved (this machine is noisy).
+
+The scene: 1000 level-set spheres (radius 1, voxel 0.1, 1000 surface nodes) in a 10 x 10 x 10
+lattice in five walls under gravity, each overlapping its neighbours and the walls by --overlap
+(0.02: every neighbour a contact; 0: touching): yade_lattice.py for YADE (`apt-get install
+yade`), SCENE below for lsdem-run. Each
+round runs YADE once and lsdem once per contact law and thread count; both time the steps
+alone (YADE: O.run after a first step; lsdem-run: its throughput line, setup left out).
+
+    python3 bench/yade/compare.py --rounds 5 [--steps 200] [--threads 1 2]
+
+prints each round and then the medians and the ratios of the medians.
+"""
+import argparse
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+LAWS = [("single-node", "one-way"), ("adapted", "one-way"), ("adapted", "symmetric")]
+
+
+SCENE = """# 1000 level-set spheres in a lattice in five walls, as yade_lattice.py builds them for YADE.
+# Units: mm, tonne, s, N.
+[assets.sphere]
+shape = "sphere"
+radius = 1.0
+voxel = 0.1
+nodes = 1000
+
+[materials.grain]
+density = 2.65e-9
+
+[materials.wall]
+density = 0.0
+
+[[contacts]]
+materials = ["grain", "grain"]
+formulation = "{formulation}"
+testing = "{testing}"
+normal_stiffness = 1e3
+
+[[contacts]]
+materials = ["grain", "wall"]
+formulation = "{formulation}"
+testing = "{testing}"
+normal_stiffness = 1e3
+
+[[lattices]]
+asset = "sphere"
+material = "grain"
+origin = [0, 0, 1]
+count = [10, 10, 10]
+spacing = [{spacing}, {spacing}, {spacing}]
+
+[[boundaries]]
+name = "floor"
+type = "plane"
+material = "wall"
+point = [0, 0, {overlap}]
+normal = [0, 0, 1]
+
+[[boundaries]]
+name = "west"
+type = "plane"
+material = "wall"
+point = [{low}, 0, 0]
+normal = [1, 0, 0]
+
+[[boundaries]]
+name = "east"
+type = "plane"
+material = "wall"
+point = [{high}, 0, 0]
+normal = [-1, 0, 0]
+
+[[boundaries]]
+name = "south"
+type = "plane"
+material = "wall"
+point = [0, {low}, 0]
+normal = [0, 1, 0]
+
+[[boundaries]]
+name = "north"
+type = "plane"
+material = "wall"
+point = [0, {high}, 0]
+normal = [0, -1, 0]
+
+[simulation]
+gravity = [0, 0, -9810]
+time_step = 1e-7
+end_steps = {steps}
+"""
+
+
+def lsdem_scene(directory, formulation, testing, steps, overlap):
+    """The scene of yade_lattice.py for lsdem-run, with the given law (grains and walls)."""
+    radius, count = 1.0, 10
+    spacing = 2.0 * radius - overlap
+    text = SCENE.format(formulation=formulation, testing=testing, steps=steps, overlap=repr(overlap),
+                        spacing=repr(spacing), low=repr(-radius + overlap),
+                        high=repr((count - 1) * spacing + radius - overlap))
+    path = os.path.join(directory, "lattice_%s_%s.toml" % (formulation, testing))
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def run_lsdem(binary, scene, out, threads):
+    result = subprocess.run([binary, scene, "--out", out, "--overwrite", "--threads", str(threads), "-q"],
+                            capture_output=True, text=True, check=True)
+    found = re.search(r"throughput: \d+ steps, ([0-9.]+) ms/step", result.stdout + result.stderr)
+    if not found:
+        sys.exit("lsdem-run printed no throughput line:\n" + result.stdout + result.stderr)
+    return float(found.group(1))
+
+
+def run_yade(steps, overlap):
+    result = subprocess.run(["yade", "-j1", "-n", "-x", os.path.join(HERE, "yade_lattice.py"), str(steps),
+                             repr(overlap)],
+                            capture_output=True, text=True, check=True, cwd=tempfile.gettempdir())
+    found = re.search(r"([0-9.]+) ms/step, (\d+) interactions", result.stdout)
+    if not found:
+        sys.exit("yade printed no timing line:\n" + result.stdout + result.stderr)
+    return float(found.group(1)), int(found.group(2))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--steps", type=int, default=200)
+    parser.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    parser.add_argument("--overlap", type=float, default=0.02,
+                        help="each sphere's overlap with its neighbours and the walls (0: touching)")
+    parser.add_argument("--lsdem-run", default=os.path.join(ROOT, "build", "tools", "lsdem-run"))
+    args = parser.parse_args()
+    if args.rounds < 1 or args.steps < 1:
+        sys.exit("--rounds and --steps must be at least 1")
+    times = {}
+    with tempfile.TemporaryDirectory() as work:
+        scenes = {law: lsdem_scene(work, law[0], law[1], args.steps, args.overlap) for law in LAWS}
+        for r in range(args.rounds):
+            yade, contacts = run_yade(args.steps, args.overlap)
+            times.setdefault("yade", []).append(yade)
+            row = ["round %d: yade %.1f ms (%d interactions)" % (r + 1, yade, contacts)]
+            for law in LAWS:
+                for threads in args.threads:
+                    key = (law, threads)
+                    ms = run_lsdem(args.lsdem_run, scenes[law], os.path.join(work, "out"), threads)
+                    times.setdefault(key, []).append(ms)
+                    row.append("%s %s %dt %.3f" % (law[0], law[1], threads, ms))
+            print("; ".join(row), flush=True)
+    yade = statistics.median(times["yade"])
+    print("\nmedians of %d rounds, %d steps, overlap %g (ms/step):" % (args.rounds, args.steps, args.overlap))
+    print("  YADE 2023.02a, 1 thread: %.1f (%.1f-%.1f)" % (yade, min(times["yade"]), max(times["yade"])))
+    for law in LAWS:
+        for threads in args.threads:
+            t = times[(law, threads)]
+            m = statistics.median(t)
+            line = "  lsdem %-11s %-9s %d thread(s): %.3f (%.3f-%.3f), YADE/lsdem %.0fx" % (
+                law[0], law[1], threads, m, min(t), max(t), yade / m)
+            if threads != args.threads[0]:
+                line += ", over %d thread(s) %.2fx" % (args.threads[0], statistics.median(times[(law, args.threads[0])]) / m)
+            print(line)
+
+
+if __name__ == "__main__":
+    main()

@@ -4,9 +4,9 @@
 The scene: 1000 level-set spheres (radius 1, voxel 0.1, 1000 surface nodes) in a 10 x 10 x 10
 lattice in five walls under gravity, each overlapping its neighbours and the walls by --overlap
 (0.02: every neighbour a contact; 0: touching): yade_lattice.py for YADE (`apt-get install
-yade`), SCENE below for lsdem-run. Each
-round runs YADE once and lsdem once per contact law and thread count; both time the steps
-alone (YADE: O.run after a first step; lsdem-run: its throughput line, setup left out).
+yade`), SCENE below for lsdem-run. Each round runs YADE once and lsdem once per contact law and
+thread count; both time the steps alone (YADE: O.run after a first step; lsdem-run: its
+throughput line, setup left out).
 
     python3 bench/yade/compare.py --rounds 5 [--steps 200] [--threads 1 2]
 
@@ -113,9 +113,22 @@ def lsdem_scene(directory, formulation, testing, steps, overlap):
     return path
 
 
+def run(command, **options):
+    """@a command's completed process; a missing program or a failed run stops the script with
+    what it printed."""
+    try:
+        result = subprocess.run(command, capture_output=True, text=True, **options)
+    except FileNotFoundError:
+        sys.exit("%s not found (lsdem-run: build it first, `bash scripts/demo.sh`; yade: `apt-get install yade`)"
+                 % command[0])
+    if result.returncode != 0:
+        sys.exit("%s failed (exit %d):\n%s%s" % (" ".join(command), result.returncode, result.stdout,
+                                                 result.stderr))
+    return result
+
+
 def run_lsdem(binary, scene, out, threads):
-    result = subprocess.run([binary, scene, "--out", out, "--overwrite", "--threads", str(threads), "-q"],
-                            capture_output=True, text=True, check=True)
+    result = run([binary, scene, "--out", out, "--overwrite", "--threads", str(threads), "-q"])
     found = re.search(r"throughput: \d+ steps, ([0-9.]+) ms/step", result.stdout + result.stderr)
     if not found:
         sys.exit("lsdem-run printed no throughput line:\n" + result.stdout + result.stderr)
@@ -123,9 +136,8 @@ def run_lsdem(binary, scene, out, threads):
 
 
 def run_yade(steps, overlap):
-    result = subprocess.run(["yade", "-j1", "-n", "-x", os.path.join(HERE, "yade_lattice.py"), str(steps),
-                             repr(overlap)],
-                            capture_output=True, text=True, check=True, cwd=tempfile.gettempdir())
+    result = run(["yade", "-j1", "-n", "-x", os.path.join(HERE, "yade_lattice.py"), str(steps), repr(overlap)],
+                 cwd=tempfile.gettempdir())
     found = re.search(r"([0-9.]+) ms/step, (\d+) interactions", result.stdout)
     if not found:
         sys.exit("yade printed no timing line:\n" + result.stdout + result.stderr)

@@ -4,7 +4,7 @@
 The scene: 1000 level-set spheres (radius 1, voxel 0.1, 1000 surface nodes) in a 10 x 10 x 10
 lattice in five walls under gravity, each overlapping its neighbours and the walls by --overlap
 (0.02: every neighbour a contact; 0: touching): yade_lattice.py for YADE (`apt-get install
-yade`), SCENE below for lsdem-run. Each round runs YADE once and lsdem once per contact law and
+yade`), SCENE below for lsdem-run, both from lattice.py. Each round runs YADE once and lsdem once per contact law and
 thread count; both time the steps alone (YADE: O.run after a first step; lsdem-run: its
 throughput line, setup left out).
 
@@ -22,19 +22,21 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+import lattice  # noqa: E402 (the geometry both codes share)
 LAWS = [("single-node", "one-way"), ("adapted", "one-way"), ("adapted", "symmetric")]
 
 
-SCENE = """# 1000 level-set spheres in a lattice in five walls, as yade_lattice.py builds them for YADE.
-# Units: mm, tonne, s, N.
+SCENE = """# 1000 level-set spheres in a lattice in five walls (bench/yade/lattice.py), as
+# yade_lattice.py builds them for YADE. Units: mm, tonne, s, N.
 [assets.sphere]
 shape = "sphere"
-radius = 1.0
-voxel = 0.1
-nodes = 1000
+radius = {radius!r}
+voxel = {voxel!r}
+nodes = {nodes}
 
 [materials.grain]
-density = 2.65e-9
+density = {density!r}
 
 [materials.wall]
 density = 0.0
@@ -43,73 +45,79 @@ density = 0.0
 materials = ["grain", "grain"]
 formulation = "{formulation}"
 testing = "{testing}"
-normal_stiffness = 1e3
+normal_stiffness = {stiffness!r}
 
 [[contacts]]
 materials = ["grain", "wall"]
 formulation = "{formulation}"
 testing = "{testing}"
-normal_stiffness = 1e3
+normal_stiffness = {stiffness!r}
 
 [[lattices]]
 asset = "sphere"
 material = "grain"
-origin = [0, 0, 1]
-count = [10, 10, 10]
-spacing = [{spacing}, {spacing}, {spacing}]
+origin = [0, 0, {radius!r}]
+count = [{count}, {count}, {count}]
+spacing = [{spacing!r}, {spacing!r}, {spacing!r}]
 
 [[boundaries]]
 name = "floor"
 type = "plane"
 material = "wall"
-point = [0, 0, {overlap}]
+point = [0, 0, {floor!r}]
 normal = [0, 0, 1]
 
 [[boundaries]]
 name = "west"
 type = "plane"
 material = "wall"
-point = [{low}, 0, 0]
+point = [{low!r}, 0, 0]
 normal = [1, 0, 0]
 
 [[boundaries]]
 name = "east"
 type = "plane"
 material = "wall"
-point = [{high}, 0, 0]
+point = [{high!r}, 0, 0]
 normal = [-1, 0, 0]
 
 [[boundaries]]
 name = "south"
 type = "plane"
 material = "wall"
-point = [0, {low}, 0]
+point = [0, {low!r}, 0]
 normal = [0, 1, 0]
 
 [[boundaries]]
 name = "north"
 type = "plane"
 material = "wall"
-point = [0, {high}, 0]
+point = [0, {high!r}, 0]
 normal = [0, -1, 0]
 
 [simulation]
-gravity = [0, 0, -9810]
-time_step = 1e-7
+gravity = [0, 0, {gravity!r}]
+time_step = {dt!r}
 end_steps = {steps}
 """
 
 
-def lsdem_scene(directory, formulation, testing, steps, overlap):
+def scene_text(formulation, testing, steps, overlap):
     """The scene of yade_lattice.py for lsdem-run, with the given law (grains and walls)."""
-    radius, count = 1.0, 10
-    spacing = 2.0 * radius - overlap
-    text = SCENE.format(formulation=formulation, testing=testing, steps=steps, overlap=repr(overlap),
-                        spacing=repr(spacing), low=repr(-radius + overlap),
-                        high=repr((count - 1) * spacing + radius - overlap))
+    walls = lattice.walls(overlap)
+    return SCENE.format(radius=lattice.RADIUS, voxel=lattice.GRID_SPACING, nodes=lattice.NODES,
+                        density=lattice.DENSITY, stiffness=lattice.NORMAL_STIFFNESS,
+                        formulation=formulation, testing=testing, count=lattice.COUNT,
+                        spacing=lattice.spacing(overlap), floor=walls["floor"], low=walls["low"],
+                        high=walls["high"], gravity=lattice.GRAVITY, dt=lattice.TIME_STEP,
+                        steps=steps)
+
+
+def lsdem_scene(directory, formulation, testing, steps, overlap):
+    """scene_text written to a file in @a directory; its path."""
     path = os.path.join(directory, "lattice_%s_%s.toml" % (formulation, testing))
     with open(path, "w") as f:
-        f.write(text)
+        f.write(scene_text(formulation, testing, steps, overlap))
     return path
 
 

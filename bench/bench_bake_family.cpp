@@ -6,6 +6,7 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/MassProperties.h"
 #include "lsdem/ls/MeshLevelSet.h"
+#include "lsdem/mesh/CentroidalNodes.h"
 #include "lsdem/mesh/MeshRemesh.h"
 
 #include "MeshFamily.h"
@@ -55,6 +56,10 @@ void BM_BakeFamily(benchmark::State& state)
     }
     state.SetLabel(member.name + (state.range(1) == 0 ? "" : " centroidal"));
     state.counters["triangles"] = double(member.mesh.triangles.size());
+    // What `auto` decides on: the sharp edges and their loose ends (CentroidalNodes.h).
+    const SharpEdges sharp = countSharpEdges(member.mesh, RemeshOptions{}.featureAngleDeg);
+    state.counters["sharp_edges"] = double(sharp.edges);
+    state.counters["loose_ends"] = double(sharp.looseEnds);
     state.counters["nodes"] = nodes;
     // The SDP asks for nodes as on equilateral triangles of edge SDP: 2A/(√3·SDP²).
     state.counters["nodes_over_asked"] =

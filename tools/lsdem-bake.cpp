@@ -113,8 +113,8 @@ void addOptions(CLI::App& app, BakeCommandLine& c)
                    "how a mesh's nodes are placed: 'centroidal' (each node at the\n"
                    "centroid of its Voronoi cell on the mesh; fast on fine scans),\n"
                    "'remesh' (the vertices of the mesh remeshed, sharp edges kept),\n"
-                   "or 'auto': centroidal unless the mesh has sharp edges (over 30°);\n"
-                   "give centroidal for a noisy scan")
+                   "or 'auto': centroidal unless the mesh has sharp edges (over 30°)\n"
+                   "in lines, as a block's (a scan's noise, scattered, is not)")
         ->type_name("LAYOUT")
         ->capture_default_str()
         ->group(nodes);

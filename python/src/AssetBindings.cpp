@@ -324,9 +324,10 @@ void bindAssets(py::module_& m)
           (std::string("Bake the closed mesh in path (OBJ, STL, PLY, or anything assimp "
                        "reads) into an Asset, as lsdem-bake does.\n"
                        "mesh_nodes=True: use the mesh's own vertices as nodes.\n"
-                       "node_layout: 'auto' (centroidal unless the mesh has sharp edges), "
+                       "node_layout: 'auto' (centroidal unless the mesh has sharp edges in lines, "
+                       "as a block's; a scan's scattered noise is not), "
                        "'centroidal' (nodes at the centroids of a centroidal Voronoi "
-                       "tessellation of the mesh; give it for a noisy scan) or 'remesh' (the "
+                       "tessellation of the mesh) or 'remesh' (the "
                        "vertices of the mesh remeshed, sharp edges kept).\n") +
            kBakeKeywords)
               .c_str());

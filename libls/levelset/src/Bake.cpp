@@ -106,8 +106,8 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
 /// The sharp-edge angle of the remesher's feature edges: a mesh with none gets centroidal nodes.
 const double kSharpEdgeDeg = RemeshOptions{}.featureAngleDeg;
 
-/// From this many sharp edges on, `auto` warns that they look like noise.
-constexpr size_t kNoisySharpEdges = 1000;
+/// From this many sharp edges on, `auto` says what it made of them.
+constexpr size_t kManySharpEdges = 1000;
 
 /// Nodes at the centroids of a centroidal Voronoi tessellation of @a mesh, each with its
 /// cell's area and mean normal; none if cells reach across parts thinner than the node
@@ -200,12 +200,21 @@ SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
         used("mesh vertices");
         return nodesFromMesh(mesh, o.areaRule);
     }
-    const size_t sharpEdges =
-        o.nodeLayout == NodeLayout::Automatic ? countSharpEdges(mesh, kSharpEdgeDeg) : 0;
-    if (o.nodeLayout == NodeLayout::Centroidal ||
-        (o.nodeLayout == NodeLayout::Automatic && sharpEdges == 0)) {
+    const bool automatic = o.nodeLayout == NodeLayout::Automatic;
+    const SharpEdges sharp = automatic ? countSharpEdges(mesh, kSharpEdgeDeg) : SharpEdges();
+    // A scan's noise turns edges sharp at random; the remesher would keep every one, slowly.
+    const bool noise = automatic && sharpEdgesLookLikeNoise(sharp);
+    if (o.nodeLayout == NodeLayout::Centroidal || (automatic && (sharp.edges == 0 || noise))) {
         SurfaceNodes nodes = centroidalNodes(mesh, o);
         if (!nodes.positions.empty()) {
+            if (warnings && noise && sharp.edges >= kManySharpEdges)
+                warnings->push_back(
+                    "the mesh's " + std::to_string(sharp.edges) + " sharp edges (over " +
+                    std::to_string(int(kSharpEdgeDeg)) + " degrees) look like a scan's noise (" +
+                    std::to_string(sharp.looseEnds) + " loose ends, where a shape's edges "
+                    "meet at corners), so its nodes are spread evenly (centroidal); to keep "
+                    "them as features, bake with --node-layout remesh (node_layout = "
+                    "\"remesh\"): slower");
             used("centroidal");
             return nodes;
         }
@@ -215,15 +224,14 @@ SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
                                 "are remeshed instead (the node count is then about, not "
                                 "exactly, the one asked)");
     }
-    // Thousands of sharp edges are a scan's noise rather than a shape's edges (a box finely
-    // tessellated has hundreds): the remesher keeps every one, slowly.
-    if (warnings && sharpEdges >= kNoisySharpEdges)
+    // Thousands of sharp edges in lines: a shape's edges, each kept as a feature (slowly).
+    if (warnings && automatic && !noise && sharp.edges >= kManySharpEdges)
         warnings->push_back(
-            "the mesh has " + std::to_string(sharpEdges) + " sharp edges (over " +
-            std::to_string(int(kSharpEdgeDeg)) + " degrees), so its nodes are remeshed with "
-            "each kept as a feature; if they are a scan's noise, bake with --node-layout "
-            "centroidal (node_layout = \"centroidal\"): faster, and nodes evenly spread over "
-            "the surface");
+            "the mesh has " + std::to_string(sharp.edges) + " sharp edges (over " +
+            std::to_string(int(kSharpEdgeDeg)) + " degrees) in lines, so its nodes are "
+            "remeshed with each kept as a feature; if they are a scan's noise, bake with "
+            "--node-layout centroidal (node_layout = \"centroidal\"): faster, and nodes "
+            "evenly spread over the surface");
     used("remesh");
     return nodesFromMesh(nodeSurface(mesh, o, /*keepFineInput=*/true), o.areaRule);
 }

@@ -86,7 +86,7 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
     return nodes;
 }
 
-size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg)
+SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg)
 {
     const std::vector<EdgeUse> uses = collectEdgeUses(mesh);
     auto normalOf = [&mesh](int t) {
@@ -95,14 +95,28 @@ size_t countSharpEdges(const TriangleMesh& mesh, double angleDeg)
         return Vec3((mesh.vertices[size_t(tri[1])] - a).cross(mesh.vertices[size_t(tri[2])] - a));
     };
     const double cosAngle = std::cos(angleDeg * kPi / 180.0);
-    size_t sharp = 0;
+    SharpEdges sharp;
+    std::vector<int> sharpAtVertex(mesh.vertices.size(), 0);
     for (size_t k = 0; k + 1 < uses.size(); ++k) {
         if (uses[k].key != uses[k + 1].key) continue;  // (a closed mesh's edge has two uses)
         const Vec3 n1 = normalOf(uses[k].triangle), n2 = normalOf(uses[k + 1].triangle);
         const double norms = n1.norm() * n2.norm();
-        if (norms > 0.0 && n1.dot(n2) < cosAngle * norms) ++sharp;
+        if (!(norms > 0.0 && n1.dot(n2) < cosAngle * norms)) continue;
+        ++sharp.edges;
+        ++sharpAtVertex[size_t(uses[k].key >> 32)];
+        ++sharpAtVertex[size_t(uses[k].key & 0xffffffffu)];
     }
+    sharp.looseEnds = size_t(std::count(sharpAtVertex.begin(), sharpAtVertex.end(), 1));
     return sharp;
+}
+
+bool sharpEdgesLookLikeNoise(const SharpEdges& s)
+{
+    // Lines of sharp edges (a shape's) have loose ends only where a crease fades out.
+    constexpr size_t kManySharpEdges = 1000, kSharpEdgesPerLooseEnd = 20;
+    if (s.edges == 0) return false;
+    if (s.looseEnds == 2 * s.edges) return true;
+    return s.edges >= kManySharpEdges && s.looseEnds * kSharpEdgesPerLooseEnd >= s.edges;
 }
 
 } // namespace lsdem

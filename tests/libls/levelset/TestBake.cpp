@@ -4,6 +4,7 @@
 #include "lsdem/core/Error.h"
 #include "lsdem/ls/LevelSetSampler.h"
 #include "lsdem/ls/MassProperties.h"
+#include "lsdem/mesh/CentroidalNodes.h"
 #include "lsdem/mesh/MeshIO.h"
 #include "support/TestSupport.h"
 
@@ -278,29 +279,34 @@ TEST(Bake, SmoothMeshesGetCentroidalNodesAndBoxesKeepTheirCorners)
 }
 
 // A sphere mesh with a scan's noise (every vertex moved along its radius at random) has
-// thousands of sharp edges: auto remeshes it, keeping them, and says that centroidal would
-// suit a noisy scan; laid out centroidally it gets the count asked and no such message.
-TEST(Bake, AutoLayoutSaysWhenSharpEdgesLookLikeNoise)
+// thousands of sharp edges, scattered with loose ends: auto spreads its nodes centroidally
+// (the count asked, exactly) and says so, naming the remesher for who wants them kept; asked
+// to remesh, it keeps them (a count only about the one asked) and says nothing of noise.
+TEST(Bake, AutoLayoutSpreadsTheNodesOfANoisyScanAndSaysSo)
 {
     TriangleMesh noisy = AnalyticShape::sphere(1.0).surfaceMesh(1.05 / 24);  // 11,520 triangles
     std::mt19937 random(3);
     std::uniform_real_distribution<double> jitter(-0.02, 0.02);  // edges are about 0.044
     for (Vec3& v : noisy.vertices) v *= 1.0 + jitter(random);
+    ASSERT_TRUE(sharpEdgesLookLikeNoise(countSharpEdges(noisy, 30.0)));
     BakeOptions o = spacingOptions(0.05, 0.15);
     std::vector<std::string> warnings;
-    bakeMesh(noisy, "noisy", o, warnings);
-    auto saysCentroidal = [&] {
-        return std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
-            return w.find("--node-layout centroidal") != std::string::npos;
+    const GrainAsset a = bakeMesh(noisy, "noisy", o, warnings);
+    auto says = [&](const char* text) {
+        return std::any_of(warnings.begin(), warnings.end(), [text](const std::string& w) {
+            return w.find(text) != std::string::npos;
         });
     };
-    EXPECT_TRUE(saysCentroidal());
-    warnings.clear();
-    o.nodeLayout = NodeLayout::Centroidal;
-    const GrainAsset a = bakeMesh(noisy, "noisy", o, warnings);
-    EXPECT_FALSE(saysCentroidal());
+    EXPECT_EQ(a.provenance.nodeLayout, "centroidal");
+    EXPECT_TRUE(says("look like a scan's noise"));
+    EXPECT_TRUE(says("--node-layout remesh"));
     EXPECT_EQ(double(a.nodes.size()),
               std::round(2.0 * surfaceArea(noisy) / (std::sqrt(3.0) * 0.15 * 0.15)));
+    warnings.clear();
+    o.nodeLayout = NodeLayout::Remesh;
+    const GrainAsset r = bakeMesh(noisy, "noisy", o, warnings);
+    EXPECT_EQ(r.provenance.nodeLayout, "remesh");
+    EXPECT_FALSE(says("noise"));
 }
 
 // A plate thinner than the node spacing: centroidal cells would reach through it (a node on

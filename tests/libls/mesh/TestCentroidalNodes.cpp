@@ -1,6 +1,7 @@
 // Tests of placeCentroidalNodes and countSharpEdges: the count, the surface shared out exactly,
 // nodes on the surface with their cells' normals, an even spread, a cap's traction integral
-// against Archimedes' closed form, and the same nodes on any thread count.
+// against Archimedes' closed form, the same nodes on any thread count; sharp edges, their
+// loose ends, and when they look like a scan's noise.
 #include "lsdem/mesh/CentroidalNodes.h"
 #include "lsdem/mesh/MeshRemesh.h"
 
@@ -14,6 +15,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <random>
+#include <tuple>
 #include <vector>
 
 using lsdem::CentroidalNodes;
@@ -29,6 +33,55 @@ TriangleMesh sphereMesh(int levels, double radius)
 {
     TriangleMesh mesh = lsdem::test::makeIcosphere(levels);
     for (Vec3& v : mesh.vertices) v *= radius;
+    return mesh;
+}
+
+/// The cube [-1, 1]³ with each face cut into n × n squares of two triangles (outward), its
+/// vertices shared: its 12 edges are 12·n sharp mesh edges.
+TriangleMesh tessellatedCube(int n)
+{
+    TriangleMesh mesh;
+    std::map<std::tuple<int, int, int>, int> index;  // vertex at lattice point (i, j, k) of 0..n
+    auto vertex = [&](int i, int j, int k) {
+        const auto found = index.find({i, j, k});
+        if (found != index.end()) return found->second;
+        mesh.vertices.push_back(Vec3(2.0 * i / n - 1.0, 2.0 * j / n - 1.0, 2.0 * k / n - 1.0));
+        return index[{i, j, k}] = int(mesh.vertices.size()) - 1;
+    };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side <= 1; ++side)
+            for (int a = 0; a < n; ++a)
+                for (int b = 0; b < n; ++b) {
+                    // Corners of the square (a, b) on face (axis, side), in the face's (u, v).
+                    auto at = [&](int u, int v) {
+                        int c[3];
+                        c[axis] = side * n;
+                        c[(axis + 1) % 3] = u;
+                        c[(axis + 2) % 3] = v;
+                        return vertex(c[0], c[1], c[2]);
+                    };
+                    const int p = at(a, b), q = at(a + 1, b), r = at(a + 1, b + 1),
+                              t = at(a, b + 1);
+                    // (u, v, axis) is right-handed: counter-clockwise seen from outside on the
+                    // upper side, clockwise on the lower.
+                    if (side == 1) {
+                        mesh.triangles.push_back({p, q, r});
+                        mesh.triangles.push_back({p, r, t});
+                    } else {
+                        mesh.triangles.push_back({p, r, q});
+                        mesh.triangles.push_back({p, t, r});
+                    }
+                }
+    return mesh;
+}
+
+/// @a mesh with every vertex moved along its direction from the origin by a random fraction
+/// in ±@a amplitude/2 (a scan's noise).
+TriangleMesh withNoise(TriangleMesh mesh, double amplitude)
+{
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> draw(-0.5, 0.5);
+    for (Vec3& v : mesh.vertices) v *= 1.0 + amplitude * draw(random);
     return mesh;
 }
 
@@ -149,12 +202,48 @@ TEST(CentroidalNodes, AreTheSameOnOneThreadAsOnSeveral)
 TEST(CentroidalNodes, SharpEdgesAreABoxsNotASpheres)
 {
     // A box's 12 edges (its faces' diagonals are flat: not sharp).
-    EXPECT_EQ(lsdem::countSharpEdges(lsdem::test::makeBox(Vec3::Zero(), Vec3::Ones()), 30.0), 12u);
-    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(3, 1.0), 30.0), 0u);
+    const TriangleMesh box = lsdem::test::makeBox(Vec3::Zero(), Vec3::Ones());
+    EXPECT_EQ(lsdem::countSharpEdges(box, 30.0).edges, 12u);
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(3, 1.0), 30.0).edges, 0u);
     // An icosahedron's faces meet at 41.8° (its normals turn by 180° − 138.2°): its 30 edges
     // are sharp at 30°, none at 45°.
-    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 30.0), 30u);
-    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 45.0), 0u);
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 30.0).edges, 30u);
+    EXPECT_EQ(lsdem::countSharpEdges(sphereMesh(0, 1.0), 45.0).edges, 0u);
+}
+
+// A shape's sharp edges run in lines that meet at its corners: no loose end, however many
+// (a box's, an icosahedron's, a finely cut cube's 12·n). One fold alone has two loose ends. A
+// scan's noise (the same cube, its vertices moved by ±1 %, about half a cell) turns edges
+// sharp here and there: thousands, with loose ends. Only the noise and the lone fold look like
+// noise.
+TEST(CentroidalNodes, SharpEdgesInLinesAreAShapesAndScatteredOnesNoise)
+{
+    const lsdem::SharpEdges box =
+        lsdem::countSharpEdges(lsdem::test::makeBox(Vec3::Zero(), Vec3::Ones()), 30.0);
+    EXPECT_EQ(box.looseEnds, 0u);
+    EXPECT_FALSE(lsdem::sharpEdgesLookLikeNoise(box));
+    const lsdem::SharpEdges icosahedron = lsdem::countSharpEdges(sphereMesh(0, 1.0), 30.0);
+    EXPECT_EQ(icosahedron.edges, 30u);
+    EXPECT_EQ(icosahedron.looseEnds, 0u);  // five sharp edges at each vertex
+    EXPECT_FALSE(lsdem::sharpEdgesLookLikeNoise(icosahedron));
+
+    TriangleMesh fold;  // two triangles meeting at 90° along the edge (0, 1)
+    fold.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+    fold.triangles = {{0, 1, 2}, {1, 0, 3}};
+    const lsdem::SharpEdges lone = lsdem::countSharpEdges(fold, 30.0);
+    EXPECT_EQ(lone.edges, 1u);
+    EXPECT_EQ(lone.looseEnds, 2u);
+    EXPECT_TRUE(lsdem::sharpEdgesLookLikeNoise(lone));
+
+    const TriangleMesh cube = tessellatedCube(90);  // 97,200 triangles
+    const lsdem::SharpEdges lines = lsdem::countSharpEdges(cube, 30.0);
+    EXPECT_EQ(lines.edges, 12u * 90u);
+    EXPECT_EQ(lines.looseEnds, 0u);
+    EXPECT_FALSE(lsdem::sharpEdgesLookLikeNoise(lines));
+    const lsdem::SharpEdges noise = lsdem::countSharpEdges(withNoise(cube, 0.02), 30.0);
+    EXPECT_GE(noise.edges, 1000u);
+    EXPECT_GE(20 * noise.looseEnds, noise.edges);
+    EXPECT_TRUE(lsdem::sharpEdgesLookLikeNoise(noise));
 }
 
 } // namespace

@@ -60,41 +60,7 @@ origin = [0, 0, {radius!r}]
 count = [{count}, {count}, {count}]
 spacing = [{spacing!r}, {spacing!r}, {spacing!r}]
 
-[[boundaries]]
-name = "floor"
-type = "plane"
-material = "wall"
-point = [0, 0, {floor!r}]
-normal = [0, 0, 1]
-
-[[boundaries]]
-name = "west"
-type = "plane"
-material = "wall"
-point = [{low!r}, 0, 0]
-normal = [1, 0, 0]
-
-[[boundaries]]
-name = "east"
-type = "plane"
-material = "wall"
-point = [{high!r}, 0, 0]
-normal = [-1, 0, 0]
-
-[[boundaries]]
-name = "south"
-type = "plane"
-material = "wall"
-point = [0, {low!r}, 0]
-normal = [0, 1, 0]
-
-[[boundaries]]
-name = "north"
-type = "plane"
-material = "wall"
-point = [0, {high!r}, 0]
-normal = [0, -1, 0]
-
+{boundaries}
 [simulation]
 gravity = [0, 0, {gravity!r}]
 time_step = {dt!r}
@@ -102,15 +68,24 @@ end_steps = {steps}
 """
 
 
+BOUNDARY = """[[boundaries]]
+name = "{name}"
+type = "plane"
+material = "wall"
+point = {point}
+normal = {normal}
+"""
+
+
 def scene_text(formulation, testing, steps, overlap):
     """The scene of yade_lattice.py for lsdem-run, with the given law (grains and walls)."""
-    walls = lattice.walls(overlap)
+    boundaries = "\n".join(BOUNDARY.format(name=name, point=list(point), normal=list(normal))
+                           for name, point, normal in lattice.planes(overlap))
     return SCENE.format(radius=lattice.RADIUS, voxel=lattice.GRID_SPACING, nodes=lattice.NODES,
                         density=lattice.DENSITY, stiffness=lattice.NORMAL_STIFFNESS,
                         formulation=formulation, testing=testing, count=lattice.COUNT,
-                        spacing=lattice.spacing(overlap), floor=walls["floor"], low=walls["low"],
-                        high=walls["high"], gravity=lattice.GRAVITY, dt=lattice.TIME_STEP,
-                        steps=steps)
+                        spacing=lattice.spacing(overlap), boundaries=boundaries,
+                        gravity=lattice.GRAVITY, dt=lattice.TIME_STEP, steps=steps)
 
 
 def lsdem_scene(directory, formulation, testing, steps, overlap):

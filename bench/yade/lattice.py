@@ -24,6 +24,16 @@ def centres(overlap):
     return [(i * s, j * s, RADIUS + k * s) for k in range(COUNT) for j in range(COUNT) for i in range(COUNT)]
 
 
+def planes(overlap):
+    """The five walls as (name, point, outward normal into the box), from walls()."""
+    w = walls(overlap)
+    return [("floor", (0.0, 0.0, w["floor"]), (0, 0, 1)),
+            ("west", (w["low"], 0.0, 0.0), (1, 0, 0)),
+            ("east", (w["high"], 0.0, 0.0), (-1, 0, 0)),
+            ("south", (0.0, w["low"], 0.0), (0, 1, 0)),
+            ("north", (0.0, w["high"], 0.0), (0, -1, 0))]
+
+
 def walls(overlap):
     """The floor's height and the side walls' lower and upper coordinates (x and y alike)."""
     low = -RADIUS + overlap

@@ -28,12 +28,8 @@ grid, field = first.shape.lsGrid, first.shape.distField
 for centre in lattice.centres(overlap):
     O.bodies.append(levelSetBody(center=centre, grid=grid, distField=field, nSurfNodes=lattice.NODES,
                                  nodesPath=2, material='grain'))
-walls = lattice.walls(overlap)
-O.bodies.append(wall((0, 0, walls['floor']), 2))
-O.bodies.append(wall((walls['low'], 0, 0), 0))
-O.bodies.append(wall((walls['high'], 0, 0), 0))
-O.bodies.append(wall((0, walls['low'], 0), 1))
-O.bodies.append(wall((0, walls['high'], 0), 1))
+for _, point, normal in lattice.planes(overlap):
+    O.bodies.append(wall(point, [abs(n) for n in normal].index(1)))  # a plane square to that axis
 O.dt = lattice.TIME_STEP
 O.run(1, True)  # the first step builds the collider's lists: not timed
 start = time.time()

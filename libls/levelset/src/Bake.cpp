@@ -106,9 +106,6 @@ void checkNodeSpacing(double area, const BakeOptions& o, const std::string& sour
 /// The sharp-edge angle of the remesher's feature edges: a mesh with none gets centroidal nodes.
 const double kSharpEdgeDeg = RemeshOptions{}.featureAngleDeg;
 
-/// From this many sharp edges on, `auto` says what it made of them.
-constexpr size_t kManySharpEdges = 1000;
-
 /// Nodes at the centroids of a centroidal Voronoi tessellation of @a mesh, each with its
 /// cell's area and mean normal; none if cells reach across parts thinner than the node
 /// spacing (more than 0.1 % of the surface owned across: its traction would push the wrong

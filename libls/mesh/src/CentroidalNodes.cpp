@@ -113,7 +113,7 @@ SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg)
 bool sharpEdgesLookLikeNoise(const SharpEdges& s)
 {
     // Lines of sharp edges (a shape's) have loose ends only where a crease fades out.
-    constexpr size_t kManySharpEdges = 1000, kSharpEdgesPerLooseEnd = 20;
+    constexpr size_t kSharpEdgesPerLooseEnd = 20;
     if (s.edges == 0) return false;
     if (s.looseEnds == 2 * s.edges) return true;
     return s.edges >= kManySharpEdges && s.looseEnds * kSharpEdgesPerLooseEnd >= s.edges;

@@ -50,6 +50,10 @@ struct SharpEdges
 /// The edges of @a mesh whose triangles' normals turn by more than @a angleDeg across them.
 SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg);
 
+/// From this many sharp edges on, a mesh's sharp edges are counted as noise by their loose
+/// ends alone (fewer are noise only when each is alone), and the bake says what it made of them.
+inline constexpr size_t kManySharpEdges = 1000;
+
 /// Whether sharp edges @a s look like a scan's noise rather than a shape's edges: each one on
 /// its own (both of its ends loose), or a thousand and more with at least one loose end per 20
 /// of them. A box's edges, however finely tessellated, have no loose end; the noisy meshes

@@ -210,9 +210,8 @@ SurfaceNodes placeNodesOnMesh(const TriangleMesh& mesh, const BakeOptions& o,
                     std::to_string(int(kSharpEdgeDeg)) + " degrees) look like a scan's noise (" +
                     std::to_string(sharp.looseEnds) + " loose ends, where a shape's edges "
                     "would run on in lines to its corners), so its nodes are spread evenly "
-                    "(centroidal); to keep "
-                    "them as features, bake with --node-layout remesh (node_layout = "
-                    "\"remesh\"): slower");
+                    "(centroidal); to keep them as features, bake with --node-layout remesh "
+                    "(node_layout = \"remesh\"): slower");
             used("centroidal");
             return nodes;
         }

@@ -51,7 +51,8 @@ struct SharpEdges
 SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg);
 
 /// From this many sharp edges on, a mesh's sharp edges are counted as noise by their loose
-/// ends alone (fewer are noise only when each is alone), and the bake says what it made of them.
+/// ends alone (fewer are noise only when each is alone), and the bake says what it made of
+/// them.
 inline constexpr size_t kManySharpEdges = 1000;
 
 /// Whether sharp edges @a s look like a scan's noise rather than a shape's edges: each one on

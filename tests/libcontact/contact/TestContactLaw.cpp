@@ -477,7 +477,8 @@ TEST(ContactLaw, APairWithoutNodesGivesTheZeroResultAndEndsItsHistory)
     g.halfWeightSides(sides);
     sides[0].history = &onA;
     sides[1].history = &onB;
-    const PairForces touching = resolveContact(sides, 2, adapted(5e2, 0.5, 0.5), 1e-6, &all, &scratch);
+    const PairForces touching =
+        resolveContact(sides, 2, adapted(5e2, 0.5, 0.5), 1e-6, &all, &scratch);
     EXPECT_GT(touching.forceOnFirst.norm(), 0.0);
     EXPECT_EQ(touching.contactNodes, 3);
     EXPECT_FALSE(all.empty());

@@ -3,9 +3,12 @@
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/core/ThreadPrivate.h"
 #include "lsdem/simulation/BoundaryContact.h"
+#include "SlotPrefetch.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace lsdem {
 
@@ -45,6 +48,21 @@ void computeContactSlot(const ContactBatch& batch, size_t k, ContactScratch& scr
 
 namespace {
 
+/// Slots [@a begin, @a end) of @a batch in order, each one's scattered state asked for ahead
+/// of its turn: its histories two slots before, the arrays they point to one slot before.
+void computeSlotsFetchingAhead(const ContactBatch& batch, size_t begin, size_t end,
+                               ContactScratch& scratch)
+{
+    const std::vector<ContactSlot>& slots = batch.slots;
+    for (size_t k = begin; k < std::min(end, begin + 2); ++k) prefetchHistories(slots[k]);
+    if (begin < end) prefetchArrays(slots[begin]);
+    for (size_t k = begin; k < end; ++k) {
+        if (k + 2 < end) prefetchHistories(slots[k + 2]);
+        if (k + 1 < end) prefetchArrays(slots[k + 1]);
+        computeContactSlot(batch, k, scratch);
+    }
+}
+
 class CpuContactBackend final : public ContactBackend
 {
 public:
@@ -55,10 +73,12 @@ public:
 
     void compute(const ContactBatch& batch) override
     {
-        // One slot per task; nothing shared is written.
-        tbb::parallel_for(size_t(0), batch.slots.size(), [&](size_t k) {
-            computeContactSlot(batch, k, mScratch.local().value);  // this thread's buffers
-        });
+        // Ranges of slots; nothing shared is written.
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, batch.slots.size()),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              computeSlotsFetchingAhead(batch, range.begin(), range.end(),
+                                                        mScratch.local().value);
+                          });
     }
 
 private:

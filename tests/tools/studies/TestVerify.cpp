@@ -148,9 +148,13 @@ TEST(VerifyReferences, BeverlooFitRecoversTheLawsConstants)
 // The line's uncertainty, worked by hand for y = {1, 3, 6, 7} at x = {0, 1, 2, 3}: the line
 // 2.1x + 1.1, residuals −0.1, −0.2, 0.7, −0.4, σ² = 0.70/2, Sxx = 5, x̄ = 1.5: Var(slope)
 // 0.07, Var(intercept) 0.35·(1/4 + 2.25/5) = 0.245, Cov −1.5·0.35/5 = −0.105. Carried to
-// Beverloo's C and k for the spheres' four silo flows (docs/verification.md), the half-widths
-// of the 95 % intervals agree with numpy's polyfit covariance and the same first-order
-// propagation (0.1433 and 0.6711, t = 4.303); exact flows give zero, two flows none.
+// Beverloo's C and k for the spheres' four silo flows (docs/verification.md): C's interval is
+// the slope's t-interval mapped through C(s), k's is Fieller's for −intercept/slope, both
+// computed apart with numpy (the same covariances as np.linalg.inv(XᵀX)·σ², t = 4.303) and
+// Fieller's checked there by scanning θ for (b − θs)² ≤ t²·(Var b − 2θ·Cov + θ²·Var s):
+// C 0.46529 in [0.33492, 0.62214], k 1.17007 in [0.40668, 1.76910]. The first-order
+// half-widths used before (±0.1433, ±0.6711) were symmetric and wrong at both ends. Exact flows
+// give intervals of zero width, two flows none, and a slope within its own noise an unbounded k.
 TEST(VerifyReferences, BeverlooFitSaysHowLooselyTheFlowsFixCAndK)
 {
     const LineFit line = fitLine({0, 1, 2, 3}, {1, 3, 6, 7});
@@ -162,18 +166,33 @@ TEST(VerifyReferences, BeverlooFitSaysHowLooselyTheFlowsFixCAndK)
     const std::vector<Discharge> spheres = {
         {5.0, 2.013e-6}, {6.0, 3.578e-6}, {7.0, 5.984e-6}, {8.0, 8.472e-6}};
     const BeverlooFit fit = fitBeverloo(spheres, 1.532e-9, 9810.0, 1.0);
-    EXPECT_NEAR(fit.c, 0.46529, 1e-4);
-    EXPECT_NEAR(fit.cHalfWidth95, 0.14334, 1e-4);
-    EXPECT_NEAR(fit.k, 1.17007, 1e-4);
-    EXPECT_NEAR(fit.kHalfWidth95, 0.67108, 1e-4);
+    EXPECT_NEAR(fit.c, 0.46529, 1e-5);
+    EXPECT_NEAR(fit.cLow95, 0.33492, 1e-5);
+    EXPECT_NEAR(fit.cHigh95, 0.62214, 1e-5);
+    EXPECT_NEAR(fit.k, 1.17007, 1e-5);
+    EXPECT_NEAR(fit.kLow95, 0.40668, 1e-5);
+    EXPECT_NEAR(fit.kHigh95, 1.76910, 1e-5);
 
     const double c = 0.58, k = 1.4, d = 1.2, rho = 1.6e-9, g = 9810.0;
     std::vector<Discharge> exact;
     for (double diameter : {5.0, 6.5, 8.0})
         exact.push_back({diameter, c * rho * std::sqrt(g) * std::pow(diameter - k * d, 2.5)});
-    EXPECT_NEAR(fitBeverloo(exact, rho, g, d).cHalfWidth95, 0.0, 1e-6);
+    const BeverlooFit exactFit = fitBeverloo(exact, rho, g, d);
+    EXPECT_NEAR(exactFit.cLow95, c, 1e-6);
+    EXPECT_NEAR(exactFit.cHigh95, c, 1e-6);
+    EXPECT_NEAR(exactFit.kLow95, k, 1e-6);
+    EXPECT_NEAR(exactFit.kHigh95, k, 1e-6);
     exact.pop_back();
-    EXPECT_TRUE(std::isnan(fitBeverloo(exact, rho, g, d).cHalfWidth95));
+    EXPECT_TRUE(std::isnan(fitBeverloo(exact, rho, g, d).cLow95));
+    EXPECT_TRUE(std::isnan(fitBeverloo(exact, rho, g, d).kHigh95));
+    // W^(2/5) = 1, 1.2, 0.9, 1.1: a slope of 0 against a standard error of 0.071.
+    std::vector<Discharge> noise;
+    for (const auto& [diameter, root] : {std::pair{5.0, 1.0}, {6.0, 1.2}, {7.0, 0.9}, {8.0, 1.1}})
+        noise.push_back({diameter, std::pow(root, 2.5)});
+    const BeverlooFit flat = fitBeverloo(noise, rho, g, d);
+    EXPECT_TRUE(std::isinf(flat.kLow95) && flat.kLow95 < 0.0);
+    EXPECT_TRUE(std::isinf(flat.kHigh95) && flat.kHigh95 > 0.0);
+    EXPECT_EQ(flat.cLow95, 0.0);
     EXPECT_THROW(fitLine({1, 1}, {2, 3}), std::exception);
 }
 

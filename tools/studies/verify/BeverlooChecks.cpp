@@ -23,10 +23,10 @@ void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Di
     const BeverlooFit fit = fitBeverloo(flows, rho, gravity, grainSize);
     // Two orifices (the quick version) fix the line exactly: its fit is shown, not judged.
     const bool judged = flows.size() >= 3;
-    // Over D = 5–8 d the exponent is weakly determined (a law W ∝ D³ still gives R² 0.9996 for
-    // W^(2/5) against D): the line's R² and the flows' own exponent are shown, C and k judged.
+    // Over D = 5–8 d the exponent is weakly determined (a law W ∝ D³ still gives R² 0.9998 for
+    // W^(2/5) against D at D = 5, 6, 7, 8): the line's R² and the flows' own exponent are shown, C and k judged.
     Check linear{name, "adapted", "W^(2/5) a line in D: R²", "", 1.0, fit.rSquared, 1.0, 0.0,
-                 "shown: over D = 5–8 d even W ∝ D³ gives R² 0.9996"};
+                 "shown: over D = 5–8 d even W ∝ D³ gives R² 0.9998"};
     linear.informative = true;
     c.report.add(linear);
     Check cFit{name, "adapted", "Beverloo's C", "", 0.6, fit.c, 0.6, 0.05 / 0.6,
@@ -41,12 +41,12 @@ void addBeverlooChecks(Context& c, const std::string& name, const std::vector<Di
     if (judged) {
         // How loosely the orifices fix C and k: their 95 % intervals, shown.
         for (const auto& [quantity, value, reference, scale, tolerance] :
-             {std::make_tuple("Beverloo's C, 95 % interval from", fit.c - fit.cHalfWidth95, 0.6, 0.6, 0.05 / 0.6),
-              std::make_tuple("Beverloo's C, 95 % interval to", fit.c + fit.cHalfWidth95, 0.6, 0.6, 0.05 / 0.6),
-              std::make_tuple("Beverloo's k, 95 % interval from", fit.k - fit.kHalfWidth95, 2.0, 1.0, 1.0),
-              std::make_tuple("Beverloo's k, 95 % interval to", fit.k + fit.kHalfWidth95, 2.0, 1.0, 1.0)}) {
+             {std::make_tuple("Beverloo's C, 95 % interval from", fit.cLow95, 0.6, 0.6, 0.05 / 0.6),
+              std::make_tuple("Beverloo's C, 95 % interval to", fit.cHigh95, 0.6, 0.6, 0.05 / 0.6),
+              std::make_tuple("Beverloo's k, 95 % interval from", fit.kLow95, 2.0, 1.0, 1.0),
+              std::make_tuple("Beverloo's k, 95 % interval to", fit.kHigh95, 2.0, 1.0, 1.0)}) {
             Check interval{name, "adapted", quantity, "", reference, value, scale, tolerance,
-                           "shown: the line's uncertainty carried to C and k (Student's t)"};
+                           "shown: the slope's interval carried to C, Fieller's for k (Student's t)"};
             interval.informative = true;
             c.report.add(interval);
         }

@@ -2,6 +2,7 @@
 
 #include "lsdem/core/Error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -76,13 +77,37 @@ BeverlooFit fitBeverloo(const std::vector<Discharge>& flows, double bulkDensity,
     fit.c = std::pow(line.slope, 2.5) / (bulkDensity * std::sqrt(gravity));
     fit.k = -line.intercept / line.slope / grainSize;
     fit.rSquared = line.rSquared;
-    // C = s^(5/2)/(ρ_b·√g): dC/ds = 2.5·C/s. k = −b/(s·d): dk/ds = b/(s²·d), dk/db = −1/(s·d).
     const double t = studentT975(line.degreesOfFreedom);
     const double s = line.slope, b = line.intercept;
-    fit.cHalfWidth95 = t * 2.5 * fit.c / s * std::sqrt(line.slopeVariance);
-    const double ks = b / (s * s * grainSize), kb = -1.0 / (s * grainSize);
-    fit.kHalfWidth95 = t * std::sqrt(ks * ks * line.slopeVariance + kb * kb * line.interceptVariance +
-                                     2.0 * ks * kb * line.covariance);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (std::isnan(t)) {
+        fit.cLow95 = fit.cHigh95 = fit.kLow95 = fit.kHigh95 = nan;
+        return fit;
+    }
+    // C = s^(5/2)/(ρ_b·√g) rises with s: the ends of s's interval give C's (a slope below zero
+    // is no flow: C = 0).
+    const double sHalf = t * std::sqrt(line.slopeVariance);
+    auto cOf = [&](double slope) {
+        return std::pow(std::max(slope, 0.0), 2.5) / (bulkDensity * std::sqrt(gravity));
+    };
+    fit.cLow95 = cOf(s - sHalf);
+    fit.cHigh95 = cOf(s + sHalf);
+    // Fieller: θ = b/s is in the interval where (b − θ·s)² ≤ t²·(Var b − 2θ·Cov + θ²·Var s),
+    // a quadratic a·θ² + 2·h·θ + e ≤ 0. With a > 0 (the slope significant) that is the span
+    // between its roots; otherwise it is unbounded.
+    const double t2 = t * t;
+    const double a = s * s - t2 * line.slopeVariance, h = t2 * line.covariance - b * s,
+                 e = b * b - t2 * line.interceptVariance;
+    if (a > 0.0) {
+        // (Real roots: the estimate b/s itself is inside. Rounding may leave −0 for an exact line.)
+        const double root = std::sqrt(std::max(h * h - a * e, 0.0));
+        // k = −θ/d: the larger θ gives the smaller k.
+        fit.kLow95 = -((-h + root) / a) / grainSize;
+        fit.kHigh95 = -((-h - root) / a) / grainSize;
+    } else {
+        fit.kLow95 = -std::numeric_limits<double>::infinity();
+        fit.kHigh95 = std::numeric_limits<double>::infinity();
+    }
     return fit;
 }
 

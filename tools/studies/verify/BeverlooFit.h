@@ -42,10 +42,13 @@ struct BeverlooFit
     double c = 0.0;         ///< Beverloo's C
     double k = 0.0;         ///< the empty annulus, in grain sizes
     double rSquared = 0.0;  ///< of W^(2/5) against D
-    /// Half-widths of the 95 % intervals of C and k from the line's uncertainty (Student's t
-    /// for n − 2 degrees of freedom; C and k carried from the slope and intercept to first
-    /// order). NaN for two orifices, whose line is exact.
-    double cHalfWidth95 = 0.0, kHalfWidth95 = 0.0;
+    /// The 95 % intervals of C and k from the line's uncertainty (Student's t for n − 2
+    /// degrees of freedom). C depends on the slope alone and grows with it, so its interval is
+    /// the slope's interval mapped through C(s); k·d is the ratio −intercept/slope, whose
+    /// interval is Fieller's (every k whose line through the root is within t standard
+    /// errors of the fit). Both are asymmetric about the estimate. NaN for two orifices,
+    /// whose line is exact; k's ends are ∓infinity where the slope itself is not significant.
+    double cLow95 = 0.0, cHigh95 = 0.0, kLow95 = 0.0, kHigh95 = 0.0;
 };
 
 /// Beverloo's flow W = C·ρ_b·sqrt(g)·(D − k·d)^(5/2) through an orifice of diameter @a diameter,

@@ -116,10 +116,16 @@ Dashpot contactDashpot(const ContactSide* sides, int sideCount, const ContactMod
         std::max(-d.coefficient * relative.dot(d.axis.normal), -std::max(d.axis.force, 0.0));
     d.force = viscous * d.axis.normal;
     d.power = -viscous * relative.dot(d.axis.normal);  // viscous opposes the normal rate: ≥ 0
+    // Each point force's friction limit counts a share of it as normal force, in proportion to
+    // the force's own size (the size the shear springs read). So no share turns a limit
+    // negative (viscous ≥ −P ≥ −Σ|F|), and the limits add up to μ times springs and dashpot
+    // together. (Shared per unit stiffness, a pull cut the shallow nodes' limits at zero while
+    // the deep ones kept theirs: more than μ·N in all.)
     double total = 0.0;
     for (int s = 0; s < sideCount; ++s)
-        for (const PointForce& f : normal[s]) total += f.stiffness;
-    d.viscousPerStiffness = viscous / total;
+        for (size_t k = 0; k < normal[s].size(); ++k)
+            total += normalForceSize(normal[s][k], perNodeForces ? &sides[s].contacts[k] : nullptr);
+    if (total > 0.0) d.viscousPerForce = viscous / total;
     return d;
 }
 

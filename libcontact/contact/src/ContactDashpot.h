@@ -33,14 +33,16 @@ struct ContactAxis
 };
 
 /// The contact's dashpot (DampingModel.h): one force on first at the contact's centre along its
-/// normal, against the approach (second gets the opposite), and its share per unit of point
-/// force stiffness, which counts as normal force in Coulomb's limit.
+/// normal, against the approach (second gets the opposite), and each point force's share of
+/// it, which counts as normal force in Coulomb's limit.
 struct Dashpot
 {
     double coefficient = 0.0;          ///< c (0: none)
     ContactAxis axis;
     Vec3 force = Vec3::Zero();         ///< on first
-    double viscousPerStiffness = 0.0;  ///< its normal force over Σ k of the point forces
+    /// Its normal force over Σ|F_n| of the point forces: a point force's share of it per unit
+    /// of that force's own size, which counts in the force's Coulomb limit.
+    double viscousPerForce = 0.0;
     double power = 0.0;                ///< what it dissipates: −force·(v_first − v_second) ≥ 0
 };
 

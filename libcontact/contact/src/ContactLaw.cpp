@@ -210,7 +210,7 @@ struct SidePass
     bool perNodeForces;
     bool perNodeShear;  ///< shear springs at the nodes (implies perNodeForces)
     bool shearPerArea;  ///< their stiffness is per unit area
-    double viscousPerStiffness;  ///< the dashpot's normal force over Σ k (Dashpot)
+    double viscousPerForce;  ///< the dashpot's normal force over Σ|F_n| (Dashpot)
     Vec3 meanTurn;  ///< the shear history's turn about the normal in this step
     double dt;
 };
@@ -218,7 +218,9 @@ struct SidePass
 /// Node contact @a c's shear spring carried through the step: the new shear force on its
 /// point force @a f (normal size @a size along @a n, shear stiffness @a shearStiffness);
 /// friction's work is added to @a frictionWork. Coulomb's limit is μ times the node's normal
-/// force: its spring and its share of the dashpot (which the bodies feel as normal force too).
+/// force: its spring and its share of the dashpot (which the bodies feel as normal force too),
+/// in proportion to its spring, so that the limits add up to μ times the contact's normal force
+/// and none is cut to zero while the others keep theirs.
 Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& f, const Vec3& n,
                double size, double shearStiffness, const SidePass& pass, StoredShear& stored,
                double& frictionWork)
@@ -228,8 +230,7 @@ Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& 
     return updateShearForce(
         stored.of(c.node), c.normal, relativeVelocity * pass.dt, pass.meanTurn.dot(n),
         shearStiffness,
-        pass.shearSprings.friction *
-            std::max(0.0, size + pass.viscousPerStiffness * f.stiffness),
+        pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce)),
         &frictionWork);
 }
 
@@ -257,7 +258,7 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
     for (size_t k = 0; k < forces.size(); ++k) {
         PointForce& f = forces[k];
         const NodeContact* c = pass.perNodeForces ? &side.contacts[k] : nullptr;
-        const double size = c ? f.stiffness * c->depth : f.force.norm();
+        const double size = normalForceSize(f, c);
         if (size == 0.0 || f.stiffness <= 0.0) continue;
         const Vec3 n = c ? c->normal : Vec3(f.force / size);
         // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added
@@ -321,7 +322,7 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
                         perNodeForces,
                         shearSprings.active(normalLaw),
                         normalLaw.stiffnessPerArea(),
-                        dashpot.viscousPerStiffness,
+                        dashpot.viscousPerForce,
                         (0.5 * dt) * (first.angularVelocity + second.angularVelocity),
                         dt};
 

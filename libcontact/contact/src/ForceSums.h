@@ -37,4 +37,11 @@ inline Vec3 directionOf(const PointForce& f, const NodeContact* contact)
     return size > 0.0 ? Vec3(f.force / size) : Vec3::Zero();
 }
 
+/// The size of elastic point force @a f: k·d for a per-node law (@a contact not null: read
+/// from the contact, without a root), else |f|.
+inline double normalForceSize(const PointForce& f, const NodeContact* contact)
+{
+    return contact ? f.stiffness * contact->depth : f.force.norm();
+}
+
 } // namespace lsdem::contactlaw

@@ -347,6 +347,60 @@ TEST(ContactLaw, RollingWithoutSlipIsNotDamped)
     EXPECT_GT(nodeSpeed, 1.0);
 }
 
+// Coulomb's limit for a whole contact: sliding in gross slip, the shear springs of a cap of
+// nodes (deep in the middle, shallow at the rim) take μ times the contact's normal force,
+// springs and dashpot together, and no more, also while the grains part and the dashpot pulls.
+// Each node's limit takes a share of the dashpot in proportion to its spring; a share in
+// proportion to its stiffness alone cut the shallow nodes' limits at zero while the deep ones
+// kept theirs, so the limits added up to more than μ·N (and to μP/4 with N = 0 on a ball).
+TEST(ContactLaw, CoulombLimitsAddUpToMuTimesTheNormalForceWhileTheGrainsPart)
+{
+    const double radius = 5.0, depth = 0.05, mu = 0.3, ks = 500.0, dt = 1e-6;
+    ContactGrain ball, wall;
+    ball.pose.position = Vec3(0, 0, radius - depth);
+    ball.mass = 4e-6;
+    std::vector<NodeContact> cap;
+    double springs = 0.0, stiffness = 0.0;
+    for (double rho : {0.0, 0.2, 0.35, 0.45, 0.5}) {
+        const int count = rho == 0.0 ? 1 : 8;
+        for (int k = 0; k < count; ++k) {
+            const double angle = 2 * kPi * k / count;
+            const Vec3 surface(rho * std::cos(angle), rho * std::sin(angle),
+                               radius - depth - std::sqrt(radius * radius - rho * rho));
+            if (surface.z() >= 0.0) continue;
+            cap.push_back(node(int(cap.size()), -surface.z(), Vec3::UnitZ(),
+                               surface - 0.5 * surface.z() * Vec3::UnitZ(), 0.05));
+            springs += kKnStar * 0.05 * cap.back().depth;
+            stiffness += kKnStar * 0.05;
+        }
+    }
+    ASSERT_GT(cap.size(), 20u);
+    bool partWayWithShallowNodesBelowTheMeanShare = false;
+    for (double parting : {0.0, 1.0, 10.0, 100.0, 300.0, 550.0, 650.0, 750.0, 1e5}) {
+        ball.velocity = Vec3(2.0, 0.0, parting);  // sliding along +x, moving off the wall
+        ShearHistory history;
+        for (const NodeContact& c : cap) history.append(c.node, Vec3(-1e3, 0.0, 0.0));  // saturated
+        ContactSide side;
+        side.tester = &ball;
+        side.other = &wall;
+        side.contacts = cap;
+        side.history = &history;
+        const PairForces r = resolveContact(&side, 1, adapted(ks, mu, 0.3), dt, nullptr);
+        const double normal = r.forceOnFirst.z();
+        const double shear = std::hypot(r.forceOnFirst.x(), r.forceOnFirst.y());
+        EXPECT_GE(normal, -1e-12 * springs) << parting;
+        EXPECT_NEAR(shear, mu * normal, 1e-12 * springs) << parting;
+        EXPECT_LT(r.forceOnFirst.x(), 0.0 + 1e-12 * springs);  // against the sliding
+        // The case that tells the two shares apart: the dashpot pulls part of the springs'
+        // force back, more than the shallowest node's spring per unit stiffness.
+        const double viscous = normal - springs;
+        if (normal > 0.01 * springs && viscous < 0.0 &&
+            cap.back().depth + viscous / stiffness < 0.0)
+            partWayWithShallowNodesBelowTheMeanShare = true;
+    }
+    EXPECT_TRUE(partWayWithShallowNodesBelowTheMeanShare);
+}
+
 // After a step the history holds exactly the nodes now in contact: a node that left loses its
 // shear, a node that entered starts from zero and takes -k_t·Δu_t, a node that stayed adds the
 // increment to what it had (and is capped at μ·|F_n|). k_t = ks*·A·weight (adapted).

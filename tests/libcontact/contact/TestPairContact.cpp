@@ -232,6 +232,33 @@ TEST(PairContact, ForcesAreOppositeAndTorquesBalance)
     }
 }
 
+// One-way testing tests the nodes of one grain only, chosen by size and then index, and the
+// law names that grain "first". Whichever grain it is, the result is in the caller's order:
+// forces, torques, and the contact's normal, which pushes the caller's first out of its second
+// (the contact records written to files carry it).
+TEST(PairContact, OneWayResultIsInTheCallersOrderWhicheverGrainTests)
+{
+    const GrainAsset& a = sphere(2000);
+    for (const auto& [firstIndex, secondIndex] : {std::pair{0, 1}, std::pair{1, 0}}) {
+        ContactGrain g0, g1;
+        g0.asset = g1.asset = &a;
+        g0.index = firstIndex;
+        g1.index = secondIndex;  // equal sizes: the lower index tests
+        g0.pose.position = Vec3(1, -2, 3);
+        g1.pose.position = g0.pose.position + (2 * kRadius - 0.1) * Vec3(0.6, 0.0, 0.8);
+        NodeCheckStats stats;
+        ContactModel m = model(Formulation::Adapted, 1e3);
+        m.damping = ViscousDamping(0.5);
+        g0.mass = g1.mass = 1.0;
+        g0.velocity = Vec3(0.6, 0.0, 0.8);  // approaching: the dashpot adds to the springs
+        const PairForces r = computePairContact(g0, g1, m, 0.0, nullptr, stats);
+        const Vec3 outOfSecond = (g0.pose.position - g1.pose.position).normalized();
+        EXPECT_GT(r.forceOnFirst.dot(outOfSecond), 0.0) << firstIndex;
+        EXPECT_GT(r.normal.dot(outOfSecond), 0.99) << firstIndex;
+        EXPECT_NEAR(r.normal.norm(), 1.0, 1e-12);
+    }
+}
+
 // A sphere pressed onto a box face off the box's centre by a lateral offset s: the box feels
 // the force -P·z at the point (s, 0, c/2), so its torque is (0, s·P, 0); the sphere's force
 // passes through its centre, so its torque vanishes.

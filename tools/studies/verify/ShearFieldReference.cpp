@@ -109,7 +109,8 @@ ContactSums placePoints(const SurfacePoints& points, const std::vector<double>& 
 
 /// The contact's dashpot force and torque on the ball, added to @a force and @a torque: at the
 /// springs' stiffness-weighted centre, along the surface's normal there, pushing but not
-/// pulling. Returns its normal force over Σ k (the share each point's friction limit takes).
+/// pulling. Returns its normal force over Σ k·d: each point's friction limit takes a share in
+/// proportion to its spring's force.
 double addDashpot(const ContactModel& law, double mass, const Surface& surface,
                   const ContactSums& sums, const BallState& ball, Vec3& force, Vec3& torque)
 {
@@ -126,7 +127,7 @@ double addDashpot(const ContactModel& law, double mass, const Surface& surface,
     const double viscous = std::max(-dashpot * separating, -sums.elastic);
     force += viscous * normal;
     torque += (at - ball.centre).cross(viscous * normal);
-    return viscous / sums.total;
+    return viscous / sums.elastic;
 }
 
 /// A point's shear spring @a stored carried through the step at @a point (normal @a normal):
@@ -176,9 +177,9 @@ BallImpact ballOnSurface(const SurfacePoints& points, const ContactModel& law, d
         touched = touched || sums.any;
         if (touched && !sums.any) break;
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-        double viscousPerStiffness = 0.0;
+        double viscousPerForce = 0.0;
         if (sums.any && law.damping.active())
-            viscousPerStiffness = addDashpot(law, mass, surface, sums, ball, force, torque);
+            viscousPerForce = addDashpot(law, mass, surface, sums, ball, force, torque);
         // Each point's spring, and its shear spring (which starts from zero when it enters and
         // is dropped when it leaves); its forces act halfway between it and the surface.
         for (size_t a = 0; a < n; ++a) {
@@ -190,7 +191,8 @@ BallImpact ballOnSurface(const SurfacePoints& points, const ContactModel& law, d
             const Vec3 point = world[a] + 0.5 * depth[a] * normal;
             Vec3 f = stiffness.normal[a] * depth[a] * normal;
             if (shear) {
-                const double normalForce = stiffness.normal[a] * (depth[a] + viscousPerStiffness);
+                const double normalForce =
+                    stiffness.normal[a] * depth[a] * (1.0 + viscousPerForce);
                 const double limit = law.friction * std::max(0.0, normalForce);
                 stored[a] =
                     shearSpring(stored[a], normal, point, ball, stiffness.shear[a], limit, step);

@@ -25,7 +25,7 @@ void spinImpact(Context& c, const std::string& name, double partnerRadius)
     const auto ball = c.bodies.sphere();
     const double normalSpeed = 3900.0, friction = 0.4, restitution = 0.5, radius = s.radius;
     const double mass = ballMass(c);
-    const std::vector<double> xs = c.quick ? std::vector<double>{0.5, 2.0, 10.0}
+    const std::vector<double> xs = c.quick ? std::vector<double>{0.25, 2.0, 10.0}
                                            : std::vector<double>{0.25, 0.5, 0.75, 1.0, 1.25, 1.5,
                                                                  2.0, 3.0, 5.0, 10.0, 20.0};
     const double threshold = 3.5 * friction * (1.0 + restitution);
@@ -67,13 +67,16 @@ void spinImpact(Context& c, const std::string& name, double partnerRadius)
             addThreeWay(c, label, f, "rebound spin·R", "mm/s", r.angularVelocity.y() * radius,
                         ref.nodes.angularVelocity.y() * radius,
                         ref.continuum.angularVelocity.y() * radius, ref.hasContinuum, slip);
-            // Gross sliding, with a margin of 2 (closer to the threshold the springs decide):
+            // Gross sliding, with a margin of 4 (closer to the threshold the springs decide):
             // rigid-body theory turns the ball with the lever R, the contact's forces with
             // R − 2δ/3 on average (a Winkler cap's friction acts at its mean depth), which
             // leaves 5/7·(2/3)·δ_max/R of the slip's change unmade. (Only for a law per area:
             // the original law weighs its nodes by count, not area, so its centre of pressure
             // wanders with the node pattern and turns the ball too; its node reference holds.)
-            if (x <= 0.5 && law.normal().stiffnessPerArea())
+            // At a margin of 2 (x = 0.5) the law's own continuum reference is already 1.6 %
+            // below theory: as the contact loads, its nodes' limits grow faster than their
+            // shear springs follow, so part of the cap sticks (docs/verification.md).
+            if (x <= 0.25 && law.normal().stiffnessPerArea())
                 c.report.add({label, formulationName(f), "β (rigid body)", "", betaRigid, beta, 1.0,
                               kNodeTolerance + (betaRigid + 1.0) * 5.0 / 7.0 * 2.0 / 3.0 *
                                                    r.maxOverlap / radius,

@@ -68,7 +68,9 @@ struct PairForces
     Vec3 forceOnSecond = Vec3::Zero(), torqueOnSecond = Vec3::Zero();
     int contactNodes = 0;       ///< penetrating nodes, all sides
     int pointForcesOnFirst = 0; ///< of the point forces appended, how many (leading) act on first
-    double elasticEnergy = 0.0; ///< Σ ½|F_n|²/k_n + ½|F_t|²/k_t over the point forces
+    /// The springs' energy: ½k·d² per node in contact (its mean over a patch; the volume
+    /// law's own potential for its one force), plus ½|F_t|²/k_t per shear spring.
+    double elasticEnergy = 0.0;
     /// How stiff the contact is for each body, for the stability check of the time step: in
     /// translation, Σ k_n·n nᵀ + k_t·(I − n nᵀ) over its point forces (the same for both
     /// bodies); in rotation about each body's centroid, Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ
@@ -91,7 +93,8 @@ struct PairForces
 /// Turn the sides of one contact into forces. The sides' testers must be the same two bodies
 /// (side 0: first tests second; side 1, if any: second tests first). Each side's history is
 /// replaced by the shear of the nodes now in contact. @a dt is the step over which the
-/// relative motion slipped (0: no shear update).
+/// relative motion slipped (0: no slip, and no friction work; the stored shear is still
+/// carried onto the new tangent plane and capped).
 ///
 /// The dashpot acts on the contact as a whole: on the two bodies' relative velocity at the
 /// contact's stiffness-weighted centre, along its mean normal, with c = 2β·sqrt(m·K) for its

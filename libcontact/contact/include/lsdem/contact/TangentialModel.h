@@ -28,11 +28,13 @@ namespace lsdem {
 /// @param dissipated if not null, gains the energy friction took in the step (≥ 0): the work of
 ///                 the force the bodies felt along the slip, less the spring's energy gained,
 ///                 for a force held at a cap that moves linearly from the stored force to the
-///                 new limit: (|trial| − |capped|)·(|capped| + |stored|)/(2·k_t). Exact for a
-///                 sliding node whatever its normal force does (μ·|F_n| times the slip at a
-///                 steady one; the spring's lost energy where the limit fell without slip); at
-///                 the step a sticking node starts to slide it counts (|trial| − cap)·(cap −
-///                 |stored|)/(2·k_t) too little, once.
+///                 new limit: (|trial| − |capped|)·(|capped| + min(|stored|, |trial|))/(2·k_t).
+///                 Exact for a node sliding along its stored force whatever its normal force
+///                 does (μ·|F_n| times the slip at a steady one; the spring's lost energy where
+///                 the limit fell without slip); for slip across the stored force it is off by
+///                 a term of second order in the angle between them; at the step a sticking
+///                 node starts to slide it counts (|trial| − cap)·(cap − |stored|)/(2·k_t) too
+///                 little, once.
 /// @return the new shear force (tangent to @a normal, at most @a limit long; zero if
 ///         @a limit ≤ 0)
 inline Vec3 updateShearForce(const Vec3& stored, const Vec3& normal, const Vec3& slip,

@@ -291,7 +291,7 @@ double membraneKineticEnergy(const Membrane& m)
     return energy;
 }
 
-double membraneStableStep(const Membrane& m)
+double membraneStableStep(const Membrane& m, double globalDamping)
 {
     double omegaSquared = 0.0;
     for (const MembraneTriangle& t : m.triangles) {
@@ -300,7 +300,8 @@ double membraneStableStep(const Membrane& m)
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(e, Eigen::EigenvaluesOnly).eigenvalues()[1];
         omegaSquared = std::max(omegaSquared, triangleOmegaSquared(m, t, e1));
     }
-    return dampedStableStep(omegaSquared, membraneDragRate(m));
+    const double boost = 1.0 + std::max(0.0, globalDamping);  // as for the grains: StableStep.cpp
+    return dampedStableStep(boost * omegaSquared, boost * membraneDragRate(m));
 }
 
 double membraneDragRate(const Membrane& m)

@@ -14,6 +14,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -196,7 +197,11 @@ double Simulation::membraneStepLimit(std::string* which) const
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         const MembraneStepParts parts = membraneStepParts(k);
-        const double step = dampedStableStep(parts.rubber + parts.contacts, membraneDragRate(m));
+        // Global damping makes the vertices' forces against their motion 1 + λ times stronger
+        // (as for the grains: StableStep.cpp).
+        const double boost = 1.0 + std::max(0.0, mWorld.globalDamping);
+        const double step = dampedStableStep(boost * (parts.rubber + parts.contacts),
+                                             boost * membraneDragRate(m));
         if (step < limit) {
             limit = step;
             if (which) {

@@ -81,9 +81,10 @@ double Simulation::stepLimitOf(size_t i) const
         return std::numeric_limits<double>::quiet_NaN();
     // A bound that clears both the step and the least limit seen so far leaves the check's
     // outcome and that least limit as the exact limit would: most grains, most steps.
-    const double bound = stableStepLowerBound(mGrainStiffness[i], b, mLargestDampingRatio);
+    const double lambda = mWorld.globalDamping;
+    const double bound = stableStepLowerBound(mGrainStiffness[i], b, mLargestDampingRatio, lambda);
     if (bound >= mDt && bound >= mStabilityLimit) return bound;
-    return stableStep(mGrainStiffness[i], b, mLargestDampingRatio);
+    return stableStep(mGrainStiffness[i], b, mLargestDampingRatio, lambda);
 }
 
 void Simulation::judgeStepLimits(const std::vector<double>& limits, bool forecast)

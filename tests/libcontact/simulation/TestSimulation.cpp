@@ -632,6 +632,23 @@ TEST(Simulation, TooLargeATimeStepStopsWithTheStabilityLimit)
     EXPECT_GT(sim.stabilityLimitSeen(), nominal / std::sqrt(1.5));
 }
 
+// Global damping λ makes every force against the motion 1 + λ times stronger, and the step's
+// limit √(1 + λ) times shorter (StableStep.GlobalDampingShortensTheStepAsTheSchemeFindsIt):
+// the check a run makes sees it. Two free boxes face to face, undamped and at λ = 0.3.
+TEST(Simulation, StabilityLimitCountsGlobalDamping)
+{
+    auto limitSeen = [](double lambda) {
+        Scene pair = oneMaterialScene("box", adapted(kKnStar));
+        pair.grains.push_back(grainAt(Vec3(0, 0, 0)));
+        pair.grains.push_back(grainAt(Vec3(0, 0, 4.0 - 1e-3)));
+        pair.globalDamping = lambda;
+        Simulation sim(build(pair), 1e-7);
+        sim.step();
+        return sim.stabilityLimitSeen();
+    };
+    EXPECT_NEAR(limitSeen(0.3) * std::sqrt(1.3) / limitSeen(0.0), 1.0, 1e-9);
+}
+
 // A box just touching the floor has no contact stiffness at the start (no node inside it yet),
 // but the face it rests on will press the floor within a step: a time step that contact could
 // not bear is refused when the simulation is made, naming the stiffest contact it can make.

@@ -124,8 +124,9 @@ double membraneKineticEnergy(const Membrane& m);
 /// The largest stable step of its vertices' explicit integration with the triangles'
 /// stiffness, the pressure's and its drag (a bound: ω² ≤ the largest of its triangles'
 /// lumped-mass eigenvalue bounds, with the drag's rate, dampedStableStep), at its stretch now.
-/// The grains' contacts on it are checked at run time.
-double membraneStableStep(const Membrane& m);
+/// The grains' contacts on it are checked at run time. Under global damping @a globalDamping
+/// (λ), forces against the motion are 1 + λ times stronger, and the step shorter.
+double membraneStableStep(const Membrane& m, double globalDamping = 0.0);
 
 /// The drag's rate on a free vertex, c/m = drag/(density·thickness) (1/time): the same for
 /// every vertex, whose drag and mass both follow its tributary area.

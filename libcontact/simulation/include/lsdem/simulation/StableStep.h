@@ -28,8 +28,11 @@ struct GrainStiffness
 };
 
 /// The largest stable step of @a body on springs @a stiffness with dashpots up to ratio
-/// @a dampingRatio of critical (infinite without stiffness).
-double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio);
+/// @a dampingRatio of critical (infinite without stiffness), under the world's global damping
+/// @a globalDamping (λ, World::globalDamping), which makes forces against the motion 1 + λ
+/// times stronger and so shortens the step.
+double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio,
+                  double globalDamping = 0.0);
 
 /// A cheap lower bound on stableStep (no eigenvalues: the Frobenius norm bounds the largest
 /// eigenvalue, and the smallest principal moment the rotation's scaling), within a factor
@@ -37,7 +40,7 @@ double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double
 /// every grain at every step; where this bound already clears the step and the least limit
 /// seen, the exact one cannot change the outcome and is not computed.
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
-                            double dampingRatio);
+                            double dampingRatio, double globalDamping = 0.0);
 
 /// The largest damping ratio β any contact model of @a world can give (ViscousDamping).
 double largestDampingRatio(const World& world);

@@ -624,7 +624,7 @@ TEST(LsdemRunOnMpi, SettlingColumnGivesTheSerialBytesOnOneToFourRanks)
 
 // The interlocked slab at a coarse resolution (SDP 0.5 mm, VDP 0.1 mm): flat faces against
 // flat faces carrying load and shear history, fixed level-set frame blocks, a prescribed
-// indenter. Stopped at step 400 (the indenter 0.26 mm down, pressing the central block), every
+// indenter. Stopped at step 460 (the indenter 0.26 mm down, pressing the central block), every
 // file of 2 ranks of 2 threads, 3 and 4 ranks is the single process's, byte for byte: the
 // histories, grains.csv, each frame (or its pieces' points and cells) and the checkpoint, so
 // the contacts' shear springs too.
@@ -633,7 +633,7 @@ TEST(LsdemRunOnMpi, SlabGivesTheSerialBytesOnTwoToFourRanks)
     SKIP_WITHOUT_MPI();
     ScratchDir dir;
     const std::string scene = slabScene(dir, 0.5, 0.1);
-    const std::string steps = " --stop-at-step 400";
+    const std::string steps = " --stop-at-step 460";
     const CommandResult serial =
         runCommand(kRun + " -q " + scene + steps + " --out " + dir.file("serial"));
     ASSERT_EQ(serial.exitCode, 130) << serial.output;

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <initializer_list>
+#include <vector>
 
 using namespace lsdem;
 
@@ -73,6 +75,27 @@ ContactModel adapted(double ks = 0.0, double friction = 0.0, double restitution 
 Vec3 adaptedForce(const NodeContact& c, double w)
 {
     return w * kKnStar * c.depth * c.area * c.normal;
+}
+
+/// The nodes of a ball (radius @a radius, its centre @a depth less than that above a wall at
+/// z = 0) on rings of radius @a rings about its lowest point, eight a ring (one at 0), that lie
+/// below the wall: depth, the wall's normal, the point halfway to the wall, area 0.05 each.
+std::vector<NodeContact> ballCapOnAWall(double radius, double depth,
+                                        std::initializer_list<double> rings)
+{
+    std::vector<NodeContact> cap;
+    for (double rho : rings) {
+        const int count = rho == 0.0 ? 1 : 8;
+        for (int k = 0; k < count; ++k) {
+            const double angle = 2 * kPi * k / count;
+            const Vec3 surface(rho * std::cos(angle), rho * std::sin(angle),
+                               radius - depth - std::sqrt(radius * radius - rho * rho));
+            if (surface.z() >= 0.0) continue;
+            cap.push_back(node(int(cap.size()), -surface.z(), Vec3::UnitZ(),
+                               surface - 0.5 * surface.z() * Vec3::UnitZ(), 0.05));
+        }
+    }
+    return cap;
 }
 
 void expectVecNear(const Vec3& actual, const Vec3& expected, double tolerance)
@@ -317,20 +340,8 @@ TEST(ContactLaw, RollingWithoutSlipIsNotDamped)
     ball.mass = 4e-6;
     ball.angularVelocity = Vec3(0.0, 20.0, 0.0);  // rolls along +x at v = ω·R: the point
     ball.velocity = -ball.angularVelocity.cross(Vec3(0, 0, -radius));  // below it is at rest
-    // A ring of nodes of the ball's surface around its lowest point, below the wall (z < 0).
-    std::vector<NodeContact> cap;
-    int index = 0;
-    for (double rho : {0.0, 0.25, 0.5}) {
-        const int count = rho == 0.0 ? 1 : 8;
-        for (int k = 0; k < count; ++k) {
-            const double angle = 2 * kPi * k / count;
-            const Vec3 surface(rho * std::cos(angle), rho * std::sin(angle),
-                               radius - depth - std::sqrt(radius * radius - rho * rho));
-            if (surface.z() >= 0.0) continue;
-            cap.push_back(node(index++, -surface.z(), Vec3::UnitZ(),
-                               surface - 0.5 * surface.z() * Vec3::UnitZ(), 0.05));
-        }
-    }
+    // Rings of nodes of the ball's surface around its lowest point, below the wall (z < 0).
+    const std::vector<NodeContact> cap = ballCapOnAWall(radius, depth, {0.0, 0.25, 0.5});
     ASSERT_GT(cap.size(), 9u);
     ContactSide side;
     side.tester = &ball;
@@ -352,27 +363,18 @@ TEST(ContactLaw, RollingWithoutSlipIsNotDamped)
 // springs and dashpot together, and no more, also while the grains part and the dashpot pulls.
 // Each node's limit takes a share of the dashpot in proportion to its spring; a share in
 // proportion to its stiffness alone cut the shallow nodes' limits at zero while the deep ones
-// kept theirs, so the limits added up to more than μ·N (and to μP/4 with N = 0 on a ball).
+// kept theirs, so the limits added up to more than μ·N (friction with no normal force at all).
 TEST(ContactLaw, CoulombLimitsAddUpToMuTimesTheNormalForceWhileTheGrainsPart)
 {
     const double radius = 5.0, depth = 0.05, mu = 0.3, ks = 500.0, dt = 1e-6;
     ContactGrain ball, wall;
     ball.pose.position = Vec3(0, 0, radius - depth);
     ball.mass = 4e-6;
-    std::vector<NodeContact> cap;
+    const std::vector<NodeContact> cap = ballCapOnAWall(radius, depth, {0.0, 0.2, 0.35, 0.45, 0.5});
     double springs = 0.0, stiffness = 0.0;
-    for (double rho : {0.0, 0.2, 0.35, 0.45, 0.5}) {
-        const int count = rho == 0.0 ? 1 : 8;
-        for (int k = 0; k < count; ++k) {
-            const double angle = 2 * kPi * k / count;
-            const Vec3 surface(rho * std::cos(angle), rho * std::sin(angle),
-                               radius - depth - std::sqrt(radius * radius - rho * rho));
-            if (surface.z() >= 0.0) continue;
-            cap.push_back(node(int(cap.size()), -surface.z(), Vec3::UnitZ(),
-                               surface - 0.5 * surface.z() * Vec3::UnitZ(), 0.05));
-            springs += kKnStar * 0.05 * cap.back().depth;
-            stiffness += kKnStar * 0.05;
-        }
+    for (const NodeContact& c : cap) {
+        springs += kKnStar * c.area * c.depth;
+        stiffness += kKnStar * c.area;
     }
     ASSERT_GT(cap.size(), 20u);
     bool partWayWithShallowNodesBelowTheMeanShare = false;

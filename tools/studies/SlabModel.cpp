@@ -1,6 +1,7 @@
 #include "studies/SlabModel.h"
 
 #include "lsdem/ls/Bake.h"
+#include "lsdem/simulation/StableStep.h"
 
 #include <algorithm>
 #include <cmath>
@@ -69,10 +70,9 @@ double slabTimeStep(const SlabStudyOptions& o, const SlabPanel& panel, const Gra
     // ones would set the scale instead. Not the block's fastest mode (its turn about z is about
     // 1.5 times as fast, docs/slab.md), which timeStepSafety leaves room for.
     const double stiffest = 2.0 * face * std::max(1.0, k.ksStar / k.knStar);
-    // Global damping λ makes a force against the motion 1 + λ times stronger: as stiff as
-    // (1 + λ) times the springs for the step (StableStep.h).
-    const double boost = 1.0 + std::max(0.0, o.material.globalDamping);
-    return o.timeStepSafety * 2.0 * std::sqrt(mass / (boost * stiffest));
+    // Under global damping the springs act stiffer for the step (StableStep.h).
+    return o.timeStepSafety * 2.0 *
+           std::sqrt(mass / (globalDampingStiffening(o.material.globalDamping) * stiffest));
 }
 
 } // namespace lsdem

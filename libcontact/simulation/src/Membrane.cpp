@@ -2,6 +2,7 @@
 // forces with tension-field wrinkling, the follower pressure, the enclosed volume and the
 // stable step. Its contacts with grains are in MembraneContact.cpp.
 #include "lsdem/simulation/Membrane.h"
+#include "lsdem/simulation/StableStep.h"
 
 #include "lsdem/core/Error.h"
 
@@ -300,7 +301,7 @@ double membraneStableStep(const Membrane& m, double globalDamping)
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(e, Eigen::EigenvaluesOnly).eigenvalues()[1];
         omegaSquared = std::max(omegaSquared, triangleOmegaSquared(m, t, e1));
     }
-    const double boost = 1.0 + std::max(0.0, globalDamping);  // as for the grains: StableStep.cpp
+    const double boost = globalDampingStiffening(globalDamping);
     return dampedStableStep(boost * omegaSquared, boost * membraneDragRate(m));
 }
 

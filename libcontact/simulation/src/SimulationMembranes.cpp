@@ -6,6 +6,7 @@
 #include "lsdem/simulation/Simulation.h"
 
 #include "lsdem/simulation/GhostDecomposition.h"
+#include "lsdem/simulation/StableStep.h"
 
 #include "lsdem/core/Error.h"
 
@@ -14,7 +15,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -197,9 +197,8 @@ double Simulation::membraneStepLimit(std::string* which) const
     for (size_t k = 0; k < mWorld.membranes.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         const MembraneStepParts parts = membraneStepParts(k);
-        // Global damping makes the vertices' forces against their motion 1 + λ times stronger
-        // (as for the grains: StableStep.cpp).
-        const double boost = 1.0 + std::max(0.0, mWorld.globalDamping);
+        // (Global damping strengthens the vertices' forces against their motion, as the grains'.)
+        const double boost = globalDampingStiffening(mWorld.globalDamping);
         const double step = dampedStableStep(boost * (parts.rubber + parts.contacts),
                                              boost * membraneDragRate(m));
         if (step < limit) {

@@ -123,7 +123,7 @@ namespace {
 double dampedLimit(double omega2, double dampingRatio, double globalDamping)
 {
     if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double boost = 1.0 + std::max(0.0, globalDamping);
+    const double boost = globalDampingStiffening(globalDamping);
     const double beta = std::max(0.0, dampingRatio) * std::sqrt(boost);
     return 2.0 / std::sqrt(boost * omega2) * (std::sqrt(1.0 + beta * beta) - beta);
 }

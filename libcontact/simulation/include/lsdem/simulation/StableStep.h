@@ -13,6 +13,8 @@
 
 #include "lsdem/simulation/RigidBody.h"
 
+#include <algorithm>
+
 #include <vector>
 
 namespace lsdem {
@@ -26,6 +28,14 @@ struct GrainStiffness
     Mat3 translation = Mat3::Zero();  ///< force/length, world
     Mat3 rotation = Mat3::Zero();     ///< moment/angle about the centroid, world
 };
+
+/// How much stiffer and more viscous the contacts act for the step under global damping
+/// @a globalDamping (λ, World::globalDamping): it makes every force against the motion 1 + λ
+/// times stronger, so ω² and a dashpot's rate are 1 + λ times larger.
+inline double globalDampingStiffening(double globalDamping)
+{
+    return 1.0 + std::max(0.0, globalDamping);
+}
 
 /// The largest stable step of @a body on springs @a stiffness with dashpots up to ratio
 /// @a dampingRatio of critical (infinite without stiffness), under the world's global damping

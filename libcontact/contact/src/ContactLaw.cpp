@@ -341,7 +341,14 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
             ++result.pointForcesOnFirst;
         }
     }
-    if (result.dashpot > 0.0) addDashpot(dashpot, first, second, result);
+    if (result.dashpot > 0.0) {
+        addDashpot(dashpot, first, second, result);
+        const Vec3& centre = dashpot.axis.centre;
+        const Vec3& n = dashpot.axis.normal;
+        if (first.mass > 0.0) result.dashpotArmOfFirst = (centre - first.pose.position).cross(n);
+        if (second.mass > 0.0)
+            result.dashpotArmOfSecond = (centre - second.pose.position).cross(n);
+    }
     result.elasticEnergy = elasticEnergy;
     result.frictionWork = dt > 0.0 ? frictionWork : 0.0;
     result.dashpotWork = dashpot.power * dt;

@@ -57,6 +57,7 @@ PairForces computePairContact(const ContactGrain& first, const ContactGrain& sec
         std::swap(result.forceOnFirst, result.forceOnSecond);
         std::swap(result.torqueOnFirst, result.torqueOnSecond);
         std::swap(result.rotationalStiffnessOfFirst, result.rotationalStiffnessOfSecond);
+        std::swap(result.dashpotArmOfFirst, result.dashpotArmOfSecond);
         result.normal = -result.normal;  // it pushed the tester out: now the caller's first
         result.pointForcesOnFirst = 0;
     }

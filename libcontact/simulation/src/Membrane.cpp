@@ -310,15 +310,4 @@ double membraneDragRate(const Membrane& m)
     return m.drag > 0.0 ? m.drag / (m.rubber.density * m.rubber.thickness) : 0.0;
 }
 
-double dampedStableStep(double omegaSquared, double dampingRate)
-{
-    const double omega = std::sqrt(std::max(omegaSquared, 0.0));
-    const double gamma = std::max(dampingRate, 0.0);
-    if (omega == 0.0)
-        return gamma > 0.0 ? 2.0 / gamma : std::numeric_limits<double>::infinity();
-    const double zeta = gamma / (2.0 * omega);
-    // (√(1+ζ²) − ζ written as 1/(√(1+ζ²) + ζ): no cancellation when the drag dominates.)
-    return 2.0 / omega / (std::sqrt(1.0 + zeta * zeta) + zeta);
-}
-
 } // namespace lsdem

@@ -40,6 +40,17 @@ ContactGrain contactView(const Boundary& b)
     return c;
 }
 
+/// A contact's dashpot into the stability check's sums for one of its bodies (@a first: the
+/// contact's first), at the partner's share @a share as its springs.
+void addDashpot(GrainStiffness& sums, double share, const PairForces& f, bool first)
+{
+    if (!(f.dashpot > 0.0)) return;
+    const double c = share * f.dashpot;
+    const Vec3& arm = first ? f.dashpotArmOfFirst : f.dashpotArmOfSecond;
+    sums.translationDamping += c * f.normal * f.normal.transpose();
+    sums.rotationDamping += c * arm * arm.transpose();
+}
+
 /// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,
 /// which added to a sum that starts at +0 changes nothing.
 bool isEmpty(const PairForces& r)
@@ -197,6 +208,7 @@ void Simulation::sumGrainForces(double dt)
             stiffness.translation += share * f.translationalStiffness;
             stiffness.rotation +=
                 share * (r->first ? f.rotationalStiffnessOfFirst : f.rotationalStiffnessOfSecond);
+            addDashpot(stiffness, share, f, r->first);
         }
         // The membranes press on it as walls do (their vertices' own step is checked apart).
         for (const std::vector<MembraneGrainContact>& onMembrane : mMembraneContacts) {
@@ -206,6 +218,7 @@ void Simulation::sumGrainForces(double dt)
             dashpot += f.dashpotWork;
             stiffness.translation += f.translationalStiffness;
             stiffness.rotation += f.rotationalStiffnessOfFirst;
+            addDashpot(stiffness, 1.0, f, true);
         }
         if (g.isFree()) {
             force += g.body.mass * w.gravity;

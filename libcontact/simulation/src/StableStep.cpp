@@ -113,44 +113,78 @@ std::vector<ContactModel> distinctModels(const World& world)
 
 namespace {
 
-/// The largest stable step of the velocity-Verlet step for a highest mode ω² = @a omega2 with
-/// dashpots of ratio @a dampingRatio, under global damping @a globalDamping (λ). The damping
-/// makes a force against the motion 1 + λ times stronger: for the step the springs and the
-/// dashpots act as 1 + λ times stiffer and more viscous (ω² and the damping rate 2βω times
-/// 1 + λ, so β times √(1 + λ)). A simulation of one degree of freedom in that step's order
-/// puts its limit at ω·dt = 2/√(1 + λ) undamped (1.754 at λ = 0.3) and at 1.0609 for
-/// λ = 0.3 and β = 0.46, where this gives 1.0607.
-double dampedLimit(double omega2, double dampingRatio, double globalDamping)
+/// The step's limit for a highest mode ω² = @a omega2 and a damping rate @a rate under global
+/// damping @a globalDamping (λ). The damping makes a force against the motion 1 + λ times
+/// stronger: for the step the springs and the dashpots act as 1 + λ times stiffer and more
+/// viscous (ω² and γ times 1 + λ, so β times √(1 + λ)). A simulation of one degree of freedom
+/// in that step's order puts its limit at ω·dt = 2/√(1 + λ) undamped (1.754 at λ = 0.3) and
+/// at 1.0609 for λ = 0.3 and β = 0.46, where this gives 1.0607. Infinite without stiffness:
+/// a grain's dashpots come with its springs.
+double dampedLimit(double omega2, double rate, double globalDamping)
 {
     if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
     const double boost = globalDampingStiffening(globalDamping);
-    const double beta = std::max(0.0, dampingRatio) * std::sqrt(boost);
-    return 2.0 / std::sqrt(boost * omega2) * (std::sqrt(1.0 + beta * beta) - beta);
+    return dampedStableStep(boost * omega2, boost * rate);
+}
+
+/// λ_max(T)/m + λ_max(I^-½ Rᵀ R_w R I^-½) of @a body for a translational block @a translation
+/// and a rotational one @a rotation (world frame): the bound of StableStep.h on the largest
+/// eigenvalue of the 6×6 mass-scaled matrix, stiffness or damping.
+double massScaledBound(const Mat3& translation, const Mat3& rotation, const RigidBody& body)
+{
+    double bound = largestEigenvalue(translation) / body.mass;
+    if (!rotation.isZero()) {
+        // In the principal frame, scaled by 1/sqrt(I_k) on both sides.
+        const Mat3 turn = body.pose.orientation.toRotationMatrix();
+        const Vec3 scale = body.principalInertia.cwiseSqrt().cwiseInverse();
+        const Mat3 bodyFrame = turn.transpose() * rotation * turn;
+        bound += largestEigenvalue(scale.asDiagonal() * bodyFrame * scale.asDiagonal());
+    }
+    return bound;
+}
+
+/// The same bound from Frobenius norms: lambda_max(K) <= |K|_F, and
+/// lambda_max(I^-1/2 R^T K R I^-1/2) <= lambda_max(K) / I_min.
+double massScaledFrobeniusBound(const Mat3& translation, const Mat3& rotation,
+                                const RigidBody& body)
+{
+    return translation.norm() / body.mass + rotation.norm() / body.principalInertia.minCoeff();
+}
+
+/// The damping rate a step must allow for: each contact's ratio on the fastest mode, or the
+/// summed dashpots' rate @a summedRate, whichever is larger.
+double dampingRate(double omega2, double dampingRatio, double summedRate)
+{
+    return std::max(2.0 * std::max(0.0, dampingRatio) * std::sqrt(std::max(0.0, omega2)),
+                    summedRate);
 }
 
 } // namespace
 
+double dampedStableStep(double omegaSquared, double dampingRate)
+{
+    const double halfRate = 0.5 * std::max(dampingRate, 0.0);
+    const double root = std::sqrt(std::max(omegaSquared, 0.0) + halfRate * halfRate) + halfRate;
+    // (The sum, not sqrt(1 + β²) − β: no cancellation when the dashpot dominates.)
+    return root > 0.0 ? 2.0 / root : std::numeric_limits<double>::infinity();
+}
+
 double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio,
                   double globalDamping)
 {
-    double omega2 = largestEigenvalue(stiffness.translation) / body.mass;
-    if (!stiffness.rotation.isZero()) {
-        // In the principal frame, scaled by 1/sqrt(I_k) on both sides.
-        const Mat3 rotation = body.pose.orientation.toRotationMatrix();
-        const Vec3 scale = body.principalInertia.cwiseSqrt().cwiseInverse();
-        const Mat3 bodyFrame = rotation.transpose() * stiffness.rotation * rotation;
-        omega2 += largestEigenvalue(scale.asDiagonal() * bodyFrame * scale.asDiagonal());
-    }
-    return dampedLimit(omega2, dampingRatio, globalDamping);
+    const double omega2 = massScaledBound(stiffness.translation, stiffness.rotation, body);
+    const double summedRate =
+        massScaledBound(stiffness.translationDamping, stiffness.rotationDamping, body);
+    return dampedLimit(omega2, dampingRate(omega2, dampingRatio, summedRate), globalDamping);
 }
 
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
                             double dampingRatio, double globalDamping)
 {
-    // lambda_max(K) <= |K|_F, and lambda_max(I^-1/2 R^T K R I^-1/2) <= lambda_max(K) / I_min.
-    const double omega2 = stiffness.translation.norm() / body.mass +
-                          stiffness.rotation.norm() / body.principalInertia.minCoeff();
-    return dampedLimit(omega2, dampingRatio, globalDamping);
+    const double omega2 = massScaledFrobeniusBound(stiffness.translation, stiffness.rotation, body);
+    const double summedRate = massScaledFrobeniusBound(stiffness.translationDamping,
+                                                       stiffness.rotationDamping, body);
+    return dampedLimit(omega2, dampingRate(omega2, dampingRatio, summedRate), globalDamping);
 }
 
 double largestDampingRatio(const World& world)

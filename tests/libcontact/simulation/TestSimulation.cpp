@@ -649,6 +649,39 @@ TEST(Simulation, StabilityLimitCountsGlobalDamping)
     EXPECT_NEAR(limitSeen(0.3) * std::sqrt(1.3) / limitSeen(0.0), 1.0, 1e-9);
 }
 
+// Dashpots pressing a grain in parallel add up as their springs do: a ball squeezed between a
+// floor and a ceiling has one mode of ω² = 2K/m, damped at √2 times each contact's ratio β(p)
+// (StableStep.ParallelDashpotsShortenTheStepAsTheSchemeFindsIt). Its limit over the undamped
+// one, 2/ω, is then sqrt(1 + 2β²) − √2·β: β is the adapted ball's (p ≈ 2: 0.633 at e = 0.2),
+// between the table's values at p = 3 and p = 1. One contact's ratio at its largest, 0.731,
+// gave 0.508 (the check before 2026-11-30), outside that range.
+TEST(Simulation, StabilityLimitCountsDashpotsInParallel)
+{
+    auto limitSeen = [](double e) {
+        Scene scene = oneMaterialScene("sphere", adapted(kKnStar), e);
+        const double overlap = 0.1;
+        scene.grains.push_back(grainAt(Vec3(0, 0, kRadius - overlap)));
+        scene.boundaries.push_back(floorPlane());
+        BoundarySpec ceiling = floorPlane();
+        ceiling.name = "ceiling";
+        ceiling.point = Vec3(0, 0, 2.0 * kRadius - 2.0 * overlap);
+        ceiling.normal = -Vec3::UnitZ();
+        scene.boundaries.push_back(ceiling);
+        Simulation sim(build(scene), 1e-9);
+        sim.step();
+        return sim.stabilityLimitSeen();
+    };
+    const double ratio = limitSeen(0.2) / limitSeen(1.0);
+    const ViscousDamping damping(0.2);
+    auto parallelPair = [](double beta) {
+        return std::sqrt(1.0 + 2.0 * beta * beta) - std::sqrt(2.0) * beta;
+    };
+    EXPECT_LT(ratio, parallelPair(damping.ratio(3.0)));
+    EXPECT_GT(ratio, parallelPair(damping.ratio(1.0)));
+    const double beta = damping.largestRatio();
+    EXPECT_LT(ratio, 0.95 * (std::sqrt(1.0 + beta * beta) - beta));
+}
+
 // A box just touching the floor has no contact stiffness at the start (no node inside it yet),
 // but the face it rests on will press the floor within a step: a time step that contact could
 // not bear is refused when the simulation is made, naming the stiffest contact it can make.

@@ -79,6 +79,10 @@ struct PairForces
     Mat3 rotationalStiffnessOfFirst = Mat3::Zero(), rotationalStiffnessOfSecond = Mat3::Zero();
     /// The contact's dashpot c (force·time/length) along its mean normal; 0 without damping.
     double dashpot = 0.0;
+    /// The dashpot's moment arm about each body's centroid, w = r × n (r from the centroid to
+    /// the contact's centre; zero for a body that cannot move): it resists that body's spin at
+    /// c·w wᵀ, which the stability check sums beside the stiffness.
+    Vec3 dashpotArmOfFirst = Vec3::Zero(), dashpotArmOfSecond = Vec3::Zero();
     /// Energy the contact dissipated over the step (force·length, ≥ 0; 0 when dt is 0): by
     /// friction, what the Coulomb caps took from the shear springs (updateShearForce); by the
     /// dashpot, its force against the bodies' approach times dt.

@@ -132,10 +132,4 @@ double membraneStableStep(const Membrane& m, double globalDamping = 0.0);
 /// every vertex, whose drag and mass both follow its tributary area.
 double membraneDragRate(const Membrane& m);
 
-/// The largest stable step of an explicit oscillator of ω² (1/time²) damped at the rate
-/// γ = c/m (1/time): 2/ω·(√(1+ζ²) − ζ) with ζ = γ/(2ω); 2/γ without a spring, 2/ω without
-/// damping. A drag evaluated from the velocity at the step's start is unstable beyond it, as a
-/// spring is beyond 2/ω.
-double dampedStableStep(double omegaSquared, double dampingRate);
-
 } // namespace lsdem

@@ -21,12 +21,18 @@ namespace lsdem {
 
 struct World;
 
-/// A grain's contact stiffness as the stability check sums it (PairForces, SimulationForces.cpp):
-/// each contact scaled by 1 + m/m_partner for a partner that moves too.
+/// A grain's contact stiffness and dashpots as the stability check sums them (PairForces,
+/// SimulationForces.cpp): each contact scaled by 1 + m/m_partner for a partner that moves too.
+/// Dashpots pressing a grain in parallel add up as their springs do: N equal contacts along
+/// one direction damp the grain's mode at √N times each one's ratio, which a bound from one
+/// contact's ratio misses (two walls at e = 0.2: the scheme fails at ω·dt = 1.09, one
+/// contact's ratio allows 1.28).
 struct GrainStiffness
 {
-    Mat3 translation = Mat3::Zero();  ///< force/length, world
-    Mat3 rotation = Mat3::Zero();     ///< moment/angle about the centroid, world
+    Mat3 translation = Mat3::Zero();         ///< force/length, world
+    Mat3 rotation = Mat3::Zero();            ///< moment/angle about the centroid, world
+    Mat3 translationDamping = Mat3::Zero();  ///< Σ c·n nᵀ, force·time/length, world
+    Mat3 rotationDamping = Mat3::Zero();     ///< Σ c·w wᵀ, moment·time/angle, world
 };
 
 /// How much stiffer and more viscous the contacts act for the step under global damping
@@ -37,16 +43,30 @@ inline double globalDampingStiffening(double globalDamping)
     return 1.0 + std::max(0.0, globalDamping);
 }
 
+/// The largest stable step of an explicit oscillator of ω² @a omegaSquared (1/time²) damped at
+/// the rate γ = c/m @a dampingRate (1/time, 2βω for a ratio β): 2/(sqrt(ω² + γ²/4) + γ/2),
+/// which is 2/ω·(sqrt(1 + β²) − β); 2/γ without a spring, 2/ω without damping, infinite
+/// without either. A dashpot evaluated from the velocity at the step's start is unstable
+/// beyond it, as a spring is beyond 2/ω. (Global damping: scale both by
+/// globalDampingStiffening.)
+double dampedStableStep(double omegaSquared, double dampingRate);
+
 /// The largest stable step of @a body on springs @a stiffness with dashpots up to ratio
 /// @a dampingRatio of critical (infinite without stiffness), under the world's global damping
 /// @a globalDamping (λ, World::globalDamping), which makes forces against the motion 1 + λ
-/// times stronger and so shortens the step.
+/// times stronger and so shortens the step. The damping rate is the larger of 2β·ω (each
+/// contact's own ratio, on the fastest mode) and the bound on the summed dashpots' rate,
+/// λ_max(C_t)/m + λ_max(I^-½ C_r I^-½), built as ω²'s is; the step is Verlet's limit
+/// 2/(sqrt(ω² + γ²/4) + γ/2) for that ω and rate γ, which falls as either grows, so a bound on
+/// each gives a bound on the step (exact where the dashpots and springs share their modes, as
+/// contacts along their normals do).
 double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio,
                   double globalDamping = 0.0);
 
 /// A cheap lower bound on stableStep (no eigenvalues: the Frobenius norm bounds the largest
 /// eigenvalue, and the smallest principal moment the rotation's scaling), within a factor
-/// 3^(1/4)·sqrt(I_max/I_min) of it and exact for one frictionless contact on a sphere. The simulation checks
+/// f = 3^(1/4)·sqrt(I_max/I_min) of it for the springs (f² where the summed dashpots' rate
+/// sets the step) and exact for one frictionless contact on a sphere. The simulation checks
 /// every grain at every step; where this bound already clears the step and the least limit
 /// seen, the exact one cannot change the outcome and is not computed.
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,

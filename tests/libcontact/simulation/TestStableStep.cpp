@@ -263,5 +263,5 @@ TEST(StableStep, NoStepWithinTheBoundAmplifiesAnyGrainsMotion)
         if (stableStep(springsOnly, body, beta) > limit * (1.0 + 1e-9)) ++dashpotSetsTheStep;
     }
     // The summed dashpots, not each contact's ratio, set many of these steps.
-    EXPECT_GT(dashpotSetsTheStep, 30);
+    EXPECT_GT(dashpotSetsTheStep, 120);  // of the 240 with dashpots (234 here)
 }

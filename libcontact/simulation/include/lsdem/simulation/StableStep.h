@@ -25,8 +25,8 @@ struct World;
 /// SimulationForces.cpp): each contact scaled by 1 + m/m_partner for a partner that moves too.
 /// Dashpots pressing a grain in parallel add up as their springs do: N equal contacts along
 /// one direction damp the grain's mode at √N times each one's ratio, which a bound from one
-/// contact's ratio misses (two walls at e = 0.2: the scheme fails at ω·dt = 1.09, one
-/// contact's ratio allows 1.28).
+/// contact's ratio misses (a ball between two walls at e = 0.2: the scheme amplifies beyond
+/// ω·dt = 0.89, one contact's largest ratio allowed 1.02).
 struct GrainStiffness
 {
     Mat3 translation = Mat3::Zero();         ///< force/length, world
@@ -46,8 +46,8 @@ inline double globalDampingStiffening(double globalDamping)
 /// The largest stable step of an explicit oscillator of ω² @a omegaSquared (1/time²) damped at
 /// the rate γ = c/m @a dampingRate (1/time, 2βω for a ratio β): 2/(sqrt(ω² + γ²/4) + γ/2),
 /// which is 2/ω·(sqrt(1 + β²) − β); 2/γ without a spring, 2/ω without damping, infinite
-/// without either. A dashpot evaluated from the velocity at the step's start is unstable
-/// beyond it, as a spring is beyond 2/ω. (Global damping: scale both by
+/// without either. A dashpot evaluated from the velocity the step already has (the half
+/// step's) is unstable beyond it, as a spring is beyond 2/ω. (Global damping: scale both by
 /// globalDampingStiffening.)
 double dampedStableStep(double omegaSquared, double dampingRate);
 

@@ -102,7 +102,8 @@ public:
         : mStored(history ? &history->entries() : nullptr)
     {
     }
-    Vec3 of(int node)
+    /// @a node's entry (zero force and stiffness for a node just entering contact).
+    ShearHistory::Entry of(int node)
     {
         if (node < mLastNode) {
             mInOrder = false;
@@ -111,8 +112,8 @@ public:
         mLastNode = node;
         while (mCursor < mStored->size() && (*mStored)[mCursor].node < node) ++mCursor;
         return mCursor < mStored->size() && (*mStored)[mCursor].node == node
-                   ? (*mStored)[mCursor].force
-                   : Vec3::Zero();
+                   ? (*mStored)[mCursor]
+                   : ShearHistory::Entry{node, Vec3::Zero(), 0.0};
     }
     /// Whether the nodes came in order (else the new history needs sorting).
     bool inOrder() const { return mInOrder; }
@@ -215,6 +216,26 @@ struct SidePass
     double dt;
 };
 
+/// The force a spring stored as @a previous carries into a step where its stiffness is
+/// @a stiffness. Only patch quadrature's springs change stiffness (ks*·A_in, the patch's area in
+/// contact): the shear traction stays, so a spring whose area shrank lets go of the force the
+/// lost area carried, F·k/k_old (kept whole, its energy ½F²/k would grow without work), and
+/// one whose area grew keeps its force (the new area starts unloaded, as Mindlin's annulus).
+/// Either way the energy ½F²/k falls, and that fall is added to @a frictionWork: the spring let
+/// go of it as a slip would have.
+Vec3 springWithStiffness(const ShearHistory::Entry& previous, double stiffness,
+                         double& frictionWork)
+{
+    if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
+        return previous.force;
+    const Vec3 kept =
+        stiffness < previous.stiffness ? Vec3(previous.force * (stiffness / previous.stiffness))
+                                       : previous.force;
+    frictionWork += 0.5 * (previous.force.squaredNorm() / previous.stiffness -
+                           kept.squaredNorm() / stiffness);
+    return kept;
+}
+
 /// Node contact @a c's shear spring carried through the step: the new shear force on its
 /// point force @a f (normal size @a size along @a n, shear stiffness @a shearStiffness);
 /// friction's work is added to @a frictionWork. Coulomb's limit is μ times the node's normal
@@ -227,8 +248,10 @@ Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& 
 {
     const Vec3 relativeVelocity =
         side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
+    const ShearHistory::Entry previous = stored.of(c.node);
     return updateShearForce(
-        stored.of(c.node), c.normal, relativeVelocity * pass.dt, pass.meanTurn.dot(n),
+        springWithStiffness(previous, shearStiffness, frictionWork), c.normal,
+        relativeVelocity * pass.dt, pass.meanTurn.dot(n),
         shearStiffness,
         pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce)),
         &frictionWork);
@@ -274,7 +297,7 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
                 pass.shearSprings.nodeStiffness(pass.shearPerArea, c->area, side.weight);
             const Vec3 shear =
                 nodeShear(side, *c, f, n, size, shearStiffness, pass, stored, frictionWork);
-            nextHistory.push_back({c->node, shear});
+            nextHistory.push_back({c->node, shear, shearStiffness});
             f.force += shear;
             elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
         }

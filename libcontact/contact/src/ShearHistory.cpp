@@ -35,11 +35,11 @@ Vec3 ShearHistory::force(int node) const
     return it != mEntries.end() && it->node == node ? it->force : Vec3::Zero();
 }
 
-void ShearHistory::append(int node, const Vec3& force)
+void ShearHistory::append(int node, const Vec3& force, double stiffness)
 {
     if (!mEntries.empty() && node <= mEntries.back().node)
         throw std::invalid_argument("ShearHistory: nodes must be appended in increasing order");
-    mEntries.push_back({node, force});
+    mEntries.push_back({node, force, stiffness});
 }
 
 void ShearHistory::replaceWith(std::vector<Entry>& next)

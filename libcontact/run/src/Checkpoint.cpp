@@ -35,7 +35,9 @@ const char kMagic[8] = {'L', 'S', 'D', 'E', 'M', 'C', 'K', 'P'};
 ///    (its vertices' positions, velocities and forces, its pressure and energies). An earlier
 ///    file has none, and restarts a world without membranes only.
 /// 9: the record ends with the periodic cell's history rows (none in an earlier file's).
-const uint32_t kVersion = 9;
+/// 10: each shear spring keeps its stiffness beside its force (ShearHistory::Entry); an
+///     earlier file's springs restart with it unknown, and keep their force for one step.
+const uint32_t kVersion = 10;
 const uint32_t kOldestVersion = 1;
 
 using namespace checkpointbytes;
@@ -423,25 +425,26 @@ void readMembranes(Reader& r, const std::string& path, uint32_t version, World& 
 
 /// The shear histories that hold shear, of grain pairs and of grains on boundaries. Grain and
 /// boundary indices are checked here: a damaged one would index past the world.
-void readShearHistories(Reader& r, World& w)
+void readShearHistories(Reader& r, World& w, uint32_t version)
 {
     const auto grains = static_cast<int64_t>(w.grains.size());
     const auto boundaries = static_cast<int64_t>(w.boundaries.size());
+    const bool withStiffness = version >= 10;
     w.pairHistory.clear();
     const uint64_t pairs = r.count(2 * sizeof(int32_t) + 2 * sizeof(uint64_t));
     for (uint64_t k = 0; k < pairs; ++k) {
         const int i = r.value<int32_t>(), j = r.value<int32_t>();
         if (i < 0 || j <= i || j >= grains) r.fail();  // pairs are kept as (lower, higher)
         PairHistory& h = w.pairHistory[{i, j}];
-        h.shearOnFirstNodes = r.shear();
-        h.shearOnSecondNodes = r.shear();
+        h.shearOnFirstNodes = r.shear(withStiffness);
+        h.shearOnSecondNodes = r.shear(withStiffness);
     }
     w.boundaryHistory.clear();
     const uint64_t boundaryContacts = r.count(2 * sizeof(int32_t) + sizeof(uint64_t));
     for (uint64_t k = 0; k < boundaryContacts; ++k) {
         const int i = r.value<int32_t>(), b = r.value<int32_t>();
         if (i < 0 || i >= grains || b < 0 || b >= boundaries) r.fail();
-        w.boundaryHistory[{i, b}] = r.shear();
+        w.boundaryHistory[{i, b}] = r.shear(withStiffness);
     }
 }
 
@@ -462,7 +465,7 @@ World stateFrom(Reader& r, const std::string& path, const World& world)
     readGrains(r, path, version, w);
     readBoundaries(r, path, version, w);
     readMembranes(r, path, version, w);
-    readShearHistories(r, w);
+    readShearHistories(r, w, version);
     if (!r.magic(kMagic)) r.fail();  // the trailer: a complete file ends with the magic
     return w;
 }

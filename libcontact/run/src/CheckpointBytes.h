@@ -37,7 +37,8 @@ inline void putQuat(Writer& w, const Quat& q)
 inline void putShear(Writer& w, const ShearHistory& h)
 {
     w.count(h.size());
-    for (const ShearHistory::Entry& e : h.entries()) w.value<int32_t>(e.node), putVec(w, e.force);
+    for (const ShearHistory::Entry& e : h.entries())
+        w.value<int32_t>(e.node), putVec(w, e.force), w.value<double>(e.stiffness);
 }
 
 /// Reads a checkpoint's bytes in memory, in the order saveCheckpoint wrote them. Anything short,
@@ -59,16 +60,19 @@ public:
         const double w = number(), x = number(), y = number(), z = number();
         return Quat(w, x, y, z);
     }
-    ShearHistory shear()
+    /// A shear history; with each spring's stiffness from version 10 on (0, not known, before).
+    ShearHistory shear(bool withStiffness)
     {
         ShearHistory h;
-        const uint64_t n = count(sizeof(int32_t) + 3 * sizeof(double));
+        const uint64_t n =
+            count(sizeof(int32_t) + (withStiffness ? 4 : 3) * sizeof(double));
         for (uint64_t k = 0; k < n; ++k) {
             const int node = value<int32_t>();
             const Vec3 force = vec();
+            const double stiffness = withStiffness ? number() : 0.0;
             if (!h.empty() && node <= h.entries().back().node) fail();  // written sorted
-            if (!allFinite(force)) fail();
-            h.append(node, force);
+            if (!allFinite(force) || !(std::isfinite(stiffness) && stiffness >= 0.0)) fail();
+            h.append(node, force, stiffness);
         }
         return h;
     }

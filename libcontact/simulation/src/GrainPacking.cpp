@@ -91,15 +91,17 @@ void putHistory(Writer& out, const ShearHistory& h)
     for (const ShearHistory::Entry& e : h.entries()) {
         out.value(e.node);
         out.values(e.force.data(), 3);
+        out.value(e.stiffness);
     }
 }
 
 void getHistory(Reader& in, ShearHistory& h, std::vector<ShearHistory::Entry>& buffer)
 {
-    buffer.resize(in.count(sizeof(int) + 3 * sizeof(double)));
+    buffer.resize(in.count(sizeof(int) + 4 * sizeof(double)));
     for (ShearHistory::Entry& e : buffer) {
         e.node = in.value<int>();
         in.values(e.force.data(), 3);
+        e.stiffness = in.value<double>();
     }
     h.replaceWith(buffer);
 }

@@ -126,7 +126,8 @@ bool sameBits(const ShearHistory& a, const ShearHistory& b)
     if (a.size() != b.size()) return false;
     for (size_t k = 0; k < a.size(); ++k)
         if (a.entries()[k].node != b.entries()[k].node ||
-            !sameBits(a.entries()[k].force, b.entries()[k].force))
+            !sameBits(a.entries()[k].force, b.entries()[k].force) ||
+            std::memcmp(&a.entries()[k].stiffness, &b.entries()[k].stiffness, sizeof(double)) != 0)
             return false;
     return true;
 }
@@ -628,8 +629,21 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         // checkpoint saved with marker values there (seen nowhere else) loses them. Nor had it
         // membranes (format 8 put their rows' count after the micromechanics rows and their
         // count after the boundaries, here after a marked dashpot), nor a cell's rows (format
-        // 9 put their count after the membranes' rows).
+        // 9 put their count after the membranes' rows), nor its shear springs' stiffness
+        // (format 10 put it after each spring's force).
         World marked = steppedWorld(10);
+        const double markedStiffness = 9.0625e5;
+        auto markStiffness = [&](ShearHistory& h) {
+            ShearHistory again;
+            for (const ShearHistory::Entry& e : h.entries())
+                again.append(e.node, e.force, markedStiffness);
+            h = again;
+        };
+        for (auto& [ids, h] : marked.pairHistory) {
+            markStiffness(h.shearOnFirstNodes);
+            markStiffness(h.shearOnSecondNodes);
+        }
+        for (auto& [ids, h] : marked.boundaryHistory) markStiffness(h);
         for (size_t i = 0; i < marked.grains.size(); ++i)
             marked.grains[i].dissipated = {1e5 + double(i), 2e5, 3e5};
         const Vec3 markedCell(7.25e5, 7.5e5, 7.75e5);  // format 7's cell size, also cut out
@@ -644,6 +658,11 @@ TEST(Checkpoint, ARestartFromChangedAssetsOrGrainsIsRefused)
         const auto find = [&](double value) {
             return bytes.find(std::string(reinterpret_cast<const char*>(&value), sizeof value));
         };
+        int springs = 0;
+        for (size_t at = find(markedStiffness); at != std::string::npos;
+             at = find(markedStiffness), ++springs)
+            bytes.erase(at, sizeof(double));
+        EXPECT_GT(springs, 0);
         const size_t dashpotAt = find(markedDashpot);
         ASSERT_NE(dashpotAt, std::string::npos);
         bytes.erase(dashpotAt + sizeof(double), sizeof(uint64_t));  // no membranes

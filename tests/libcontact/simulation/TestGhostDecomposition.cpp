@@ -375,6 +375,7 @@ std::string stateBytes(const World& w, const Energies& energies, long long nodes
         for (const ShearHistory::Entry& e : h.entries()) {
             put(&e.node, sizeof e.node);
             vec(e.force);
+            put(&e.stiffness, sizeof e.stiffness);
         }
         out += '|';
     };

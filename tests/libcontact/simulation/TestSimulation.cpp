@@ -3,6 +3,7 @@
 // Units: mm, N, s, tonne (so steel is 7.85e-9 t/mm³ and kn* = 1e3 N/mm³ is 1 GPa/mm).
 #include "lsdem/scene/BuildWorld.h"
 #include "lsdem/simulation/Simulation.h"
+#include "lsdem/simulation/BoundaryContact.h"
 #include "lsdem/contact/PairContact.h"
 #include "lsdem/contact/SphereContactReference.h"
 #include "lsdem/ls/AssetIO.h"
@@ -482,7 +483,8 @@ bool sameBits(const ShearHistory& a, const ShearHistory& b)
     if (a.size() != b.size()) return false;
     for (size_t k = 0; k < a.size(); ++k)
         if (a.entries()[k].node != b.entries()[k].node ||
-            !sameBits(a.entries()[k].force, b.entries()[k].force))
+            !sameBits(a.entries()[k].force, b.entries()[k].force) ||
+            std::memcmp(&a.entries()[k].stiffness, &b.entries()[k].stiffness, sizeof(double)) != 0)
             return false;
     return true;
 }
@@ -822,6 +824,68 @@ TEST(Simulation, SphereIndenterGivesTheExactCapForce)
                   << sum / orientations / exact << "\n";
         EXPECT_NEAR(sum / orientations / exact, 1.0, 0.015) << delta;
     }
+}
+
+// Patch quadrature's shear springs change stiffness with their patch's area in contact
+// (ks*·A_in). A ball pressed 0.2 mm into the floor (patches, μ 10: it sticks) is sheared
+// sideways, then lifted straight up in small steps, its contact shrinking to 0.05 mm. Nothing
+// moves along the floor, so the shear forces do no work: the springs' energy Σ|F|²/(2k) may
+// only fall, and each fall is friction's work (what the springs let go of), up to the last
+// bit a patch holds when it leaves contact altogether. A spring kept whole as its area shrank
+// (before 2026-11-30) would gain energy from nothing.
+TEST(Simulation, PatchShearSpringsLetGoAsTheirAreaShrinks)
+{
+    ContactModel model = adapted(kKnStar, 0.5 * kKnStar, 10.0);
+    model.quadrature = NodeQuadrature::Patch;
+    Scene scene = oneMaterialScene("sphere", model);
+    scene.grains.push_back(grainAt(Vec3(0, 0, 2.0 * kRadius)));
+    scene.boundaries.push_back(floorPlane());
+    const World w = build(scene);
+    const Grain& g = w.grains[0];
+    ContactGrain ball;
+    ball.asset = g.asset.get();
+    ball.pose = g.body.pose;
+    ball.mass = g.body.mass;
+    const Boundary& floor = w.boundaries[0];
+    ContactGrain wall;
+    wall.asset = floor.asset.get();
+    wall.pose.position = floor.referencePoint();
+    wall.pose.orientation = floor.pose.orientation;
+    ShearHistory history;
+    NodeCheckStats stats;
+    ContactScratch scratch;
+    const double dt = 1e-6;
+    auto stepAt = [&](double depth, const Vec3& velocity) {
+        ball.pose.position = Vec3(0, 0, kRadius - depth);
+        ball.velocity = velocity;
+        return computeBoundaryContact(ball, floor, wall, model, dt, &history, stats, nullptr,
+                                      scratch, nullptr);
+    };
+    auto shearEnergy = [&] {
+        double e = 0.0;
+        for (const ShearHistory::Entry& s : history.entries())
+            e += 0.5 * s.force.squaredNorm() / s.stiffness;
+        return e;
+    };
+    for (int k = 0; k < 100; ++k) stepAt(0.2, Vec3(100.0, 0, 0));  // 0.01 mm sideways
+    const double loaded = shearEnergy();
+    const size_t loadedNodes = history.size();
+    ASSERT_GT(loaded, 0.0);
+    double energy = loaded, friction = 0.0, grew = 0.0;
+    const int steps = 300;
+    const double lift = 0.15 / steps;
+    for (int k = 1; k <= steps; ++k) {
+        friction += stepAt(0.2 - k * lift, Vec3(0, 0, lift / dt)).frictionWork;
+        const double now = shearEnergy();
+        grew = std::max(grew, now - energy);
+        energy = now;
+    }
+    std::printf("[ measured ] patch springs lifted: energy %.6g -> %.6g (%zu -> %zu nodes), "
+                "friction's work %.6g, largest rise in a step %.3g\n",
+                loaded, energy, loadedNodes, history.size(), friction, grew);
+    EXPECT_LT(history.size(), loadedNodes);
+    EXPECT_LE(grew, 1e-12 * loaded);
+    EXPECT_NEAR(loaded - energy, friction, 1e-3 * loaded);  // 1e-4 measured
 }
 
 // The same contact against a level-set obstacle (the sphere asset used as a rigid boundary,

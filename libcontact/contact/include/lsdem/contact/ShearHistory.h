@@ -19,6 +19,10 @@ public:
     {
         int node = 0;
         Vec3 force = Vec3::Zero();
+        /// The spring's stiffness when the force was stored (0: not known, as in a checkpoint
+        /// before version 10). A spring whose stiffness falls (a patch's area in contact
+        /// shrinking) lets go of its force in proportion (updateShearForce's caller).
+        double stiffness = 0.0;
     };
 
     ShearHistory() = default;
@@ -35,9 +39,9 @@ public:
     /// The shear force of @a node (zero if it has none).
     Vec3 force(int node) const;
 
-    /// Add @a node's force; nodes must come in increasing order (as the contact law and a
-    /// checkpoint give them). @throw std::invalid_argument otherwise.
-    void append(int node, const Vec3& force);
+    /// Add @a node's force and its spring's stiffness; nodes must come in increasing order (as
+    /// the contact law and a checkpoint give them). @throw std::invalid_argument otherwise.
+    void append(int node, const Vec3& force, double stiffness = 0.0);
 
     /// Take @a next (whose entries must be sorted by node) as the history and hand the old
     /// buffer back in @a next, emptied, for reuse.

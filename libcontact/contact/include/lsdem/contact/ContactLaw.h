@@ -84,7 +84,8 @@ struct PairForces
     /// c·w wᵀ, which the stability check sums beside the stiffness.
     Vec3 dashpotArmOfFirst = Vec3::Zero(), dashpotArmOfSecond = Vec3::Zero();
     /// Energy the contact dissipated over the step (force·length, ≥ 0; 0 when dt is 0): by
-    /// friction, what the Coulomb caps took from the shear springs (updateShearForce); by the
+    /// friction, what the Coulomb caps took from the shear springs (updateShearForce) and what
+    /// springs whose stiffness changed let go of (patch quadrature's, ks*·A_in); by the
     /// dashpot, its force against the bodies' approach times dt.
     double frictionWork = 0.0, dashpotWork = 0.0;
     /// Where the contact is, for micromechanics (Micromechanics.h): the stiffness-weighted

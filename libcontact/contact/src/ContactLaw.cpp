@@ -217,22 +217,25 @@ struct SidePass
 };
 
 /// The force a spring stored as @a previous carries into a step where its stiffness is
-/// @a stiffness. Only patch quadrature's springs change stiffness (ks*·A_in, the patch's area in
-/// contact): the shear traction stays, so a spring whose area shrank lets go of the force the
-/// lost area carried, F·k/k_old (kept whole, its energy ½F²/k would grow without work), and
-/// one whose area grew keeps its force (the new area starts unloaded, as Mindlin's annulus).
-/// Either way the energy ½F²/k falls, and that fall is added to @a frictionWork: the spring let
-/// go of it as a slip would have.
-Vec3 springWithStiffness(const ShearHistory::Entry& previous, double stiffness,
+/// @a stiffness and the contact slips by @a slip. Only patch quadrature's springs change
+/// stiffness (ks*·A_in, the patch's area in contact): the shear traction stays, so a spring
+/// whose area shrank lets go of the force the lost area carried, F·k/k_old (kept whole, its
+/// energy ½F²/k would grow without work), and one whose area grew keeps its force (the new
+/// area starts unloaded, as Mindlin's annulus). Friction's work (@a frictionWork) is the work
+/// of the force the bodies felt, less the spring's energy gained (updateShearForce): the
+/// energy ½F²/k the change took, and, as the bodies felt the force before it was let go of
+/// over this step's slip, half the let-go force's work along it.
+Vec3 springWithStiffness(const ShearHistory::Entry& previous, double stiffness, const Vec3& slip,
                          double& frictionWork)
 {
     if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
         return previous.force;
-    const Vec3 kept =
-        stiffness < previous.stiffness ? Vec3(previous.force * (stiffness / previous.stiffness))
-                                       : previous.force;
+    const bool shrank = stiffness < previous.stiffness;
+    const Vec3 kept = shrank ? Vec3(previous.force * (stiffness / previous.stiffness))
+                             : previous.force;
     frictionWork += 0.5 * (previous.force.squaredNorm() / previous.stiffness -
                            kept.squaredNorm() / stiffness);
+    if (shrank) frictionWork -= 0.5 * (previous.force - kept).dot(slip);
     return kept;
 }
 
@@ -246,13 +249,12 @@ Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& 
                double size, double shearStiffness, const SidePass& pass, StoredShear& stored,
                double& frictionWork)
 {
-    const Vec3 relativeVelocity =
-        side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point);
+    const Vec3 slip =
+        (side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point)) * pass.dt;
     const ShearHistory::Entry previous = stored.of(c.node);
     return updateShearForce(
-        springWithStiffness(previous, shearStiffness, frictionWork), c.normal,
-        relativeVelocity * pass.dt, pass.meanTurn.dot(n),
-        shearStiffness,
+        springWithStiffness(previous, shearStiffness, slip, frictionWork), c.normal, slip,
+        pass.meanTurn.dot(n), shearStiffness,
         pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce)),
         &frictionWork);
 }

@@ -886,6 +886,30 @@ TEST(Simulation, PatchShearSpringsLetGoAsTheirAreaShrinks)
     EXPECT_LT(history.size(), loadedNodes);
     EXPECT_LE(grew, 1e-12 * loaded);
     EXPECT_NEAR(loaded - energy, friction, 1e-3 * loaded);  // 1e-4 measured
+
+    // Pressed again, sheared, then lifted while it slides on: friction's work is the work of
+    // the shear force the ball felt (the mean of two steps' forces along its slip, as the
+    // integrator applies them) less the springs' energy gained.
+    history.clear();
+    for (int k = 0; k < 100; ++k) stepAt(0.2, Vec3(100.0, 0, 0));
+    const double start = shearEnergy();
+    Vec3 felt = stepAt(0.2, Vec3(100.0, 0, 0)).forceOnFirst;
+    double work = 0.0;
+    friction = 0.0;
+    for (int k = 1; k <= steps; ++k) {
+        const Vec3 velocity(300.0, 0, lift / dt);
+        const PairForces r = stepAt(0.2 - k * lift, velocity);
+        work -= 0.5 * (felt.x() + r.forceOnFirst.x()) * velocity.x() * dt;
+        friction += r.frictionWork;
+        felt = r.forceOnFirst;
+    }
+    const double gained = shearEnergy() - start;
+    std::printf("[ measured ] lifted while sliding: work in %.6g, springs gained %.6g, friction's "
+                "work %.6g\n", work, gained, friction);
+    // 7e-4 measured: updateShearForce undercounts a node's first step of sliding, and a patch
+    // leaving takes its last bit of energy; counted from the force after letting go instead of
+    // the one felt, friction's work came out 0.36 % short.
+    EXPECT_NEAR(work - gained, friction, 2e-3 * friction);
 }
 
 // The same contact against a level-set obstacle (the sphere asset used as a rigid boundary,

@@ -21,7 +21,7 @@ public:
         Vec3 force = Vec3::Zero();
         /// The spring's stiffness when the force was stored (0: not known, as in a checkpoint
         /// before version 10). A spring whose stiffness falls (a patch's area in contact
-        /// shrinking) lets go of its force in proportion (updateShearForce's caller).
+        /// shrinking) lets go of its force in proportion (springWithStiffness, ContactLaw.cpp).
         double stiffness = 0.0;
     };
 

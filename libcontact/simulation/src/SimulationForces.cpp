@@ -47,8 +47,10 @@ void addDashpot(GrainStiffness& sums, double share, const PairForces& f, bool fi
     if (!(f.dashpot > 0.0)) return;
     const double c = share * f.dashpot;
     const Vec3& arm = first ? f.dashpotArmOfFirst : f.dashpotArmOfSecond;
-    sums.translationDamping += c * f.normal * f.normal.transpose();
-    sums.rotationDamping += c * arm * arm.transpose();
+    // (Rank-one updates written in place: no temporary matrices, for every contact.)
+    const Vec3 along = c * f.normal, turning = c * arm;
+    sums.translationDamping.noalias() += along * f.normal.transpose();
+    sums.rotationDamping.noalias() += turning * arm.transpose();
 }
 
 /// Whether every number of @a r is +0 (bit for bit): the result of a slot without contact,

@@ -14,6 +14,8 @@
 #include "lsdem/simulation/RigidBody.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include <vector>
 
@@ -48,15 +50,23 @@ inline double globalDampingStiffening(double globalDamping)
 /// which is 2/ω·(sqrt(1 + β²) − β); 2/γ without a spring, 2/ω without damping, infinite
 /// without either. A dashpot evaluated from the velocity the step already has (the half
 /// step's) is unstable beyond it, as a spring is beyond 2/ω. (Global damping: scale both by
-/// globalDampingStiffening.)
-double dampedStableStep(double omegaSquared, double dampingRate);
+/// globalDampingStiffening.) Inline: it runs for every grain at every step.
+inline double dampedStableStep(double omegaSquared, double dampingRate)
+{
+    const double halfRate = 0.5 * std::max(dampingRate, 0.0);
+    const double root = std::sqrt(std::max(omegaSquared, 0.0) + halfRate * halfRate) + halfRate;
+    // (The sum, not sqrt(1 + β²) − β: no cancellation when the dashpot dominates.)
+    return root > 0.0 ? 2.0 / root : std::numeric_limits<double>::infinity();
+}
 
 /// The largest stable step of @a body on springs @a stiffness with dashpots up to ratio
 /// @a dampingRatio of critical (infinite without stiffness), under the world's global damping
 /// @a globalDamping (λ, World::globalDamping), which makes forces against the motion 1 + λ
 /// times stronger and so shortens the step. The damping rate is the larger of 2β·ω (each
 /// contact's own ratio, on the fastest mode) and the bound on the summed dashpots' rate,
-/// λ_max(C_t)/m + λ_max(I^-½ C_r I^-½), built as ω²'s is; the step is Verlet's limit
+/// λ_max(C_t)/m + λ_max(I^-½ C_r I^-½), built as ω²'s is but with each λ_max bounded without
+/// eigenvalues (the least of the Frobenius norm and Gershgorin's row sums: exact for dashpots
+/// along the axes, at most √3 times over); the step is Verlet's limit
 /// 2/(sqrt(ω² + γ²/4) + γ/2) for that ω and rate γ, which falls as either grows, so a bound on
 /// each gives a bound on the step (exact where the dashpots and springs share their modes, as
 /// contacts along their normals do).

@@ -301,8 +301,7 @@ double membraneStableStep(const Membrane& m, double globalDamping)
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(e, Eigen::EigenvaluesOnly).eigenvalues()[1];
         omegaSquared = std::max(omegaSquared, triangleOmegaSquared(m, t, e1));
     }
-    const double boost = globalDampingStiffening(globalDamping);
-    return dampedStableStep(boost * omegaSquared, boost * membraneDragRate(m));
+    return dampedStableStep(omegaSquared, membraneDragRate(m), globalDamping);
 }
 
 double membraneDragRate(const Membrane& m)

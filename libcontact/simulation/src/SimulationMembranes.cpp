@@ -198,9 +198,8 @@ double Simulation::membraneStepLimit(std::string* which) const
         const Membrane& m = mWorld.membranes[k];
         const MembraneStepParts parts = membraneStepParts(k);
         // (Global damping strengthens the vertices' forces against their motion, as the grains'.)
-        const double boost = globalDampingStiffening(mWorld.globalDamping);
-        const double step = dampedStableStep(boost * (parts.rubber + parts.contacts),
-                                             boost * membraneDragRate(m));
+        const double step = dampedStableStep(parts.rubber + parts.contacts, membraneDragRate(m),
+                                             mWorld.globalDamping);
         if (step < limit) {
             limit = step;
             if (which) {

@@ -121,18 +121,15 @@ std::vector<ContactModel> distinctModels(const World& world)
 
 namespace {
 
-/// The step's limit for a highest mode ω² = @a omega2 and a damping rate @a rate under global
-/// damping @a globalDamping (λ). The damping makes a force against the motion 1 + λ times
-/// stronger: for the step the springs and the dashpots act as 1 + λ times stiffer and more
-/// viscous (ω² and γ times 1 + λ, so β times √(1 + λ)). A simulation of one degree of freedom
-/// in that step's order puts its limit at ω·dt = 2/√(1 + λ) undamped (1.754 at λ = 0.3) and
-/// at 1.0609 for λ = 0.3 and β = 0.46, where this gives 1.0607. Infinite without stiffness:
-/// a grain's dashpots come with its springs.
+/// A grain's step limit for a highest mode ω² = @a omega2 and a damping rate @a rate under
+/// global damping @a globalDamping (λ): dampedStableStep's, infinite without stiffness (a
+/// grain's dashpots come with its springs). A simulation of one degree of freedom in the
+/// step's order puts its limit at ω·dt = 2/√(1 + λ) undamped (1.754 at λ = 0.3) and at 1.0609
+/// for λ = 0.3 and β = 0.46, where this gives 1.0607.
 double dampedLimit(double omega2, double rate, double globalDamping)
 {
     if (!(omega2 > 0.0)) return std::numeric_limits<double>::infinity();
-    const double boost = globalDampingStiffening(globalDamping);
-    return dampedStableStep(boost * omega2, boost * rate);
+    return dampedStableStep(omega2, rate, globalDamping);
 }
 
 /// λ_max(T)/m + λ_max(I^-½ Rᵀ R_w R I^-½) of @a body for a translational block @a translation

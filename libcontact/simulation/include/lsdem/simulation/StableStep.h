@@ -49,12 +49,16 @@ inline double globalDampingStiffening(double globalDamping)
 /// the rate γ = c/m @a dampingRate (1/time, 2βω for a ratio β): 2/(sqrt(ω² + γ²/4) + γ/2),
 /// which is 2/ω·(sqrt(1 + β²) − β); 2/γ without a spring, 2/ω without damping, infinite
 /// without either. A dashpot evaluated from the velocity the step already has (the half
-/// step's) is unstable beyond it, as a spring is beyond 2/ω. (Global damping: scale both by
-/// globalDampingStiffening.) Inline: it runs for every grain at every step.
-inline double dampedStableStep(double omegaSquared, double dampingRate)
+/// step's) is unstable beyond it, as a spring is beyond 2/ω. Under global damping
+/// @a globalDamping (λ) the forces against the motion are 1 + λ times stronger: ω² and γ are
+/// taken 1 + λ times larger (globalDampingStiffening). Inline: it runs for every grain at
+/// every step.
+inline double dampedStableStep(double omegaSquared, double dampingRate, double globalDamping = 0.0)
 {
-    const double halfRate = 0.5 * std::max(dampingRate, 0.0);
-    const double root = std::sqrt(std::max(omegaSquared, 0.0) + halfRate * halfRate) + halfRate;
+    const double boost = globalDampingStiffening(globalDamping);
+    const double halfRate = 0.5 * boost * std::max(dampingRate, 0.0);
+    const double root =
+        std::sqrt(boost * std::max(omegaSquared, 0.0) + halfRate * halfRate) + halfRate;
     // (The sum, not sqrt(1 + β²) − β: no cancellation when the dashpot dominates.)
     return root > 0.0 ? 2.0 / root : std::numeric_limits<double>::infinity();
 }

@@ -4,6 +4,7 @@
 // flow of thousands of grains: the single-contact cases above compare the laws).
 #include "studies/verify/BeverlooChecks.h"
 #include "studies/verify/BeverlooFit.h"
+#include "studies/verify/SiloFill.h"
 #include "studies/verify/SiloParking.h"
 #include "studies/verify/SiloPlan.h"
 #include "studies/verify/VerifyCases.h"
@@ -116,23 +117,6 @@ Scene filledSilo(const SiloPlan& p, const GrainKind& kind, const PackingResult& 
     s.boundaries.push_back(side);
     s.gravity = Vec3(0, 0, -p.gravity);
     return s;
-}
-
-/// The bulk density of the settled fill: the grains whose centres lie in the core of the silo
-/// (two grain sizes from the wall, the floor and the surface), over that volume.
-double bulkDensity(const World& w, const SiloPlan& p, double size)
-{
-    double top = -1e300;
-    for (const Grain& g : w.grains) top = std::max(top, g.body.pose.position.z());
-    const double radius = p.siloRadius - 2.0 * size;
-    const double bottom = 0.5 * p.plateThickness + 2.0 * size, height = top - 2.0 * size - bottom;
-    double mass = 0.0;
-    for (const Grain& g : w.grains) {
-        const Vec3& x = g.body.pose.position;
-        if (std::hypot(x.x(), x.y()) < radius && x.z() > bottom && x.z() < bottom + height)
-            mass += g.body.mass;
-    }
-    return mass / (kPi * radius * radius * height);
 }
 
 /// One orifice's discharge: when each grain left (its whole bounding sphere below the plate)

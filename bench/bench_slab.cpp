@@ -74,11 +74,12 @@ void BM_SlabStep(benchmark::State& state)
     state.counters["sdp_mm"] = kDiscretizations[which].sdp;
     state.counters["nodes_per_block"] = nodes / static_cast<double>(w.grains.size());
     // The block's level set as held in memory (one asset, shared by the 25 blocks), and the
-    // share of its bricks stored deep (16 bits a value, LevelSetBricks.h).
+    // shares of its bricks stored deep and on a plane (16 bits a value, LevelSetBricks.h).
     const LevelSetBricks& grid = *w.grains.front().asset->levelSet->grid;
     state.counters["block_grid_MiB"] = static_cast<double>(grid.memUsage()) / (1024.0 * 1024.0);
     state.counters["bricks"] = static_cast<double>(grid.brickCount());
     state.counters["deep_bricks"] = static_cast<double>(grid.deepBrickCount());
+    state.counters["plane_bricks"] = static_cast<double>(grid.planeBrickCount());
     state.counters["nodes_sampled/step"] =
         static_cast<double>(after.nodes.nodesSampled - before.nodes.nodesSampled) / steps;
     state.counters["contact_nodes"] = static_cast<double>(sim.contactNodes());

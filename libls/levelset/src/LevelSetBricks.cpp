@@ -10,6 +10,8 @@
 #include <map>
 #include <utility>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 #include <tbb/parallel_for.h>
 
 namespace lsdem {
@@ -75,10 +77,14 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 } // namespace
 
 // The constructor's passes share the table under construction, so they are members; each
-// reads what the one before it left: the deep step, the table's size, pass 1 classifying the
-// places, the bricks laid out in place order, the storage, then pass 2 writing the bricks.
+// reads what the one before it left: the deep and plane steps, the table's size, pass 1
+// classifying the places, the bricks laid out in place order, the storage, then pass 2
+// writing the bricks.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
-    : mTransform(grid.transform().copy()), mMetadata(grid.copyMeta())
+    : mPlaneCeiling(grid.background() > 0.0f ? grid.background()
+                                              : std::numeric_limits<float>::infinity()),
+      mTransform(grid.transform().copy()),
+      mMetadata(grid.copyMeta())
 {
     chooseDeepStep(grid.voxelSize());
     sizeTable(valueBox(grid));
@@ -95,10 +101,12 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
     writeVaryingBricks(grid);
 }
 
-/// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel (cubic voxels only).
+/// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel; and the plane bricks'
+/// coarsest (cubic voxels only: else neither kind is used).
 void LevelSetBricks::chooseDeepStep(const openvdb::Vec3d& voxel)
 {
     if (!(voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2])) return;
+    if (std::isfinite(mPlaneCeiling)) mPlaneStepLimit = kPlaneStepVoxels * voxel[0];
     int e = 0;
     std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
     mDeepStep = float(std::ldexp(1.0, e - 1));
@@ -135,6 +143,7 @@ struct LevelSetBricks::Place
 {
     bool varies = false;
     bool deep = false;
+    bool plane = false;
     bool finite = true;
     SharedBricks::key_type uniform{0, 0};  ///< (value bits, active) of one value
 };
@@ -150,6 +159,7 @@ LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
         p.varies = varies;
         int32_t unused[kVoxels];
         p.deep = varies && deepCodes(b, unused);
+        p.plane = varies && !p.deep && isPlaneBrick(b);
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
         if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
@@ -161,7 +171,7 @@ LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
 /// 0 is the inactive background, shared by every such place and by all outside; the bricks of
 /// varying values and each new value of one come next in the order of their first place, then
 /// the deep bricks in the order of their places, so the layout does not depend on the thread
-/// count.
+/// count. (Plane bricks come between the two, likewise.)
 uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBricks& shared)
 {
     uint32_t bricks = 1;
@@ -175,7 +185,7 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
                             ", " + std::to_string(origin.z()) + ")",
                         "rebuild the level set; lsdem samples finite distances only");
         }
-        if (p.deep) continue;
+        if (p.deep || p.plane) continue;
         if (p.varies) {
             mTable[slot] = bricks++;
             continue;
@@ -186,19 +196,23 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
     }
     mWideBricks = bricks;
     for (size_t slot = 0; slot < places.size(); ++slot)
+        if (places[slot].plane) mTable[slot] = bricks++;
+    mDeepFirst = bricks;
+    for (size_t slot = 0; slot < places.size(); ++slot)
         if (places[slot].deep) mTable[slot] = bricks++;
     return bricks;
 }
 
 /// The storage of @a bricks bricks, sized once (grown by doubling it would hold up to twice
 /// its size), plus the padding byte that decode() may read after the last 24-bit code when no
-/// deep brick follows.
+/// 16-bit brick follows.
 void LevelSetBricks::allocateBricks(uint32_t bricks)
 {
-    const size_t deep = bricks - mWideBricks;
-    mCode.assign(size_t(mWideBricks) * 3 * kVoxels + deep * 2 * kVoxels + 1, 0);
+    const size_t narrow = bricks - mWideBricks;
+    mCode.assign(size_t(mWideBricks) * 3 * kVoxels + narrow * 2 * kVoxels + 1, 0);
     mBrickStep.assign(bricks, 0.0f);
-    mDeepBase.assign(deep, 0);
+    mBase.assign(narrow, 0);
+    mGradient.assign(3 * size_t(mDeepFirst - mWideBricks), 0);
     mActive.assign(size_t(bricks) * kMaskWords, 0);
 }
 
@@ -210,6 +224,8 @@ void LevelSetBricks::writeVaryingBricks(const openvdb::FloatGrid& grid)
         const uint32_t brick = mTable[slot] & kIndexMask;
         if (isDeep(brick))
             writeDeepBrick(brick, b);
+        else if (isPlane(brick))
+            writePlaneBrick(brick, b);
         else
             writeVaryingBrick(brick, b);
     });
@@ -274,6 +290,9 @@ int32_t wideCode(double v, double step)
     return q;
 }
 
+/// A plane brick's remainders run from 0 to this.
+constexpr int64_t kPlaneCodes = std::numeric_limits<uint16_t>::max();
+
 /// Deep codes: below this in size a deep value is a multiple of the 24-bit step its brick
 /// would have (so encoding it again gives it back), and converts to float exactly.
 constexpr double kDeepCodeLimit = double(1 << 22);
@@ -320,7 +339,7 @@ void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
     int32_t code[kVoxels];
     deepCodes(raw, code);  // true: the brick was numbered deep for it
     const int32_t base = *std::min_element(code, code + kVoxels);
-    mDeepBase[brick - mWideBricks] = base;
+    mBase[brick - mWideBricks] = base;
     mBrickStep[brick] = mDeepStep;
     std::copy(raw.active, raw.active + kMaskWords,
               mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
@@ -329,6 +348,155 @@ void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
         const auto q = static_cast<uint16_t>(code[k] - base);
         std::memcpy(out + 2 * k, &q, sizeof q);
     }
+}
+
+bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
+{
+    if (!(mPlaneStepLimit > 0.0)) return false;
+    const double ceiling = mPlaneCeiling;
+    for (float v : raw.value)
+        if (!std::isfinite(v) || double(v) > ceiling) return false;
+    // Values at the ceiling (a band's edge, where a bake caps the distance at the background)
+    // bend the distance out of its plane: they only need codes that decode to the ceiling or
+    // above (decode() takes the least of the two), so the plane is fitted to the others.
+    // Which values are at the ceiling is decided on the 24-bit values, as every kind is.
+    const double wide = wideStep(raw);
+    // (A ceiling beyond 2^22 steps lies above every value: then none is capped.)
+    const double cap = ceiling <= std::ldexp(wide, 22) ? double(wideCode(ceiling, wide)) * wide
+                                                       : std::numeric_limits<double>::infinity();
+    double stored[kVoxels];
+    bool capped[kVoxels];
+    for (int k = 0; k < kVoxels; ++k) {
+        stored[k] = double(wideCode(raw.value[k], wide)) * wide;
+        capped[k] = stored[k] >= cap;
+    }
+    // Two planes are tried, in this order: the least-squares plane through the free voxels'
+    // codes (if they span the brick's three directions), and the one through every voxel's,
+    // the capped ones at the cap (a corner of a few free voxels at the band's edge). Over a
+    // 4³ brick the normal equations of the second are diagonal about its centre: Σ(i − 3/2)² =
+    // 80 in each direction.
+    Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+    for (int k = 0; k < kVoxels; ++k) {
+        if (capped[k]) continue;
+        const Eigen::Vector4d x(1.0, k >> (2 * kLog2Dim), (k >> kLog2Dim) & (kDim - 1), k & (kDim - 1));
+        normal += x * x.transpose();
+    }
+    const Eigen::LDLT<Eigen::Matrix4d> fit(normal);
+    const bool spans = fit.info() == Eigen::Success && fit.isPositive() &&
+                       fit.vectorD().minCoeff() > 1e-9 * fit.vectorD().maxCoeff();
+    // The least spread of the codes about the planes that did not fit for their spread alone
+    // (0 if one did not fit for a capped voxel): how far the step may jump.
+    int64_t spread = std::numeric_limits<int64_t>::max();
+    const auto fitsPlane = [&](const int32_t (&n)[kVoxels], const int32_t (&g)[3], double step,
+                               int32_t (&rest)[kVoxels], int64_t& lowest) {
+        constexpr int64_t kLargest = kPlaneCodes;
+        lowest = std::numeric_limits<int64_t>::max();
+        int64_t highest = std::numeric_limits<int64_t>::min();
+        for (int k = 0; k < kVoxels; ++k) {
+            rest[k] = n[k] - (g[0] * (k >> (2 * kLog2Dim)) + g[1] * ((k >> kLog2Dim) & (kDim - 1)) +
+                              g[2] * (k & (kDim - 1)));
+            if (capped[k]) continue;
+            lowest = std::min<int64_t>(lowest, rest[k]);
+            highest = std::max<int64_t>(highest, rest[k]);
+        }
+        if (lowest > highest) {  // every value capped: the plane's codes are free
+            lowest = *std::min_element(rest, rest + kVoxels);
+            highest = lowest;
+        }
+        if (highest - lowest > kLargest) {
+            spread = std::min(spread, highest - lowest);
+            return false;
+        }
+        // A capped voxel's code: the least that decodes to the ceiling or above. (With a
+        // capped voxel the brick's largest |value| is at least the ceiling, so the ceiling is
+        // at most 2^22 steps.)
+        for (int k = 0; k < kVoxels; ++k) {
+            if (!capped[k]) continue;
+            const int64_t atCeiling = int64_t(std::ceil(ceiling / step));
+            const int64_t q = std::max<int64_t>(atCeiling - (n[k] - rest[k]) - lowest, 0);
+            if (q > kLargest) {
+                spread = 0;
+                return false;
+            }
+            rest[k] = static_cast<int32_t>(lowest + q);
+        }
+        return true;
+    };
+    // From the 24-bit values, each step from theirs up to the limit, the first whose codes lie
+    // within 65535 of one of those planes, rounded. Codes that spread over S about their
+    // plane spread over about S/2^j at 2^j times the step (the fit is linear in the codes),
+    // so the steps at which they would still spread over more than twice 65535 are skipped.
+    for (double step = wide; step <= mPlaneStepLimit;) {
+        int32_t n[kVoxels];
+        Eigen::Vector4d freeMoment = Eigen::Vector4d::Zero();
+        double allMoment[3] = {0.0, 0.0, 0.0};
+        for (int k = 0; k < kVoxels; ++k) {
+            n[k] = wideCode(stored[k], step);
+            const int i = k >> (2 * kLog2Dim), j = (k >> kLog2Dim) & (kDim - 1), l = k & (kDim - 1);
+            if (!capped[k]) freeMoment += Eigen::Vector4d(1.0, i, j, l) * double(n[k]);
+            allMoment[0] += (i - 1.5) * n[k];
+            allMoment[1] += (j - 1.5) * n[k];
+            allMoment[2] += (l - 1.5) * n[k];
+        }
+        Eigen::Vector3d gradients[2];
+        int candidates = 0;
+        if (spans) gradients[candidates++] = fit.solve(freeMoment).tail<3>();
+        gradients[candidates++] = Eigen::Vector3d(allMoment[0], allMoment[1], allMoment[2]) / 80.0;
+        int32_t rest[kVoxels], g[3];
+        int64_t lowest = 0;
+        bool found = false;
+        for (int c = 0; c < candidates && !found; ++c) {
+            for (int a = 0; a < 3; ++a) {
+                if (!(std::abs(gradients[c][a]) < double(1 << 24))) return false;
+                g[a] = static_cast<int32_t>(std::llround(gradients[c][a]));
+            }
+            found = fitsPlane(n, g, step, rest, lowest);
+        }
+        if (!found) {
+            int doublings = 1;
+            while (doublings < 24 && spread > (kPlaneCodes << (doublings + 1))) ++doublings;
+            step = std::ldexp(step, doublings);
+            spread = std::numeric_limits<int64_t>::max();
+            continue;
+        }
+        out.step = step;
+        out.base = static_cast<int32_t>(lowest);
+        std::copy(g, g + 3, out.gradient);
+        for (int k = 0; k < kVoxels; ++k) out.q[k] = static_cast<uint16_t>(rest[k] - lowest);
+        return true;
+    }
+    return false;
+}
+
+bool LevelSetBricks::isPlaneBrick(const RawBrick& raw) const
+{
+    PlaneCodes codes;
+    if (!planeCodes(raw, codes)) return false;
+    // Its decoded values must come back as this brick: not deep, and the same plane codes.
+    RawBrick decoded = raw;
+    for (int k = 0; k < kVoxels; ++k) {
+        const int32_t n = codes.base + int32_t(codes.q[k]) + codes.gradient[0] * (k >> (2 * kLog2Dim)) +
+                          codes.gradient[1] * ((k >> kLog2Dim) & (kDim - 1)) +
+                          codes.gradient[2] * (k & (kDim - 1));
+        decoded.value[k] = std::min(static_cast<float>(double(n) * codes.step), mPlaneCeiling);
+    }
+    int32_t unused[kVoxels];
+    PlaneCodes again;
+    return !deepCodes(decoded, unused) && planeCodes(decoded, again) && again == codes;
+}
+
+void LevelSetBricks::writePlaneBrick(uint32_t brick, const RawBrick& raw)
+{
+    PlaneCodes codes;
+    planeCodes(raw, codes);  // true: the brick was numbered a plane brick for it
+    mBase[brick - mWideBricks] = codes.base;
+    std::copy(codes.gradient, codes.gradient + 3,
+              mGradient.begin() + std::ptrdiff_t(3 * size_t(brick - mWideBricks)));
+    mBrickStep[brick] = float(codes.step);
+    std::copy(raw.active, raw.active + kMaskWords,
+              mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
+    uint8_t* out = writableCodes(brick);
+    for (int k = 0; k < kVoxels; ++k) std::memcpy(out + 2 * k, &codes.q[k], sizeof codes.q[k]);
 }
 
 openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const
@@ -379,7 +547,7 @@ size_t LevelSetBricks::memUsage() const
 {
     return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
            mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
-           mDeepBase.capacity() * sizeof(int32_t) +
+           mBase.capacity() * sizeof(int32_t) + mGradient.capacity() * sizeof(int32_t) +
            mActive.capacity() * sizeof(uint64_t);
 }
 

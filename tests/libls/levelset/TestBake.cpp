@@ -446,18 +446,25 @@ TEST(Bake, ATwoVoxelBandHoldsEveryValueThatContactReads)
         const Vec3 p = (1.0 - depth(rng)) * direction;
         const LevelSetSample x = sa.sample(p), y = sb.sample(p);
         if (1.0 - p.norm() < onlyWideBricks - 1e-9) {
-            // The grids' bricks start one voxel apart, so each rounds to its 24 bits its own
-            // way (within 2.4e-7 here, docs/assets.md); a missing corner would be off by 0.01
-            // or more.
-            ASSERT_NEAR(x.phi, y.phi, 1e-6) << "at " << p.transpose();
-            ASSERT_LT((x.gradient - y.gradient).norm(), 2e-5) << "at " << p.transpose();
+            // The grids' bricks start one voxel apart, so each rounds to its 24 bits and its
+            // plane bricks' steps its own way: each corner within 2.4e-7 of the float as 24 bits
+            // (docs/assets.md) and then within a plane step of that (at most 2^-17 voxel), so
+            // φ within twice their sum and each component of ∇φ within twice that per voxel. A
+            // missing corner would be off by 0.01 or more.
+            const double corner = 2.4e-7 + LevelSetBricks::kPlaneStepVoxels * vox;
+            ASSERT_NEAR(x.phi, y.phi, 2.0 * corner) << "at " << p.transpose();
+            ASSERT_LT((x.gradient - y.gradient).norm(), std::sqrt(3.0) * 4.0 * corner / vox)
+                << "at " << p.transpose();
         } else {
             // Each corner less than a deep step below its 24-bit value, which is within
             // 2.4e-7 of the float (above), so φ within a step and 2 × 2.4e-7 and each
-            // component of ∇φ within that much per voxel.
+            // component of ∇φ within that much per voxel; and a corner in a plane brick within
+            // a plane step either way, 2 of them between the grids, twice that in ∇φ.
+            const double planeStep = LevelSetBricks::kPlaneStepVoxels * vox;
             const double apart = deepStep + 5e-7;
-            ASSERT_NEAR(x.phi, y.phi, apart) << "at " << p.transpose();
-            ASSERT_LT((x.gradient - y.gradient).norm(), std::sqrt(3.0) * apart / vox)
+            ASSERT_NEAR(x.phi, y.phi, apart + 2.0 * planeStep) << "at " << p.transpose();
+            ASSERT_LT((x.gradient - y.gradient).norm(),
+                      std::sqrt(3.0) * (apart + 4.0 * planeStep) / vox)
                 << "at " << p.transpose();
             ++deeper;
         }

@@ -24,7 +24,7 @@ struct VerifyOptions
     std::string sandMeshes = "assets/meshes/sand";  ///< the silo's sand grains
     /// The silo's grain kinds: "spheres", "sand" (the quick version runs spheres only).
     std::vector<std::string> siloGrains = {"spheres", "sand"};
-    /// The silo's orifice diameters, mm (empty: the plan's, 5 … 8 mm; 4 and 5 in --quick).
+    /// The silo's orifice diameters, mm (empty: the plan's, 5 … 8 mm; 5 and 6 in --quick).
     std::vector<double> siloOrifices;
     /// The silo's radius and fill height, mm (0: 10 and 12; 4 and 8 in --quick); the grain
     /// count follows the fill's volume.

@@ -1,37 +1,49 @@
 /// @file LevelSetBricks.h
-/// @brief A grain's level set as held in memory: 4³-voxel bricks of 24-bit values (16-bit deep
-///        inside the grain) under one dense table of the grid's bounding box. Built from a
-///        float grid (toLevelSetGrid), turned back into one for files and OpenVDB's tools
-///        (toFloatGrid); never modified.
+/// @brief A grain's level set as held in memory: 4³-voxel bricks of 16-bit codes on a plane
+///        (24-bit values where no plane fits closely enough, 16-bit deep inside the grain)
+///        under one dense table of the grid's bounding box. Built from a float grid
+///        (toLevelSetGrid), turned back into one for files and OpenVDB's tools (toFloatGrid);
+///        never modified.
 ///
 /// Why: a sphere-like grain of radius 20 voxels in OpenVDB's 8³ float leaves takes ~415 KiB;
-/// here ~180 KiB. Smaller bricks cover the surface shell more tightly, 3 bytes hold a value
-/// (2 deep inside), and the table replaces the tree walk (one multiply-add finds a brick).
-/// 16 bits a value near the surface would not do: tests rely on float accuracy there (see
-/// docs/assets.md).
+/// here ~145 KiB. Smaller bricks cover the surface shell more tightly, 2 bytes hold most
+/// values, and the table replaces the tree walk (one multiply-add finds a brick).
 ///
-/// Storage near the surface: a value is q · step, q a signed 24-bit integer, step a power of
-/// two per brick: 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of
-/// two, so |q| ≤ 2^22 and the decoded value is exact in float. The stored value differs from
-/// the float it came from by less than 2^-21 of the brick's largest |value| (half a step when
-/// rounded to nearest; a full step only where that would lose the sign: a negative value never
-/// decodes to 0 or more, a positive one never to 0 or less). Near the surface (|φ| ≤ 3√3
-/// voxels in a brick that it crosses) that is under 2.5e-6 voxel.
+/// Three kinds of brick, each value decoding to an exact float:
 ///
-/// Deep inside: a brick whose every value lies kDeepVoxels or more below the surface (as 24
-/// bits would hold it) holds them as (base + q) · deepStep(), base one integer per brick, q an
-/// unsigned 16-bit integer, deepStep() one power of two for the grid in (2^-13, 2^-12] voxel,
-/// rounded down from its 24-bit value (so a deep value stays deep). Such a value is less
-/// than deepStep() below its 24-bit value (itself within 2^-21 of the brick's largest
-/// |value| of the float): under 2.5e-4 voxel in all. No point within kDeepVoxels − √3 voxels
-/// of the surface reads one (a cell's corners lie within √3 voxels of its points). Deeper,
-/// trilinear interpolation of a curved surface's distance already errs by more (1/(4r) voxel
-/// for a sphere of r voxels: 10 to 60 times more for spheres of 100 to 20 voxels); where φ is
-/// linear (a box's interior) the rounding is the only error. Interior bricks are most of a
-/// finely resolved grain's bricks; these take 144 bytes instead of 204.
+/// - **Wide** (3 bytes a value): q · step, q a signed 24-bit integer, step a power of two per
+///   brick: 2^(c−22) where 2^c is the brick's largest |value| rounded up to a power of two, so
+///   |q| ≤ 2^22. The stored value differs from the float it came from by less than 2^-21 of
+///   the brick's largest |value| (half a step when rounded to nearest; a full step only where
+///   that would lose the sign: a negative value never decodes to 0 or more, a positive one
+///   never to 0 or less). Near the surface (|φ| ≤ 3√3 voxels in a brick that it crosses) that
+///   is under 2.5e-6 voxel. Every other kind is decided on these "24-bit values".
+/// - **Plane** (2 bytes a value): the 24-bit values rounded again, to the nearest multiple of
+///   a coarser power of two (never across zero), n · step with n = base + g·(i, j, k) + q: an
+///   integer plane over the brick's voxels (i, j, k) and q an unsigned 16-bit remainder. The
+///   distance to a surface is nearly linear over 4 voxels, so the remainders are small: on a
+///   sphere of 20 voxels the shell's bricks fit at a step of at most 2^-18 voxel, where 16
+///   bits alone would need 2^-12. The step is the least that fits and at most
+///   kPlaneStepVoxels (2^-17 voxel): a value is within half a step (a step where the sign
+///   would be lost) of its 24-bit value, so within 2^-18 + 2^-21·|largest| voxel of the
+///   float, under 6.3e-6 voxel near the surface. Flat faces (a plane exactly) keep their
+///   24-bit values; creases and corners, where no plane fits, stay wide. Values at the
+///   background (a bake caps the distance there, at the band's edge) bend the plane: the plane
+///   is fitted to the others, and plane bricks decode to at most the background.
+/// - **Deep** (2 bytes a value): a brick whose every value lies kDeepVoxels or more below the
+///   surface (as 24 bits would hold it) holds them as (base + q) · deepStep(), base one
+///   integer per brick, q an unsigned 16-bit integer, deepStep() one power of two for the grid
+///   in (2^-13, 2^-12] voxel, rounded down from its 24-bit value (so a deep value stays deep).
+///   Such a value is less than deepStep() below its 24-bit value: under 2.5e-4 voxel in all.
+///   No point within kDeepVoxels − √3 voxels of the surface reads one (a cell's corners lie
+///   within √3 voxels of its points). Deeper, trilinear interpolation of a curved surface's
+///   distance already errs by more (1/(4r) voxel for a sphere of r voxels: 10 to 60 times
+///   more for spheres of 100 to 20 voxels); where φ is linear (a box's interior) the rounding
+///   is the only error. Interior bricks are most of a finely resolved grain's bricks.
 ///
 /// Encoding decoded values again gives the same values and bricks, so a saved and loaded asset
-/// samples to the same bits as the one saved.
+/// samples to the same bits as the one saved: a brick becomes a plane brick only if its
+/// decoded values would be encoded again as the same plane brick (else it stays wide).
 #pragma once
 
 #include <openvdb/openvdb.h>
@@ -73,8 +85,11 @@ public:
 
     float background() const { return decode(kBackgroundBrick, 0); }
     /// Bound on |stored − original| of a value, relative to the largest |value| of its brick
-    /// (bricks other than deep ones).
+    /// (wide bricks; the 24-bit values every kind starts from).
     static constexpr double kRelativeError = 1.0 / (1 << 21);
+    /// The coarsest step of a plane brick, in voxels: its values are within half of it (a
+    /// whole one where the sign would be lost) of their 24-bit values.
+    static constexpr double kPlaneStepVoxels = 1.0 / (1 << 17);
     /// How far below the surface, in voxels, every value of a brick must lie for the brick to
     /// be stored deep (16 bits a value).
     static constexpr double kDeepVoxels = 3.0;
@@ -85,7 +100,9 @@ public:
     /// Bricks stored: shared ones once, deep ones included.
     size_t brickCount() const { return mBrickStep.size(); }
     /// Bricks stored deep.
-    size_t deepBrickCount() const { return mBrickStep.size() - mWideBricks; }
+    size_t deepBrickCount() const { return mBrickStep.size() - mDeepFirst; }
+    /// Bricks stored on a plane.
+    size_t planeBrickCount() const { return mDeepFirst - mWideBricks; }
 
     openvdb::Index64 activeVoxelCount() const;
     openvdb::CoordBBox evalActiveVoxelBoundingBox() const;
@@ -128,18 +145,36 @@ public:
         constexpr int m = kDim - 1;
         return ((c.x() & m) << (2 * kLog2Dim)) | ((c.y() & m) << kLog2Dim) | (c.z() & m);
     }
-    /// Whether brick @a brick is deep (2 bytes a value; otherwise 3).
-    bool isDeep(uint32_t brick) const { return brick >= mWideBricks; }
+    /// Whether brick @a brick is deep.
+    bool isDeep(uint32_t brick) const { return brick >= mDeepFirst; }
+    /// Whether brick @a brick is a plane brick.
+    bool isPlane(uint32_t brick) const { return brick >= mWideBricks && brick < mDeepFirst; }
+    /// Whether brick @a brick holds 24-bit codes (3 bytes a value; the others 2).
+    bool isWide(uint32_t brick) const { return brick < mWideBricks; }
     /// The value of voxel @a offset of brick @a brick.
     float decode(uint32_t brick, int offset) const
     {
-        if (isDeep(brick)) {
-            uint16_t q = 0;
-            std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
-            // exact: |base + q| < 2^24 (checked when the brick was made), step a power of two
-            return static_cast<float>(mDeepBase[brick - mWideBricks] + int32_t(q)) * mDeepStep;
+        if (isWide(brick)) return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
+        uint16_t q = 0;
+        std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
+        int32_t n = mBase[brick - mWideBricks] + int32_t(q);
+        if (brick < mDeepFirst) {
+            const int32_t* g = gradient(brick);
+            n += g[0] * (offset >> (2 * kLog2Dim)) + g[1] * ((offset >> kLog2Dim) & (kDim - 1)) +
+                 g[2] * (offset & (kDim - 1));
         }
-        return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
+        // exact: |n| ≤ 2^22 (checked when the brick was made), the step a power of two; voxels
+        // at a band's edge decode to its cap (a deep brick's values are far below it)
+        return std::min(static_cast<float>(n) * mBrickStep[brick], mPlaneCeiling);
+    }
+    /// A plane or deep brick's base code (the integer its voxel (0, 0, 0) adds its q to).
+    int32_t base(uint32_t brick) const { return mBase[brick - mWideBricks]; }
+    /// What a plane or deep brick's values are capped at: the grid's background.
+    float planeCeiling() const { return mPlaneCeiling; }
+    /// A plane brick's integer gradient (codes per voxel along x, y, z).
+    const int32_t* gradient(uint32_t brick) const
+    {
+        return mGradient.data() + 3 * size_t(brick - mWideBricks);
     }
     /// The value whose 3-byte code (little-endian, two's complement) starts at @a code, which
     /// must lie in codes(): it is read as 4 bytes, one load instead of three (the array keeps
@@ -154,8 +189,8 @@ public:
         const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
         return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
     }
-    /// Brick @a brick's codes: kVoxels of them, 3 bytes each (2 for a deep brick). The bricks
-    /// other than deep ones come first, so brick b starts at 64·(2b + min(b, wide bricks)).
+    /// Brick @a brick's codes: kVoxels of them, 3 bytes each (2 for plane and deep bricks). The
+    /// wide bricks come first, so brick b starts at 64·(2b + min(b, wide bricks)).
     const uint8_t* codes(uint32_t brick) const
     {
         return mCode.data() + kVoxels * (2 * size_t(brick) + std::min(brick, mWideBricks));
@@ -207,6 +242,27 @@ private:
     void writeVaryingBrick(uint32_t brick, const RawBrick& raw);
     /// The same for a deep brick (@a raw passes deepCodes).
     void writeDeepBrick(uint32_t brick, const RawBrick& raw);
+    /// A plane brick's encoding: its values are (base + g·(i, j, k) + q[k]) · step.
+    struct PlaneCodes
+    {
+        double step = 0.0;
+        int32_t base = 0;
+        int32_t gradient[3] = {0, 0, 0};
+        uint16_t q[kVoxels] = {};
+        bool operator==(const PlaneCodes& o) const
+        {
+            return step == o.step && base == o.base && std::equal(gradient, gradient + 3, o.gradient) &&
+                   std::equal(q, q + kVoxels, o.q);
+        }
+    };
+    /// Whether @a raw's values can be stored on a plane (see the file's comment), and then
+    /// their codes; it does not check that they would be encoded again the same (isPlaneBrick).
+    bool planeCodes(const RawBrick& raw, PlaneCodes& out) const;
+    /// Whether @a raw (not deep) is stored as a plane brick: it has plane codes, and its
+    /// decoded values are neither deep nor encoded as other plane codes.
+    bool isPlaneBrick(const RawBrick& raw) const;
+    /// Brick @a brick (already allocated, a plane brick) holding @a raw's values.
+    void writePlaneBrick(uint32_t brick, const RawBrick& raw);
     /// Whether @a raw's values can be stored deep, and then their codes in deep steps (before
     /// the base is taken off): each value, rounded to 24 bits as a brick of the other kind
     /// would hold it, kDeepVoxels or more below the surface and above −2^22 deep steps, and
@@ -220,8 +276,14 @@ private:
     /// byte
     std::vector<uint8_t> mCode;
     std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
-    uint32_t mWideBricks = 0;            ///< bricks [0, mWideBricks) are not deep
-    std::vector<int32_t> mDeepBase;      ///< per deep brick: the code of its smallest value
+    uint32_t mWideBricks = 0;            ///< bricks [0, mWideBricks) are wide
+    uint32_t mDeepFirst = 0;             ///< then plane bricks up to this one, then deep ones
+    std::vector<int32_t> mBase;          ///< per plane or deep brick: its base code
+    std::vector<int32_t> mGradient;      ///< per plane brick: 3 codes per voxel
+    /// The grid's background: plane bricks decode to no more than it (a band's edge caps the
+    /// distance there); infinite for a background ≤ 0, and then no brick is a plane brick.
+    float mPlaneCeiling = 0.0f;
+    double mPlaneStepLimit = 0.0;        ///< kPlaneStepVoxels voxels (0: no plane bricks)
     float mDeepStep = 0.0f;
     float mDeepBelow = 0.0f;             ///< −kDeepVoxels voxels: a deep brick's values are ≤
     std::vector<uint64_t> mActive;       ///< kMaskWords per brick

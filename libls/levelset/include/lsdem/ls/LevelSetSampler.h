@@ -8,8 +8,10 @@
 #include "lsdem/ls/LevelSetCell.h"
 #include "lsdem/ls/LevelSetGrid.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 namespace lsdem {
 
@@ -143,7 +145,7 @@ private:
         // Read the corners straight from the bricks (4^3 voxels) that hold them: one brick
         // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks. Every place has a
         // brick (shared ones for uniform regions), so no corner needs a special case. Voxel
-        // offsets within a brick are x*16 + y*4 + z, 3 bytes each (2 in a deep brick).
+        // offsets within a brick are x*16 + y*4 + z, 3 bytes each (2 in plane and deep bricks).
         using Bricks = LevelSetBricks;
         constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
         const openvdb::Coord local = base - mBrickOrigin;
@@ -151,24 +153,53 @@ private:
         const int cx = (local.x() & kLast) == kLast, cy = (local.y() & kLast) == kLast,
                   cz = (local.z() & kLast) == kLast;
         const uint32_t first = mBricks->brick(bx, by, bz);
-        if (!(cx | cy | cz) && !mBricks->isDeep(first)) {
+        if (!(cx | cy | cz)) {
             const uint32_t b = first;
-            const uint8_t* d = mBricks->codes(b) + 3 * Bricks::offset(local);
             const float step = mBricks->step(b);
-            constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
-            value[0] = Bricks::decode(d, step);
-            value[1] = Bricks::decode(d + dx, step);
-            value[2] = Bricks::decode(d + dy, step);
-            value[3] = Bricks::decode(d + dx + dy, step);
-            value[4] = Bricks::decode(d + dz, step);
-            value[5] = Bricks::decode(d + dx + dz, step);
-            value[6] = Bricks::decode(d + dy + dz, step);
-            value[7] = Bricks::decode(d + dx + dy + dz, step);
+            const int offset = Bricks::offset(local);
+            if (mBricks->isWide(b)) {
+                const uint8_t* d = mBricks->codes(b) + 3 * offset;
+                constexpr int dx = 3 << (2 * kLog2), dy = 3 << kLog2, dz = 3;  // bytes
+                value[0] = Bricks::decode(d, step);
+                value[1] = Bricks::decode(d + dx, step);
+                value[2] = Bricks::decode(d + dy, step);
+                value[3] = Bricks::decode(d + dx + dy, step);
+                value[4] = Bricks::decode(d + dz, step);
+                value[5] = Bricks::decode(d + dx + dz, step);
+                value[6] = Bricks::decode(d + dy + dz, step);
+                value[7] = Bricks::decode(d + dx + dy + dz, step);
+                return;
+            }
+            // A plane or deep brick: the corners' integer plane (flat for a deep brick) plus
+            // their 16-bit codes, capped at the band's edge.
+            const uint8_t* d = mBricks->codes(b) + 2 * offset;
+            int32_t gx = 0, gy = 0, gz = 0;
+            if (mBricks->isPlane(b)) {
+                const int32_t* g = mBricks->gradient(b);
+                gx = g[0], gy = g[1], gz = g[2];
+            }
+            const int32_t n = mBricks->base(b) + gx * (local.x() & kLast) +
+                              gy * (local.y() & kLast) + gz * (local.z() & kLast);
+            constexpr int dx = 2 << (2 * kLog2), dy = 2 << kLog2, dz = 2;  // bytes
+            const float ceiling = mBricks->planeCeiling();
+            const auto at = [&](int bytes, int32_t plane) {
+                uint16_t q = 0;
+                std::memcpy(&q, d + bytes, sizeof q);
+                // exact, and capped, as decode()
+                return std::min(static_cast<float>(n + plane + int32_t(q)) * step, ceiling);
+            };
+            value[0] = at(0, 0);
+            value[1] = at(dx, gx);
+            value[2] = at(dy, gy);
+            value[3] = at(dx + dy, gx + gy);
+            value[4] = at(dz, gz);
+            value[5] = at(dx + dz, gx + gz);
+            value[6] = at(dy + dz, gy + gz);
+            value[7] = at(dx + dy + dz, gx + gy + gz);
             return;
         }
         // Look up each distinct brick once: corner k lies in brick k's own place only along
-        // the axes the cell crosses. (Cells in one deep brick come here too: more than
-        // kDeepVoxels − √3 voxels inside, they are rarely sampled.)
+        // the axes the cell crosses.
         uint32_t brick[8];
         brick[0] = first;
         brick[1] = cx ? mBricks->brick(bx + 1, by, bz) : brick[0];

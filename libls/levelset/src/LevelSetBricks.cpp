@@ -86,7 +86,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
       mTransform(grid.transform().copy()),
       mMetadata(grid.copyMeta())
 {
-    chooseDeepStep(grid.voxelSize());
+    chooseSteps(grid.voxelSize());
     sizeTable(valueBox(grid));
     const std::vector<Place> places = classifyPlaces(grid);
     SharedBricks shared;
@@ -103,7 +103,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
 
 /// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel; and the plane bricks'
 /// coarsest (cubic voxels only: else neither kind is used).
-void LevelSetBricks::chooseDeepStep(const openvdb::Vec3d& voxel)
+void LevelSetBricks::chooseSteps(const openvdb::Vec3d& voxel)
 {
     if (!(voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2])) return;
     if (std::isfinite(mPlaneCeiling)) mPlaneStepLimit = kPlaneStepVoxels * voxel[0];

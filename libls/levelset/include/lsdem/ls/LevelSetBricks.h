@@ -19,14 +19,15 @@
 ///   never to 0 or less). Near the surface (|φ| ≤ 3√3 voxels in a brick that it crosses) that
 ///   is under 2.5e-6 voxel. Every other kind is decided on these "24-bit values".
 /// - **Plane** (2 bytes a value): the 24-bit values rounded again, to the nearest multiple of
-///   a coarser power of two (never across zero), n · step with n = base + g·(i, j, k) + q: an
-///   integer plane over the brick's voxels (i, j, k) and q an unsigned 16-bit remainder. The
-///   distance to a surface is nearly linear over 4 voxels, so the remainders are small: on a
-///   sphere of 20 voxels the shell's bricks fit at a step of at most 2^-18 voxel, where 16
-///   bits alone would need 2^-12. The step is the least that fits and at most
-///   kPlaneStepVoxels (2^-17 voxel): a value is within half a step (a step where the sign
-///   would be lost) of its 24-bit value, so within 2^-18 + 2^-21·|largest| voxel of the
-///   float, under 6.3e-6 voxel near the surface. Flat faces (a plane exactly) keep their
+///   a power of two at least their step (never across zero), n · step with n = base +
+///   g·(i, j, k) + q: an integer plane over the brick's voxels (i, j, k) and q an unsigned
+///   16-bit remainder. The distance to a surface is nearly linear over 4 voxels, so the
+///   remainders are small: on a sphere of 20 voxels the shell's bricks fit at a step of at
+///   most 2^-18 voxel, where 16 bits alone would need 2^-12. The step is the least that fits
+///   (found by doubling it) and at most kPlaneStepVoxels (2^-17 voxel): a value is within half
+///   a step of its 24-bit value (a whole one if it lies within half a step of zero: it keeps
+///   its sign), so within 2^-18 + 2^-21·|largest| voxel of the float, under 6.3e-6 voxel near
+///   the surface (7.6e-6 within 2^-18 voxel of it). Flat faces (a plane exactly) keep their
 ///   24-bit values; creases and corners, where no plane fits, stay wide. Values at the
 ///   background (a bake caps the distance there, at the band's edge) bend the plane: the plane
 ///   is fitted to the others, and plane bricks decode to at most the background.
@@ -226,7 +227,7 @@ private:
     struct Place;  ///< what pass 1 finds at a place of the table
     /// (value bits, active) of a brick of one value → that brick.
     using SharedBricks = std::map<std::pair<uint32_t, uint8_t>, uint32_t>;
-    void chooseDeepStep(const openvdb::Vec3d& voxel);
+    void chooseSteps(const openvdb::Vec3d& voxel);
     void sizeTable(const openvdb::CoordBBox& box);
     std::vector<Place> classifyPlaces(const openvdb::FloatGrid& grid) const;
     uint32_t layOutBricks(const std::vector<Place>& places, SharedBricks& shared);

@@ -378,7 +378,8 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
     Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
     for (int k = 0; k < kVoxels; ++k) {
         if (capped[k]) continue;
-        const Eigen::Vector4d x(1.0, k >> (2 * kLog2Dim), (k >> kLog2Dim) & (kDim - 1), k & (kDim - 1));
+        const openvdb::Coord v = voxelOf(k);
+        const Eigen::Vector4d x(1.0, v.x(), v.y(), v.z());
         normal += x * x.transpose();
     }
     const Eigen::LDLT<Eigen::Matrix4d> fit(normal);
@@ -393,8 +394,7 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
         lowest = std::numeric_limits<int64_t>::max();
         int64_t highest = std::numeric_limits<int64_t>::min();
         for (int k = 0; k < kVoxels; ++k) {
-            rest[k] = n[k] - (g[0] * (k >> (2 * kLog2Dim)) + g[1] * ((k >> kLog2Dim) & (kDim - 1)) +
-                              g[2] * (k & (kDim - 1)));
+            rest[k] = n[k] - planeAt(g, k);
             if (capped[k]) continue;
             lowest = std::min<int64_t>(lowest, rest[k]);
             highest = std::max<int64_t>(highest, rest[k]);
@@ -432,11 +432,9 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
         double allMoment[3] = {0.0, 0.0, 0.0};
         for (int k = 0; k < kVoxels; ++k) {
             n[k] = wideCode(stored[k], step);
-            const int i = k >> (2 * kLog2Dim), j = (k >> kLog2Dim) & (kDim - 1), l = k & (kDim - 1);
-            if (!capped[k]) freeMoment += Eigen::Vector4d(1.0, i, j, l) * double(n[k]);
-            allMoment[0] += (i - 1.5) * n[k];
-            allMoment[1] += (j - 1.5) * n[k];
-            allMoment[2] += (l - 1.5) * n[k];
+            const openvdb::Coord v = voxelOf(k);
+            if (!capped[k]) freeMoment += Eigen::Vector4d(1.0, v.x(), v.y(), v.z()) * double(n[k]);
+            for (int a = 0; a < 3; ++a) allMoment[a] += (v[a] - 1.5) * n[k];
         }
         Eigen::Vector3d gradients[2];
         int candidates = 0;
@@ -475,9 +473,7 @@ bool LevelSetBricks::isPlaneBrick(const RawBrick& raw) const
     // Its decoded values must come back as this brick: not deep, and the same plane codes.
     RawBrick decoded = raw;
     for (int k = 0; k < kVoxels; ++k) {
-        const int32_t n = codes.base + int32_t(codes.q[k]) + codes.gradient[0] * (k >> (2 * kLog2Dim)) +
-                          codes.gradient[1] * ((k >> kLog2Dim) & (kDim - 1)) +
-                          codes.gradient[2] * (k & (kDim - 1));
+        const int32_t n = codes.base + int32_t(codes.q[k]) + planeAt(codes.gradient, k);
         decoded.value[k] = std::min(static_cast<float>(double(n) * codes.step), mPlaneCeiling);
     }
     int32_t unused[kVoxels];

@@ -146,6 +146,18 @@ public:
         constexpr int m = kDim - 1;
         return ((c.x() & m) << (2 * kLog2Dim)) | ((c.y() & m) << kLog2Dim) | (c.z() & m);
     }
+    /// The voxel at @a offset within a brick (the inverse of offset()).
+    static openvdb::Coord voxelOf(int offset)
+    {
+        return openvdb::Coord(offset >> (2 * kLog2Dim), (offset >> kLog2Dim) & (kDim - 1),
+                              offset & (kDim - 1));
+    }
+    /// g·(i, j, k) for the voxel (i, j, k) at @a offset: a plane brick's integer plane there.
+    static int32_t planeAt(const int32_t* g, int offset)
+    {
+        const openvdb::Coord v = voxelOf(offset);
+        return g[0] * v.x() + g[1] * v.y() + g[2] * v.z();
+    }
     /// Whether brick @a brick is deep.
     bool isDeep(uint32_t brick) const { return brick >= mDeepFirst; }
     /// Whether brick @a brick is a plane brick.
@@ -159,11 +171,7 @@ public:
         uint16_t q = 0;
         std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
         int32_t n = mBase[brick - mWideBricks] + int32_t(q);
-        if (brick < mDeepFirst) {
-            const int32_t* g = gradient(brick);
-            n += g[0] * (offset >> (2 * kLog2Dim)) + g[1] * ((offset >> kLog2Dim) & (kDim - 1)) +
-                 g[2] * (offset & (kDim - 1));
-        }
+        if (brick < mDeepFirst) n += planeAt(gradient(brick), offset);
         // exact: |n| ≤ 2^22 (checked when the brick was made), the step a power of two; voxels
         // at a band's edge decode to its cap (a deep brick's values are far below it)
         return std::min(static_cast<float>(n) * mBrickStep[brick], mPlaneCeiling);
@@ -309,9 +317,7 @@ void LevelSetBricks::forEachBrick(VisitVoxel&& visit, VisitUniform&& visitUnifor
                     continue;
                 }
                 for (int n = 0; n < kVoxels; ++n) {
-                    const openvdb::Coord c = origin.offsetBy(n >> (2 * kLog2Dim),
-                                                             (n >> kLog2Dim) & (kDim - 1),
-                                                             n & (kDim - 1));
+                    const openvdb::Coord c = origin + voxelOf(n);
                     visit(c, decode(b, n), isOn(b, n));
                 }
             }

@@ -221,13 +221,14 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
         std::vector<std::string> warnings;
         baked.push_back(bakeMesh(smallPebble(seed), "pebble", o, warnings));
     }
-    double resident = 0, grids = 0, nodes = 0, bricks = 0, deepBricks = 0, planeBricks = 0;
+    double resident = 0, grids = 0, nodes = 0, bricks = 0, deepBricks = 0, planeBricks = 0,
+           narrowBricks = 0;
     for (auto _ : state) {
         malloc_trim(0);
         const double before = statusBytes("VmRSS");
         std::vector<GrainAsset> assets;
         assets.reserve(1000);
-        grids = bricks = deepBricks = planeBricks = 0;
+        grids = bricks = deepBricks = planeBricks = narrowBricks = 0;
         for (int i = 0; i < 1000; ++i) {
             GrainAsset copy = baked[size_t(i % 10)];
             if (asSimulationHolds) copy.nodes.dropNormals();
@@ -237,6 +238,7 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
             bricks += double(levelSet->grid->brickCount());
             deepBricks += double(levelSet->grid->deepBrickCount());
             planeBricks += double(levelSet->grid->planeBrickCount());
+            narrowBricks += double(levelSet->grid->narrowBrickCount());
             copy.levelSet = levelSet;
             assets.push_back(std::move(copy));
         }
@@ -251,6 +253,7 @@ void BM_ThousandAssetsMemory(benchmark::State& state)
     state.counters["bricks_per_asset"] = bricks / 1000.0;
     state.counters["deep_bricks_per_asset"] = deepBricks / 1000.0;
     state.counters["plane_bricks_per_asset"] = planeBricks / 1000.0;
+    state.counters["narrow_bricks_per_asset"] = narrowBricks / 1000.0;
 }
 BENCHMARK(BM_ThousandAssetsMemory)
     ->ArgName("in_simulation")
@@ -275,6 +278,7 @@ void BM_AssetMemory(benchmark::State& state)
     state.counters["bricks"] = double(grid.brickCount());
     state.counters["deep_bricks"] = double(grid.deepBrickCount());
     state.counters["plane_bricks"] = double(grid.planeBrickCount());
+    state.counters["narrow_bricks"] = double(grid.narrowBrickCount());
 }
 BENCHMARK(BM_AssetMemory)->Iterations(1);
 

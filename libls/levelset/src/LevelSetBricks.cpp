@@ -102,14 +102,25 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
 }
 
 /// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel; and the plane bricks'
-/// coarsest (cubic voxels only: else neither kind is used).
+/// coarsest, kPlaneStepVoxels voxels for 16 bits and the power of two in (2^-10, 2^-9] voxel
+/// for 8 (cubic voxels only: else neither kind is used). The latter is a power of two
+/// whatever the voxel, so 255 codes span at least 255·2^-10 voxel (a sphere of 9 voxels'
+/// shell bricks).
 void LevelSetBricks::chooseSteps(const openvdb::Vec3d& voxel)
 {
     if (!(voxel[0] > 0.0 && voxel[0] == voxel[1] && voxel[1] == voxel[2])) return;
-    if (std::isfinite(mPlaneCeiling)) mPlaneStepLimit = kPlaneStepVoxels * voxel[0];
-    int e = 0;
-    std::frexp(std::ldexp(voxel[0], -12), &e);  // = m · 2^e, m in [0.5, 1)
-    mDeepStep = float(std::ldexp(1.0, e - 1));
+    // The power of two in (limit/2, limit] for a limit of kVoxels voxels.
+    const auto octaveBelow = [&](double voxels) {
+        int e = 0;
+        std::frexp(voxels * voxel[0], &e);  // = m · 2^e, m in [0.5, 1)
+        return std::ldexp(1.0, e - 1);
+    };
+    mVoxel = voxel[0];
+    if (std::isfinite(mPlaneCeiling)) {
+        mPlaneStepLimit = kPlaneStepVoxels * voxel[0];
+        mNarrowStepLimit = octaveBelow(kNarrowPlaneStepVoxels);
+    }
+    mDeepStep = float(octaveBelow(std::ldexp(1.0, -12)));
     // The float at or below −kDeepVoxels voxels: a deep value is at least that deep.
     const double below = -kDeepVoxels * voxel[0];
     mDeepBelow = float(below);
@@ -144,6 +155,7 @@ struct LevelSetBricks::Place
     bool varies = false;
     bool deep = false;
     bool plane = false;
+    bool narrow = false;  ///< a plane brick of 8-bit remainders
     bool finite = true;
     SharedBricks::key_type uniform{0, 0};  ///< (value bits, active) of one value
 };
@@ -159,7 +171,9 @@ LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
         p.varies = varies;
         int32_t unused[kVoxels];
         p.deep = varies && deepCodes(b, unused);
-        p.plane = varies && !p.deep && isPlaneBrick(b);
+        PlaneCodes codes;
+        p.plane = varies && !p.deep && isPlaneBrick(b, codes);
+        p.narrow = p.plane && codes.narrow;
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
         if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
     });
@@ -170,8 +184,8 @@ LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
 /// into @a shared (which holds the background's, brick 0); returns the number of bricks. Brick
 /// 0 is the inactive background, shared by every such place and by all outside; the bricks of
 /// varying values and each new value of one come next in the order of their first place, then
-/// the deep bricks in the order of their places, so the layout does not depend on the thread
-/// count. (Plane bricks come between the two, likewise.)
+/// the deep bricks in the order of their places, then the 16-bit plane bricks and last the
+/// narrow ones, likewise, so the layout does not depend on the thread count.
 uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBricks& shared)
 {
     uint32_t bricks = 1;
@@ -196,10 +210,13 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
     }
     mWideBricks = bricks;
     for (size_t slot = 0; slot < places.size(); ++slot)
-        if (places[slot].plane) mTable[slot] = bricks++;
-    mDeepFirst = bricks;
-    for (size_t slot = 0; slot < places.size(); ++slot)
         if (places[slot].deep) mTable[slot] = bricks++;
+    mPlaneFirst = bricks;
+    for (size_t slot = 0; slot < places.size(); ++slot)
+        if (places[slot].plane && !places[slot].narrow) mTable[slot] = bricks++;
+    mNarrowFirst = bricks;
+    for (size_t slot = 0; slot < places.size(); ++slot)
+        if (places[slot].narrow) mTable[slot] = bricks++;
     return bricks;
 }
 
@@ -208,11 +225,11 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
 /// 16-bit brick follows.
 void LevelSetBricks::allocateBricks(uint32_t bricks)
 {
-    const size_t narrow = bricks - mWideBricks;
-    mCode.assign(size_t(mWideBricks) * 3 * kVoxels + narrow * 2 * kVoxels + 1, 0);
+    const size_t twoBytes = mNarrowFirst - mWideBricks, oneByte = bricks - mNarrowFirst;
+    mCode.assign((size_t(mWideBricks) * 3 + twoBytes * 2 + oneByte) * kVoxels + 1, 0);
     mBrickStep.assign(bricks, 0.0f);
-    mBase.assign(narrow, 0);
-    mGradient.assign(3 * size_t(mDeepFirst - mWideBricks), 0);
+    mBase.assign(bricks - mWideBricks, 0);
+    mGradient.assign(3 * size_t(bricks - mPlaneFirst), 0);
     mActive.assign(size_t(bricks) * kMaskWords, 0);
 }
 
@@ -290,8 +307,9 @@ int32_t wideCode(double v, double step)
     return q;
 }
 
-/// A plane brick's remainders run from 0 to this.
+/// A plane brick's remainders run from 0 to this (a narrow one's to 255).
 constexpr int64_t kPlaneCodes = std::numeric_limits<uint16_t>::max();
+constexpr int64_t kNarrowPlaneCodes = std::numeric_limits<uint8_t>::max();
 
 /// Deep codes: below this in size a deep value is a multiple of the 24-bit step its brick
 /// would have (so encoding it again gives it back), and converts to float exactly.
@@ -350,9 +368,11 @@ void LevelSetBricks::writeDeepBrick(uint32_t brick, const RawBrick& raw)
     }
 }
 
-bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
+bool LevelSetBricks::planeCodes(const RawBrick& raw, bool narrow, PlaneCodes& out) const
 {
-    if (!(mPlaneStepLimit > 0.0)) return false;
+    const double stepLimit = narrow ? mNarrowStepLimit : mPlaneStepLimit;
+    const int64_t largest = narrow ? kNarrowPlaneCodes : kPlaneCodes;
+    if (!(stepLimit > 0.0)) return false;
     const double ceiling = mPlaneCeiling;
     for (float v : raw.value)
         if (!std::isfinite(v) || double(v) > ceiling) return false;
@@ -390,7 +410,6 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
     int64_t spread = std::numeric_limits<int64_t>::max();
     const auto fitsPlane = [&](const int32_t (&n)[kVoxels], const int32_t (&g)[3], double step,
                                int32_t (&rest)[kVoxels], int64_t& lowest) {
-        constexpr int64_t kLargest = kPlaneCodes;
         lowest = std::numeric_limits<int64_t>::max();
         int64_t highest = std::numeric_limits<int64_t>::min();
         for (int k = 0; k < kVoxels; ++k) {
@@ -403,7 +422,7 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
             lowest = *std::min_element(rest, rest + kVoxels);
             highest = lowest;
         }
-        if (highest - lowest > kLargest) {
+        if (highest - lowest > largest) {
             spread = std::min(spread, highest - lowest);
             return false;
         }
@@ -414,7 +433,7 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
             if (!capped[k]) continue;
             const int64_t atCeiling = int64_t(std::ceil(ceiling / step));
             const int64_t q = std::max<int64_t>(atCeiling - (n[k] - rest[k]) - lowest, 0);
-            if (q > kLargest) {
+            if (q > largest) {
                 spread = 0;
                 return false;
             }
@@ -423,10 +442,11 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
         return true;
     };
     // From the 24-bit values, each step from theirs up to the limit, the first whose codes lie
-    // within 65535 of one of those planes, rounded. Codes that spread over S about their
-    // plane spread over about S/2^j at 2^j times the step (the fit is linear in the codes),
-    // so the steps at which they would still spread over more than twice 65535 are skipped.
-    for (double step = wide; step <= mPlaneStepLimit;) {
+    // within the largest remainder (255 or 65535) of one of those planes, rounded. Codes that
+    // spread over S about their plane spread over about S/2^j at 2^j times the step (the fit
+    // is linear in the codes), so the steps at which they would still spread over more than
+    // twice the largest are skipped.
+    for (double step = wide; step <= stepLimit;) {
         int32_t n[kVoxels];
         Eigen::Vector4d freeMoment = Eigen::Vector4d::Zero();
         double allMoment[3] = {0.0, 0.0, 0.0};
@@ -452,11 +472,12 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
         }
         if (!found) {
             int doublings = 1;
-            while (doublings < 24 && spread > (kPlaneCodes << (doublings + 1))) ++doublings;
+            while (doublings < 24 && spread > (largest << (doublings + 1))) ++doublings;
             step = std::ldexp(step, doublings);
             spread = std::numeric_limits<int64_t>::max();
             continue;
         }
+        out.narrow = narrow;
         out.step = step;
         out.base = static_cast<int32_t>(lowest);
         std::copy(g, g + 3, out.gradient);
@@ -466,10 +487,116 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, PlaneCodes& out) const
     return false;
 }
 
-bool LevelSetBricks::isPlaneBrick(const RawBrick& raw) const
+namespace {
+
+/// Whether the 24-bit values @a stored of a brick (those @a free: not at the band's cap) are
+/// smooth: within a quarter of their spread about their least-squares plane of their
+/// least-squares quadratic. A curved surface's distance is (a sphere of 5 or more voxels: 0.21
+/// of it at most, of 10 or more 0.08); a crease's is not (where a tilted box's edge passes
+/// through bricks of its faces: 0.4 to 0.65).
+bool isSmooth(const double (&stored)[LevelSetBricks::kVoxels],
+              const bool (&free)[LevelSetBricks::kVoxels])
 {
-    PlaneCodes codes;
-    if (!planeCodes(raw, codes)) return false;
+    using Basis = Eigen::Matrix<double, 10, 1>;
+    const auto basis = [](int k) {
+        const openvdb::Coord v = LevelSetBricks::voxelOf(k);
+        const double x = v.x() - 1.5, y = v.y() - 1.5, z = v.z() - 1.5;
+        Basis b;
+        b << 1.0, x, y, z, x * x, y * y, z * z, x * y, y * z, x * z;
+        return b;
+    };
+    Eigen::Matrix<double, 10, 10> normal = Eigen::Matrix<double, 10, 10>::Zero();
+    Basis moment = Basis::Zero();
+    Eigen::Matrix4d normal4 = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d moment4 = Eigen::Vector4d::Zero();
+    for (int k = 0; k < LevelSetBricks::kVoxels; ++k) {
+        if (!free[k]) continue;
+        const Basis b = basis(k);
+        normal += b * b.transpose();
+        moment += b * stored[k];
+        normal4 += b.head<4>() * b.head<4>().transpose();
+        moment4 += b.head<4>() * stored[k];
+    }
+    const Eigen::LDLT<Eigen::Matrix<double, 10, 10>> quadratic(normal);
+    const Eigen::LDLT<Eigen::Matrix4d> plane(normal4);
+    const auto spans = [](const auto& fit) {
+        return fit.info() == Eigen::Success && fit.isPositive() &&
+               fit.vectorD().minCoeff() > 1e-9 * fit.vectorD().maxCoeff();
+    };
+    if (!spans(quadratic) || !spans(plane)) return false;
+    const Basis q = quadratic.solve(moment);
+    const Eigen::Vector4d p = plane.solve(moment4);
+    double low = std::numeric_limits<double>::infinity(), high = -low, quadraticResidual = 0.0;
+    for (int k = 0; k < LevelSetBricks::kVoxels; ++k) {
+        if (!free[k]) continue;
+        const Basis b = basis(k);
+        const double aboutPlane = stored[k] - p.dot(b.head<4>());
+        low = std::min(low, aboutPlane);
+        high = std::max(high, aboutPlane);
+        quadraticResidual = std::max(quadraticResidual, std::abs(stored[k] - q.dot(b)));
+    }
+    return quadraticResidual <= 0.25 * (high - low);
+}
+
+} // namespace
+
+bool LevelSetBricks::keepsFlatSurface(const RawBrick& raw, const PlaneCodes& codes) const
+{
+    // The 24-bit values within √3 voxels of the surface, their plane and how far the codes move
+    // them (all decided on the 24-bit values, as every kind is).
+    const double wide = wideStep(raw), near = std::sqrt(3.0) * mVoxel;
+    Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d moment = Eigen::Vector4d::Zero();
+    double stored[kVoxels];
+    bool isNear[kVoxels];
+    double moved = 0.0;
+    int count = 0;
+    for (int k = 0; k < kVoxels; ++k) {
+        stored[k] = double(wideCode(raw.value[k], wide)) * wide;
+        isNear[k] = std::abs(stored[k]) <= near;
+        if (!isNear[k]) continue;
+        const openvdb::Coord v = voxelOf(k);
+        const Eigen::Vector4d x(1.0, v.x(), v.y(), v.z());
+        normal += x * x.transpose();
+        moment += x * stored[k];
+        const int32_t n = codes.base + int32_t(codes.q[k]) + planeAt(codes.gradient, k);
+        moved = std::max(moved, std::abs(double(n) * codes.step - stored[k]));
+        ++count;
+    }
+    if (count == 0 || moved == 0.0) return true;  // no surface here, or nothing moved
+    // A crease (a polyhedron's edge) strays from a plane though the faces beside it are flat.
+    // (The voxels at the band's cap, as planeCodes tells them, bend it too: they are left out.)
+    const double ceiling = mPlaneCeiling;
+    const double cap = ceiling <= std::ldexp(wide, 22) ? double(wideCode(ceiling, wide)) * wide
+                                                       : std::numeric_limits<double>::infinity();
+    bool free[kVoxels];
+    for (int k = 0; k < kVoxels; ++k) free[k] = stored[k] < cap;
+    if (!isSmooth(stored, free)) return false;
+    // A smooth brick whose near voxels are too few to fix a plane (the surface clips a corner)
+    // strays from its plane as a whole: it is curved there.
+    const Eigen::LDLT<Eigen::Matrix4d> fit(normal);
+    if (count < 4 || fit.info() != Eigen::Success || !fit.isPositive() ||
+        !(fit.vectorD().minCoeff() > 1e-9 * fit.vectorD().maxCoeff()))
+        return true;
+    const Eigen::Vector4d plane = fit.solve(moment);
+    double stray = 0.0;
+    for (int k = 0; k < kVoxels; ++k) {
+        if (!isNear[k]) continue;
+        const openvdb::Coord v = voxelOf(k);
+        stray = std::max(stray, std::abs(stored[k] - plane.dot(Eigen::Vector4d(1.0, v.x(), v.y(), v.z()))));
+    }
+    return moved <= stray;
+}
+
+bool LevelSetBricks::shellCodes(const RawBrick& raw, PlaneCodes& out) const
+{
+    return (planeCodes(raw, true, out) && keepsFlatSurface(raw, out)) ||
+           planeCodes(raw, false, out);
+}
+
+bool LevelSetBricks::isPlaneBrick(const RawBrick& raw, PlaneCodes& codes) const
+{
+    if (!shellCodes(raw, codes)) return false;
     // Its decoded values must come back as this brick: not deep, and the same plane codes.
     RawBrick decoded = raw;
     for (int k = 0; k < kVoxels; ++k) {
@@ -478,21 +605,24 @@ bool LevelSetBricks::isPlaneBrick(const RawBrick& raw) const
     }
     int32_t unused[kVoxels];
     PlaneCodes again;
-    return !deepCodes(decoded, unused) && planeCodes(decoded, again) && again == codes;
+    return !deepCodes(decoded, unused) && shellCodes(decoded, again) && again == codes;
 }
 
 void LevelSetBricks::writePlaneBrick(uint32_t brick, const RawBrick& raw)
 {
     PlaneCodes codes;
-    planeCodes(raw, codes);  // true: the brick was numbered a plane brick for it
+    shellCodes(raw, codes);  // true: the brick was numbered a plane brick of this width for it
     mBase[brick - mWideBricks] = codes.base;
     std::copy(codes.gradient, codes.gradient + 3,
-              mGradient.begin() + std::ptrdiff_t(3 * size_t(brick - mWideBricks)));
+              mGradient.begin() + std::ptrdiff_t(3 * size_t(brick - mPlaneFirst)));
     mBrickStep[brick] = float(codes.step);
     std::copy(raw.active, raw.active + kMaskWords,
               mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords));
     uint8_t* out = writableCodes(brick);
-    for (int k = 0; k < kVoxels; ++k) std::memcpy(out + 2 * k, &codes.q[k], sizeof codes.q[k]);
+    if (codes.narrow)
+        for (int k = 0; k < kVoxels; ++k) out[k] = static_cast<uint8_t>(codes.q[k]);
+    else
+        for (int k = 0; k < kVoxels; ++k) std::memcpy(out + 2 * k, &codes.q[k], sizeof codes.q[k]);
 }
 
 openvdb::FloatGrid::Ptr LevelSetBricks::toFloatGrid() const

@@ -448,10 +448,10 @@ TEST(Bake, ATwoVoxelBandHoldsEveryValueThatContactReads)
         if (1.0 - p.norm() < onlyWideBricks - 1e-9) {
             // The grids' bricks start one voxel apart, so each rounds to its 24 bits and its
             // plane bricks' steps its own way: each corner within 2.4e-7 of the float as 24 bits
-            // (docs/assets.md) and then within a plane step of that (at most 2^-17 voxel), so
+            // (docs/assets.md) and then within a plane step of that (at most 2^-9 voxel), so
             // φ within twice their sum and each component of ∇φ within twice that per voxel. A
             // missing corner would be off by 0.01 or more.
-            const double corner = 2.4e-7 + LevelSetBricks::kPlaneStepVoxels * vox;
+            const double corner = 2.4e-7 + LevelSetBricks::kNarrowPlaneStepVoxels * vox;
             ASSERT_NEAR(x.phi, y.phi, 2.0 * corner) << "at " << p.transpose();
             ASSERT_LT((x.gradient - y.gradient).norm(), std::sqrt(3.0) * 4.0 * corner / vox)
                 << "at " << p.transpose();
@@ -460,7 +460,7 @@ TEST(Bake, ATwoVoxelBandHoldsEveryValueThatContactReads)
             // 2.4e-7 of the float (above), so φ within a step and 2 × 2.4e-7 and each
             // component of ∇φ within that much per voxel; and a corner in a plane brick within
             // a plane step either way, 2 of them between the grids, twice that in ∇φ.
-            const double planeStep = LevelSetBricks::kPlaneStepVoxels * vox;
+            const double planeStep = LevelSetBricks::kNarrowPlaneStepVoxels * vox;
             const double apart = deepStep + 5e-7;
             ASSERT_NEAR(x.phi, y.phi, apart + 2.0 * planeStep) << "at " << p.transpose();
             ASSERT_LT((x.gradient - y.gradient).norm(),

@@ -233,19 +233,30 @@ TEST(Cube27Study, CoarseAdaptedRunMatchesTheClosedForm)
         EXPECT_GT(run.stabilityLimitSeen, 2.0 * run.timeStep);
 }
 
-// The volume law against its own continuum limit (kv times the caps' integral of d), with the
-// tolerance and reasoning of the adapted run above: the two laws differ by under 1 % here, and
-// it was reported against 9·kv·δ/4, one linear spring per contact (−19.5 % at N = 4000).
+// The volume law against its own continuum limit (kv times the caps' integral of d); it was
+// reported against 9·kv·δ/4, one linear spring per contact (−19.5 % at N = 4000). It has no
+// friction, and without friction this coarse assembly comes out below the closed form by 3.0
+// to 4.6 % with the volume law and the adapted one alike (measured over 2, 4 and 10
+// orientation sets, 2026-11-30): the adapted run above has friction. A change of a level set's
+// values by 1e-4 voxel moved that mean by half a percent. So the volume law is held to the
+// adapted law without friction on the same orientations (the same nodes' tractions, summed
+// along the mean normal instead of each node's: within 1.2 % in those runs; 2 % allowed), and
+// to its continuum limit within the frictionless assembly's 6 %.
 TEST(Cube27Study, CoarseVolumeRunMatchesItsOwnContinuumLimit)
 {
-    const lsdem::Cube27Result result =
-        lsdem::runCube27(coarseStudy(lsdem::Formulation::Volume, {1000.0}, 4));
+    lsdem::Cube27Options o = coarseStudy(lsdem::Formulation::Volume, {1000.0}, 4);
+    o.formulations = {lsdem::Formulation::Volume, lsdem::Formulation::Adapted};
+    o.friction = 0.0;
+    const lsdem::Cube27Result result = lsdem::runCube27(o);
     const lsdem::Cube27Row& r = lastRow(result, lsdem::Formulation::Volume, 1000, 1000.0);
+    const lsdem::Cube27Row& a = lastRow(result, lsdem::Formulation::Adapted, 1000, 1000.0);
     EXPECT_NEAR(r.delta, 0.3, 1e-9);
     EXPECT_NEAR(r.forceExact, lsdem::cube27ExactForce(5.0, 0.3, 1e3, lsdem::Formulation::Volume),
                 1e-9);
     EXPECT_NEAR(r.forceClosed, lsdem::cube27ClosedForm(5.0, 0.3, 1e3), 1e-9);
-    EXPECT_NEAR(r.forceMean / r.forceExact, 1.0, 0.04)
+    EXPECT_NEAR(r.forceMean / a.forceMean, 1.0, 0.02)
+        << "P = " << r.forceMean << " N, adapted without friction " << a.forceMean << " N";
+    EXPECT_NEAR(r.forceMean / r.forceExact, 1.0, 0.06)
         << "P = " << r.forceMean << " N, exact " << r.forceExact << " N";
 }
 

@@ -1,12 +1,12 @@
 /// @file LevelSetBricks.h
-/// @brief A grain's level set as held in memory: 4³-voxel bricks of 16-bit codes on a plane
-///        (24-bit values where no plane fits closely enough, 16-bit deep inside the grain)
-///        under one dense table of the grid's bounding box. Built from a float grid
+/// @brief A grain's level set as held in memory: 4³-voxel bricks of 8-bit codes on a plane
+///        (16-bit beside creases, 24-bit values where no plane fits closely enough, 16-bit deep
+///        inside the grain) under one dense table of the grid's bounding box. Built from a float grid
 ///        (toLevelSetGrid), turned back into one for files and OpenVDB's tools (toFloatGrid);
 ///        never modified.
 ///
 /// Why: a sphere-like grain of radius 20 voxels in OpenVDB's 8³ float leaves takes ~415 KiB;
-/// here ~145 KiB. Smaller bricks cover the surface shell more tightly, 2 bytes hold most
+/// here ~115 KiB. Smaller bricks cover the surface shell more tightly, 1 or 2 bytes hold most
 /// values, and the table replaces the tree walk (one multiply-add finds a brick).
 ///
 /// Three kinds of brick, each value decoding to an exact float:
@@ -18,19 +18,34 @@
 ///   that would lose the sign: a negative value never decodes to 0 or more, a positive one
 ///   never to 0 or less). Near the surface (|φ| ≤ 3√3 voxels in a brick that it crosses) that
 ///   is under 2.5e-6 voxel. Every other kind is decided on these "24-bit values".
-/// - **Plane** (2 bytes a value): the 24-bit values rounded again, to the nearest multiple of
-///   a power of two at least their step (never across zero), n · step with n = base +
-///   g·(i, j, k) + q: an integer plane over the brick's voxels (i, j, k) and q an unsigned
-///   16-bit remainder. The distance to a surface is nearly linear over 4 voxels, so the
-///   remainders are small: on a sphere of 20 voxels the shell's bricks fit at a step of at
-///   most 2^-18 voxel, where 16 bits alone would need 2^-12. The step is the least that fits
-///   (found by doubling it) and at most kPlaneStepVoxels (2^-17 voxel): a value is within half
-///   a step of its 24-bit value (a whole one if it lies within half a step of zero: it keeps
-///   its sign), so within 2^-18 + 2^-21·|largest| voxel of the float, under 6.3e-6 voxel near
-///   the surface (7.6e-6 within 2^-18 voxel of it). Flat faces (a plane exactly) keep their
-///   24-bit values; creases and corners, where no plane fits, stay wide. Values at the
-///   background (a bake caps the distance there, at the band's edge) bend the plane: the plane
-///   is fitted to the others, and plane bricks decode to at most the background.
+/// - **Plane** (1 byte a value, 2 beside creases): the 24-bit values rounded
+///   again, to the nearest multiple of a power of two at least their step (never across
+///   zero), n · step with n = base + g·(i, j, k) + q: an integer plane over the brick's voxels
+///   (i, j, k) and q an unsigned remainder. The distance to a surface is nearly linear over 4
+///   voxels, so the remainders are small. The step is the least that fits (found by doubling
+///   it). A value is within half a step of its 24-bit value (a whole one if it lies within
+///   half a step of zero: it keeps its sign). Flat faces (a plane exactly) keep their 24-bit
+///   values; creases and corners, where no plane fits, stay wide. Values at the background (a
+///   bake caps the distance there, at the band's edge) bend the plane: the plane is fitted to
+///   the others, and plane bricks decode to at most the background. Two widths:
+///   - *8-bit* q ("narrow"), step at most the power of two in (2^-10, 2^-9] voxel
+///     (kNarrowPlaneStepVoxels): a value is within 2^-10 + 2^-21·|largest| voxel of the float,
+///     under 9.8e-4 voxel near the surface (2.0e-3 within 2^-10 voxel of it). Trilinear
+///     interpolation of a curved surface already errs by more, by a ratio the remainders fix:
+///     values that stray from their plane by S voxels over a brick are those of a curvature
+///     that interpolation misses by about S/9 (exactly, for a quadratic), and 255 codes round
+///     them to within S/255 at worst, under 1/28 of that (on a sphere of r voxels S is 2.25/r
+///     to 4/r). That reasoning fails where the values stray from a plane at a crease while the
+///     surface itself is flat (a block's face near its edge): interpolation is exact on the
+///     face, so rounding would be the only error there. So 8 bits are used only where the
+///     values are smooth (their least-squares quadratic fits them to within a quarter of their
+///     spread about the plane: a sphere of 5 or more voxels, not a polyhedron's edge at a
+///     sharp angle) and move no value near the surface (within √3 voxels: the corners a node
+///     on it reads) by more than those values already stray from their own least-squares
+///     plane. A rule of thumb, checked on tilted boxes (docs/assets.md), not a bound: a
+///     shallow crease passes it.
+///   - *16-bit* q otherwise, step at most kPlaneStepVoxels (2^-17 voxel): within 2^-18 +
+///     2^-21·|largest| voxel of the float, under 6.3e-6 voxel near the surface.
 /// - **Deep** (2 bytes a value): a brick whose every value lies kDeepVoxels or more below the
 ///   surface (as 24 bits would hold it) holds them as (base + q) · deepStep(), base one
 ///   integer per brick, q an unsigned 16-bit integer, deepStep() one power of two for the grid
@@ -88,9 +103,12 @@ public:
     /// Bound on |stored − original| of a value, relative to the largest |value| of its brick
     /// (wide bricks; the 24-bit values every kind starts from).
     static constexpr double kRelativeError = 1.0 / (1 << 21);
-    /// The coarsest step of a plane brick, in voxels: its values are within half of it (a
-    /// whole one where the sign would be lost) of their 24-bit values.
+    /// The coarsest step of a 16-bit plane brick, in voxels: its values are within half of it
+    /// (a whole one where the sign would be lost) of their 24-bit values.
     static constexpr double kPlaneStepVoxels = 1.0 / (1 << 17);
+    /// The same for an 8-bit (narrow) plane brick: its step is at most the power of two in
+    /// (1/2, 1] of this many voxels.
+    static constexpr double kNarrowPlaneStepVoxels = 1.0 / (1 << 9);
     /// How far below the surface, in voxels, every value of a brick must lie for the brick to
     /// be stored deep (16 bits a value).
     static constexpr double kDeepVoxels = 3.0;
@@ -101,9 +119,11 @@ public:
     /// Bricks stored: shared ones once, deep ones included.
     size_t brickCount() const { return mBrickStep.size(); }
     /// Bricks stored deep.
-    size_t deepBrickCount() const { return mBrickStep.size() - mDeepFirst; }
-    /// Bricks stored on a plane.
-    size_t planeBrickCount() const { return mDeepFirst - mWideBricks; }
+    size_t deepBrickCount() const { return mPlaneFirst - mWideBricks; }
+    /// Bricks stored on a plane, narrow ones included.
+    size_t planeBrickCount() const { return mBrickStep.size() - mPlaneFirst; }
+    /// Bricks stored on a plane with 8-bit remainders.
+    size_t narrowBrickCount() const { return mBrickStep.size() - mNarrowFirst; }
 
     openvdb::Index64 activeVoxelCount() const;
     openvdb::CoordBBox evalActiveVoxelBoundingBox() const;
@@ -159,19 +179,26 @@ public:
         return g[0] * v.x() + g[1] * v.y() + g[2] * v.z();
     }
     /// Whether brick @a brick is deep.
-    bool isDeep(uint32_t brick) const { return brick >= mDeepFirst; }
-    /// Whether brick @a brick is a plane brick.
-    bool isPlane(uint32_t brick) const { return brick >= mWideBricks && brick < mDeepFirst; }
-    /// Whether brick @a brick holds 24-bit codes (3 bytes a value; the others 2).
+    bool isDeep(uint32_t brick) const { return brick >= mWideBricks && brick < mPlaneFirst; }
+    /// Whether brick @a brick is a plane brick (narrow or not).
+    bool isPlane(uint32_t brick) const { return brick >= mPlaneFirst; }
+    /// Whether brick @a brick is a narrow plane brick (1 byte a value).
+    bool isNarrow(uint32_t brick) const { return brick >= mNarrowFirst; }
+    /// Whether brick @a brick holds 24-bit codes (3 bytes a value; narrow ones 1, the others 2).
     bool isWide(uint32_t brick) const { return brick < mWideBricks; }
     /// The value of voxel @a offset of brick @a brick.
     float decode(uint32_t brick, int offset) const
     {
         if (isWide(brick)) return decode(codes(brick) + 3 * offset, mBrickStep[brick]);
-        uint16_t q = 0;
-        std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
-        int32_t n = mBase[brick - mWideBricks] + int32_t(q);
-        if (brick < mDeepFirst) n += planeAt(gradient(brick), offset);
+        int32_t n = mBase[brick - mWideBricks];
+        if (isNarrow(brick)) {
+            n += codes(brick)[offset];
+        } else {
+            uint16_t q = 0;
+            std::memcpy(&q, codes(brick) + 2 * offset, sizeof q);
+            n += q;
+        }
+        if (isPlane(brick)) n += planeAt(gradient(brick), offset);
         // exact: |n| ≤ 2^22 (checked when the brick was made), the step a power of two; voxels
         // at a band's edge decode to its cap (a deep brick's values are far below it)
         return std::min(static_cast<float>(n) * mBrickStep[brick], mPlaneCeiling);
@@ -183,7 +210,7 @@ public:
     /// A plane brick's integer gradient (codes per voxel along x, y, z).
     const int32_t* gradient(uint32_t brick) const
     {
-        return mGradient.data() + 3 * size_t(brick - mWideBricks);
+        return mGradient.data() + 3 * size_t(brick - mPlaneFirst);
     }
     /// The value whose 3-byte code (little-endian, two's complement) starts at @a code, which
     /// must lie in codes(): it is read as 4 bytes, one load instead of three (the array keeps
@@ -198,11 +225,13 @@ public:
         const int32_t q = static_cast<int32_t>(bits << 8) >> 8;  // sign-extend 24 bits
         return static_cast<float>(q) * step;  // exact: |q| ≤ 2^22, step a power of two (or q = 1)
     }
-    /// Brick @a brick's codes: kVoxels of them, 3 bytes each (2 for plane and deep bricks). The
-    /// wide bricks come first, so brick b starts at 64·(2b + min(b, wide bricks)).
+    /// Brick @a brick's codes: kVoxels of them, 3 bytes each (1 for narrow plane bricks, 2
+    /// for the others). The wide bricks come first and the narrow ones last, so brick b starts
+    /// at 64·(2b + min(b, W) − max(b, N) + N), W wide bricks and N the first narrow one.
     const uint8_t* codes(uint32_t brick) const
     {
-        return mCode.data() + kVoxels * (2 * size_t(brick) + std::min(brick, mWideBricks));
+        return mCode.data() + kVoxels * (2 * size_t(brick) + std::min(brick, mWideBricks) -
+                                         std::max(brick, mNarrowFirst) + mNarrowFirst);
     }
     /// The step of brick @a brick's codes (deepStep() for a deep brick).
     float step(uint32_t brick) const { return mBrickStep[brick]; }
@@ -254,22 +283,30 @@ private:
     /// A plane brick's encoding: its values are (base + g·(i, j, k) + q[k]) · step.
     struct PlaneCodes
     {
+        bool narrow = false;  ///< q in 8 bits
         double step = 0.0;
         int32_t base = 0;
         int32_t gradient[3] = {0, 0, 0};
         uint16_t q[kVoxels] = {};
         bool operator==(const PlaneCodes& o) const
         {
-            return step == o.step && base == o.base && std::equal(gradient, gradient + 3, o.gradient) &&
+            return narrow == o.narrow && step == o.step && base == o.base && std::equal(gradient, gradient + 3, o.gradient) &&
                    std::equal(q, q + kVoxels, o.q);
         }
     };
-    /// Whether @a raw's values can be stored on a plane (see the file's comment), and then
-    /// their codes; it does not check that they would be encoded again the same (isPlaneBrick).
-    bool planeCodes(const RawBrick& raw, PlaneCodes& out) const;
-    /// Whether @a raw (not deep) is stored as a plane brick: it has plane codes, and its
-    /// decoded values are neither deep nor encoded as other plane codes.
-    bool isPlaneBrick(const RawBrick& raw) const;
+    /// Whether @a raw's values can be stored on a plane of the width @a narrow says (see the
+    /// file's comment), and then their codes; it does not check that they would be encoded
+    /// again the same (isPlaneBrick).
+    bool planeCodes(const RawBrick& raw, bool narrow, PlaneCodes& out) const;
+    /// The plane codes of @a raw: 8-bit ones if they fit and keep the surface's flat parts
+    /// (keepsFlatSurface), else 16-bit ones if those fit; false if neither does.
+    bool shellCodes(const RawBrick& raw, PlaneCodes& out) const;
+    /// Whether @a codes move no value of @a raw near the surface (within √3 voxels) by more
+    /// than those values stray from their least-squares plane.
+    bool keepsFlatSurface(const RawBrick& raw, const PlaneCodes& codes) const;
+    /// Whether @a raw (not deep) is stored as a plane brick, and then its codes: it has plane
+    /// codes, and its decoded values are neither deep nor encoded as other plane codes.
+    bool isPlaneBrick(const RawBrick& raw, PlaneCodes& codes) const;
     /// Brick @a brick (already allocated, a plane brick) holding @a raw's values.
     void writePlaneBrick(uint32_t brick, const RawBrick& raw);
     /// Whether @a raw's values can be stored deep, and then their codes in deep steps (before
@@ -286,13 +323,16 @@ private:
     std::vector<uint8_t> mCode;
     std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
     uint32_t mWideBricks = 0;            ///< bricks [0, mWideBricks) are wide
-    uint32_t mDeepFirst = 0;             ///< then plane bricks up to this one, then deep ones
-    std::vector<int32_t> mBase;          ///< per plane or deep brick: its base code
+    uint32_t mPlaneFirst = 0;            ///< then deep bricks up to this one, then plane ones
+    uint32_t mNarrowFirst = 0;           ///< the 16-bit plane bricks up to this one, then narrow
+    std::vector<int32_t> mBase;          ///< per deep or plane brick: its base code
     std::vector<int32_t> mGradient;      ///< per plane brick: 3 codes per voxel
     /// The grid's background: plane bricks decode to no more than it (a band's edge caps the
     /// distance there); infinite for a background ≤ 0, and then no brick is a plane brick.
     float mPlaneCeiling = 0.0f;
     double mPlaneStepLimit = 0.0;        ///< kPlaneStepVoxels voxels (0: no plane bricks)
+    double mNarrowStepLimit = 0.0;       ///< a power of two: chooseSteps
+    double mVoxel = 0.0;                 ///< the voxel's edge (cubic voxels; else 0)
     float mDeepStep = 0.0f;
     float mDeepBelow = 0.0f;             ///< −kDeepVoxels voxels: a deep brick's values are ≤
     std::vector<uint64_t> mActive;       ///< kMaskWords per brick

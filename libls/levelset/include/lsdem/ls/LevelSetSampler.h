@@ -145,7 +145,8 @@ private:
         // Read the corners straight from the bricks (4^3 voxels) that hold them: one brick
         // 3 times in 4 per axis, otherwise 2, 4 or 8 neighbouring bricks. Every place has a
         // brick (shared ones for uniform regions), so no corner needs a special case. Voxel
-        // offsets within a brick are x*16 + y*4 + z, 3 bytes each (2 in plane and deep bricks).
+        // offsets within a brick are x*16 + y*4 + z, 3 bytes each (1 in narrow plane bricks, 2
+        // in the others).
         using Bricks = LevelSetBricks;
         constexpr int kLog2 = Bricks::kLog2Dim, kLast = Bricks::kDim - 1;
         const openvdb::Coord local = base - mBrickOrigin;
@@ -170,32 +171,21 @@ private:
                 value[7] = Bricks::decode(d + dx + dy + dz, step);
                 return;
             }
-            // A plane or deep brick: the corners' integer plane (flat for a deep brick) plus
-            // their 16-bit codes, capped at the band's edge.
-            const uint8_t* d = mBricks->codes(b) + 2 * offset;
-            int32_t gx = 0, gy = 0, gz = 0;
+            // A plane brick: the corners' integer plane plus their 8- or 16-bit codes, capped
+            // at the band's edge; a deep brick: its base plus 16-bit codes (a flat plane).
             if (mBricks->isPlane(b)) {
                 const int32_t* g = mBricks->gradient(b);
-                gx = g[0], gy = g[1], gz = g[2];
+                const int32_t n = mBricks->base(b) + g[0] * (local.x() & kLast) +
+                                  g[1] * (local.y() & kLast) + g[2] * (local.z() & kLast);
+                if (mBricks->isNarrow(b))
+                    planeCorners<uint8_t>(mBricks->codes(b) + offset, n, g, step, value);
+                else
+                    planeCorners<uint16_t>(mBricks->codes(b) + 2 * offset, n, g, step, value);
+            } else {
+                constexpr int32_t kFlat[3] = {0, 0, 0};
+                planeCorners<uint16_t>(mBricks->codes(b) + 2 * offset, mBricks->base(b), kFlat,
+                                       step, value);
             }
-            const int32_t n = mBricks->base(b) + gx * (local.x() & kLast) +
-                              gy * (local.y() & kLast) + gz * (local.z() & kLast);
-            constexpr int dx = 2 << (2 * kLog2), dy = 2 << kLog2, dz = 2;  // bytes
-            const float ceiling = mBricks->planeCeiling();
-            const auto at = [&](int bytes, int32_t plane) {
-                uint16_t q = 0;
-                std::memcpy(&q, d + bytes, sizeof q);
-                // exact, and capped, as decode()
-                return std::min(static_cast<float>(n + plane + int32_t(q)) * step, ceiling);
-            };
-            value[0] = at(0, 0);
-            value[1] = at(dx, gx);
-            value[2] = at(dy, gy);
-            value[3] = at(dx + dy, gx + gy);
-            value[4] = at(dz, gz);
-            value[5] = at(dx + dz, gx + gz);
-            value[6] = at(dy + dz, gy + gz);
-            value[7] = at(dx + dy + dz, gx + gy + gz);
             return;
         }
         // Look up each distinct brick once: corner k lies in brick k's own place only along
@@ -217,6 +207,31 @@ private:
             const openvdb::Coord c = local.offsetBy(corner & 1, (corner >> 1) & 1, corner >> 2);
             value[corner] = mBricks->decode(brick[corner], Bricks::offset(c));
         }
+    }
+
+    /// The 8 corners of a cell within one deep or plane brick whose codes, of type @a Code,
+    /// start at @a d for the cell's first corner, whose plane there is @a n, @a g its gradient.
+    template <typename Code>
+    void planeCorners(const uint8_t* d, int32_t n, const int32_t g[3], float step,
+                      float value[8]) const
+    {
+        constexpr int kLog2 = LevelSetBricks::kLog2Dim, w = sizeof(Code);
+        constexpr int dx = w << (2 * kLog2), dy = w << kLog2, dz = w;  // bytes
+        const float ceiling = mBricks->planeCeiling();
+        const auto at = [&](int bytes, int32_t plane) {
+            Code q = 0;
+            std::memcpy(&q, d + bytes, sizeof q);
+            // exact, and capped, as decode()
+            return std::min(static_cast<float>(n + plane + int32_t(q)) * step, ceiling);
+        };
+        value[0] = at(0, 0);
+        value[1] = at(dx, g[0]);
+        value[2] = at(dy, g[1]);
+        value[3] = at(dx + dy, g[0] + g[1]);
+        value[4] = at(dz, g[2]);
+        value[5] = at(dx + dz, g[0] + g[2]);
+        value[6] = at(dy + dz, g[1] + g[2]);
+        value[7] = at(dx + dy + dz, g[0] + g[1] + g[2]);
     }
 
     const LevelSetBricks* mBricks;

@@ -99,6 +99,24 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         writeUniformBrick(brick, value, uniform.second != 0);
     }
     writeVaryingBricks(grid);
+    shareMasks();
+}
+
+void LevelSetBricks::shareMasks()
+{
+    std::map<uint64_t, uint32_t> index;
+    std::vector<uint32_t> maskOf(mActive.size());
+    for (size_t b = 0; b < mActive.size(); ++b) {
+        const auto [it, added] = index.emplace(mActive[b], uint32_t(mMasks.size()));
+        if (added) mMasks.push_back(mActive[b]);
+        maskOf[b] = it->second;
+    }
+    if (mMasks.size() <= size_t(std::numeric_limits<uint16_t>::max()) + 1)
+        mMaskOf.assign(maskOf.begin(), maskOf.end());
+    else
+        mMaskOfMany = std::move(maskOf);
+    std::vector<uint64_t>().swap(mActive);
+    mMasks.shrink_to_fit();
 }
 
 /// The deep bricks' step: the power of two in (2^-13, 2^-12] voxel; and the plane bricks'
@@ -649,8 +667,7 @@ openvdb::Index64 LevelSetBricks::activeVoxelCount() const
 {
     std::vector<openvdb::Index64> perBrick(mBrickStep.size(), 0);
     for (size_t b = 0; b < perBrick.size(); ++b)
-        for (int w = 0; w < kMaskWords; ++w)
-            perBrick[b] += std::bitset<64>(mActive[b * kMaskWords + size_t(w)]).count();
+        perBrick[b] = std::bitset<64>(mMasks[mMaskOf.empty() ? mMaskOfMany[b] : mMaskOf[b]]).count();
     openvdb::Index64 count = 0;
     for (uint32_t e : mTable) count += perBrick[e & kIndexMask];
     return count;
@@ -674,7 +691,8 @@ size_t LevelSetBricks::memUsage() const
     return sizeof(*this) + mTable.capacity() * sizeof(uint32_t) +
            mCode.capacity() + mBrickStep.capacity() * sizeof(float) +
            mBase.capacity() * sizeof(int32_t) + mGradient.capacity() * sizeof(int32_t) +
-           mActive.capacity() * sizeof(uint64_t);
+           mActive.capacity() * sizeof(uint64_t) + mMasks.capacity() * sizeof(uint64_t) +
+           mMaskOf.capacity() * sizeof(uint16_t) + mMaskOfMany.capacity() * sizeof(uint32_t);
 }
 
 } // namespace lsdem

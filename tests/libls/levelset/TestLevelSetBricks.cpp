@@ -437,6 +437,51 @@ TEST(LevelSetBricks, SameBricksOnAnyThreadCount)
     }
 }
 
+// The bricks' active states are kept as the distinct masks and an index a brick: 2 bytes up to
+// 65,536 distinct masks, 4 beyond. A grid of 41³ bricks whose every brick has a mask of its
+// own (its number's bits in its first 17 voxels' states) takes the 4-byte path; each voxel's
+// state and the active count come back as set, and through a float grid the same again.
+TEST(LevelSetBricks, ActiveStatesOfManyDistinctMasks)
+{
+    initializeOpenVdb();
+    constexpr int kPlaces = 41, kDim = LevelSetBricks::kDim;
+    auto grid = openvdb::FloatGrid::create(5.0f);
+    auto accessor = grid->getAccessor();
+    openvdb::Index64 active = 0;
+    const auto isActive = [](int number, int k) { return k < 17 && ((number >> k) & 1) != 0; };
+    for (int bx = 0; bx < kPlaces; ++bx)
+        for (int by = 0; by < kPlaces; ++by)
+            for (int bz = 0; bz < kPlaces; ++bz) {
+                const int number = (bx * kPlaces + by) * kPlaces + bz + 1;
+                for (int k = 0; k < LevelSetBricks::kVoxels; ++k) {
+                    const openvdb::Coord c = openvdb::Coord(bx * kDim, by * kDim, bz * kDim) +
+                                             LevelSetBricks::voxelOf(k);
+                    const float value = 0.25f * float(k % 7) - 1.0f;  // varying, all finite
+                    if (isActive(number, k)) {
+                        accessor.setValueOn(c, value);
+                        ++active;
+                    } else {
+                        accessor.setValueOff(c, value);
+                    }
+                }
+            }
+    const auto bricks = toLevelSetGrid(*grid);
+    EXPECT_EQ(bricks->activeVoxelCount(), active);
+    for (int bx = 0; bx < kPlaces; bx += 5)
+        for (int by = 0; by < kPlaces; by += 3)
+            for (int bz = 0; bz < kPlaces; ++bz) {
+                const int number = (bx * kPlaces + by) * kPlaces + bz + 1;
+                for (int k = 0; k < LevelSetBricks::kVoxels; ++k) {
+                    const openvdb::Coord c = openvdb::Coord(bx * kDim, by * kDim, bz * kDim) +
+                                             LevelSetBricks::voxelOf(k);
+                    ASSERT_EQ(bricks->isValueOn(c), isActive(number, k)) << c;
+                }
+            }
+    const auto again = toLevelSetGrid(*toFloatGrid(*bricks));
+    EXPECT_EQ(again->activeVoxelCount(), active);
+    EXPECT_EQ(again->memUsage(), bricks->memUsage());
+}
+
 // Grids lsdem cannot hold as bricks are refused with an lsdem::Error naming the problem: a
 // value that is not a number, and values spread over a box too large for a dense table.
 TEST(LevelSetBricks, RefusesNonFiniteValuesAndHugeBoxes)

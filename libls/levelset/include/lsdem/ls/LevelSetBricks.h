@@ -248,10 +248,16 @@ private:
     static constexpr uint32_t kShared = 0x80000000u;  ///< table flag: a brick of one value
     static constexpr uint32_t kIndexMask = ~kShared;
 
+    static_assert(kMaskWords == 1, "a brick's active states are one 64-bit mask");
     bool isOn(uint32_t brick, int offset) const
     {
-        return ((mActive[size_t(brick) * kMaskWords + size_t(offset >> 6)] >> (offset & 63)) & 1u) != 0;
+        const uint32_t mask = mMaskOf.empty() ? mMaskOfMany[brick] : mMaskOf[brick];
+        return ((mMasks[mask] >> offset) & 1u) != 0;
     }
+    /// Each brick's active states as the distinct masks and an index a brick, from mActive
+    /// (then freed): a grain's bricks hold few distinct masks (all on, all off, and those at
+    /// the band's edge: 356 in the R/20 sphere's 919 bricks).
+    void shareMasks();
     /// Calls @a visit(slot, origin, varies, raw) for each place of the table, read from
     /// @a grid; places in parallel (slabs of constant x), so @a visit must only write what
     /// belongs to its slot.
@@ -335,7 +341,10 @@ private:
     double mVoxel = 0.0;                 ///< the voxel's edge (cubic voxels; else 0)
     float mDeepStep = 0.0f;
     float mDeepBelow = 0.0f;             ///< −kDeepVoxels voxels: a deep brick's values are ≤
-    std::vector<uint64_t> mActive;       ///< kMaskWords per brick
+    std::vector<uint64_t> mActive;       ///< per brick, while building (shareMasks)
+    std::vector<uint64_t> mMasks;        ///< the distinct active-state masks
+    std::vector<uint16_t> mMaskOf;       ///< per brick: its mask in mMasks (up to 65536 masks)
+    std::vector<uint32_t> mMaskOfMany;   ///< the same where there are more (mMaskOf empty)
     openvdb::math::Transform::Ptr mTransform;
     openvdb::MetaMap::Ptr mMetadata;
 };

@@ -325,6 +325,14 @@ int32_t wideCode(double v, double step)
     return q;
 }
 
+/// The band's cap (a grid's background) @a ceiling as 24 bits of step @a wide hold it: a value
+/// at or above it is at the cap. A ceiling beyond 2^22 steps lies above every value: infinity.
+double wideCap(double ceiling, double wide)
+{
+    return ceiling <= std::ldexp(wide, 22) ? double(wideCode(ceiling, wide)) * wide
+                                           : std::numeric_limits<double>::infinity();
+}
+
 /// A plane brick's remainders run from 0 to this (a narrow one's to 255).
 constexpr int64_t kPlaneCodes = std::numeric_limits<uint16_t>::max();
 constexpr int64_t kNarrowPlaneCodes = std::numeric_limits<uint8_t>::max();
@@ -399,9 +407,7 @@ bool LevelSetBricks::planeCodes(const RawBrick& raw, bool narrow, PlaneCodes& ou
     // above (decode() takes the least of the two), so the plane is fitted to the others.
     // Which values are at the ceiling is decided on the 24-bit values, as every kind is.
     const double wide = wideStep(raw);
-    // (A ceiling beyond 2^22 steps lies above every value: then none is capped.)
-    const double cap = ceiling <= std::ldexp(wide, 22) ? double(wideCode(ceiling, wide)) * wide
-                                                       : std::numeric_limits<double>::infinity();
+    const double cap = wideCap(ceiling, wide);
     double stored[kVoxels];
     bool capped[kVoxels];
     for (int k = 0; k < kVoxels; ++k) {
@@ -584,9 +590,7 @@ bool LevelSetBricks::keepsFlatSurface(const RawBrick& raw, const PlaneCodes& cod
     if (count == 0 || moved == 0.0) return true;  // no surface here, or nothing moved
     // A crease (a polyhedron's edge) strays from a plane though the faces beside it are flat.
     // (The voxels at the band's cap, as planeCodes tells them, bend it too: they are left out.)
-    const double ceiling = mPlaneCeiling;
-    const double cap = ceiling <= std::ldexp(wide, 22) ? double(wideCode(ceiling, wide)) * wide
-                                                       : std::numeric_limits<double>::infinity();
+    const double cap = wideCap(mPlaneCeiling, wide);
     bool free[kVoxels];
     for (int k = 0; k < kVoxels; ++k) free[k] = stored[k] < cap;
     if (!isSmooth(stored, free)) return false;

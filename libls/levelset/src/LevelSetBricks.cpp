@@ -671,7 +671,7 @@ openvdb::Index64 LevelSetBricks::activeVoxelCount() const
 {
     std::vector<openvdb::Index64> perBrick(mBrickStep.size(), 0);
     for (size_t b = 0; b < perBrick.size(); ++b)
-        perBrick[b] = std::bitset<64>(mMasks[mMaskOf.empty() ? mMaskOfMany[b] : mMaskOf[b]]).count();
+        perBrick[b] = std::bitset<64>(activeMask(uint32_t(b))).count();
     openvdb::Index64 count = 0;
     for (uint32_t e : mTable) count += perBrick[e & kIndexMask];
     return count;

@@ -249,11 +249,12 @@ private:
     static constexpr uint32_t kIndexMask = ~kShared;
 
     static_assert(kMaskWords == 1, "a brick's active states are one 64-bit mask");
-    bool isOn(uint32_t brick, int offset) const
+    /// Brick @a brick's active states, one bit a voxel.
+    uint64_t activeMask(uint32_t brick) const
     {
-        const uint32_t mask = mMaskOf.empty() ? mMaskOfMany[brick] : mMaskOf[brick];
-        return ((mMasks[mask] >> offset) & 1u) != 0;
+        return mMasks[mMaskOf.empty() ? mMaskOfMany[brick] : mMaskOf[brick]];
     }
+    bool isOn(uint32_t brick, int offset) const { return ((activeMask(brick) >> offset) & 1u) != 0; }
     /// Each brick's active states as the distinct masks and an index a brick, from mActive
     /// (then freed): a grain's bricks hold few distinct masks (all on, all off, and those at
     /// the band's edge: 356 in the R/20 sphere's 919 bricks).

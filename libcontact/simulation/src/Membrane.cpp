@@ -292,7 +292,7 @@ double membraneKineticEnergy(const Membrane& m)
     return energy;
 }
 
-double membraneStableStep(const Membrane& m, double globalDamping)
+double membraneRubberOmegaSquared(const Membrane& m)
 {
     double omegaSquared = 0.0;
     for (const MembraneTriangle& t : m.triangles) {
@@ -301,7 +301,12 @@ double membraneStableStep(const Membrane& m, double globalDamping)
             Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(e, Eigen::EigenvaluesOnly).eigenvalues()[1];
         omegaSquared = std::max(omegaSquared, triangleOmegaSquared(m, t, e1));
     }
-    return dampedStableStep(omegaSquared, membraneDragRate(m), globalDamping);
+    return omegaSquared;
+}
+
+double membraneStableStep(const Membrane& m, double globalDamping)
+{
+    return dampedStableStep(membraneRubberOmegaSquared(m), membraneDragRate(m), globalDamping);
 }
 
 double membraneDragRate(const Membrane& m)

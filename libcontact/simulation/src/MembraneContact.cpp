@@ -323,7 +323,9 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     out.stats = NodeCheckStats();
     NodeCheckStats& stats = out.stats;
     out.reactions.clear();
-    out.stiffness.clear();
+    out.loads.clear();
+    out.membraneMass = 0.0;
+    out.grainShare = out.vertexShare = 1.0;
     const GrainAsset& a = *grain.asset;
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
@@ -409,17 +411,41 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     }
     if (contacts.empty()) return;
 
-    // The membrane under the grain: the mean velocity of the points its nodes met.
-    ContactGrain membraneView;
-    Vec3 velocity = Vec3::Zero();
+    // The membrane under the grain (MembraneGrainContact): each vertex's weight b_v, the mean
+    // velocity they give, and the mass that mean moves with.
+    std::vector<std::pair<int, double>>& patch = out.patchWeights;
+    patch.clear();
+    const double perHit = 1.0 / static_cast<double>(hits.size());
     for (const MembraneHit& h : hits) {
         const auto& v = m.triangles[size_t(h.triangle)].vertices;
-        for (int k = 0; k < 3; ++k) velocity += h.weights[k] * m.velocities[size_t(v[k])];
+        for (int k = 0; k < 3; ++k)
+            if (h.weights[k] != 0.0) patch.emplace_back(v[k], perHit * h.weights[k]);
     }
-    membraneView.velocity = velocity / static_cast<double>(hits.size());
+    std::sort(patch.begin(), patch.end());  // (then summed in vertex order: any thread count)
+    size_t kept = 0;
+    for (size_t k = 0; k < patch.size(); ++k) {
+        if (kept > 0 && patch[kept - 1].first == patch[k].first)
+            patch[kept - 1].second += patch[k].second;
+        else
+            patch[kept++] = patch[k];
+    }
+    patch.resize(kept);
+    ContactGrain membraneView;
+    Vec3 velocity = Vec3::Zero();
+    double inverseMass = 0.0;
+    for (const auto& [vertex, b] : patch) {
+        velocity += b * m.velocities[size_t(vertex)];
+        if (m.heldBy[size_t(vertex)] < 0) inverseMass += b * b / m.masses[size_t(vertex)];
+    }
+    membraneView.velocity = velocity;
     membraneView.pose.position = grain.pose.position;
     membraneView.index = -1;
-    membraneView.mass = 0.0;
+    membraneView.mass = inverseMass > 0.0 ? 1.0 / inverseMass : 0.0;  // 0: held, immovable
+    out.membraneMass = membraneView.mass;
+    if (membraneView.mass > 0.0 && grain.mass > 0.0) {
+        out.grainShare = 1.0 + grain.mass / membraneView.mass;
+        out.vertexShare = 1.0 + membraneView.mass / grain.mass;
+    }
 
     ContactModel frictionless = model;
     frictionless.friction = 0.0;
@@ -431,29 +457,30 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     forces.clear();
     out.result = resolveContact(&side, 1, frictionless, dt, &forces, &scratch);
 
-    // Each node's force, reversed, to its triangle's vertices; the dashpot's (node −1) in
-    // proportion to the nodes' elastic forces.
-    double elasticSum = 0.0;
-    for (const PointForce& f : forces)
-        if (f.node >= 0) elasticSum += f.force.norm();
-    Vec3 dashpot = Vec3::Zero();
-    for (const PointForce& f : forces)
-        if (f.node < 0) dashpot += f.force;
+    // Each node's force, reversed, to its triangle's vertices; the dashpot's (node −1) by the
+    // weights b_v its velocity was read with.
+    const auto isFree = [&](int vertex) { return m.heldBy[size_t(vertex)] < 0; };
     size_t k = 0;
     for (const PointForce& f : forces) {
-        if (f.node < 0) continue;
+        if (f.node < 0) {
+            for (const auto& [vertex, b] : patch) out.reactions.emplace_back(vertex, -b * f.force);
+            continue;
+        }
         while (k < side.contacts.size() && side.contacts[k].node != f.node) ++k;
         if (k == side.contacts.size()) break;  // (cannot happen: forces follow the contacts)
         const MembraneHit& h = hits[k];
-        const Vec3 onMembrane =
-            -(f.force + (elasticSum > 0.0 ? f.force.norm() / elasticSum : 0.0) * dashpot);
         const auto& v = m.triangles[size_t(h.triangle)].vertices;
         for (int c = 0; c < 3; ++c) {
             if (h.weights[c] == 0.0) continue;
-            out.reactions.emplace_back(v[c], h.weights[c] * onMembrane);
-            out.stiffness.emplace_back(v[c], h.weights[c] * f.stiffness);
+            out.reactions.emplace_back(v[c], -h.weights[c] * f.force);
+            if (isFree(v[c]))
+                out.loads.push_back({v[c], out.vertexShare * h.weights[c] * f.stiffness, 0.0});
         }
     }
+    if (out.result.dashpot > 0.0)
+        for (const auto& [vertex, b] : patch)
+            if (isFree(vertex))
+                out.loads.push_back({vertex, 0.0, out.vertexShare * b * out.result.dashpot});
     side.contacts.swap(contacts);
 }
 

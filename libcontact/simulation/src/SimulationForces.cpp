@@ -212,15 +212,18 @@ void Simulation::sumGrainForces(double dt)
                 share * (r->first ? f.rotationalStiffnessOfFirst : f.rotationalStiffnessOfSecond);
             addDashpot(stiffness, share, f, r->first);
         }
-        // The membranes press on it as walls do (their vertices' own step is checked apart).
+        // The membranes press on it as walls do, but for the stability check with the share
+        // of the pair that the membrane's motion leaves it (MembraneGrainContact; the
+        // vertices' part is in the membrane's check).
         for (const std::vector<MembraneGrainContact>& onMembrane : mMembraneContacts) {
-            const PairForces& f = onMembrane[size_t(i)].result;
+            const MembraneGrainContact& c = onMembrane[size_t(i)];
+            const PairForces& f = c.result;
             force += f.forceOnFirst;
             torque += f.torqueOnFirst;
             dashpot += f.dashpotWork;
-            stiffness.translation += f.translationalStiffness;
-            stiffness.rotation += f.rotationalStiffnessOfFirst;
-            addDashpot(stiffness, 1.0, f, true);
+            stiffness.translation += c.grainShare * f.translationalStiffness;
+            stiffness.rotation += c.grainShare * f.rotationalStiffnessOfFirst;
+            addDashpot(stiffness, c.grainShare, f, true);
         }
         if (g.isFree()) {
             force += g.body.mass * w.gravity;

@@ -75,6 +75,7 @@ void Simulation::computeMembranes(double dt)
     mMembraneContacts.resize(membranes);
     mMembraneGrids.resize(membranes);
     mMembraneContactStiffness.resize(membranes);
+    mMembraneContactDamping.resize(membranes);
     mMembraneElastic = 0.0;
     mMembraneNodes = 0;
     mMembraneStats = NodeCheckStats();
@@ -134,7 +135,9 @@ void Simulation::addGrainReactions(size_t k)
     Membrane& m = mWorld.membranes[k];
     const std::vector<MembraneGrainContact>& contacts = mMembraneContacts[k];
     std::vector<double>& stiffness = mMembraneContactStiffness[k];
+    std::vector<double>& damping = mMembraneContactDamping[k];
     stiffness.assign(m.positions.size(), 0.0);
+    damping.assign(m.positions.size(), 0.0);
     m.grainForces.assign(m.positions.size(), Vec3::Zero());
     const auto push = [&](int vertex, const Vec3& force) {
         m.forces[size_t(vertex)] += force;
@@ -144,16 +147,20 @@ void Simulation::addGrainReactions(size_t k)
         for (const MembraneGrainContact& c : contacts) {
             mMembraneElastic += c.result.elasticEnergy;
             for (const auto& [vertex, force] : c.reactions) push(vertex, force);
-            for (const auto& [vertex, kv] : c.stiffness) stiffness[size_t(vertex)] += kv;
+            for (const MembraneVertexLoad& l : c.loads) {
+                stiffness[size_t(l.vertex)] += l.stiffness;
+                damping[size_t(l.vertex)] += l.damping;
+            }
         }
         return;
     }
-    // key: global grain, then 0 its elastic energy, 1 a reaction, 2 a stiffness; then its place.
+    // key: global grain, then 0 its elastic energy, 1 a reaction, 2 a vertex's load; then its
+    // place.
     const std::vector<int>& ids = mGhosts->globalIds();
     std::vector<OrderedTerm> terms;
     for (size_t i = 0; i < contacts.size(); ++i) {
         const MembraneGrainContact& c = contacts[i];
-        if (c.reactions.empty() && c.stiffness.empty() && c.result.elasticEnergy == 0.0) continue;
+        if (c.reactions.empty() && c.loads.empty() && c.result.elasticEnergy == 0.0) continue;
         OrderedTerm t;
         t.key[0] = ids[i];
         t.value[0] = c.result.elasticEnergy;
@@ -166,10 +173,11 @@ void Simulation::addGrainReactions(size_t k)
             terms.push_back(t);
         }
         t.key[1] = 2;
-        for (size_t r = 0; r < c.stiffness.size(); ++r) {
+        for (size_t r = 0; r < c.loads.size(); ++r) {
             t.key[2] = static_cast<long long>(r);
-            t.value[0] = c.stiffness[r].first;
-            t.value[1] = c.stiffness[r].second;
+            t.value[0] = c.loads[r].vertex;
+            t.value[1] = c.loads[r].stiffness;
+            t.value[2] = c.loads[r].damping;
             terms.push_back(t);
         }
     }
@@ -179,8 +187,10 @@ void Simulation::addGrainReactions(size_t k)
             mMembraneElastic += t.value[0];
         else if (t.key[1] == 1)
             push(vertex, Vec3(t.value[1], t.value[2], t.value[3]));
-        else
+        else {
             stiffness[size_t(vertex)] += t.value[1];
+            damping[size_t(vertex)] += t.value[2];
+        }
     }
 }
 
@@ -198,7 +208,8 @@ double Simulation::membraneStepLimit(std::string* which) const
         const Membrane& m = mWorld.membranes[k];
         const MembraneStepParts parts = membraneStepParts(k);
         // (Global damping strengthens the vertices' forces against their motion, as the grains'.)
-        const double step = dampedStableStep(parts.rubber + parts.contacts, membraneDragRate(m),
+        const double step = dampedStableStep(parts.rubber + parts.contacts,
+                                             membraneDragRate(m) + parts.contactDamping,
                                              mWorld.globalDamping);
         if (step < limit) {
             limit = step;
@@ -206,7 +217,9 @@ double Simulation::membraneStepLimit(std::string* which) const
                 std::ostringstream text;
                 text << "membrane '" << m.name << "' (ω² of its rubber " << parts.rubber
                      << " /s², of the grains pressing on its vertices " << parts.contacts
-                     << " /s², its drag's rate " << membraneDragRate(m) << " /s)";
+                     << " /s², its drag's rate " << membraneDragRate(m)
+                     << " /s, the grains' dashpots' on a vertex " << parts.contactDamping
+                     << " /s)";
                 *which = text.str();
             }
         }
@@ -216,14 +229,20 @@ double Simulation::membraneStepLimit(std::string* which) const
 
 Simulation::MembraneStepParts Simulation::membraneStepParts(size_t k) const
 {
-    // The rubber's bound, and each free vertex on the grains' contacts as on springs.
+    // The rubber's bound, and each free vertex on the grains' contacts as on springs and
+    // dashpots of its own (its share of each pair: MembraneGrainContact). The three add up:
+    // the largest eigenvalue of a sum is at most the sum of theirs, and the contacts' are
+    // diagonal.
     const Membrane& m = mWorld.membranes[k];
     MembraneStepParts parts;
     parts.rubber = m.rubberOmegaSquared;
     if (k < mMembraneContactStiffness.size())
         for (size_t i = 0; i < m.positions.size(); ++i)
-            if (m.heldBy[i] < 0)
+            if (m.heldBy[i] < 0) {
                 parts.contacts = std::max(parts.contacts, mMembraneContactStiffness[k][i] / m.masses[i]);
+                parts.contactDamping =
+                    std::max(parts.contactDamping, mMembraneContactDamping[k][i] / m.masses[i]);
+            }
     return parts;
 }
 

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace lsdem {
@@ -232,13 +235,42 @@ std::vector<double> stiffestContactSteps(const World& world)
     return steps;
 }
 
+double stiffestMembraneContact(const World& world, const Membrane& m)
+{
+    double lightest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < m.positions.size(); ++i)
+        if (m.heldBy[i] < 0) lightest = std::min(lightest, m.masses[i]);
+    if (!std::isfinite(lightest)) return 0.0;  // every vertex held: walls
+    const double massPerArea = m.rubber.density * m.rubber.thickness;
+    double omega2 = 0.0;
+    std::set<std::pair<const GrainAsset*, int>> seen;  // (asset, material): one look each
+    for (const Grain& g : world.grains) {
+        if (!g.isFree() || !seen.emplace(g.asset.get(), g.material).second)
+            continue;
+        const ContactModel& model = world.model(g.material, m.material);
+        if (!(model.normalStiffness > 0.0) || g.asset->nodes.size() == 0) continue;
+        const double nodeArea = g.asset->nodes.totalArea() / double(g.asset->nodes.size());
+        const std::optional<double> traction =
+            model.normal().tractionStiffness(model.normalStiffness, nodeArea);
+        const double vertex = traction ? *traction / massPerArea : model.normalStiffness / lightest;
+        omega2 = std::max(omega2, 2.0 * vertex);
+    }
+    return omega2;
+}
+
 double automaticTimeStep(const World& world, double safety)
 {
     double step = std::numeric_limits<double>::infinity();
     for (const double s : stiffestContactSteps(world)) step = std::min(step, s);
-    // A membrane's rubber (its vertices on the grains' contacts are checked as it runs).
-    for (const Membrane& m : world.membranes)
-        step = std::min(step, membraneStableStep(m, world.globalDamping));
+    // A membrane's rubber, with the stiffest contact a grain can make on its vertices and that
+    // contact's dashpot (at the world's largest ratio, on the pair's ω).
+    const double beta = largestDampingRatio(world);
+    for (const Membrane& m : world.membranes) {
+        const double contact = stiffestMembraneContact(world, m);
+        const double rate = membraneDragRate(m) + 2.0 * beta * std::sqrt(contact);
+        step = std::min(step, dampedStableStep(membraneRubberOmegaSquared(m) + contact, rate,
+                                               world.globalDamping));
+    }
     if (!std::isfinite(step))
         throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
                     "give [simulation] time_step explicitly");

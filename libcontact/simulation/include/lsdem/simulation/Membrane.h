@@ -121,10 +121,14 @@ double enclosedVolume(const Membrane& m);
 /// Kinetic energy of its vertices.
 double membraneKineticEnergy(const Membrane& m);
 
+/// The rubber's and the pressure's bound on ω² of its vertices at its stretch now: the largest
+/// of its triangles' lumped-mass eigenvalue bounds (1/time²).
+double membraneRubberOmegaSquared(const Membrane& m);
+
 /// The largest stable step of its vertices' explicit integration with the triangles'
-/// stiffness, the pressure's and its drag (a bound: ω² ≤ the largest of its triangles'
-/// lumped-mass eigenvalue bounds, with the drag's rate, dampedStableStep), at its stretch now.
-/// The grains' contacts on it are checked at run time. Under global damping @a globalDamping
+/// stiffness, the pressure's and its drag (membraneRubberOmegaSquared with the drag's rate,
+/// dampedStableStep), at its stretch now. The grains' contacts on it are checked at run time
+/// (automaticTimeStep foresees the stiffest). Under global damping @a globalDamping
 /// (λ), forces against the motion are 1 + λ times stronger, and the step shorter.
 double membraneStableStep(const Membrane& m, double globalDamping = 0.0);
 

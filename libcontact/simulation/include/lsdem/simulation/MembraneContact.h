@@ -107,19 +107,56 @@ struct MembraneHit
     Vec3 weights = Vec3::Zero();  ///< of the triangle's vertices, summing to 1
 };
 
+/// What a vertex bears of one grain's contact, for the membrane's stable step: its springs
+/// Σ w·k over the nodes that met its triangles (w the vertex's barycentric weight there) and
+/// its part b·c of the contact's dashpot c (b its weight in the velocity the dashpot reads),
+/// both times the vertex's share of the pair, MembraneGrainContact::vertexShare.
+struct MembraneVertexLoad
+{
+    int vertex = -1;
+    double stiffness = 0.0;  ///< force/length
+    double damping = 0.0;    ///< force·time/length
+};
+
 /// One grain's contact with a membrane at this evaluation.
+///
+/// The membrane under the grain moves at the mean velocity of the points the grain's nodes met,
+/// Σ b_v·u_v (b_v: each vertex's barycentric weights summed over those points, over their
+/// number), and the dashpot reads the grain's velocity against it. Its reaction goes back to
+/// the vertices by the same weights b_v, so it only ever dissipates: its power on grain and
+/// membrane together is the dashpot's force times their relative speed. The mean moves as a
+/// body of mass m_m = 1/Σ b_v²/m_v under that reaction (held vertices count as immovable), and
+/// the dashpot is calibrated on the pair's reduced mass with it, as between two grains: a heavy
+/// grain on a light membrane gets the dashpot that the membrane can bear.
+///
+/// The stable step of the pair: each contact node pushes the grain and its triangle's vertices
+/// apart, and (a + b)² ≤ (1 + s)·a² + (1 + 1/s)·b² splits that spring (and the dashpot) into one
+/// on the grain alone, (1 + s) times as stiff, and springs on the vertices alone, (1 + 1/s)
+/// times (by Cauchy–Schwarz, Σ w = 1: a spring on the weighted mean is at most the weighted
+/// springs on each vertex). The grains' check and the membrane's then bound the whole system's
+/// fastest mode between them. s = M/m_m (M the grain's mass) is exact for two bodies on one
+/// spring, as the share 1 + m_i/m_j between two grains (SimulationForces.cpp).
 struct MembraneGrainContact
 {
     PairForces result;  ///< on first: the grain; on second: the membrane as a whole
     /// The reaction on each vertex it touched, (vertex, force), in the order found.
     std::vector<std::pair<int, Vec3>> reactions;
-    /// Σ (barycentric weight × node stiffness) per vertex touched, for the membrane's step.
-    std::vector<std::pair<int, double>> stiffness;
+    /// What each free vertex it touched bears, for the membrane's step (once per node and
+    /// vertex, in the order found).
+    std::vector<MembraneVertexLoad> loads;
+    /// m_m, the mass the membrane under the grain moves with (0: every vertex there is held).
+    double membraneMass = 0.0;
+    /// 1 + M/m_m: how much stiffer the grain's check counts its springs and dashpot on the
+    /// membrane than on a wall (1 on held vertices).
+    double grainShare = 1.0;
+    /// 1 + m_m/M: the same for the vertices, already in @ref loads.
+    double vertexShare = 1.0;
     NodeCheckStats stats;  ///< of this evaluation's node checks
     // Working memory, kept from step to step: where each node met the membrane, and the
     // point forces on the grain as the law gave them.
     std::vector<MembraneHit> hits;
     std::vector<PointForce> pointForces;
+    std::vector<std::pair<int, double>> patchWeights;  ///< (vertex, b_v), by vertex
     // The grain's candidate nodes, from a search of its nodes kept while it holds (until the
     // grain has moved more than its skin, the grid rebins, or the grain's asset changes): each
     // node that may come within reach meanwhile, in node order, with the triangles it may meet
@@ -145,7 +182,7 @@ struct MembraneGrainContact
 /// normal that triangle's inward one. Only the grain's candidate nodes are looked at: those
 /// that a search found within the reach and the skins of the grain and the membrane, kept in
 /// @a out from call to call until one of them has moved more than its skin.
-/// The membrane moves under the grain at the mean velocity of the points its nodes met.
+/// The membrane's motion, dashpot and shares under the grain: MembraneGrainContact.
 /// @param dt the step (for the dashpot's dissipation; no shear is carried)
 void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
                             const MembraneTriangleGrid& grid, const ContactModel& model,

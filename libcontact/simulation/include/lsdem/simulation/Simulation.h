@@ -208,11 +208,12 @@ private:
     /// Their stable step (rubber and the grains' contacts on free vertices); @a which gets
     /// the membrane that sets it, and its parts.
     double membraneStepLimit(std::string* which = nullptr) const;
-    /// Membrane @a k's ω² bounds: of its rubber, and the largest of a free vertex on the
-    /// grains' contacts (stiffness over mass).
+    /// Membrane @a k's bounds: ω² of its rubber, the largest ω² of a free vertex on the
+    /// grains' contacts (stiffness over mass) and the largest rate of their dashpots on one
+    /// (damping over mass), each vertex's share of its pairs included (MembraneGrainContact).
     struct MembraneStepParts
     {
-        double rubber = 0.0, contacts = 0.0;
+        double rubber = 0.0, contacts = 0.0, contactDamping = 0.0;
     };
     MembraneStepParts membraneStepParts(size_t k) const;
     /// @throw Error if the step exceeds membraneStepLimit().
@@ -241,11 +242,11 @@ private:
     bool mFreshlyDistributed = false;  ///< split by space, not yet evaluated
     ContactBackendHolder mBackend;  ///< computes the contact slots (the CPU's by default)
 
-    // Per membrane: its triangles binned, each grain's contact with it and the grains'
-    // contact stiffness on each vertex.
+    // Per membrane: its triangles binned, each grain's contact with it and what the grains'
+    // contacts put on each vertex for its step (MembraneVertexLoad, summed).
     std::vector<MembraneTriangleGrid> mMembraneGrids;
     std::vector<std::vector<MembraneGrainContact>> mMembraneContacts;
-    std::vector<std::vector<double>> mMembraneContactStiffness;
+    std::vector<std::vector<double>> mMembraneContactStiffness, mMembraneContactDamping;
     double mMembraneElastic = 0.0;  ///< of the grains' contacts with membranes
     long long mMembraneNodes = 0;   ///< grains' nodes in contact with membranes
     NodeCheckStats mMembraneStats;

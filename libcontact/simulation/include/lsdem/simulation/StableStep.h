@@ -22,6 +22,7 @@
 namespace lsdem {
 
 struct World;
+struct Membrane;
 
 /// A grain's contact stiffness and dashpots as the stability check sums them (PairForces,
 /// SimulationForces.cpp): each contact scaled by 1 + m/m_partner for a partner that moves too.
@@ -101,10 +102,22 @@ constexpr double kAutomaticBandFraction = 0.01;
 /// radius of the wall count, each with its normal and shear stiffness under every contact model
 /// of the world, in translation and in rotation about the centroid, doubled for a partner
 /// that moves as much (two equal free grains), with the largest damping ratio of the world.
+/// Each membrane's rubber, with the stiffest contact grains can make on a vertex
+/// (stiffestMembraneContact) and its dashpot, bounds it too.
 /// Deeper contacts, or many at once, are what the stability check at every step is for; the
 /// safety factor (0.2 by default) leaves them 25 times the stiffness.
 /// @throw Error if no free grain touches anything stiff (nothing to base a step on).
 double automaticTimeStep(const World& world, double safety);
+
+/// ω² (1/time²) of the stiffest contact the free grains of @a world can make on a free vertex
+/// of membrane @a m (0 if every vertex is held): a flat face pressed over all of the vertex's
+/// triangles gives it Σ w·k over the nodes there, the law's traction stiffness k* times the
+/// vertex's lumped area, and its mass is density·thickness times that same area, so
+/// ω² = k*/(density·thickness) whatever the mesh (the single-node law: its one spring on the
+/// lightest vertex); doubled, as for grains, for a grain as heavy as the membrane under it
+/// (the vertices' share 1 + m_m/M of the pair, MembraneContact.h). Crowded grains pressing a
+/// fold with several times its area are what the safety factor leaves room for.
+double stiffestMembraneContact(const World& world, const Membrane& m);
 
 /// For each grain of @a world, the stable step of the stiffest contact it can make (what
 /// automaticTimeStep takes the least of, at safety 1); infinite for a grain that is not free

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace lsdem {
@@ -24,7 +25,9 @@ namespace {
 /// Only the closest triangle of each voxel is kept while the layers advance (an Int32 tree
 /// over the band and the interior); the distances are written at the end, leaf by leaf, from
 /// those triangles, as each index leaf is freed. So the fill holds one full tree plus the
-/// band, not a float tree and an index tree of the same shape at once.
+/// band's distances, not a float tree and an index tree of the same shape at once, and the
+/// band's own index tree (OpenVDB's) is freed before it is made: the band's triangles come
+/// in a list beside its voxels.
 class InteriorFill
 {
 public:
@@ -32,24 +35,26 @@ public:
     /// active tiles); its interior tiles become voxels only when they are written.
     InteriorFill(openvdb::FloatTree& distance, const TriangleMesh& mesh, const Vec3& origin,
                  double voxelSize)
-        : mDistance(distance), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize),
-          mClosest(distance, kUnknown, kUnknown, openvdb::TopologyCopy())
+        : mDistance(distance), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize)
     {
-        mClosest.voxelizeActiveTiles();
     }
 
     /// Find the closest triangle of every active voxel, starting from @a layer (the band's
-    /// voxels whose closest triangle @a bandTriangles knows; cleared once read) and going
-    /// inward layer after layer, then write every solved voxel's distance into the distance
-    /// tree.
-    void run(std::vector<openvdb::Coord> layer, openvdb::Int32Grid& bandTriangles)
+    /// voxels, whose closest triangles are @a layerTriangles) and going inward layer after
+    /// layer, then write every solved voxel's distance into the distance tree.
+    void run(std::vector<openvdb::Coord> layer, std::vector<openvdb::Int32> layerTriangles)
     {
+        // (Made here, after the caller has freed the band's own index tree: the two are never
+        // held at once.)
+        mClosest = std::make_unique<openvdb::Int32Tree>(mDistance, kUnknown, kUnknown,
+                                                        openvdb::TopologyCopy());
+        mClosest->voxelizeActiveTiles();
         {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> band(bandTriangles.tree());
-            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-            for (const openvdb::Coord& c : layer) closest.setValueOnly(c, band.getValue(c));
+            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(*mClosest);
+            for (size_t i = 0; i < layer.size(); ++i)
+                closest.setValueOnly(layer[i], layerTriangles[i]);
         }
-        bandTriangles.clear();
+        layerTriangles = {};
         // OpenVDB grows its band from neighbours' closest triangles in float index space,
         // measured up to 7 % of a voxel off; one pass over the band's own candidates in double
         // brings it to the exact distance nearly everywhere. The band keeps its signs.
@@ -79,7 +84,7 @@ private:
         static const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                                  {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         auto unknownNeighbours = [&](size_t begin, size_t end, std::vector<openvdb::Coord>& out) {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
+            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(*mClosest);
             // Whether @a c is the first solved face neighbour of @a n in kFaces order.
             auto addsIt = [&](const openvdb::Coord& c, const openvdb::Coord& n) {
                 for (const openvdb::Coord& back : kFaces) {
@@ -149,7 +154,7 @@ private:
         std::vector<openvdb::Int32> nearest(layer.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 512),
                           [&](const tbb::blocked_range<size_t>& range) {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
+            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(*mClosest);
             for (size_t i = range.begin(); i != range.end(); ++i) {
                 const Vec3 p = centre(layer[i]);
                 openvdb::Int32 around[27];
@@ -182,7 +187,7 @@ private:
         // the writes go to distinct values of existing leaves and can run in parallel.
         tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 4096),
                           [&](const tbb::blocked_range<size_t>& range) {
-            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
+            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(*mClosest);
             for (size_t i = range.begin(); i != range.end(); ++i) {
                 IndexLeaf* leaf = closest.probeLeaf(layer[i]);
                 if (!leaf) throw Error("", "internal: a filled voxel outside the tree's leaves");
@@ -197,7 +202,7 @@ private:
     void writeDistances()
     {
         std::vector<IndexLeaf*> indexLeaves;
-        mClosest.stealNodes(indexLeaves);
+        mClosest->stealNodes(indexLeaves);
         constexpr size_t kBatch = 256;
         std::vector<openvdb::FloatTree::LeafNodeType*> distanceLeaves;
         for (size_t first = 0; first < indexLeaves.size(); first += kBatch) {
@@ -220,14 +225,15 @@ private:
             });
             for (size_t l = first; l < last; ++l) delete indexLeaves[l];
         }
-        mClosest.clear();
+        mClosest->clear();
     }
 
     openvdb::FloatTree& mDistance;
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
-    openvdb::Int32Tree mClosest;  ///< closest triangle per voxel (| kBandBit) or kUnknown
+    /// Closest triangle per voxel (| kBandBit) or kUnknown, while run() fills.
+    std::unique_ptr<openvdb::Int32Tree> mClosest;
 };
 
 } // namespace
@@ -280,19 +286,28 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     //    to the closest triangle, propagated inward from the band's (InteriorFill).
     openvdb::FloatTree& distance = grid->tree();
     std::vector<openvdb::Coord> seeds;
+    std::vector<openvdb::Int32> seedTriangles;
     seeds.reserve(bandTriangles.activeVoxelCount());
+    seedTriangles.reserve(bandTriangles.activeVoxelCount());
     {
         openvdb::tree::ValueAccessor<const openvdb::Int32Tree> band(bandTriangles.tree());
         const auto triangleCount = openvdb::Int32(mesh.triangles.size());
         for (auto it = distance.cbeginValueOn(); it; ++it) {
             openvdb::Int32 t = -1;
             if (!it.isVoxelValue() || !band.probeValue(it.getCoord(), t)) continue;
-            if (t >= 0 && t < triangleCount) seeds.push_back(it.getCoord());
+            if (t >= 0 && t < triangleCount) {
+                seeds.push_back(it.getCoord());
+                seedTriangles.push_back(t);
+            }
         }
     }
+    // The band's index tree is freed before the fill makes its own over the whole interior:
+    // the two are never held at once (the stage's peak 62.0 → 55.6 MiB on the 100k-triangle
+    // pebble, docs/assets.md).
+    bandTriangles.clear();
     for (auto it = distance.beginValueOff(); it; ++it)
         if (*it < 0.0f) it.setActiveState(true);
-    InteriorFill(distance, mesh, origin, vox).run(std::move(seeds), bandTriangles);
+    InteriorFill(distance, mesh, origin, vox).run(std::move(seeds), std::move(seedTriangles));
 
     grid->setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();

@@ -1,10 +1,15 @@
 /// @file TestAssets.h
 /// @brief Tiny stand-ins the simulation tests share: a grain asset of six surface nodes (no
-///        level set) and a latex membrane's rubber.
+///        level set), an analytic shape baked, and a latex membrane's rubber.
 #pragma once
 
+#include "lsdem/ls/Bake.h"
 #include "lsdem/ls/GrainAsset.h"
 #include "lsdem/simulation/Membrane.h"
+
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace lsdem::test {
 
@@ -27,6 +32,18 @@ inline GrainAsset sixNodeAsset(double nodeArea)
 
 /// Latex as in a triaxial cell: E 1.4 MPa, 0.3 mm thick, ν @a poisson; @a density mass-scaled
 /// (a thousand times rubber's by default, as a quasi-static test uses). Units: mm, N, s, tonne.
+/// @a shape baked at voxel size @a voxel with about @a nodes surface nodes.
+inline std::shared_ptr<const GrainAsset> bakedShape(const AnalyticShape& shape, double voxel,
+                                                    int nodes)
+{
+    BakeOptions o;
+    o.voxelSize = voxel;
+    o.nodePlacement = NodePlacement::Count;
+    o.nodeCount = nodes;
+    std::vector<std::string> warnings;
+    return std::make_shared<const GrainAsset>(bakeAnalytic(shape, o, warnings));
+}
+
 inline MembraneMaterial latexRubber(double poisson = 0.45, double density = 1e-6)
 {
     MembraneMaterial r;

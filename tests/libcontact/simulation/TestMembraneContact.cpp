@@ -29,30 +29,14 @@ namespace {
 
 std::shared_ptr<const GrainAsset> sphere()
 {
-    static const auto asset = [] {
-        BakeOptions o;
-        o.voxelSize = 0.25;
-        o.nodePlacement = NodePlacement::Count;
-        o.nodeCount = 2000;
-        std::vector<std::string> warnings;
-        return std::make_shared<const GrainAsset>(
-            bakeAnalytic(AnalyticShape::sphere(5.0), o, warnings));
-    }();
+    static const auto asset = lsdem::test::bakedShape(AnalyticShape::sphere(5.0), 0.25, 2000);
     return asset;
 }
 
 /// A box of 6 × 6 × 2 mm with about 1000 nodes.
 std::shared_ptr<const GrainAsset> flatBox()
 {
-    static const auto asset = [] {
-        BakeOptions o;
-        o.voxelSize = 0.1;
-        o.nodePlacement = NodePlacement::Count;
-        o.nodeCount = 1000;
-        std::vector<std::string> warnings;
-        return std::make_shared<const GrainAsset>(
-            bakeAnalytic(AnalyticShape::box(6.0, 6.0, 2.0), o, warnings));
-    }();
+    static const auto asset = lsdem::test::bakedShape(AnalyticShape::box(6.0, 6.0, 2.0), 0.1, 1000);
     return asset;
 }
 

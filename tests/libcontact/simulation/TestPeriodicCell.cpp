@@ -11,6 +11,8 @@
 #include "lsdem/ls/Bake.h"
 #include "lsdem/core/Error.h"
 
+#include "support/TestAssets.h"
+
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
@@ -28,15 +30,7 @@ constexpr double kCell = 20.0;   // mm, each axis
 
 std::shared_ptr<const GrainAsset> sphere()
 {
-    static const auto asset = [] {
-        BakeOptions o;
-        o.voxelSize = 0.1;
-        o.nodePlacement = NodePlacement::Count;
-        o.nodeCount = 1000;
-        std::vector<std::string> warnings;
-        return std::make_shared<const GrainAsset>(
-            bakeAnalytic(AnalyticShape::sphere(kRadius), o, warnings));
-    }();
+    static const auto asset = lsdem::test::bakedShape(AnalyticShape::sphere(kRadius), 0.1, 1000);
     return asset;
 }
 

@@ -96,6 +96,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
         // apart in the very first kick, before any later check could see the contact.
         checkStability(true);
         judgeMembraneStep();
+        judgeMembraneForecast();
     }
 }
 
@@ -121,6 +122,7 @@ Simulation::Simulation(World world, double dt, bool evaluateInitialForces,
         mWorld.energy.initialTotal = e.kinetic + e.elastic + e.potential;
         checkStability(true);
         judgeMembraneStep();
+        judgeMembraneForecast();
     }
 }
 

@@ -258,6 +258,35 @@ void Simulation::judgeMembraneStep() const
                 "give a smaller time_step, a larger membrane density (mass scaling) or less drag");
 }
 
+void Simulation::judgeMembraneForecast() const
+{
+    const double beta = mLargestDampingRatio;
+    for (size_t k = 0; k < mWorld.membranes.size() && k < mMembraneContactStiffness.size(); ++k) {
+        const Membrane& m = mWorld.membranes[k];
+        // Pressed now: some free vertex bears a contact (summed over every rank's grains, so
+        // every rank judges alike).
+        bool pressed = false;
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            pressed |= m.heldBy[i] < 0 && mMembraneContactStiffness[k][i] > 0.0;
+        if (!pressed) continue;
+        const double contact = stiffestMembraneContact(mWorld, m);
+        const double limit =
+            dampedStableStep(m.rubberOmegaSquared + contact,
+                             membraneDragRate(m) + 2.0 * beta * std::sqrt(contact),
+                             mWorld.globalDamping);
+        if (!(mDt > 2.0 * limit)) continue;
+        std::ostringstream problem, fix;
+        problem << "the time step " << mDt << " exceeds the stability limit " << limit
+                << " of the stiffest contact a grain can make on membrane '" << m.name
+                << "' (a face pressed over a vertex's triangles), which grains press at the start:"
+                   " the run would explode";
+        fix << "set [simulation] time_step to at most " << 0.2 * limit
+            << " (a fifth of the limit), or use \"auto\"; or raise the membrane's density (mass "
+               "scaling)";
+        throw Error("", problem.str(), fix.str());
+    }
+}
+
 double Simulation::membraneEnergy(double& kinetic) const
 {
     double elastic = mMembraneElastic;

@@ -218,6 +218,11 @@ private:
     MembraneStepParts membraneStepParts(size_t k) const;
     /// @throw Error if the step exceeds membraneStepLimit().
     void judgeMembraneStep() const;
+    /// At the start: a membrane that grains already press may be pressed as hard as the
+    /// stiffest contact a grain can make on a vertex (stiffestMembraneContact) within the next
+    /// steps. As for grains (checkStability), only a step beyond twice that contact's limit is
+    /// refused. @throw Error naming the membrane.
+    void judgeMembraneForecast() const;
     /// Their elastic energy (rubber and contacts with grains); @a kinetic gets their vertices'.
     double membraneEnergy(double& kinetic) const;
 

@@ -260,7 +260,6 @@ void Simulation::judgeMembraneStep() const
 
 void Simulation::judgeMembraneForecast() const
 {
-    const double beta = mLargestDampingRatio;
     for (size_t k = 0; k < mWorld.membranes.size() && k < mMembraneContactStiffness.size(); ++k) {
         const Membrane& m = mWorld.membranes[k];
         // Pressed now: some free vertex bears a contact (summed over every rank's grains, so
@@ -269,11 +268,7 @@ void Simulation::judgeMembraneForecast() const
         for (size_t i = 0; i < m.positions.size(); ++i)
             pressed |= m.heldBy[i] < 0 && mMembraneContactStiffness[k][i] > 0.0;
         if (!pressed) continue;
-        const double contact = stiffestMembraneContact(mWorld, m);
-        const double limit =
-            dampedStableStep(m.rubberOmegaSquared + contact,
-                             membraneDragRate(m) + 2.0 * beta * std::sqrt(contact),
-                             mWorld.globalDamping);
+        const double limit = stiffestMembraneContactStep(mWorld, m, m.rubberOmegaSquared);
         if (!(mDt > 2.0 * limit)) continue;
         std::ostringstream problem, fix;
         problem << "the time step " << mDt << " exceeds the stability limit " << limit

@@ -258,19 +258,21 @@ double stiffestMembraneContact(const World& world, const Membrane& m)
     return omega2;
 }
 
+double stiffestMembraneContactStep(const World& world, const Membrane& m,
+                                   double rubberOmegaSquared)
+{
+    const double contact = stiffestMembraneContact(world, m);
+    const double rate =
+        membraneDragRate(m) + 2.0 * largestDampingRatio(world) * std::sqrt(contact);
+    return dampedStableStep(rubberOmegaSquared + contact, rate, world.globalDamping);
+}
+
 double automaticTimeStep(const World& world, double safety)
 {
     double step = std::numeric_limits<double>::infinity();
     for (const double s : stiffestContactSteps(world)) step = std::min(step, s);
-    // A membrane's rubber, with the stiffest contact a grain can make on its vertices and that
-    // contact's dashpot (at the world's largest ratio, on the pair's ω).
-    const double beta = largestDampingRatio(world);
-    for (const Membrane& m : world.membranes) {
-        const double contact = stiffestMembraneContact(world, m);
-        const double rate = membraneDragRate(m) + 2.0 * beta * std::sqrt(contact);
-        step = std::min(step, dampedStableStep(membraneRubberOmegaSquared(m) + contact, rate,
-                                               world.globalDamping));
-    }
+    for (const Membrane& m : world.membranes)
+        step = std::min(step, stiffestMembraneContactStep(world, m, membraneRubberOmegaSquared(m)));
     if (!std::isfinite(step))
         throw Error("", "cannot choose an automatic time step: no free grain or no contact stiffness",
                     "give [simulation] time_step explicitly");

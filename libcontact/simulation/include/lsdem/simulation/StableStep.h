@@ -102,8 +102,8 @@ constexpr double kAutomaticBandFraction = 0.01;
 /// radius of the wall count, each with its normal and shear stiffness under every contact model
 /// of the world, in translation and in rotation about the centroid, doubled for a partner
 /// that moves as much (two equal free grains), with the largest damping ratio of the world.
-/// Each membrane's rubber, with the stiffest contact grains can make on a vertex
-/// (stiffestMembraneContact) and its dashpot, bounds it too.
+/// Each membrane's vertices under the stiffest contact grains can make on one bound it too
+/// (stiffestMembraneContactStep).
 /// Deeper contacts, or many at once, are what the stability check at every step is for; the
 /// safety factor (0.2 by default) leaves them 25 times the stiffness.
 /// @throw Error if no free grain touches anything stiff (nothing to base a step on).
@@ -118,6 +118,12 @@ double automaticTimeStep(const World& world, double safety);
 /// (the vertices' share 1 + m_m/M of the pair, MembraneContact.h). Crowded grains pressing a
 /// fold with several times its area are what the safety factor leaves room for.
 double stiffestMembraneContact(const World& world, const Membrane& m);
+
+/// The stable step of membrane @a m's free vertices under that contact
+/// (stiffestMembraneContact) with its dashpot (the world's largest ratio, on the pair's ω),
+/// beside its rubber's ω² @a rubberOmegaSquared and its drag.
+double stiffestMembraneContactStep(const World& world, const Membrane& m,
+                                   double rubberOmegaSquared);
 
 /// For each grain of @a world, the stable step of the stiffest contact it can make (what
 /// automaticTimeStep takes the least of, at safety 1); infinite for a grain that is not free

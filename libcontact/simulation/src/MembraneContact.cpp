@@ -324,8 +324,7 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
     NodeCheckStats& stats = out.stats;
     out.reactions.clear();
     out.loads.clear();
-    out.membraneMass = 0.0;
-    out.grainShare = out.vertexShare = 1.0;
+    out.grainShare = 1.0;
     const GrainAsset& a = *grain.asset;
     const long long count = static_cast<long long>(a.nodes.size());
     stats.nodesConsidered += count;
@@ -430,21 +429,22 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
             patch[kept++] = patch[k];
     }
     patch.resize(kept);
+    const auto isFree = [&](int vertex) { return m.heldBy[size_t(vertex)] < 0; };
     ContactGrain membraneView;
     Vec3 velocity = Vec3::Zero();
     double inverseMass = 0.0;
     for (const auto& [vertex, b] : patch) {
         velocity += b * m.velocities[size_t(vertex)];
-        if (m.heldBy[size_t(vertex)] < 0) inverseMass += b * b / m.masses[size_t(vertex)];
+        if (isFree(vertex)) inverseMass += b * b / m.masses[size_t(vertex)];
     }
     membraneView.velocity = velocity;
     membraneView.pose.position = grain.pose.position;
     membraneView.index = -1;
     membraneView.mass = inverseMass > 0.0 ? 1.0 / inverseMass : 0.0;  // 0: held, immovable
-    out.membraneMass = membraneView.mass;
+    double vertexShare = 1.0;
     if (membraneView.mass > 0.0 && grain.mass > 0.0) {
         out.grainShare = 1.0 + grain.mass / membraneView.mass;
-        out.vertexShare = 1.0 + membraneView.mass / grain.mass;
+        vertexShare = 1.0 + membraneView.mass / grain.mass;
     }
 
     ContactModel frictionless = model;
@@ -459,7 +459,6 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
 
     // Each node's force, reversed, to its triangle's vertices; the dashpot's (node −1) by the
     // weights b_v its velocity was read with.
-    const auto isFree = [&](int vertex) { return m.heldBy[size_t(vertex)] < 0; };
     size_t k = 0;
     for (const PointForce& f : forces) {
         if (f.node < 0) {
@@ -474,13 +473,13 @@ void computeMembraneContact(const ContactGrain& grain, const Membrane& m,
             if (h.weights[c] == 0.0) continue;
             out.reactions.emplace_back(v[c], -h.weights[c] * f.force);
             if (isFree(v[c]))
-                out.loads.push_back({v[c], out.vertexShare * h.weights[c] * f.stiffness, 0.0});
+                out.loads.push_back({v[c], vertexShare * h.weights[c] * f.stiffness, 0.0});
         }
     }
     if (out.result.dashpot > 0.0)
         for (const auto& [vertex, b] : patch)
             if (isFree(vertex))
-                out.loads.push_back({vertex, 0.0, out.vertexShare * b * out.result.dashpot});
+                out.loads.push_back({vertex, 0.0, vertexShare * b * out.result.dashpot});
     side.contacts.swap(contacts);
 }
 

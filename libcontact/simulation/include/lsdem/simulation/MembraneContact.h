@@ -110,7 +110,7 @@ struct MembraneHit
 /// What a vertex bears of one grain's contact, for the membrane's stable step: its springs
 /// Σ w·k over the nodes that met its triangles (w the vertex's barycentric weight there) and
 /// its part b·c of the contact's dashpot c (b its weight in the velocity the dashpot reads),
-/// both times the vertex's share of the pair, MembraneGrainContact::vertexShare.
+/// both times the vertex's share of the pair, 1 + m_m/M (MembraneGrainContact).
 struct MembraneVertexLoad
 {
     int vertex = -1;
@@ -144,13 +144,9 @@ struct MembraneGrainContact
     /// What each free vertex it touched bears, for the membrane's step (once per node and
     /// vertex, in the order found).
     std::vector<MembraneVertexLoad> loads;
-    /// m_m, the mass the membrane under the grain moves with (0: every vertex there is held).
-    double membraneMass = 0.0;
     /// 1 + M/m_m: how much stiffer the grain's check counts its springs and dashpot on the
-    /// membrane than on a wall (1 on held vertices).
+    /// membrane than on a wall (1 on held vertices). The vertices' 1 + m_m/M is in @ref loads.
     double grainShare = 1.0;
-    /// 1 + m_m/M: the same for the vertices, already in @ref loads.
-    double vertexShare = 1.0;
     NodeCheckStats stats;  ///< of this evaluation's node checks
     // Working memory, kept from step to step: where each node met the membrane, and the
     // point forces on the grain as the law gave them.

@@ -1,6 +1,7 @@
 /// @file TestMeshes.h
 /// @brief Small closed meshes built independently of the library (no AnalyticShape), for the
-///        mesh tests: an axis-aligned box, a subdivided icosahedron, and the signed volume.
+///        mesh tests: an axis-aligned box, a subdivided icosahedron, parts merged or turned
+///        inside out, and the signed volume.
 #pragma once
 
 #include "lsdem/mesh/TriangleMesh.h"
@@ -87,6 +88,36 @@ inline TriangleMesh makeIcosphere(int levels)
         }
         mesh.triangles = finer;
     }
+    return mesh;
+}
+
+/// @a b appended to @a a, with vertices of equal position shared.
+inline TriangleMesh mergeWelded(const TriangleMesh& a, const TriangleMesh& b)
+{
+    TriangleMesh out;
+    std::map<std::array<double, 3>, int> index;
+    auto add = [&](const TriangleMesh& part) {
+        for (const auto& t : part.triangles) {
+            std::array<int, 3> tri{};
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& p = part.vertices[size_t(t[k])];
+                const auto found = index.emplace(std::array<double, 3>{p.x(), p.y(), p.z()},
+                                                 static_cast<int>(out.vertices.size()));
+                if (found.second) out.vertices.push_back(p);
+                tri[k] = found.first->second;
+            }
+            out.triangles.push_back(tri);
+        }
+    };
+    add(a);
+    add(b);
+    return out;
+}
+
+/// @a mesh with every triangle turned the other way (a cavity's surface, from a solid's).
+inline TriangleMesh reversed(TriangleMesh mesh)
+{
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
     return mesh;
 }
 

@@ -25,30 +25,10 @@ uint32_t floatBits(float v)
     return bits;
 }
 
-/// Read the brick whose first voxel is @a origin, voxel by voxel (the accessor keeps the last
-/// leaf). Returns false when the brick is one value in one state (then @a raw holds it in [0]).
-bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord& origin,
-               LevelSetBricks::RawBrick& raw)
+/// Whether @a raw holds more than one value or state; if not, its value and state are left
+/// in [0] alone (the active mask then 1 or 0).
+bool variesWithin(LevelSetBricks::RawBrick& raw)
 {
-    using Leaf = openvdb::FloatTree::LeafNodeType;
-    constexpr int kDim = LevelSetBricks::kDim;
-    std::memset(raw.active, 0, sizeof(raw.active));
-    for (int x = 0; x < kDim; ++x)
-        for (int y = 0; y < kDim; ++y)
-            for (int z = 0; z < kDim; ++z) {
-                const openvdb::Coord c = origin.offsetBy(x, y, z);
-                const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
-                bool on = false;
-                if (const Leaf* leaf = accessor.probeConstLeaf(c)) {
-                    const openvdb::Index n = Leaf::coordToOffset(c);
-                    raw.value[k] = leaf->getValue(n);
-                    on = leaf->isValueOn(n);
-                } else {
-                    raw.value[k] = accessor.getValue(c);
-                    on = accessor.isValueOn(c);
-                }
-                if (on) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
-            }
     for (int k = 1; k < LevelSetBricks::kVoxels; ++k)
         if (raw.value[k] != raw.value[0]) return true;
     const bool on = (raw.active[0] & 1u) != 0;
@@ -58,9 +38,42 @@ bool readBrick(openvdb::FloatGrid::ConstAccessor& accessor, const openvdb::Coord
     return false;
 }
 
+/// A float grid's voxels, read voxel by voxel (the accessor keeps the last leaf).
+class FloatGridReader : public LevelSetBricks::Source::Reader
+{
+public:
+    explicit FloatGridReader(const openvdb::FloatGrid& grid) : mAccessor(grid.getConstAccessor()) {}
+
+    void read(const openvdb::Coord& origin, LevelSetBricks::RawBrick& raw) override
+    {
+        using Leaf = openvdb::FloatTree::LeafNodeType;
+        constexpr int kDim = LevelSetBricks::kDim;
+        std::memset(raw.active, 0, sizeof(raw.active));
+        for (int x = 0; x < kDim; ++x)
+            for (int y = 0; y < kDim; ++y)
+                for (int z = 0; z < kDim; ++z) {
+                    const openvdb::Coord c = origin.offsetBy(x, y, z);
+                    const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
+                    bool on = false;
+                    if (const Leaf* leaf = mAccessor.probeConstLeaf(c)) {
+                        const openvdb::Index n = Leaf::coordToOffset(c);
+                        raw.value[k] = leaf->getValue(n);
+                        on = leaf->isValueOn(n);
+                    } else {
+                        raw.value[k] = mAccessor.getValue(c);
+                        on = mAccessor.isValueOn(c);
+                    }
+                    if (on) raw.active[k >> 6] |= uint64_t(1) << (k & 63);
+                }
+    }
+
+private:
+    openvdb::FloatGrid::ConstAccessor mAccessor;
+};
+
 /// The box of index space holding every voxel of @a grid that is active or differs from the
 /// background: such voxels of its leaves, and such tiles.
-openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
+openvdb::CoordBBox gridValueBox(const openvdb::FloatGrid& grid)
 {
     const float background = grid.background();
     openvdb::CoordBBox box;
@@ -74,6 +87,21 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
     return box;
 }
 
+/// A float grid's voxels, tiles included.
+class FloatGridSource : public LevelSetBricks::Source
+{
+public:
+    explicit FloatGridSource(const openvdb::FloatGrid& grid) : mGrid(grid) {}
+    openvdb::CoordBBox valueBox() const override { return gridValueBox(mGrid); }
+    std::unique_ptr<Reader> reader() const override
+    {
+        return std::make_unique<FloatGridReader>(mGrid);
+    }
+
+private:
+    const openvdb::FloatGrid& mGrid;
+};
+
 } // namespace
 
 // The constructor's passes share the table under construction, so they are members; each
@@ -81,16 +109,21 @@ openvdb::CoordBBox valueBox(const openvdb::FloatGrid& grid)
 // classifying the places, the bricks laid out in place order, the storage, then pass 2
 // writing the bricks.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
-    : mPlaneCeiling(grid.background() > 0.0f ? grid.background()
-                                              : std::numeric_limits<float>::infinity()),
-      mTransform(grid.transform().copy()),
-      mMetadata(grid.copyMeta())
+    : LevelSetBricks(grid, FloatGridSource(grid))
 {
-    chooseSteps(grid.voxelSize());
-    sizeTable(valueBox(grid));
-    const std::vector<Place> places = classifyPlaces(grid);
+}
+
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, const Source& source)
+    : mPlaneCeiling(header.background() > 0.0f ? header.background()
+                                                : std::numeric_limits<float>::infinity()),
+      mTransform(header.transform().copy()),
+      mMetadata(header.copyMeta())
+{
+    chooseSteps(header.voxelSize());
+    sizeTable(source.valueBox());
+    const std::vector<Place> places = classifyPlaces(source);
     SharedBricks shared;
-    shared[{floatBits(grid.background()), 0}] = kBackgroundBrick;
+    shared[{floatBits(header.background()), 0}] = kBackgroundBrick;
     const uint32_t bricks = layOutBricks(places, shared);
     allocateBricks(bricks);
     for (const auto& [uniform, brick] : shared) {
@@ -98,7 +131,7 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
         std::memcpy(&value, &uniform.first, sizeof value);
         writeUniformBrick(brick, value, uniform.second != 0);
     }
-    writeVaryingBricks(grid);
+    writeVaryingBricks(source);
     shareMasks();
 }
 
@@ -181,10 +214,10 @@ struct LevelSetBricks::Place
 /// Pass 1, in parallel: what each place of the table holds (varying values, or one value and
 /// state), and whether its values are all finite.
 std::vector<LevelSetBricks::Place>
-LevelSetBricks::classifyPlaces(const openvdb::FloatGrid& grid) const
+LevelSetBricks::classifyPlaces(const Source& source) const
 {
     std::vector<Place> places(mTable.size());
-    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+    forEachRawBrick(source, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         Place& p = places[slot];
         p.varies = varies;
         int32_t unused[kVoxels];
@@ -252,9 +285,9 @@ void LevelSetBricks::allocateBricks(uint32_t bricks)
 }
 
 /// Pass 2, in parallel: the bricks of varying values, each into its own place.
-void LevelSetBricks::writeVaryingBricks(const openvdb::FloatGrid& grid)
+void LevelSetBricks::writeVaryingBricks(const Source& source)
 {
-    forEachRawBrick(grid, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+    forEachRawBrick(source, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         if (!varies) return;
         const uint32_t brick = mTable[slot] & kIndexMask;
         if (isDeep(brick))
@@ -274,19 +307,19 @@ openvdb::Coord LevelSetBricks::placeOrigin(size_t slot) const
 }
 
 template <typename Visit>
-void LevelSetBricks::forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const
+void LevelSetBricks::forEachRawBrick(const Source& source, Visit&& visit) const
 {
-    // Slabs of constant x in parallel, each with its own accessor; every place once.
+    // Slabs of constant x in parallel, each with its own reader; every place once.
     tbb::parallel_for(uint32_t(0), mBricks[0], [&](uint32_t ix) {
-        auto accessor = grid.getConstAccessor();
+        const std::unique_ptr<Source::Reader> reader = source.reader();
         RawBrick raw;
         size_t slot = size_t(ix) * mBricks[1] * mBricks[2];
         for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
                 const openvdb::Coord origin =
                     mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
-                const bool varies = readBrick(accessor, origin, raw);
-                visit(slot, origin, varies, raw);
+                reader->read(origin, raw);
+                visit(slot, origin, variesWithin(raw), raw);
             }
     });
 }

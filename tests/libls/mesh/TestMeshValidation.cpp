@@ -24,39 +24,12 @@ using lsdem::Vec3;
 namespace {
 
 using lsdem::test::makeBox;
+using lsdem::test::mergeWelded;
+using lsdem::test::reversed;
 using lsdem::test::makeIcosphere;
 using lsdem::test::signedVolume;
 
-/// @a b appended to @a a, with vertices of equal position shared.
-TriangleMesh mergeWelded(const TriangleMesh& a, const TriangleMesh& b)
-{
-    TriangleMesh out;
-    std::map<std::array<double, 3>, int> index;
-    auto add = [&](const TriangleMesh& part) {
-        for (const auto& t : part.triangles) {
-            std::array<int, 3> tri{};
-            for (int k = 0; k < 3; ++k) {
-                const Vec3& p = part.vertices[t[k]];
-                const auto found = index.emplace(std::array<double, 3>{p.x(), p.y(), p.z()},
-                                                 static_cast<int>(out.vertices.size()));
-                if (found.second) out.vertices.push_back(p);
-                tri[k] = found.first->second;
-            }
-            out.triangles.push_back(tri);
-        }
-    };
-    add(a);
-    add(b);
-    return out;
-}
-
 void flip(std::array<int, 3>& tri) { std::swap(tri[1], tri[2]); }
-
-TriangleMesh reversed(TriangleMesh mesh)
-{
-    for (auto& t : mesh.triangles) flip(t);
-    return mesh;
-}
 
 using Corner = std::array<double, 3>;
 using Face = std::array<Corner, 3>;

@@ -343,11 +343,13 @@ TEST(TriaxialPath, AMembraneHoldsSigma3RoundACylinderCutFromTheSample)
     // counted with the moment of their fanned-out point forces, is the lateral stress the
     // membrane measures (for a sample at rest the two are one sum; without that moment it was
     // 0.072 against 0.100). Axially the platens also carry the membrane's own push on its rims,
-    // which the grains do not: there the grains' stress is lower (measured 0.082 against 0.100
-    // on 27 grains; not corrected for yet).
+    // which the grains do not, and the two are not the same sum: on 27 grains the grains' axial
+    // stress was measured at 0.082, 0.069 and 0.103 against the platens' 0.100–0.101 MPa as the
+    // grains' level sets changed by less than 0.01 voxel (2026-11-30: a narrow band of lsdem's
+    // own), so neither its sign nor its size is asserted beyond the packing's own spread.
     for (int a = 0; a < 2; ++a)
         EXPECT_NEAR(s.loveWeberStress[a], s.stress[a], 0.05 * p.confiningStress) << a;
-    EXPECT_LT(s.loveWeberStress.z(), s.stress.z());
+    EXPECT_NEAR(s.loveWeberStress.z(), s.stress.z(), 0.4 * p.confiningStress);
     std::printf("[ measured ] membrane sample's Love-Weber stress %.4g %.4g %.4g against the "
                 "boundaries' %.4g %.4g %.4g MPa\n",
                 s.loveWeberStress.x(), s.loveWeberStress.y(), s.loveWeberStress.z(), s.stress.x(),

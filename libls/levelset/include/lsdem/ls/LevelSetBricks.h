@@ -68,6 +68,7 @@
 #include <cstdint>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -81,9 +82,17 @@ public:
     static constexpr int kVoxels = kDim * kDim * kDim;         ///< voxels in a brick
     static constexpr int kMaskWords = (kVoxels + 63) / 64;     ///< 64-bit active-state words
 
+    struct RawBrick;
+    class Source;
+
     /// The values and active states of every voxel of @a grid (tiles included), its
     /// background, transform and metadata. Throws lsdem::Error if a value is not finite.
     explicit LevelSetBricks(const openvdb::FloatGrid& grid);
+
+    /// The values and active states @a source gives, with @a header's background, transform
+    /// and metadata (its tree is not read): for values made as they are read, without a
+    /// float grid of them all.
+    LevelSetBricks(const openvdb::FloatGrid& header, const Source& source);
 
     /// A standard FloatGrid of the decoded values, with the same active states, background,
     /// transform and metadata as the grid this was built from (for files and OpenVDB's tools).
@@ -243,6 +252,26 @@ public:
         uint64_t active[kMaskWords];
     };
 
+    /// Where the builder reads the voxels, a brick at a time: a float grid's, or values made
+    /// as they are read. Read twice, in parallel (slabs of bricks), once to choose each
+    /// brick's kind and once to write it.
+    class Source
+    {
+    public:
+        virtual ~Source() = default;
+        /// The box holding every voxel that is active or whose value is not the background.
+        virtual openvdb::CoordBBox valueBox() const = 0;
+        /// Reads for one thread.
+        class Reader
+        {
+        public:
+            virtual ~Reader() = default;
+            /// Every value and active state of the brick whose first voxel is @a origin.
+            virtual void read(const openvdb::Coord& origin, RawBrick& raw) = 0;
+        };
+        virtual std::unique_ptr<Reader> reader() const = 0;
+    };
+
 private:
     static constexpr uint32_t kBackgroundBrick = 0;
     static constexpr uint32_t kShared = 0x80000000u;  ///< table flag: a brick of one value
@@ -263,7 +292,7 @@ private:
     /// @a grid; places in parallel (slabs of constant x), so @a visit must only write what
     /// belongs to its slot.
     template <typename Visit>
-    void forEachRawBrick(const openvdb::FloatGrid& grid, Visit&& visit) const;
+    void forEachRawBrick(const Source& source, Visit&& visit) const;
     /// The first voxel of the table's place @a slot.
     openvdb::Coord placeOrigin(size_t slot) const;
 
@@ -273,10 +302,10 @@ private:
     using SharedBricks = std::map<std::pair<uint32_t, uint8_t>, uint32_t>;
     void chooseSteps(const openvdb::Vec3d& voxel);
     void sizeTable(const openvdb::CoordBBox& box);
-    std::vector<Place> classifyPlaces(const openvdb::FloatGrid& grid) const;
+    std::vector<Place> classifyPlaces(const Source& source) const;
     uint32_t layOutBricks(const std::vector<Place>& places, SharedBricks& shared);
     void allocateBricks(uint32_t bricks);
-    void writeVaryingBricks(const openvdb::FloatGrid& grid);
+    void writeVaryingBricks(const Source& source);
     uint8_t* writableCodes(uint32_t brick)
     {
         return mCode.data() + (codes(brick) - mCode.data());

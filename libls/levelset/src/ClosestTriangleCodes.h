@@ -11,14 +11,15 @@
 
 namespace lsdem::closest {
 
-/// Inside the band, not yet reached by the interior fill (and the band's flood fill's value
-/// inside). Negative, as everything inside the band is.
-constexpr openvdb::Int32 kUnknown = std::numeric_limits<openvdb::Int32>::min();
-/// Outside the band (the tree's background, and the flood fill's value outside).
+/// An inactive voxel: outside the band and not reached by the interior fill (the tree's
+/// background).
 constexpr openvdb::Int32 kOutside = std::numeric_limits<openvdb::Int32>::max();
-/// Set on a band voxel's code: its distance is the exact one to its nearest triangle, and the
-/// code's sign bit says its side. Codes without it (and not kUnknown) are inside.
+/// Set on a band voxel's code: its distance is the exact one to its nearest triangle, on the
+/// side the sign bit says. Codes without it are the fill's, inside.
 constexpr openvdb::Int32 kBandBit = openvdb::Int32(1) << 30;
+/// The sign bit: set on an inside band voxel's code. Alone, no triangle.
+constexpr openvdb::Int32 kInsideBit = std::numeric_limits<openvdb::Int32>::min();
+constexpr openvdb::Int32 kNoTriangle = kInsideBit;
 constexpr openvdb::Int32 kTriangleMask = kBandBit - 1;
 /// Triangles are numbered below this (kOutside's triangle bits are not a triangle).
 constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
@@ -26,10 +27,10 @@ constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
 /// A band voxel's code: its nearest triangle @a t, on the side @a outside says.
 inline openvdb::Int32 bandCode(openvdb::Int32 t, bool outside)
 {
-    return outside ? (t | kBandBit) : (t | kBandBit | kUnknown);
+    return outside ? (t | kBandBit) : (t | kBandBit | kInsideBit);
 }
 /// Whether @a code names a triangle (a band voxel, or one the fill has reached).
-inline bool holdsTriangle(openvdb::Int32 code) { return code != kUnknown && code != kOutside; }
+inline bool holdsTriangle(openvdb::Int32 code) { return code != kNoTriangle && code != kOutside; }
 inline openvdb::Int32 triangleOf(openvdb::Int32 code) { return code & kTriangleMask; }
 /// Whether a voxel whose code holds a triangle lies outside the mesh.
 inline bool isOutside(openvdb::Int32 code) { return (code & kBandBit) && code >= 0; }

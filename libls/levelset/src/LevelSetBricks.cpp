@@ -12,6 +12,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 namespace lsdem {
@@ -109,11 +110,11 @@ private:
 // classifying the places, the bricks laid out in place order, the storage, then pass 2
 // writing the bricks.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
-    : LevelSetBricks(grid, FloatGridSource(grid))
+    : LevelSetBricks(grid, *std::make_unique<FloatGridSource>(grid))  // (a source to write to)
 {
 }
 
-LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, const Source& source)
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, Source& source)
     : mPlaneCeiling(header.background() > 0.0f ? header.background()
                                                 : std::numeric_limits<float>::infinity()),
       mTransform(header.transform().copy()),
@@ -121,10 +122,10 @@ LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, const Source& s
 {
     chooseSteps(header.voxelSize());
     sizeTable(source.valueBox());
-    const std::vector<Place> places = classifyPlaces(source);
     SharedBricks shared;
     shared[{floatBits(header.background()), 0}] = kBackgroundBrick;
-    const uint32_t bricks = layOutBricks(places, shared);
+    // (The places, a temporary, are freed before the storage is made.)
+    const uint32_t bricks = layOutBricks(classifyPlaces(source), shared);
     allocateBricks(bricks);
     for (const auto& [uniform, brick] : shared) {
         float value = 0.0f;
@@ -277,17 +278,19 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
 void LevelSetBricks::allocateBricks(uint32_t bricks)
 {
     const size_t twoBytes = mNarrowFirst - mWideBricks, oneByte = bricks - mNarrowFirst;
-    mCode.assign((size_t(mWideBricks) * 3 + twoBytes * 2 + oneByte) * kVoxels + 1, 0);
+    mCode.resize((size_t(mWideBricks) * 3 + twoBytes * 2 + oneByte) * kVoxels + 1);
+    mCode.back() = 0;  // the padding: every other byte is written with its brick
     mBrickStep.assign(bricks, 0.0f);
     mBase.assign(bricks - mWideBricks, 0);
     mGradient.assign(3 * size_t(bricks - mPlaneFirst), 0);
     mActive.assign(size_t(bricks) * kMaskWords, 0);
 }
 
-/// Pass 2, in parallel: the bricks of varying values, each into its own place.
-void LevelSetBricks::writeVaryingBricks(const Source& source)
+/// Pass 2, in parallel: the bricks of varying values, each into its own place; in order of x,
+/// two slabs at a time, the source told after each what it will not be asked for again.
+void LevelSetBricks::writeVaryingBricks(Source& source)
 {
-    forEachRawBrick(source, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
+    auto write = [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         if (!varies) return;
         const uint32_t brick = mTable[slot] & kIndexMask;
         if (isDeep(brick))
@@ -296,7 +299,13 @@ void LevelSetBricks::writeVaryingBricks(const Source& source)
             writePlaneBrick(brick, b);
         else
             writeVaryingBrick(brick, b);
-    });
+    };
+    constexpr uint32_t kSlabsAtATime = 2;  // 8 voxels: an OpenVDB leaf's width
+    for (uint32_t first = 0; first < mBricks[0]; first += kSlabsAtATime) {
+        const uint32_t end = std::min(mBricks[0], first + kSlabsAtATime);
+        forEachRawBrick(source, first, end, write);
+        source.releaseBelow(mOrigin.x() + int(end) * kDim);
+    }
 }
 
 openvdb::Coord LevelSetBricks::placeOrigin(size_t slot) const
@@ -309,18 +318,29 @@ openvdb::Coord LevelSetBricks::placeOrigin(size_t slot) const
 template <typename Visit>
 void LevelSetBricks::forEachRawBrick(const Source& source, Visit&& visit) const
 {
-    // Slabs of constant x in parallel, each with its own reader; every place once.
-    tbb::parallel_for(uint32_t(0), mBricks[0], [&](uint32_t ix) {
+    forEachRawBrick(source, 0, mBricks[0], visit);
+}
+
+template <typename Visit>
+void LevelSetBricks::forEachRawBrick(const Source& source, uint32_t firstSlab, uint32_t endSlab,
+                                     Visit&& visit) const
+{
+    // Rows of constant x and y in parallel, each with its own reader; every place once.
+    const size_t rows = size_t(endSlab - firstSlab) * mBricks[1];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rows, 8), [&](const tbb::blocked_range<size_t>& range) {
         const std::unique_ptr<Source::Reader> reader = source.reader();
         RawBrick raw;
-        size_t slot = size_t(ix) * mBricks[1] * mBricks[2];
-        for (uint32_t iy = 0; iy < mBricks[1]; ++iy)
+        for (size_t row = range.begin(); row != range.end(); ++row) {
+            const uint32_t ix = firstSlab + uint32_t(row / mBricks[1]);
+            const auto iy = uint32_t(row % mBricks[1]);
+            size_t slot = (size_t(ix) * mBricks[1] + iy) * mBricks[2];
             for (uint32_t iz = 0; iz < mBricks[2]; ++iz, ++slot) {
                 const openvdb::Coord origin =
                     mOrigin.offsetBy(int(ix) * kDim, int(iy) * kDim, int(iz) * kDim);
                 reader->read(origin, raw);
                 visit(slot, origin, variesWithin(raw), raw);
             }
+        }
     });
 }
 
@@ -329,7 +349,10 @@ void LevelSetBricks::writeUniformBrick(uint32_t brick, float value, bool active)
     // One value v: q = 1 and step = v decode to v exactly.
     mBrickStep[brick] = value;
     uint8_t* code = writableCodes(brick);
-    for (int k = 0; k < kVoxels; ++k) code[3 * k] = 1;
+    for (int k = 0; k < kVoxels; ++k) {
+        code[3 * k] = 1;
+        code[3 * k + 1] = code[3 * k + 2] = 0;
+    }
     std::fill_n(mActive.begin() + std::ptrdiff_t(size_t(brick) * kMaskWords), kMaskWords,
                 active ? ~uint64_t(0) : uint64_t(0));
 }

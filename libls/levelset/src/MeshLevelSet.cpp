@@ -7,9 +7,12 @@
 #include "lsdem/core/OrderedCollect.h"
 #include "lsdem/mesh/TriangleOffset.h"
 
-#include <openvdb/tools/SignedFloodFill.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -29,9 +32,16 @@ const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
 
 /// The inward propagation of closest triangles: each voxel inside the band takes the nearest
 /// of the triangles closest to its 26 neighbours, layer after layer inward from the band.
-/// Works in the caller's tree of codes (ClosestTriangleCodes.h), whose every voxel to fill is
-/// an active kUnknown voxel: the distances are made from the codes only as the bricks are
-/// written, so no float tree of them all is ever held.
+/// Works in the caller's tree of codes (ClosestTriangleCodes.h), which holds the band: the
+/// distances are made from the codes only as the bricks are written, so no float tree of them
+/// all is ever held.
+///
+/// What is inside is found by the fill itself: the voxels not in the band (inactive) that are
+/// face-adjacent to the band's inside, and to those, and so on. A voxel face-adjacent to one
+/// less than two voxels inside is less than three inside (the distance changes by at most a
+/// voxel from one to the next), so it cannot lie outside the band (at least two outside):
+/// the fill never leaves the inside. (A mesh that crosses itself has no inside, and its
+/// pseudo-normals can disagree: the fill is then kept within the band's box.)
 class InteriorFill
 {
 public:
@@ -39,10 +49,11 @@ public:
                  double voxelSize)
         : mClosest(codes), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize)
     {
+        codes.evalActiveVoxelBoundingBox(mBounds);
     }
 
-    /// Find the closest triangle of every unknown voxel, layer after layer inward from the
-    /// band's voxels that touch one.
+    /// Find the closest triangle of every voxel inside beyond the band, layer after layer
+    /// inward from the band's inside voxels that touch one.
     void run()
     {
         std::vector<openvdb::Coord> layer = bandEdge();
@@ -53,8 +64,16 @@ public:
     }
 
 private:
-    /// The band's voxels with an unknown face neighbour, leaf by leaf in the tree's order: the
-    /// first layer (every solved face neighbour of an unknown voxel is among them).
+    /// Whether the voxel at @a c is yet to be reached: not in the band nor filled, and within
+    /// the band's box.
+    bool isUnknown(const openvdb::tree::ValueAccessor<const openvdb::Int32Tree>& closest,
+                   const openvdb::Coord& c) const
+    {
+        return !closest.isValueOn(c) && mBounds.isInside(c);
+    }
+
+    /// The band's inside voxels with an unknown face neighbour, leaf by leaf in the tree's
+    /// order: the first layer (every solved face neighbour of an unknown voxel is among them).
     std::vector<openvdb::Coord> bandEdge() const
     {
         std::vector<const IndexLeaf*> leaves;
@@ -64,10 +83,10 @@ private:
             openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
             for (size_t l = begin; l < end; ++l)
                 for (auto it = leaves[l]->cbeginValueOn(); it; ++it) {
-                    if (!closest::holdsTriangle(*it)) continue;
+                    if (!closest::holdsTriangle(*it) || closest::isOutside(*it)) continue;
                     const openvdb::Coord c = it.getCoord();
                     for (const openvdb::Coord& step : kFaces)
-                        if (closest.getValue(c + step) == closest::kUnknown) {
+                        if (isUnknown(closest, c + step)) {
                             out.push_back(c);
                             break;
                         }
@@ -90,7 +109,7 @@ private:
                 for (const openvdb::Coord& back : kFaces) {
                     const openvdb::Coord m = n + back;
                     if (m == c) return true;
-                    if (closest::holdsTriangle(closest.getValue(m))) return false;
+                    if (closest.isValueOn(m)) return false;
                 }
                 return true;
             };
@@ -98,7 +117,7 @@ private:
                 const openvdb::Coord& c = layer[i];
                 for (const openvdb::Coord& step : kFaces) {
                     const openvdb::Coord n = c + step;
-                    if (closest.getValue(n) != closest::kUnknown) continue;
+                    if (!isUnknown(closest, n)) continue;
                     if (addsIt(c, n)) out.push_back(n);
                 }
             }
@@ -158,7 +177,7 @@ private:
                 openvdb::Int32 around[27];
                 neighbourhood(layer[i], closest, around);
                 double best = std::numeric_limits<double>::infinity();
-                openvdb::Int32 bestTriangle = closest::kUnknown;
+                openvdb::Int32 bestTriangle = closest::kNoTriangle;
                 // The 27 hold a few distinct triangles, each many times: a triangle already
                 // tried is skipped by a look in a small table by its low bits. Two sharing a
                 // slot are both tried, which costs time only: the nearest (ties to the lower
@@ -181,16 +200,20 @@ private:
             }
         });
         // Written once the whole layer is solved (its voxels read each other's old values).
-        // Every layer voxel lies in a leaf of the tree, whose shape does not change here, so
-        // the writes go to distinct values of existing leaves and can run in parallel.
+        // The leaves the layer needs are made and its voxels made active first, on one thread
+        // (the tree changes shape, and a leaf's active states share 64-bit words); then the
+        // values, distinct ones of existing leaves, are written in parallel.
+        {
+            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
+            for (const openvdb::Coord& c : layer)
+                closest.touchLeaf(c)->setActiveState(IndexLeaf::coordToOffset(c), true);
+        }
         tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 4096),
                           [&](const tbb::blocked_range<size_t>& range) {
             openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-                IndexLeaf* leaf = closest.probeLeaf(layer[i]);
-                if (!leaf) throw Error("", "internal: a filled voxel outside the tree's leaves");
-                leaf->setValueOnly(IndexLeaf::coordToOffset(layer[i]), nearest[i]);
-            }
+            for (size_t i = range.begin(); i != range.end(); ++i)
+                closest.probeLeaf(layer[i])->setValueOnly(IndexLeaf::coordToOffset(layer[i]),
+                                                          nearest[i]);
         });
     }
 
@@ -198,17 +221,38 @@ private:
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
+    openvdb::CoordBBox mBounds;  ///< the band's box: the inside lies within it
 };
 
 /// The bricks' values from the codes: each voxel's distance to its closest triangle, minus it
-/// inside; inactive voxels (all outside) at the background.
+/// inside; inactive voxels (all outside) at the background. The codes' leaves are freed as the
+/// bricks are written past them, and their pages handed back, so the codes and the bricks are
+/// not all held at once.
 class ClosestTriangleSource : public LevelSetBricks::Source
 {
 public:
-    ClosestTriangleSource(const openvdb::Int32Tree& codes, const TriangleMesh& mesh,
-                          const Vec3& origin, double voxelSize, float background)
+    ClosestTriangleSource(openvdb::Int32Tree& codes, const TriangleMesh& mesh, const Vec3& origin,
+                          double voxelSize, float background)
         : mCodes(codes), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize), mBackground(background)
     {
+        for (auto leaf = codes.cbeginLeaf(); leaf; ++leaf) mLeaves.push_back(leaf->origin());
+        std::sort(mLeaves.begin(), mLeaves.end(),
+                  [](const openvdb::Coord& a, const openvdb::Coord& b) { return a.x() < b.x(); });
+    }
+
+    void releaseBelow(int x) override
+    {
+        bool freed = false;
+        for (; mReleased < mLeaves.size() && mLeaves[mReleased].x() + int(IndexLeaf::DIM) <= x;
+             ++mReleased) {
+            mCodes.addTile(1, mLeaves[mReleased], closest::kOutside, false);  // the leaf goes
+            freed = true;
+        }
+#if defined(__GLIBC__)
+        // The leaves are small blocks inside malloc's heaps, which keeps them; the pages they
+        // leave wholly free go back to the system, for the bricks' storage to take.
+        if (freed) malloc_trim(0);
+#endif
     }
 
     openvdb::CoordBBox valueBox() const override
@@ -266,11 +310,13 @@ private:
         return closest::isOutside(code) ? depth : -depth;
     }
 
-    const openvdb::Int32Tree& mCodes;
+    openvdb::Int32Tree& mCodes;
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
     float mBackground;
+    std::vector<openvdb::Coord> mLeaves;  ///< the codes' leaves, by x
+    size_t mReleased = 0;                 ///< those freed: the first this many
 };
 
 } // namespace
@@ -298,13 +344,7 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     //    each voxel's nearest triangle and side (MeshNarrowBand.h).
     const std::unique_ptr<openvdb::Int32Tree> codes =
         meshNarrowBand(mesh, origin, vox, exteriorBandVoxels);
-    // 2. The inside: the band's sides flood-filled (the band is closed: no voxel two inside
-    //    is face-adjacent to one outside), every voxel inside made active, then each reached
-    //    by the fill inward from the band (InteriorFill).
-    openvdb::tools::signedFloodFillWithValues(*codes, closest::kOutside, closest::kUnknown);
-    for (auto it = codes->beginValueOff(); it; ++it)
-        if (*it == closest::kUnknown) it.setActiveState(true);
-    codes->voxelizeActiveTiles();
+    // 2. The inside: each voxel reached by the fill inward from the band (InteriorFill).
     InteriorFill(*codes, mesh, origin, vox).run();
 
     // 3. The bricks, their values made from the codes as they are read.
@@ -313,8 +353,8 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     header.setTransform(makeGridTransform(vox, origin));
     header.setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();
-    levelSet->grid = std::make_shared<const LevelSetBricks>(
-        header, ClosestTriangleSource(*codes, mesh, origin, vox, background));
+    ClosestTriangleSource source(*codes, mesh, origin, vox, background);
+    levelSet->grid = std::make_shared<const LevelSetBricks>(header, source);
     levelSet->origin = origin;
     levelSet->voxelSize = vox;
     return levelSet;

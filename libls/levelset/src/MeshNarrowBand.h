@@ -17,7 +17,7 @@ namespace lsdem {
 /// @a mesh's surface or within two inside it, active, coded with the triangle nearest to it
 /// (the lowest-numbered of equally near ones) and its side (the pseudo-normals,
 /// MeshPseudoNormals.h): exact distances, in double. Other voxels are inactive at kOutside
-/// (the tree's background): the caller flood-fills the inside. Deterministic on any thread
+/// (the tree's background): the caller fills the inside. Deterministic on any thread
 /// count. @a mesh: closed, manifold, consistently oriented (else lsdem::Error), with fewer
 /// than closest::kMaxTriangles triangles.
 std::unique_ptr<openvdb::Int32Tree> meshNarrowBand(const TriangleMesh& mesh, const Vec3& origin,

@@ -92,7 +92,7 @@ public:
     /// The values and active states @a source gives, with @a header's background, transform
     /// and metadata (its tree is not read): for values made as they are read, without a
     /// float grid of them all.
-    LevelSetBricks(const openvdb::FloatGrid& header, const Source& source);
+    LevelSetBricks(const openvdb::FloatGrid& header, Source& source);
 
     /// A standard FloatGrid of the decoded values, with the same active states, background,
     /// transform and metadata as the grid this was built from (for files and OpenVDB's tools).
@@ -270,6 +270,9 @@ public:
             virtual void read(const openvdb::Coord& origin, RawBrick& raw) = 0;
         };
         virtual std::unique_ptr<Reader> reader() const = 0;
+        /// Called during the second read, between readers, once no brick below x index @a x
+        /// (exclusive) will be read again: a source may free what it holds there.
+        virtual void releaseBelow(int x) { (void)x; }
     };
 
 private:
@@ -293,6 +296,10 @@ private:
     /// belongs to its slot.
     template <typename Visit>
     void forEachRawBrick(const Source& source, Visit&& visit) const;
+    /// The same for the places in slabs [@a firstSlab, @a endSlab) of constant x.
+    template <typename Visit>
+    void forEachRawBrick(const Source& source, uint32_t firstSlab, uint32_t endSlab,
+                         Visit&& visit) const;
     /// The first voxel of the table's place @a slot.
     openvdb::Coord placeOrigin(size_t slot) const;
 
@@ -305,7 +312,7 @@ private:
     std::vector<Place> classifyPlaces(const Source& source) const;
     uint32_t layOutBricks(const std::vector<Place>& places, SharedBricks& shared);
     void allocateBricks(uint32_t bricks);
-    void writeVaryingBricks(const Source& source);
+    void writeVaryingBricks(Source& source);
     uint8_t* writableCodes(uint32_t brick)
     {
         return mCode.data() + (codes(brick) - mCode.data());
@@ -354,9 +361,31 @@ private:
     openvdb::Coord mOrigin{0, 0, 0};  ///< index of the table's first voxel
     uint32_t mBricks[3] = {0, 0, 0};
     std::vector<uint32_t> mTable;        ///< per brick of the box, x-major: index | kShared
+    /// An allocator that leaves new elements unwritten: pass 2 writes every code, so the
+    /// storage's pages become resident as the bricks are written (a source freeing what it
+    /// holds meanwhile), not all at once.
+    template <typename T>
+    struct UnwrittenAllocator : std::allocator<T>
+    {
+        template <typename U>
+        struct rebind
+        {
+            using other = UnwrittenAllocator<U>;
+        };
+        UnwrittenAllocator() = default;
+        template <typename U>
+        UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}
+        template <typename U>
+        void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }
+        template <typename U, typename... Args>
+        void construct(U* p, Args&&... args)
+        {
+            ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+        }
+    };
     /// 3 bytes per voxel, kVoxels per brick (2 for deep bricks, after the others); 1 padding
     /// byte
-    std::vector<uint8_t> mCode;
+    std::vector<uint8_t, UnwrittenAllocator<uint8_t>> mCode;
     std::vector<float> mBrickStep;       ///< per brick: a power of two, or the shared value
     uint32_t mWideBricks = 0;            ///< bricks [0, mWideBricks) are wide
     uint32_t mPlaneFirst = 0;            ///< then deep bricks up to this one, then plane ones

@@ -53,18 +53,22 @@ class LeafTriangles
 public:
     LeafTriangles(const TriangleMesh& mesh, const Vec3& origin, double voxel, double reachVoxels)
     {
-        const int triangles = int(mesh.triangles.size());
-        std::vector<VoxelRange> leafRange(mesh.triangles.size());
-        openvdb::Coord lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
-        for (int t = 0; t < triangles; ++t) {
+        // Each triangle's range of leaves, made again in each pass rather than stored (it
+        // would take 24 bytes a triangle).
+        auto leavesOf = [&](int t) {
             VoxelRange r = reachOf(mesh, t, origin, voxel, reachVoxels);
             for (int a = 0; a < 3; ++a) {
                 r.lo[a] >>= kLeafLog2;  // (index space lies in the positive octant)
                 r.hi[a] >>= kLeafLog2;
             }
+            return r;
+        };
+        const int triangles = int(mesh.triangles.size());
+        openvdb::Coord lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+        for (int t = 0; t < triangles; ++t) {
+            const VoxelRange r = leavesOf(t);
             lo.minComponent(r.lo);
             hi.maxComponent(r.hi);
-            leafRange[size_t(t)] = r;
         }
         mLow = lo;
         for (int a = 0; a < 3; ++a) mDim[a] = size_t(hi[a] - lo[a] + 1);
@@ -76,12 +80,12 @@ public:
                 for (int y = r.lo.y(); y <= r.hi.y(); ++y)
                     for (int z = r.lo.z(); z <= r.hi.z(); ++z) f(slot(openvdb::Coord(x, y, z)));
         };
-        for (const VoxelRange& r : leafRange) forEachLeaf(r, [&](size_t s) { ++mFirst[s + 1]; });
+        for (int t = 0; t < triangles; ++t) forEachLeaf(leavesOf(t), [&](size_t s) { ++mFirst[s + 1]; });
         for (size_t s = 1; s < mFirst.size(); ++s) mFirst[s] += mFirst[s - 1];
         mTriangles.resize(mFirst.back());
         std::vector<size_t> next(mFirst.begin(), mFirst.end() - 1);
         for (int t = 0; t < triangles; ++t)
-            forEachLeaf(leafRange[size_t(t)], [&](size_t s) { mTriangles[next[s]++] = t; });
+            forEachLeaf(leavesOf(t), [&](size_t s) { mTriangles[next[s]++] = t; });
     }
 
     size_t leafCount() const { return mFirst.size() - 1; }

@@ -1,14 +1,14 @@
 #include "lsdem/mesh/MeshPseudoNormals.h"
 
-#include "MeshEdgeUses.h"
-
 #include "lsdem/core/Error.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace lsdem {
 
@@ -26,33 +26,49 @@ MeshPseudoNormals::MeshPseudoNormals(const TriangleMesh& mesh)
             mCornerNormal[size_t(tris[size_t(t)][k])] += angle * n;
         }
     }
-    // Each edge's two uses are adjacent once sorted; the use running from the lower vertex to
-    // the higher and the one running back are the two triangles across it from each other.
-    const std::vector<EdgeUse> uses = collectEdgeUses(mesh);
-    auto edgeSlot = [&](const EdgeUse& use) {
-        const auto& tri = tris[size_t(use.triangle)];
-        const auto lo = uint32_t(use.key >> 32), hi = uint32_t(use.key & 0xffffffffu);
-        for (int k = 0; k < 3; ++k) {
-            const auto a = uint32_t(tri[k]), b = uint32_t(tri[(k + 1) % 3]);
-            if (std::min(a, b) == lo && std::max(a, b) == hi) return k;
-        }
-        return 0;  // never reached: the use came from this triangle
-    };
-    for (size_t i = 0; i < uses.size();) {
-        size_t j = i;
-        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
-        if (j - i != 2 || uses[i].forward == uses[i + 1].forward) {
-            const auto lo = uses[i].key >> 32, hi = uses[i].key & 0xffffffffu;
-            throw Error("", "the edge between vertices " + std::to_string(lo) + " and " +
-                                std::to_string(hi) + " is used by " + std::to_string(j - i) +
-                                " triangle(s)" + (j - i == 2 ? " running the same way" : ""),
-                        "the signed distance needs a closed, manifold, consistently oriented "
-                        "mesh (lsdem's mesh validation makes one or says why not)");
-        }
-        mAcross[size_t(uses[i].triangle)][edgeSlot(uses[i])] = uses[i + 1].triangle;
-        mAcross[size_t(uses[i + 1].triangle)][edgeSlot(uses[i + 1])] = uses[i].triangle;
-        i = j;
+    // The triangles around each vertex (counts, running sums, then the triangles), to find
+    // the one across each edge: the edge a → b of one triangle must be the edge b → a of
+    // exactly one other, and of no third.
+    const size_t vertices = mesh.vertices.size();
+    std::vector<uint32_t> firstAround(vertices + 1, 0);
+    for (const auto& tri : tris)
+        for (int k = 0; k < 3; ++k) ++firstAround[size_t(tri[k]) + 1];
+    for (size_t v = 1; v <= vertices; ++v) firstAround[v] += firstAround[v - 1];
+    std::vector<int32_t> around(firstAround.back());
+    {
+        std::vector<uint32_t> next(firstAround.begin(), firstAround.end() - 1);
+        for (int t = 0; t < int(tris.size()); ++t)
+            for (int k = 0; k < 3; ++k) around[next[size_t(tris[size_t(t)][k])]++] = t;
     }
+    // The triangles around @a a running along a → b, counted, and the last of them.
+    auto runningAlong = [&](int a, int b, int32_t& found) {
+        int count = 0;
+        for (uint32_t i = firstAround[size_t(a)]; i < firstAround[size_t(a) + 1]; ++i) {
+            const auto& tri = tris[size_t(around[i])];
+            for (int k = 0; k < 3; ++k)
+                if (tri[k] == a && tri[(k + 1) % 3] == b) {
+                    ++count;
+                    found = around[i];
+                }
+        }
+        return count;
+    };
+    for (int t = 0; t < int(tris.size()); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const int a = tris[size_t(t)][k], b = tris[size_t(t)][(k + 1) % 3];
+            int32_t same = -1, across = -1;
+            const int forward = runningAlong(a, b, same), backward = runningAlong(b, a, across);
+            if (forward != 1 || backward != 1) {
+                const int uses = forward + backward;
+                throw Error("", "the edge between vertices " + std::to_string(std::min(a, b)) +
+                                    " and " + std::to_string(std::max(a, b)) + " is used by " +
+                                    std::to_string(uses) + " triangle(s)" +
+                                    (uses == 2 ? " running the same way" : ""),
+                            "the signed distance needs a closed, manifold, consistently "
+                            "oriented mesh (lsdem's mesh validation makes one or says why not)");
+            }
+            mAcross[size_t(t)][k] = across;
+        }
 }
 
 Vec3 MeshPseudoNormals::faceNormal(int t) const

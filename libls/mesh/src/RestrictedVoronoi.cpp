@@ -159,16 +159,6 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
     // Cells about the seeds' spacing: a few seeds in each.
     const double area = std::max(surfaceArea(mesh), std::numeric_limits<double>::min());
     const PointBins grid(seeds, bounds[0], bounds[1], 1.5 * std::sqrt(area / double(seeds.size())));
-    // Chunks of a fixed share of the triangles (not of the threads): the same pieces in the
-    // same order on any thread count, and a coarse mesh holding many seeds still split.
-    const size_t chunk = std::clamp<size_t>(mesh.triangles.size() / 64, 16, 2048);
-    const std::vector<CellPiece> pieces = collectInOrder<CellPiece>(
-        mesh.triangles.size(), chunk, [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
-            std::vector<std::pair<double, int>> candidates;
-            std::vector<Vec3> poly, scratch;
-            for (size_t t = begin; t < end; ++t)
-                clipTriangle(mesh, int(t), seeds, grid, candidates, poly, scratch, out);
-        });
     std::vector<RestrictedVoronoiCell> cells(seeds.size());
     auto normalOf = [&mesh](int t) {
         const auto& tri = mesh.triangles[size_t(t)];
@@ -181,25 +171,49 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
     // (the one it lies on, for a seed on the surface).
     std::vector<double> homeDistance(seeds.size(), std::numeric_limits<double>::infinity());
     std::vector<Vec3> homeNormal(seeds.size(), Vec3::Zero());
-    for (const CellPiece& piece : pieces) {  // in triangle order: the same sums on any threads
-        const size_t s = size_t(piece.seed);
-        const Vec3 normal = normalOf(piece.triangle);
-        cells[s].area += piece.area;
-        cells[s].moment += piece.moment;
-        cells[s].normalArea += piece.area * normal;
-        const auto& tri = mesh.triangles[size_t(piece.triangle)];
-        const double distance =
-            offsetFromTriangle(seeds[s], mesh.vertices[size_t(tri[0])],
-                               mesh.vertices[size_t(tri[1])], mesh.vertices[size_t(tri[2])])
-                .squaredNorm();
-        if (distance < homeDistance[s]) {
-            homeDistance[s] = distance;
-            homeNormal[s] = normal;
-        }
-    }
+    // What the second pass reads of each piece (its moment is summed in the first).
+    struct PieceArea
+    {
+        int seed;
+        int triangle;
+        double area;
+    };
+    std::vector<PieceArea> pieceAreas;
+    pieceAreas.reserve(mesh.triangles.size());
+    // Chunks of a fixed share of the triangles (not of the threads): the same pieces in the
+    // same order on any thread count, and a coarse mesh holding many seeds still split. The
+    // pieces are summed a few chunks at a time, in triangle order (the same sums on any
+    // thread count), so only those chunks' pieces are held at once.
+    const size_t chunk = std::clamp<size_t>(mesh.triangles.size() / 64, 16, 2048);
+    constexpr size_t kChunksAtATime = 8;
+    consumeInOrder<CellPiece>(
+        mesh.triangles.size(), chunk, kChunksAtATime,
+        [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
+            std::vector<std::pair<double, int>> candidates;
+            std::vector<Vec3> poly, scratch;
+            for (size_t t = begin; t < end; ++t)
+                clipTriangle(mesh, int(t), seeds, grid, candidates, poly, scratch, out);
+        },
+        [&](const CellPiece& piece) {
+            const size_t s = size_t(piece.seed);
+            const Vec3 normal = normalOf(piece.triangle);
+            cells[s].area += piece.area;
+            cells[s].moment += piece.moment;
+            cells[s].normalArea += piece.area * normal;
+            const auto& tri = mesh.triangles[size_t(piece.triangle)];
+            const double distance =
+                offsetFromTriangle(seeds[s], mesh.vertices[size_t(tri[0])],
+                                   mesh.vertices[size_t(tri[1])], mesh.vertices[size_t(tri[2])])
+                    .squaredNorm();
+            if (distance < homeDistance[s]) {
+                homeDistance[s] = distance;
+                homeNormal[s] = normal;
+            }
+            pieceAreas.push_back({piece.seed, piece.triangle, piece.area});
+        });
     // Turned by more than 120° from it: the other side of a thin part, not a rough surface's
     // facets (a scan's noise tilts neighbouring facets by tens of degrees).
-    for (const CellPiece& piece : pieces)
+    for (const PieceArea& piece : pieceAreas)
         if (normalOf(piece.triangle).dot(homeNormal[size_t(piece.seed)]) < -0.5)
             cells[size_t(piece.seed)].facingAway += piece.area;
     return cells;

@@ -29,4 +29,25 @@ std::vector<T> collectInOrder(size_t count, size_t chunk, Collect&& collect)
     return all;
 }
 
+/// The same items, handed to @a consume(item) on the calling thread in chunk order, gathered
+/// @a chunksAtATime chunks at a time (those in parallel): no more than their items are held at
+/// once.
+template <typename T, typename Collect, typename Consume>
+void consumeInOrder(size_t count, size_t chunk, size_t chunksAtATime, Collect&& collect,
+                    Consume&& consume)
+{
+    const size_t chunks = (count + chunk - 1) / chunk;
+    std::vector<std::vector<T>> found(std::min(chunks, std::max<size_t>(chunksAtATime, 1)));
+    for (size_t first = 0; first < chunks; first += found.size()) {
+        const size_t last = std::min(chunks, first + found.size());
+        tbb::parallel_for(first, last, [&](size_t c) {
+            std::vector<T>& out = found[c - first];
+            out.clear();
+            collect(c * chunk, std::min(count, (c + 1) * chunk), out);
+        });
+        for (size_t c = first; c < last; ++c)
+            for (const T& item : found[c - first]) consume(item);
+    }
+}
+
 } // namespace lsdem

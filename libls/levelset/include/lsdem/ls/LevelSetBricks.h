@@ -253,8 +253,8 @@ public:
     };
 
     /// Where the builder reads the voxels, a brick at a time: a float grid's, or values made
-    /// as they are read. Read twice, in parallel (slabs of bricks), once to choose each
-    /// brick's kind and once to write it.
+    /// as they are read. Read twice, in parallel: once to choose each brick's kind, then once
+    /// to write it, in order of x a few slabs at a time (releaseBelow after each).
     class Source
     {
     public:
@@ -292,8 +292,8 @@ private:
     /// the band's edge: 356 in the R/20 sphere's 919 bricks).
     void shareMasks();
     /// Calls @a visit(slot, origin, varies, raw) for each place of the table, read from
-    /// @a grid; places in parallel (slabs of constant x), so @a visit must only write what
-    /// belongs to its slot.
+    /// @a source; places in parallel (rows of constant x and y), so @a visit must only write
+    /// what belongs to its slot.
     template <typename Visit>
     void forEachRawBrick(const Source& source, Visit&& visit) const;
     /// The same for the places in slabs [@a firstSlab, @a endSlab) of constant x.

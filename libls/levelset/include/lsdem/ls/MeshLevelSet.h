@@ -14,7 +14,8 @@ namespace lsdem {
 /// Signed distance to @a mesh (closed, consistently oriented, outward), negative inside, at
 /// every voxel within @a exteriorBandVoxels outside the surface and at every voxel inside it.
 /// The grid's index (0,0,0) is the lower corner of the mesh's bounds padded by the band and
-/// two voxels.
+/// two voxels. Throws lsdem::Error for a band under kMinExteriorBandVoxels, 2^29 triangles or
+/// more, or an edge not shared by exactly two triangles running along it both ways.
 std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxelSize,
                                            int exteriorBandVoxels);
 

@@ -110,11 +110,11 @@ private:
 // classifying the places, the bricks laid out in place order, the storage, then pass 2
 // writing the bricks.
 LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& grid)
-    : LevelSetBricks(grid, *std::make_unique<FloatGridSource>(grid))  // (a source to write to)
+    : LevelSetBricks(grid, FloatGridSource(grid))
 {
 }
 
-LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, Source& source)
+LevelSetBricks::LevelSetBricks(const openvdb::FloatGrid& header, Source&& source)
     : mPlaneCeiling(header.background() > 0.0f ? header.background()
                                                 : std::numeric_limits<float>::infinity()),
       mTransform(header.transform().copy()),

@@ -153,10 +153,7 @@ private:
 
     double squaredDistance(const Vec3& p, openvdb::Int32 t) const
     {
-        const auto& tri = mMesh.triangles[size_t(t)];
-        return offsetFromTriangle(p, mMesh.vertices[size_t(tri[0])],
-                                  mMesh.vertices[size_t(tri[1])], mMesh.vertices[size_t(tri[2])])
-            .squaredNorm();
+        return offsetFromTriangle(p, mMesh, t).squaredNorm();
     }
 
     Vec3 centre(const openvdb::Coord& c) const
@@ -301,12 +298,8 @@ private:
     float distance(const openvdb::Coord& c, openvdb::Int32 code) const
     {
         if (!closest::holdsTriangle(code)) return -mBackground;  // never reached by the fill
-        const auto& tri = mMesh.triangles[size_t(closest::triangleOf(code))];
         const Vec3 p = mOrigin + mVoxel * Vec3(c.x(), c.y(), c.z());
-        const auto depth = float(offsetFromTriangle(p, mMesh.vertices[size_t(tri[0])],
-                                                    mMesh.vertices[size_t(tri[1])],
-                                                    mMesh.vertices[size_t(tri[2])])
-                                     .norm());
+        const auto depth = float(offsetFromTriangle(p, mMesh, closest::triangleOf(code)).norm());
         return closest::isOutside(code) ? depth : -depth;
     }
 
@@ -353,8 +346,8 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     header.setTransform(makeGridTransform(vox, origin));
     header.setGridClass(openvdb::GRID_LEVEL_SET);
     auto levelSet = std::make_shared<LevelSetGrid>();
-    ClosestTriangleSource source(*codes, mesh, origin, vox, background);
-    levelSet->grid = std::make_shared<const LevelSetBricks>(header, source);
+    levelSet->grid = std::make_shared<const LevelSetBricks>(
+        header, ClosestTriangleSource(*codes, mesh, origin, vox, background));
     levelSet->origin = origin;
     levelSet->voxelSize = vox;
     return levelSet;

@@ -95,11 +95,8 @@ Vec3 MeshPseudoNormals::pseudoNormal(int t, TriangleFeature feature) const
 
 bool MeshPseudoNormals::isOutside(const Vec3& p, int t) const
 {
-    const auto& tri = mMesh.triangles[size_t(t)];
     TriangleFeature feature;
-    const Vec3 offset = offsetFromTriangle(p, mMesh.vertices[size_t(tri[0])],
-                                           mMesh.vertices[size_t(tri[1])],
-                                           mMesh.vertices[size_t(tri[2])], feature);
+    const Vec3 offset = offsetFromTriangle(p, mMesh, t, feature);
     return offset.dot(pseudoNormal(t, feature)) > 0.0;
 }
 

@@ -200,11 +200,8 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
             cells[s].area += piece.area;
             cells[s].moment += piece.moment;
             cells[s].normalArea += piece.area * normal;
-            const auto& tri = mesh.triangles[size_t(piece.triangle)];
             const double distance =
-                offsetFromTriangle(seeds[s], mesh.vertices[size_t(tri[0])],
-                                   mesh.vertices[size_t(tri[1])], mesh.vertices[size_t(tri[2])])
-                    .squaredNorm();
+                offsetFromTriangle(seeds[s], mesh, piece.triangle).squaredNorm();
             if (distance < homeDistance[s]) {
                 homeDistance[s] = distance;
                 homeNormal[s] = normal;

@@ -195,11 +195,11 @@ TEST(MeshLevelSet, BoxMeshGivesTheAnalyticBoxDistance)
     }
 }
 
-/// Signed distance from @a p to the box [lo, hi] (closed form).
+/// Signed distance from @a p to the box [lo, hi]: the analytic box's, moved there.
 double boxSignedDistance(const Vec3& p, const Vec3& lo, const Vec3& hi)
 {
-    const Vec3 q = (p - 0.5 * (lo + hi)).cwiseAbs() - 0.5 * (hi - lo);
-    return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+    const Vec3 size = hi - lo;
+    return lsdem::AnalyticShape::box(size.x(), size.y(), size.z()).signedDistance(p - 0.5 * (lo + hi));
 }
 
 TEST(MeshLevelSet, ABlockWithACavityAndARattlerHasEachVoxelOnItsSide)

@@ -91,8 +91,8 @@ public:
 
     /// The values and active states @a source gives, with @a header's background, transform
     /// and metadata (its tree is not read): for values made as they are read, without a
-    /// float grid of them all.
-    LevelSetBricks(const openvdb::FloatGrid& header, Source& source);
+    /// float grid of them all. The source is used up (it may free what it holds as it goes).
+    LevelSetBricks(const openvdb::FloatGrid& header, Source&& source);
 
     /// A standard FloatGrid of the decoded values, with the same active states, background,
     /// transform and metadata as the grid this was built from (for files and OpenVDB's tools).

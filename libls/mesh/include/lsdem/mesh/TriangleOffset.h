@@ -4,6 +4,7 @@
 #pragma once
 
 #include "lsdem/core/Vec3.h"
+#include "lsdem/mesh/TriangleMesh.h"
 
 namespace lsdem {
 
@@ -63,6 +64,22 @@ inline Vec3 offsetFromTriangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 {
     TriangleFeature unused;
     return offsetFromTriangle(p, a, b, c, unused);
+}
+
+/// The same for triangle @a t of @a mesh, and the part of it holding the closest point.
+inline Vec3 offsetFromTriangle(const Vec3& p, const TriangleMesh& mesh, int t,
+                               TriangleFeature& feature)
+{
+    const auto& tri = mesh.triangles[size_t(t)];
+    return offsetFromTriangle(p, mesh.vertices[size_t(tri[0])], mesh.vertices[size_t(tri[1])],
+                              mesh.vertices[size_t(tri[2])], feature);
+}
+
+/// The same for triangle @a t of @a mesh.
+inline Vec3 offsetFromTriangle(const Vec3& p, const TriangleMesh& mesh, int t)
+{
+    TriangleFeature unused;
+    return offsetFromTriangle(p, mesh, t, unused);
 }
 
 } // namespace lsdem

@@ -117,6 +117,17 @@ FamilyMesh familyMesh(int index)
     throw std::out_of_range("familyMesh: no member " + std::to_string(index));
 }
 
+void warmUpProcess()
+{
+    static const bool warmed = [] {
+        std::vector<std::string> warnings;
+        bakeMesh(radialGraph(unitIcosphere(16), [](const Vec3&) { return 1.0; }), "warm-up",
+                 familyBakeOptions(), warnings);
+        return true;
+    }();
+    (void)warmed;
+}
+
 BakeOptions familyBakeOptions()
 {
     BakeOptions o;

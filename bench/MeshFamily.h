@@ -32,6 +32,12 @@ constexpr int kFamilySize = 7;
 ///                 so thousands of edges are sharp (over 30°)
 FamilyMesh familyMesh(int index);
 
+/// Bakes a small sphere once per process (later calls return at once): TBB's threads, their
+/// malloc heaps and stacks and OpenVDB's set-up are made once in a process, and a bake's
+/// memory figure taken after this counts what that bake needs, not the process's start-up
+/// (about 1-3 MiB, which a first bake would add to its figure).
+void warmUpProcess();
+
 /// The bake settings for the family (a grain of size 10): VDP 0.05, SDP 0.12.
 BakeOptions familyBakeOptions();
 

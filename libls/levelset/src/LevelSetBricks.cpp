@@ -202,14 +202,24 @@ void LevelSetBricks::sizeTable(const openvdb::CoordBBox& box)
     mTable.assign(size_t(mBricks[0]) * mBricks[1] * mBricks[2], kShared | kBackgroundBrick);
 }
 
+/// Eight bytes a place (the table of a 100k-triangle grain's has 150k places, and this list
+/// is held beside the source's values).
 struct LevelSetBricks::Place
 {
-    bool varies = false;
-    bool deep = false;
-    bool plane = false;
-    bool narrow = false;  ///< a plane brick of 8-bit remainders
-    bool finite = true;
-    SharedBricks::key_type uniform{0, 0};  ///< (value bits, active) of one value
+    bool varies : 1;
+    bool deep : 1;
+    bool plane : 1;
+    bool narrow : 1;  ///< a plane brick of 8-bit remainders
+    bool finite : 1;
+    bool uniformActive : 1;  ///< a brick of one value: its voxels' state
+    uint32_t uniformBits = 0;  ///< a brick of one value: the value's bits
+
+    Place()
+        : varies(false), deep(false), plane(false), narrow(false), finite(true),
+          uniformActive(false)
+    {
+    }
+    SharedBricks::key_type uniform() const { return {uniformBits, uint8_t(uniformActive)}; }
 };
 
 /// Pass 1, in parallel: what each place of the table holds (varying values, or one value and
@@ -217,6 +227,7 @@ struct LevelSetBricks::Place
 std::vector<LevelSetBricks::Place>
 LevelSetBricks::classifyPlaces(const Source& source) const
 {
+    static_assert(sizeof(Place) == 8, "a place's classes and value in 8 bytes");
     std::vector<Place> places(mTable.size());
     forEachRawBrick(source, [&](size_t slot, const openvdb::Coord&, bool varies, const RawBrick& b) {
         Place& p = places[slot];
@@ -227,7 +238,10 @@ LevelSetBricks::classifyPlaces(const Source& source) const
         p.plane = varies && !p.deep && isPlaneBrick(b, codes);
         p.narrow = p.plane && codes.narrow;
         for (int k = 0; k < (varies ? kVoxels : 1); ++k) p.finite &= std::isfinite(b.value[k]);
-        if (!varies) p.uniform = {floatBits(b.value[0]), uint8_t(b.active[0] & 1u)};
+        if (!varies) {
+            p.uniformBits = floatBits(b.value[0]);
+            p.uniformActive = (b.active[0] & 1u) != 0;
+        }
     });
     return places;
 }
@@ -256,8 +270,8 @@ uint32_t LevelSetBricks::layOutBricks(const std::vector<Place>& places, SharedBr
             mTable[slot] = bricks++;
             continue;
         }
-        auto it = shared.find(p.uniform);
-        if (it == shared.end()) it = shared.emplace(p.uniform, bricks++).first;
+        auto it = shared.find(p.uniform());
+        if (it == shared.end()) it = shared.emplace(p.uniform(), bricks++).first;
         mTable[slot] = kShared | it->second;
     }
     mWideBricks = bricks;

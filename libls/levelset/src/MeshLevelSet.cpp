@@ -5,14 +5,11 @@
 
 #include "lsdem/core/Error.h"
 #include "lsdem/core/OrderedCollect.h"
+#include "lsdem/core/ReleaseMemory.h"
 #include "lsdem/mesh/TriangleOffset.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -245,11 +242,9 @@ public:
             mCodes.addTile(1, mLeaves[mReleased], closest::kOutside, false);  // the leaf goes
             freed = true;
         }
-#if defined(__GLIBC__)
         // The leaves are small blocks inside malloc's heaps, which keeps them; the pages they
         // leave wholly free go back to the system, for the bricks' storage to take.
-        if (freed) malloc_trim(0);
-#endif
+        if (freed) releaseFreedMemory();
     }
 
     openvdb::CoordBBox valueBox() const override

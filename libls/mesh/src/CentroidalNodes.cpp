@@ -6,7 +6,7 @@
 #include "lsdem/mesh/ClosestPointGrid.h"
 #include "lsdem/mesh/SampleElimination.h"
 
-#include "MeshEdgeUses.h"
+#include "VertexTriangles.h"
 
 #include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
@@ -30,11 +30,20 @@ double uniformDraw(uint64_t base, uint64_t k)
 /// points come from its own stream, so they do not depend on any other triangle.
 std::vector<Vec3> randomSurfacePoints(const TriangleMesh& mesh, double perArea, uint64_t seed)
 {
-    std::vector<Vec3> points;
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    // Triangle t's stream and its count: the expected number, one more with the chance of
+    // its fraction (draw 0). Counted first, so the points are stored without regrowing.
+    auto streamOf = [&](size_t t) { return splitMix64(splitMix64(seed) ^ splitMix64(t + 1)); };
+    auto countOf = [&](size_t t, uint64_t base) {
         const double expected = triangleArea(mesh, int(t)) * perArea;
-        const uint64_t base = splitMix64(splitMix64(seed) ^ splitMix64(t + 1));
-        const int count = int(expected) + (uniformDraw(base, 0) < expected - std::floor(expected));
+        return int(expected) + (uniformDraw(base, 0) < expected - std::floor(expected));
+    };
+    size_t total = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) total += size_t(countOf(t, streamOf(t)));
+    std::vector<Vec3> points;
+    points.reserve(total);
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const uint64_t base = streamOf(t);
+        const int count = countOf(t, base);
         const auto& tri = mesh.triangles[t];
         const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
                    &c = mesh.vertices[size_t(tri[2])];
@@ -66,17 +75,17 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
         candidates.insert(candidates.end(), more.begin(), more.end());
     }
     CentroidalNodes nodes;
+    nodes.positions.reserve(count);
     for (int i : eliminateSamples(candidates, count, area))
         nodes.positions.push_back(candidates[size_t(i)]);
     std::vector<Vec3>().swap(candidates);
 
     // Lloyd: each node to its cell's centroid, put back on the surface (the centroid of a
     // curved cell lies slightly inside).
-    const ClosestPointGrid surface(mesh.vertices, mesh.triangles,
-                                   std::sqrt(area / double(count)));
+    const ClosestPointGrid surface(mesh, std::sqrt(area / double(count)));
     for (int iteration = 0; iteration < options.lloydIterations; ++iteration) {
         const std::vector<RestrictedVoronoiCell> cells =
-            restrictedVoronoiCells(mesh, nodes.positions);
+            restrictedVoronoiCells(mesh, nodes.positions, CellSides::Skipped);
         tbb::parallel_for(size_t(0), count, [&](size_t i) {
             if (cells[i].area > 0.0)
                 nodes.positions[i] = surface.closestPoint(cells[i].moment / cells[i].area);
@@ -88,7 +97,7 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
 
 SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg)
 {
-    const std::vector<EdgeUse> uses = collectEdgeUses(mesh);
+    const VertexTriangles aroundVertex(mesh);
     auto normalOf = [&mesh](int t) {
         const auto& tri = mesh.triangles[size_t(t)];
         const Vec3& a = mesh.vertices[size_t(tri[0])];
@@ -97,15 +106,29 @@ SharpEdges countSharpEdges(const TriangleMesh& mesh, double angleDeg)
     const double cosAngle = std::cos(angleDeg * kPi / 180.0);
     SharpEdges sharp;
     std::vector<int> sharpAtVertex(mesh.vertices.size(), 0);
-    for (size_t k = 0; k + 1 < uses.size(); ++k) {
-        if (uses[k].key != uses[k + 1].key) continue;  // (a closed mesh's edge has two uses)
-        const Vec3 n1 = normalOf(uses[k].triangle), n2 = normalOf(uses[k + 1].triangle);
-        const double norms = n1.norm() * n2.norm();
-        if (!(norms > 0.0 && n1.dot(n2) < cosAngle * norms)) continue;
-        ++sharp.edges;
-        ++sharpAtVertex[size_t(uses[k].key >> 32)];
-        ++sharpAtVertex[size_t(uses[k].key & 0xffffffffu)];
-    }
+    std::vector<int> users;
+    for (int t = 0; t < int(mesh.triangles.size()); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const auto& tri = mesh.triangles[size_t(t)];
+            const int a = tri[k], b = tri[(k + 1) % 3];
+            // (A triangle with a repeated corner has one edge twice: it is looked at once.)
+            auto samePair = [&](int j) {
+                return std::minmax(tri[j], tri[(j + 1) % 3]) == std::minmax(a, b);
+            };
+            if (a == b || (k > 0 && samePair(0)) || (k > 1 && samePair(1))) continue;
+            users.clear();
+            aroundVertex.forEachUsingEdge(a, b, [&](int u) { users.push_back(u); });
+            if (users.front() != t) continue;  // each edge once, at its first triangle
+            // Its users in increasing order, two by two (a closed mesh's edge has two).
+            for (size_t i = 0; i + 1 < users.size(); ++i) {
+                const Vec3 n1 = normalOf(users[i]), n2 = normalOf(users[i + 1]);
+                const double norms = n1.norm() * n2.norm();
+                if (!(norms > 0.0 && n1.dot(n2) < cosAngle * norms)) continue;
+                ++sharp.edges;
+                ++sharpAtVertex[size_t(a)];
+                ++sharpAtVertex[size_t(b)];
+            }
+        }
     sharp.looseEnds = size_t(std::count(sharpAtVertex.begin(), sharpAtVertex.end(), 1));
     return sharp;
 }

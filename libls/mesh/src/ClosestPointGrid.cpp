@@ -9,46 +9,67 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace lsdem {
 
 ClosestPointGrid::ClosestPointGrid(std::vector<Vec3> vertices,
                                    std::vector<std::array<int, 3>> triangles, double cellSize,
                                    std::vector<int> labels)
-    : mVertices(std::move(vertices))
+    : mOwnedVertices(std::move(vertices)), mOwnedTriangles(std::move(triangles)),
+      mVertexData(mOwnedVertices.data()), mTriangleData(mOwnedTriangles.data()),
+      mVertexCount(mOwnedVertices.size()), mTriangleCount(mOwnedTriangles.size()),
+      mLabels(std::move(labels))
+{
+    if (!mLabels.empty() && mLabels.size() != mTriangleCount)
+        throw Error("", "closest-point grid: " + std::to_string(mLabels.size()) + " labels for " +
+                            std::to_string(mTriangleCount) + " triangles");
+    build(cellSize);
+}
+
+ClosestPointGrid::ClosestPointGrid(const TriangleMesh& mesh, double cellSize)
+    : mVertexData(mesh.vertices.data()), mTriangleData(mesh.triangles.data()),
+      mVertexCount(mesh.vertices.size()), mTriangleCount(mesh.triangles.size())
+{
+    build(cellSize);
+}
+
+void ClosestPointGrid::build(double cellSize)
 {
     if (!(std::isfinite(cellSize) && cellSize > 0.0))
         throw Error("", "closest-point grid: the cell size must be positive");
-    if (!labels.empty() && labels.size() != triangles.size())
-        throw Error("", "closest-point grid: " + std::to_string(labels.size()) + " labels for " +
-                            std::to_string(triangles.size()) + " triangles");
-    for (const Vec3& v : mVertices)
-        if (!v.allFinite()) throw Error("", "closest-point grid: a vertex is not finite");
-    if (mVertices.size() > size_t(std::numeric_limits<int>::max()))
+    for (size_t v = 0; v < mVertexCount; ++v)
+        if (!mVertexData[v].allFinite())
+            throw Error("", "closest-point grid: a vertex is not finite");
+    if (mVertexCount > size_t(std::numeric_limits<int>::max()))
         throw Error("", "closest-point grid: too many vertices");
-    const int vertexCount = static_cast<int>(mVertices.size());
+    if (mTriangleCount > size_t(std::numeric_limits<int>::max()))
+        throw Error("", "closest-point grid: too many triangles");
+    const int vertexCount = static_cast<int>(mVertexCount);
+    auto hasArea = [&](const std::array<int, 3>& t) {
+        const Vec3 &a = mVertexData[t[0]], &b = mVertexData[t[1]], &c = mVertexData[t[2]];
+        return (b - a).cross(c - a).squaredNorm() != 0.0;
+    };
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (size_t n = 0; n < triangles.size(); ++n) {
-        const std::array<int, 3>& t = triangles[n];
+    size_t withArea = 0;
+    for (size_t n = 0; n < mTriangleCount; ++n) {
+        const std::array<int, 3>& t = mTriangleData[n];
         for (int v : t)
             if (v < 0 || v >= vertexCount)
                 throw Error("", "closest-point grid: a triangle refers to vertex " +
                                     std::to_string(v) + " of " + std::to_string(vertexCount));
-        const Vec3 &a = mVertices[size_t(t[0])], &b = mVertices[size_t(t[1])],
-                   &c = mVertices[size_t(t[2])];
-        if ((b - a).cross(c - a).squaredNorm() == 0.0) continue;
-        mTriangles.push_back(t);
-        mLabels.push_back(labels.empty() ? 0 : labels[n]);
-        lo = lo.cwiseMin(a).cwiseMin(b).cwiseMin(c);
-        hi = hi.cwiseMax(a).cwiseMax(b).cwiseMax(c);
+        if (!hasArea(t)) continue;
+        ++withArea;
+        for (int v : t) {
+            lo = lo.cwiseMin(mVertexData[v]);
+            hi = hi.cwiseMax(mVertexData[v]);
+        }
     }
-    if (mTriangles.empty()) throw Error("", "closest-point grid: the mesh has no triangles");
-    if (mTriangles.size() > size_t(std::numeric_limits<int>::max()))
-        throw Error("", "closest-point grid: too many triangles");
+    if (withArea == 0) throw Error("", "closest-point grid: the mesh has no triangles");
     // At most about 4 cells per triangle (plus a few): a coarse mesh in a big box would
     // otherwise ask for more cells than it has triangles by far.
     const Vec3 extent = (hi - lo).cwiseMax(1e-12 * std::max(1.0, (hi - lo).maxCoeff()));
-    const double cellBudget = 4.0 * double(mTriangles.size()) + 64.0;
+    const double cellBudget = 4.0 * double(withArea) + 64.0;
     mCell = std::max(cellSize, std::cbrt(extent.prod() / cellBudget));
     auto countCells = [&] {
         for (int k = 0; k < 3; ++k)
@@ -59,31 +80,45 @@ ClosestPointGrid::ClosestPointGrid(std::vector<Vec3> vertices,
     while (countCells() > 8.0 * cellBudget) mCell *= 2.0;  // flat or thin boxes
     mOrigin = lo;
 
-    // Each triangle is listed in every cell its bounding box meets: counted, then placed.
-    // Long thin triangles across a big grid could list more entries than an int counts.
-    const size_t cells = size_t(mDims[0]) * size_t(mDims[1]) * size_t(mDims[2]);
-    std::vector<size_t> counts(cells + 1, 0);
+    // Each triangle of area is listed in every cell its bounding box meets: the cells'
+    // boxes, then their counts, then the triangles placed (each cell's in increasing order).
+    auto cellBox = [&](const std::array<int, 3>& t) {
+        const Vec3 &a = mVertexData[t[0]], &b = mVertexData[t[1]], &c = mVertexData[t[2]];
+        return std::make_pair(cellOf(a.cwiseMin(b).cwiseMin(c)), cellOf(a.cwiseMax(b).cwiseMax(c)));
+    };
     auto forEachCell = [&](const std::array<int, 3>& t, auto&& f) {
-        const Vec3 &a = mVertices[size_t(t[0])], &b = mVertices[size_t(t[1])],
-                   &c = mVertices[size_t(t[2])];
-        const std::array<int, 3> from = cellOf(a.cwiseMin(b).cwiseMin(c)),
-                                 to = cellOf(a.cwiseMax(b).cwiseMax(c));
+        const auto [from, to] = cellBox(t);
         for (int k = from[2]; k <= to[2]; ++k)
             for (int j = from[1]; j <= to[1]; ++j)
                 for (int i = from[0]; i <= to[0]; ++i) f(indexOf(i, j, k));
     };
-    for (const auto& t : mTriangles) forEachCell(t, [&](size_t cell) { ++counts[cell + 1]; });
-    for (size_t cell = 0; cell < cells; ++cell) counts[cell + 1] += counts[cell];
-    if (counts[cells] > size_t(std::numeric_limits<int>::max()))
+    // Long thin triangles across a big grid could list more entries than an int counts.
+    size_t entries = 0;
+    for (size_t n = 0; n < mTriangleCount; ++n) {
+        if (!hasArea(mTriangleData[n])) continue;
+        const auto [from, to] = cellBox(mTriangleData[n]);
+        entries += size_t(to[0] - from[0] + 1) * size_t(to[1] - from[1] + 1) *
+                   size_t(to[2] - from[2] + 1);
+    }
+    if (entries > size_t(std::numeric_limits<int>::max()))
         throw Error("", "closest-point grid: the triangles meet too many cells",
                     "use a larger cell size");
-    mCellStart.assign(counts.begin(), counts.end());
-    counts = {};
-    mCellTriangles.resize(size_t(mCellStart[cells]));
-    std::vector<int> fill(mCellStart.begin(), mCellStart.end() - 1);
-    for (int n = 0; n < static_cast<int>(mTriangles.size()); ++n)
-        forEachCell(mTriangles[size_t(n)],
-                    [&](size_t cell) { mCellTriangles[size_t(fill[cell]++)] = n; });
+    const size_t cells = size_t(mDims[0]) * size_t(mDims[1]) * size_t(mDims[2]);
+    // Counted into the slot after each cell's, summed into each cell's start; placing a
+    // triangle moves its cell's start on, so each start ends at the next cell's and the whole
+    // is shifted back by one (no second array of cursors).
+    mCellStart.assign(cells + 1, 0);
+    for (size_t n = 0; n < mTriangleCount; ++n)
+        if (hasArea(mTriangleData[n]))
+            forEachCell(mTriangleData[n], [&](size_t cell) { ++mCellStart[cell + 1]; });
+    for (size_t cell = 0; cell < cells; ++cell) mCellStart[cell + 1] += mCellStart[cell];
+    mCellTriangles.resize(entries);
+    for (size_t n = 0; n < mTriangleCount; ++n)
+        if (hasArea(mTriangleData[n]))
+            forEachCell(mTriangleData[n],
+                        [&](size_t cell) { mCellTriangles[size_t(mCellStart[cell]++)] = int(n); });
+    for (size_t cell = cells; cell > 0; --cell) mCellStart[cell] = mCellStart[cell - 1];
+    mCellStart[0] = 0;
 }
 
 std::array<int, 3> ClosestPointGrid::cellOf(const Vec3& p) const
@@ -102,10 +137,10 @@ void ClosestPointGrid::testCell(int i, int j, int k, const Vec3& p, int label, d
     const size_t cell = indexOf(i, j, k);
     for (int e = mCellStart[cell]; e < mCellStart[cell + 1]; ++e) {
         const int n = mCellTriangles[size_t(e)];
-        if (label >= 0 && mLabels[size_t(n)] != label) continue;
-        const auto& t = mTriangles[size_t(n)];
-        const Vec3 offset = offsetFromTriangle(p, mVertices[size_t(t[0])],
-                                               mVertices[size_t(t[1])], mVertices[size_t(t[2])]);
+        if (label >= 0 && (mLabels.empty() ? 0 : mLabels[size_t(n)]) != label) continue;
+        const auto& t = mTriangleData[n];
+        const Vec3 offset =
+            offsetFromTriangle(p, mVertexData[t[0]], mVertexData[t[1]], mVertexData[t[2]]);
         const double d2 = offset.squaredNorm();
         if (d2 < best2 || (d2 == best2 && n < bestTriangle)) {
             best2 = d2;

@@ -2,6 +2,8 @@
 
 #include "lsdem/core/Error.h"
 
+#include "VertexTriangles.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -26,31 +28,20 @@ MeshPseudoNormals::MeshPseudoNormals(const TriangleMesh& mesh)
             mCornerNormal[size_t(tris[size_t(t)][k])] += angle * n;
         }
     }
-    // The triangles around each vertex (counts, running sums, then the triangles), to find
-    // the one across each edge: the edge a → b of one triangle must be the edge b → a of
-    // exactly one other, and of no third.
-    const size_t vertices = mesh.vertices.size();
-    std::vector<uint32_t> firstAround(vertices + 1, 0);
-    for (const auto& tri : tris)
-        for (int k = 0; k < 3; ++k) ++firstAround[size_t(tri[k]) + 1];
-    for (size_t v = 1; v <= vertices; ++v) firstAround[v] += firstAround[v - 1];
-    std::vector<int32_t> around(firstAround.back());
-    {
-        std::vector<uint32_t> next(firstAround.begin(), firstAround.end() - 1);
-        for (int t = 0; t < int(tris.size()); ++t)
-            for (int k = 0; k < 3; ++k) around[next[size_t(tris[size_t(t)][k])]++] = t;
-    }
+    // The triangle across each edge: the edge a → b of one triangle must be the edge b → a
+    // of exactly one other, and of no third.
+    const VertexTriangles aroundVertex(mesh);
     // The triangles around @a a running along a → b, counted, and the last of them.
     auto runningAlong = [&](int a, int b, int32_t& found) {
         int count = 0;
-        for (uint32_t i = firstAround[size_t(a)]; i < firstAround[size_t(a) + 1]; ++i) {
-            const auto& tri = tris[size_t(around[i])];
+        aroundVertex.forEachAround(a, [&](int t) {
+            const auto& tri = tris[size_t(t)];
             for (int k = 0; k < 3; ++k)
                 if (tri[k] == a && tri[(k + 1) % 3] == b) {
                     ++count;
-                    found = around[i];
+                    found = t;
                 }
-        }
+        });
         return count;
     };
     for (int t = 0; t < int(tris.size()); ++t)

@@ -1,7 +1,7 @@
 #include "lsdem/mesh/MeshValidation.h"
 
-#include "MeshEdgeUses.h"
 #include "MeshPartCrossing.h"
+#include "VertexTriangles.h"
 
 #include "lsdem/core/Constants.h"
 #include "lsdem/core/Error.h"
@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -24,9 +25,13 @@ namespace {
 /// A triangle across an edge, and whether both run along that edge the same way.
 struct Neighbour
 {
-    int triangle;
-    bool sameDirection;
+    int triangle = -1;  ///< -1: none (an edge used once, or by three or more)
+    bool sameDirection = false;
 };
+
+/// A triangle's neighbours across its edges, in a fixed three slots (a vector each held about
+/// three times their size in a 100k-triangle mesh's validation, its peak).
+using Neighbours = std::array<Neighbour, 3>;
 
 /// The triangles of one connected component and its bounding box.
 struct Component
@@ -89,25 +94,44 @@ int removeDegenerateTriangles(TriangleMesh& mesh, const std::string& source)
 }
 
 /// Refuse open or non-manifold surfaces; otherwise return each triangle's three neighbours.
-std::vector<std::vector<Neighbour>> findNeighbours(const TriangleMesh& mesh,
-                                                   const std::string& source,
-                                                   int removedDegenerate)
+std::vector<Neighbours> findNeighbours(const TriangleMesh& mesh, const std::string& source,
+                                       int removedDegenerate)
 {
-    const std::vector<EdgeUse> uses = collectEdgeUses(mesh);
-    std::vector<std::vector<Neighbour>> neighbours(mesh.triangles.size());
+    const VertexTriangles aroundVertex(mesh);
+    std::vector<Neighbours> neighbours(mesh.triangles.size());
     int boundaryEdges = 0, nonManifoldEdges = 0;
-    for (std::size_t begin = 0, end = 0; begin < uses.size(); begin = end) {
-        end = begin + 1;
-        while (end < uses.size() && uses[end].key == uses[begin].key) ++end;
-        const std::size_t n = end - begin;
-        if (n == 1) ++boundaryEdges;
-        if (n >= 3) ++nonManifoldEdges;
-        if (n != 2) continue;
-        const EdgeUse& x = uses[begin];
-        const EdgeUse& y = uses[begin + 1];
-        const bool same = x.forward == y.forward;
-        neighbours[x.triangle].push_back({y.triangle, same});
-        neighbours[y.triangle].push_back({x.triangle, same});
+    for (int t = 0; t < static_cast<int>(mesh.triangles.size()); ++t) {
+        const auto& tri = mesh.triangles[size_t(t)];
+        // Each edge's users, in increasing order; the edge is counted by its first.
+        std::array<std::uint64_t, 3> keys{};
+        int found = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int a = tri[k], b = tri[(k + 1) % 3];
+            int users = 0, first = -1, other = -1;
+            aroundVertex.forEachUsingEdge(a, b, [&](int u) {
+                if (users++ == 0) first = u;
+                if (u != t) other = u;
+            });
+            if (first == t) {
+                if (users == 1) ++boundaryEdges;
+                if (users >= 3) ++nonManifoldEdges;
+            }
+            if (users != 2) continue;
+            // The two run the same way when the other also goes a → b.
+            const auto& o = mesh.triangles[size_t(other)];
+            bool same = false;
+            for (int j = 0; j < 3; ++j) same |= o[j] == a && o[(j + 1) % 3] == b;
+            const auto lo = std::uint32_t(std::min(a, b)), hi = std::uint32_t(std::max(a, b));
+            keys[size_t(found)] = (std::uint64_t(lo) << 32) | hi;
+            neighbours[size_t(t)][size_t(found++)] = {other, same};
+        }
+        // In the order of their edges' (lower, higher) vertex pairs, as a sorted list of every
+        // edge would give them (the orientation's walk, and so its result, follows this order).
+        for (int i = 1; i < found; ++i)
+            for (int j = i; j > 0 && keys[size_t(j)] < keys[size_t(j - 1)]; --j) {
+                std::swap(keys[size_t(j)], keys[size_t(j - 1)]);
+                std::swap(neighbours[size_t(t)][size_t(j)], neighbours[size_t(t)][size_t(j - 1)]);
+            }
     }
 
     if (boundaryEdges > 0) {
@@ -135,7 +159,7 @@ void flipTriangle(std::array<int, 3>& tri) { std::swap(tri[1], tri[2]); }
 /// Make the orientation consistent inside each connected component, flipping the fewer
 /// triangles; returns the components and adds the flips to @a reoriented.
 std::vector<Component> orientComponents(TriangleMesh& mesh,
-                                        const std::vector<std::vector<Neighbour>>& neighbours,
+                                        const std::vector<Neighbours>& neighbours,
                                         const std::string& source, int& reoriented)
 {
     const int count = static_cast<int>(mesh.triangles.size());
@@ -150,6 +174,7 @@ std::vector<Component> orientComponents(TriangleMesh& mesh,
         for (std::size_t next = 0; next < comp.triangles.size(); ++next) {
             const int t = comp.triangles[next];
             for (const Neighbour& n : neighbours[t]) {
+                if (n.triangle < 0) break;  // (the slots in use come first)
                 // Neighbours agree when they run along their shared edge in opposite ways.
                 const signed char wanted = flip[t] ^ static_cast<signed char>(n.sameDirection);
                 if (flip[n.triangle] < 0) {
@@ -292,9 +317,12 @@ MeshValidationReport validateSolidMesh(TriangleMesh& mesh, const std::string& so
     MeshValidationReport report;
     checkIndicesAndCoordinates(mesh, source);
     report.removedDegenerateTriangles = removeDegenerateTriangles(mesh, source);
-    const auto neighbours = findNeighbours(mesh, source, report.removedDegenerateTriangles);
-    std::vector<Component> components =
-        orientComponents(mesh, neighbours, source, report.reorientedTriangles);
+    std::vector<Component> components;
+    {
+        const std::vector<Neighbours> neighbours =
+            findNeighbours(mesh, source, report.removedDegenerateTriangles);
+        components = orientComponents(mesh, neighbours, source, report.reorientedTriangles);
+    }  // (the neighbours are not needed past here)
 
     const auto bounds = meshBounds(mesh);
     measureComponents(mesh, 0.5 * (bounds[0] + bounds[1]), components);

@@ -51,18 +51,14 @@ bool clipPolygon(std::vector<Vec3>& poly, std::vector<Vec3>& scratch, const Vec3
     return poly.size() >= 3;
 }
 
-/// The pieces of triangle @a t owned by each seed that owns any of it.
-void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seeds,
-                  const PointBins& grid, std::vector<std::pair<double, int>>& candidates,
-                  std::vector<Vec3>& poly, std::vector<Vec3>& scratch, std::vector<CellPiece>& out)
+/// The seeds that can own part of triangle @a t, nearest to its centroid first (by squared
+/// distance, then index), into @a candidates.
+void findOwnerCandidates(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seeds,
+                         const PointBins& grid, std::vector<std::pair<double, int>>& candidates)
 {
     const auto& tri = mesh.triangles[size_t(t)];
     const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
                &c = mesh.vertices[size_t(tri[2])];
-    const Vec3 cross = (b - a).cross(c - a);
-    const double twiceArea = cross.norm();
-    if (!(twiceArea > 0.0)) return;
-    const Vec3 normal = cross / twiceArea;
     const Vec3 centroid = (a + b + c) / 3.0;
     const double triangleReach = std::max({(a - centroid).norm(), (b - centroid).norm(),
                                            (c - centroid).norm()});
@@ -75,6 +71,21 @@ void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seed
         candidates.emplace_back((seeds[size_t(s)] - centroid).squaredNorm(), s);
     });
     std::sort(candidates.begin(), candidates.end());
+}
+
+/// The pieces of triangle @a t owned by each seed that owns any of it, @a candidates its
+/// findOwnerCandidates.
+void clipTriangle(const TriangleMesh& mesh, int t, const std::vector<Vec3>& seeds,
+                  const std::vector<std::pair<double, int>>& candidates, std::vector<Vec3>& poly,
+                  std::vector<Vec3>& scratch, std::vector<CellPiece>& out)
+{
+    const auto& tri = mesh.triangles[size_t(t)];
+    const Vec3 &a = mesh.vertices[size_t(tri[0])], &b = mesh.vertices[size_t(tri[1])],
+               &c = mesh.vertices[size_t(tri[2])];
+    const Vec3 cross = (b - a).cross(c - a);
+    const double twiceArea = cross.norm();
+    if (!(twiceArea > 0.0)) return;
+    const Vec3 normal = cross / twiceArea;
     for (const auto& [unused, i] : candidates) {
         const Vec3& pi = seeds[size_t(i)];
         poly.assign({a, b, c});
@@ -144,7 +155,8 @@ TriangleMesh splitLargeTriangles(const TriangleMesh& mesh, double largest)
 } // namespace
 
 std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& input,
-                                                          const std::vector<Vec3>& seeds)
+                                                          const std::vector<Vec3>& seeds,
+                                                          CellSides sides)
 {
     if (seeds.empty()) throw Error("", "restricted Voronoi cells need at least one seed");
     // Triangles larger than two cells are split first (their pieces are the same polygons).
@@ -171,15 +183,6 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
     // (the one it lies on, for a seed on the surface).
     std::vector<double> homeDistance(seeds.size(), std::numeric_limits<double>::infinity());
     std::vector<Vec3> homeNormal(seeds.size(), Vec3::Zero());
-    // What the second pass reads of each piece (its moment is summed in the first).
-    struct PieceArea
-    {
-        int seed;
-        int triangle;
-        double area;
-    };
-    std::vector<PieceArea> pieceAreas;
-    pieceAreas.reserve(mesh.triangles.size());
     // Chunks of a fixed share of the triangles (not of the threads): the same pieces in the
     // same order on any thread count, and a coarse mesh holding many seeds still split. The
     // pieces are summed a few chunks at a time, in triangle order (the same sums on any
@@ -191,8 +194,10 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
         [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
             std::vector<std::pair<double, int>> candidates;
             std::vector<Vec3> poly, scratch;
-            for (size_t t = begin; t < end; ++t)
-                clipTriangle(mesh, int(t), seeds, grid, candidates, poly, scratch, out);
+            for (size_t t = begin; t < end; ++t) {
+                findOwnerCandidates(mesh, int(t), seeds, grid, candidates);
+                clipTriangle(mesh, int(t), seeds, candidates, poly, scratch, out);
+            }
         },
         [&](const CellPiece& piece) {
             const size_t s = size_t(piece.seed);
@@ -206,13 +211,34 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
                 homeDistance[s] = distance;
                 homeNormal[s] = normal;
             }
-            pieceAreas.push_back({piece.seed, piece.triangle, piece.area});
         });
-    // Turned by more than 120° from it: the other side of a thin part, not a rough surface's
-    // facets (a scan's noise tilts neighbouring facets by tens of degrees).
-    for (const PieceArea& piece : pieceAreas)
-        if (normalOf(piece.triangle).dot(homeNormal[size_t(piece.seed)]) < -0.5)
-            cells[size_t(piece.seed)].facingAway += piece.area;
+    if (sides == CellSides::Skipped) return cells;
+
+    // The second pass, once each seed's own normal is known: the pieces on triangles turned
+    // by more than 120° from it, the other side of a thin part (a scan's noise tilts
+    // neighbouring facets by tens of degrees). Made again rather than kept from the first
+    // (16 bytes a piece, about two a triangle: the largest item of a node layout's peak), and
+    // only on triangles that some candidate owner faces away from.
+    auto facesAway = [&](int triangle, int seed) {
+        return normalOf(triangle).dot(homeNormal[size_t(seed)]) < -0.5;
+    };
+    consumeInOrder<CellPiece>(
+        mesh.triangles.size(), chunk, kChunksAtATime,
+        [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
+            std::vector<std::pair<double, int>> candidates;
+            std::vector<Vec3> poly, scratch;
+            for (size_t t = begin; t < end; ++t) {
+                findOwnerCandidates(mesh, int(t), seeds, grid, candidates);
+                if (std::none_of(candidates.begin(), candidates.end(),
+                                 [&](const auto& c) { return facesAway(int(t), c.second); }))
+                    continue;
+                clipTriangle(mesh, int(t), seeds, candidates, poly, scratch, out);
+            }
+        },
+        [&](const CellPiece& piece) {
+            if (facesAway(piece.triangle, piece.seed))
+                cells[size_t(piece.seed)].facingAway += piece.area;
+        });
     return cells;
 }
 

@@ -42,6 +42,7 @@ Vec3 closestByEveryTriangle(const TriangleMesh& mesh, const Vec3& p)
 void expectSameAsEveryTriangle(const TriangleMesh& mesh, double cellSize)
 {
     const ClosestPointGrid grid(mesh.vertices, mesh.triangles, cellSize);
+    const ClosestPointGrid view(mesh, cellSize);  // over the mesh, not a copy of it
     std::mt19937_64 rng(3);
     std::normal_distribution<double> gauss;
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -52,7 +53,9 @@ void expectSameAsEveryTriangle(const TriangleMesh& mesh, double cellSize)
                                       : 1.0 + 2.0 * uniform(rng);
         const Vec3 p = r * direction;
         // The same triangle wins (ties to the lower index), so the same bits.
-        ASSERT_EQ(grid.closestPoint(p), closestByEveryTriangle(mesh, p)) << "at " << p.transpose();
+        const Vec3 expected = closestByEveryTriangle(mesh, p);
+        ASSERT_EQ(grid.closestPoint(p), expected) << "at " << p.transpose();
+        ASSERT_EQ(view.closestPoint(p), expected) << "at " << p.transpose();
     }
 }
 

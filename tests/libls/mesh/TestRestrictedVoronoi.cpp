@@ -137,6 +137,27 @@ TEST(RestrictedVoronoi, APartThinnerThanTheSpacingIsOwnedAcrossAndReported)
     EXPECT_EQ(facingAway, 0.0);
 }
 
+// A relaxation step asks for the cells without their sides: the same areas, centroids and
+// normals to the bit, and facingAway left 0 (the plate above, owned across).
+TEST(RestrictedVoronoi, CellsWithoutTheirSidesAreTheSameCells)
+{
+    const TriangleMesh plate = lsdem::test::makeBox(Vec3(0, 0, 0), Vec3(1, 1, 0.02));
+    std::vector<Vec3> seeds;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 5; ++j) seeds.emplace_back((i + 0.5) / 5, (j + 0.5) / 5, 0.02);
+    const auto measured = restrictedVoronoiCells(plate, seeds);
+    const auto skipped = restrictedVoronoiCells(plate, seeds, lsdem::CellSides::Skipped);
+    double facingAway = 0.0;
+    for (size_t s = 0; s < seeds.size(); ++s) {
+        EXPECT_EQ(skipped[s].area, measured[s].area) << s;
+        EXPECT_EQ(skipped[s].moment, measured[s].moment) << s;
+        EXPECT_EQ(skipped[s].normalArea, measured[s].normalArea) << s;
+        EXPECT_EQ(skipped[s].facingAway, 0.0) << s;
+        facingAway += measured[s].facingAway;
+    }
+    EXPECT_NEAR(facingAway, 1.0, 1e-12);
+}
+
 TEST(RestrictedVoronoi, GiveTheSameBitsOnOneThreadAsOnSeveral)
 {
     const TriangleMesh sphere = lsdem::test::makeIcosphere(5);

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "lsdem/core/Vec3.h"
+#include "lsdem/mesh/TriangleMesh.h"
 
 #include <array>
 #include <vector>
@@ -26,6 +27,17 @@ public:
     ClosestPointGrid(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> triangles,
                      double cellSize, std::vector<int> labels = {});
 
+    /// A grid over @a mesh without a copy of it (a node placer's peak holds one mesh less):
+    /// @a mesh must outlive the grid, unchanged. No labels.
+    ClosestPointGrid(const TriangleMesh& mesh, double cellSize);
+    ClosestPointGrid(TriangleMesh&& mesh, double cellSize) = delete;  // it would not outlive it
+
+    // Moved, the vectors keep their storage, which mVertexData and mTriangleData point into.
+    ClosestPointGrid(ClosestPointGrid&&) = default;
+    ClosestPointGrid(const ClosestPointGrid&) = delete;
+    ClosestPointGrid& operator=(const ClosestPointGrid&) = delete;
+    ClosestPointGrid& operator=(ClosestPointGrid&&) = delete;
+
     /// The point closest to @a p of the triangles labelled @a label (of every triangle if
     /// @a label is negative); of several at the same distance, the first triangle's. Exact up
     /// to round-off. @a p itself if no triangle has the label.
@@ -34,6 +46,8 @@ public:
     double cellSize() const { return mCell; }
 
 private:
+    /// Checks the mesh and lists each triangle of area in the cells its box meets.
+    void build(double cellSize);
     std::array<int, 3> cellOf(const Vec3& p) const;  // clamped into the grid
     size_t indexOf(int i, int j, int k) const
     {
@@ -43,9 +57,12 @@ private:
     void testCell(int i, int j, int k, const Vec3& p, int label, double& best2,
                   Vec3& bestOffset, int& bestTriangle) const;
 
-    std::vector<Vec3> mVertices;
-    std::vector<std::array<int, 3>> mTriangles;
-    std::vector<int> mLabels;  ///< per triangle (all 0 without labels)
+    std::vector<Vec3> mOwnedVertices;  ///< empty over a caller's mesh
+    std::vector<std::array<int, 3>> mOwnedTriangles;
+    const Vec3* mVertexData = nullptr;  ///< the owned vertices or the caller's
+    const std::array<int, 3>* mTriangleData = nullptr;
+    size_t mVertexCount = 0, mTriangleCount = 0;
+    std::vector<int> mLabels;  ///< per triangle; empty: no labels (all 0)
     Vec3 mOrigin = Vec3::Zero();
     double mCell = 1.0;
     std::array<int, 3> mDims{1, 1, 1};

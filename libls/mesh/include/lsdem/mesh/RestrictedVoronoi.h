@@ -30,9 +30,15 @@ struct RestrictedVoronoiCell
     double facingAway = 0.0;
 };
 
+/// Whether restrictedVoronoiCells measures the cells' facingAway (a second pass over the
+/// triangles that could hold such parts) or leaves it 0 (a relaxation step needs only the
+/// cells' areas and centroids).
+enum class CellSides { Measured, Skipped };
+
 /// The cells of @a seeds on @a mesh (closed or not; triangles of zero area add nothing), in the
 /// seeds' order. The same numbers on any thread count.
 std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& mesh,
-                                                          const std::vector<Vec3>& seeds);
+                                                          const std::vector<Vec3>& seeds,
+                                                          CellSides sides = CellSides::Measured);
 
 } // namespace lsdem

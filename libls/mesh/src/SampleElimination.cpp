@@ -4,8 +4,11 @@
 
 #include "PointBins.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace lsdem {
 
@@ -86,29 +89,52 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
     };
 
     const Vec3 none = candidates.front();  // (the bins widen their box to hold every point)
-    const PointBins bins(candidates, none, none, reach);
-    std::vector<double> weight(candidates.size(), 0.0);
-    auto forNeighbours = [&](int i, auto&& visit) {
-        bins.forEachWithin(candidates[size_t(i)], reach, [&](int j) {
-            if (j == i) return;
-            const double d = (candidates[size_t(j)] - candidates[size_t(i)]).norm();
-            if (d < reach) visit(j, d);
+    // Each point's neighbours within reach, listed once (in parallel: each point's list is
+    // its own) in the bins' order: the removals below read them a hundred thousand times,
+    // and a list is read faster than the bins are searched again.
+    std::vector<uint32_t> firstNeighbour(candidates.size() + 1, 0);
+    std::vector<int> neighbours;
+    {
+        const PointBins bins(candidates, none, none, reach);
+        auto forNeighbours = [&](size_t i, auto&& visit) {
+            bins.forEachWithin(candidates[i], reach, [&](int j) {
+                if (size_t(j) != i && (candidates[size_t(j)] - candidates[i]).norm() < reach) visit(j);
+            });
+        };
+        tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
+            uint32_t n = 0;
+            forNeighbours(i, [&](int) { ++n; });
+            firstNeighbour[i + 1] = n;
         });
-    };
-    for (size_t i = 0; i < candidates.size(); ++i)
-        forNeighbours(int(i), [&](int, double d) { weight[i] += weightOf(d); });
+        for (size_t i = 0; i < candidates.size(); ++i) firstNeighbour[i + 1] += firstNeighbour[i];
+        neighbours.resize(firstNeighbour.back());
+        tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
+            uint32_t k = firstNeighbour[i];
+            forNeighbours(i, [&](int j) { neighbours[k++] = j; });
+        });
+    }
+    auto distance = [&](size_t i, int j) { return (candidates[size_t(j)] - candidates[i]).norm(); };
+    // Each point's weight, its neighbours' summed in the list's order.
+    std::vector<double> weight(candidates.size(), 0.0);
+    tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
+        double sum = 0.0;
+        for (uint32_t k = firstNeighbour[i]; k < firstNeighbour[i + 1]; ++k)
+            sum += weightOf(distance(i, neighbours[k]));
+        weight[i] = sum;
+    });
 
     CrowdingHeap heap(weight);
     std::vector<char> removed(candidates.size(), 0);
     for (size_t left = candidates.size(); left > count; --left) {
-        const int worst = heap.top();
+        const auto worst = size_t(heap.top());
         heap.pop();
-        removed[size_t(worst)] = 1;
-        forNeighbours(worst, [&](int j, double d) {
-            if (removed[size_t(j)]) return;
-            weight[size_t(j)] -= weightOf(d);
+        removed[worst] = 1;
+        for (uint32_t k = firstNeighbour[worst]; k < firstNeighbour[worst + 1]; ++k) {
+            const int j = neighbours[k];
+            if (removed[size_t(j)]) continue;
+            weight[size_t(j)] -= weightOf(distance(worst, j));
             heap.lowered(j);
-        });
+        }
     }
     std::vector<int> kept;
     kept.reserve(count);

@@ -3,7 +3,8 @@
 // Medians are the figures to quote; this machine is shared and noisy. The bake benchmarks
 // report wall time ("Time") and the CPU time of all threads ("CPU"); memory figures are
 // resident bytes (/proc/self/status), so they include what malloc keeps but not what it gave
-// back. See docs/assets.md, "Cost".
+// back; a bake's figure starts after one small warm-up bake per process (warmUpProcess in
+// MeshFamily.h), with the input mesh already resident. See docs/assets.md, "Cost".
 
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/LevelSetSampler.h"

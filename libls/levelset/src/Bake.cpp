@@ -310,9 +310,9 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
     asset.provenance.source = sourceName;
 
     // The node surface, then the level set of the input surface (the geometric truth), one
-    // after the other. Each is threaded within; side by side they finished up to a sixth
-    // sooner on 2 cores, but their peaks added (each stage's is 1.5-3 times the grid's size),
-    // and a batch bakes several files side by side anyway.
+    // after the other, each threaded within. Side by side their peaks added (each stage's is
+    // 1.5-3 times the grid's size); one after the other a bake takes about as long on 2 cores
+    // (docs/assets.md, "Cost"), and a batch bakes several files side by side anyway.
     asset.nodes = placeNodesOnMesh(mesh, options, &warnings, &asset.provenance.nodeLayout);
     releaseFreedMemory();
     asset.levelSet = meshLevelSet(mesh, options.voxelSize, options.exteriorBandVoxels);

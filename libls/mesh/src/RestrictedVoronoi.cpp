@@ -189,16 +189,24 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
     // thread count), so only those chunks' pieces are held at once.
     const size_t chunk = std::clamp<size_t>(mesh.triangles.size() / 64, 16, 2048);
     constexpr size_t kChunksAtATime = 8;
-    consumeInOrder<CellPiece>(
-        mesh.triangles.size(), chunk, kChunksAtATime,
-        [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
-            std::vector<std::pair<double, int>> candidates;
-            std::vector<Vec3> poly, scratch;
-            for (size_t t = begin; t < end; ++t) {
-                findOwnerCandidates(mesh, int(t), seeds, grid, candidates);
-                clipTriangle(mesh, int(t), seeds, candidates, poly, scratch, out);
-            }
-        },
+    // The pieces of each triangle that @a clips(t, its candidate owners) asks for, handed to
+    // @a consume in triangle order.
+    auto forEachPiece = [&](auto&& clips, auto&& consume) {
+        consumeInOrder<CellPiece>(
+            mesh.triangles.size(), chunk, kChunksAtATime,
+            [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
+                std::vector<std::pair<double, int>> candidates;
+                std::vector<Vec3> poly, scratch;
+                for (size_t t = begin; t < end; ++t) {
+                    findOwnerCandidates(mesh, int(t), seeds, grid, candidates);
+                    if (clips(int(t), candidates))
+                        clipTriangle(mesh, int(t), seeds, candidates, poly, scratch, out);
+                }
+            },
+            consume);
+    };
+    forEachPiece(
+        [](int, const auto&) { return true; },
         [&](const CellPiece& piece) {
             const size_t s = size_t(piece.seed);
             const Vec3 normal = normalOf(piece.triangle);
@@ -222,18 +230,10 @@ std::vector<RestrictedVoronoiCell> restrictedVoronoiCells(const TriangleMesh& in
     auto facesAway = [&](int triangle, int seed) {
         return normalOf(triangle).dot(homeNormal[size_t(seed)]) < -0.5;
     };
-    consumeInOrder<CellPiece>(
-        mesh.triangles.size(), chunk, kChunksAtATime,
-        [&](size_t begin, size_t end, std::vector<CellPiece>& out) {
-            std::vector<std::pair<double, int>> candidates;
-            std::vector<Vec3> poly, scratch;
-            for (size_t t = begin; t < end; ++t) {
-                findOwnerCandidates(mesh, int(t), seeds, grid, candidates);
-                if (std::none_of(candidates.begin(), candidates.end(),
-                                 [&](const auto& c) { return facesAway(int(t), c.second); }))
-                    continue;
-                clipTriangle(mesh, int(t), seeds, candidates, poly, scratch, out);
-            }
+    forEachPiece(
+        [&](int t, const std::vector<std::pair<double, int>>& candidates) {
+            return std::any_of(candidates.begin(), candidates.end(),
+                               [&](const auto& c) { return facesAway(t, c.second); });
         },
         [&](const CellPiece& piece) {
             if (facesAway(piece.triangle, piece.seed))

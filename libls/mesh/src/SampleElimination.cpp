@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <string>
 
 namespace lsdem {
 
@@ -106,7 +108,15 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
             forNeighbours(i, [&](int) { ++n; });
             firstNeighbour[i + 1] = n;
         });
-        for (size_t i = 0; i < candidates.size(); ++i) firstNeighbour[i + 1] += firstNeighbour[i];
+        uint64_t total = 0;  // (summed wide: 4 bytes each is all the lists can spend)
+        for (size_t i = 0; i < candidates.size(); ++i) {
+            total += firstNeighbour[i + 1];
+            if (total > std::numeric_limits<uint32_t>::max())
+                throw Error("", "sample elimination: " + std::to_string(candidates.size()) +
+                                    " points have more than 2^32 neighbours in all",
+                            "place fewer nodes");
+            firstNeighbour[i + 1] = uint32_t(total);
+        }
         neighbours.resize(firstNeighbour.back());
         tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
             uint32_t k = firstNeighbour[i];

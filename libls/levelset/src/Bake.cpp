@@ -311,7 +311,7 @@ GrainAsset bakeMesh(TriangleMesh mesh, const std::string& sourceName, const Bake
 
     // The node surface, then the level set of the input surface (the geometric truth), one
     // after the other, each threaded within. Side by side their peaks added (each stage's is
-    // 1.5-3 times the grid's size); one after the other a bake takes about as long on 2 cores
+    // 1.5-3 times the grid's size); one after the other a bake takes 0-16 % longer on 2 cores
     // (docs/assets.md, "Cost"), and a batch bakes several files side by side anyway.
     asset.nodes = placeNodesOnMesh(mesh, options, &warnings, &asset.provenance.nodeLayout);
     releaseFreedMemory();

@@ -332,6 +332,8 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
     //    each voxel's nearest triangle and side (MeshNarrowBand.h).
     const std::unique_ptr<openvdb::Int32Tree> codes =
         meshNarrowBand(mesh, origin, vox, exteriorBandVoxels);
+    //    What the band's search freed (its bins and pseudo-normals) goes back for the fill.
+    releaseFreedMemory();
     // 2. The inside: each voxel reached by the fill inward from the band (InteriorFill).
     InteriorFill(*codes, mesh, origin, vox).run();
 

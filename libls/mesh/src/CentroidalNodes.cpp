@@ -3,6 +3,7 @@
 #include "lsdem/core/Constants.h"
 #include "lsdem/core/Error.h"
 #include "lsdem/core/PortableRandom.h"
+#include "lsdem/core/ReleaseMemory.h"
 #include "lsdem/mesh/ClosestPointGrid.h"
 #include "lsdem/mesh/SampleElimination.h"
 
@@ -79,6 +80,9 @@ CentroidalNodes placeCentroidalNodes(const TriangleMesh& mesh, size_t count,
     for (int i : eliminateSamples(candidates, count, area))
         nodes.positions.push_back(candidates[size_t(i)]);
     std::vector<Vec3>().swap(candidates);
+    // The elimination's lists are the stage's largest blocks; Lloyd's steps allocate on the
+    // pool's threads, which could not reuse them where malloc kept them.
+    releaseFreedMemory();
 
     // Lloyd: each node to its cell's centroid, put back on the surface (the centroid of a
     // curved cell lies slightly inside).

@@ -5,6 +5,8 @@
 #include "lsdem/core/AtomicFile.h"
 
 #include "lsdem/core/Error.h"
+#include "lsdem/core/PortableRandom.h"
+#include "lsdem/core/ReleaseMemory.h"
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -15,14 +17,16 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
-#include <map>
 #include <ostream>
 #include <sstream>
+#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -33,6 +37,24 @@ namespace lsdem {
 namespace {
 
 using Position = std::array<double, 3>;
+
+/// A hash of a finite position's bits, with -0 read as +0 (they weld: they compare equal).
+struct PositionHash
+{
+    size_t operator()(const Position& p) const
+    {
+        uint64_t h = 0;
+        for (double c : p) {
+            const double positive = c + 0.0;  // -0 + 0 = +0
+            uint64_t bits = 0;
+            std::memcpy(&bits, &positive, sizeof bits);
+            h = splitMix64(h ^ bits);
+        }
+        return size_t(h);
+    }
+};
+/// Each welded position's vertex index.
+using PositionIndex = std::unordered_map<Position, int, PositionHash>;
 
 const char* const kNoTriangles = "the file holds no triangles (only points, lines or nothing)";
 const char* const kNoTrianglesFix = "export the surface of the solid as triangles or polygons";
@@ -69,9 +91,9 @@ void checkFaces(const aiScene& scene, const std::string& path)
 }
 
 /// Index of @a p in @a mesh, adding it if no vertex has exactly this position yet (+0 and -0
-/// count as equal). Non-finite positions are never merged: they cannot be ordered, and
+/// count as equal). Non-finite positions are never merged (a NaN equals nothing), and
 /// validation reports them by index.
-int weldVertex(TriangleMesh& mesh, std::map<Position, int>& index, const Position& p)
+int weldVertex(TriangleMesh& mesh, PositionIndex& index, const Position& p)
 {
     const bool finite = std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
     if (finite) {
@@ -86,7 +108,7 @@ int weldVertex(TriangleMesh& mesh, std::map<Position, int>& index, const Positio
 
 /// Append the triangles of @a src to @a mesh; points and lines are skipped. Vertices are added
 /// only when a triangle uses them, so the vertices of skipped primitives do not linger.
-void appendTriangles(TriangleMesh& mesh, std::map<Position, int>& index, const aiMesh& src,
+void appendTriangles(TriangleMesh& mesh, PositionIndex& index, const aiMesh& src,
                      const std::string& path)
 {
     std::vector<int> globalId(src.mNumVertices, -1);
@@ -161,6 +183,40 @@ void writePly(const TriangleMesh& mesh, std::ostream& out)
     for (const auto& t : mesh.triangles) out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
 }
 
+/// The triangles of the file at @a path as assimp reads them, welded.
+TriangleMesh importMesh(const std::string& path)
+{
+    // Read first and post-process second, so a file that holds only points or lines is told
+    // apart from one assimp cannot parse (post-processing fails on meshes without faces).
+    Assimp::Importer importer;
+    if (importer.ReadFile(path, 0) == nullptr)
+        throw Error(path,
+                    std::string("cannot read the mesh (unknown or invalid format): ") +
+                        importer.GetErrorString(),
+                    "export it as OBJ, STL or PLY");
+    checkFaces(*importer.GetScene(), path);
+    if (!hasPolygons(*importer.GetScene()))
+        throw Error(path, kNoTriangles, kNoTrianglesFix);
+    // PreTransformVertices applies node transforms; nothing here reorders or reorients faces,
+    // because the orientation is how we tell inside from outside.
+    const aiScene* scene =
+        importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_PreTransformVertices);
+    if (scene == nullptr)
+        throw Error(path, std::string("cannot process the mesh: ") + importer.GetErrorString(),
+                    "export it again as OBJ, STL or PLY");
+
+    TriangleMesh mesh;
+    // assimp is not asked to join identical vertices: on a million-triangle OBJ its pass held
+    // 440 MB more and took 1.7 s, and this weld by exact position gives the same mesh, numbered
+    // in the order the faces first use the vertices. (assimp's also merged positions apart by
+    // subnormal amounts, ~1e-38, or not finite: seen only in fuzzed files.)
+    PositionIndex index;  // welds vertices repeated across faces, meshes and STL facets
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
+        appendTriangles(mesh, index, *scene->mMeshes[m], path);
+    if (mesh.triangles.empty()) throw Error(path, kNoTriangles, kNoTrianglesFix);
+    return mesh;
+}
+
 } // namespace
 
 TriangleMesh readMesh(const std::string& path)
@@ -175,31 +231,10 @@ TriangleMesh readMesh(const std::string& path)
 
     checkPlyFile(path);
 
-    // Read first and post-process second, so a file that holds only points or lines is told
-    // apart from one assimp cannot parse (post-processing fails on meshes without faces).
-    Assimp::Importer importer;
-    if (importer.ReadFile(path, 0) == nullptr)
-        throw Error(path,
-                    std::string("cannot read the mesh (unknown or invalid format): ") +
-                        importer.GetErrorString(),
-                    "export it as OBJ, STL or PLY");
-    checkFaces(*importer.GetScene(), path);
-    if (!hasPolygons(*importer.GetScene()))
-        throw Error(path, kNoTriangles, kNoTrianglesFix);
-    // PreTransformVertices applies node transforms; nothing here reorders or reorients faces,
-    // because the orientation is how we tell inside from outside.
-    const aiScene* scene = importer.ApplyPostProcessing(aiProcess_Triangulate |
-                                                        aiProcess_JoinIdenticalVertices |
-                                                        aiProcess_PreTransformVertices);
-    if (scene == nullptr)
-        throw Error(path, std::string("cannot process the mesh: ") + importer.GetErrorString(),
-                    "export it again as OBJ, STL or PLY");
-
-    TriangleMesh mesh;
-    std::map<Position, int> index;  // welds vertices repeated across meshes and STL facets
-    for (unsigned m = 0; m < scene->mNumMeshes; ++m)
-        appendTriangles(mesh, index, *scene->mMeshes[m], path);
-    if (mesh.triangles.empty()) throw Error(path, kNoTriangles, kNoTrianglesFix);
+    TriangleMesh mesh = importMesh(path);
+    // assimp's copies of a large scan (hundreds of MB for a million triangles) were freed in
+    // malloc's heaps; the pages go back before the caller bakes beside them.
+    releaseFreedMemory();
     return mesh;
 }
 

@@ -243,6 +243,35 @@ TEST_F(MeshIO, WeldsVerticesAcrossMeshes)
     EXPECT_EQ(orientedFaces(mesh), orientedFaces(cube));
 }
 
+TEST_F(MeshIO, NumbersWeldedVerticesInTheOrderTheFacesFirstUseThem)
+{
+    // A tetrahedron's four corners declared in another order, each face with copies of its own
+    // (a triangle soup, as marching-cubes exporters write), one copy at -0 where another is 0.
+    const std::string obj = "v 0 0 1\n"   // 1: d
+                            "v 1 0 0\n"   // 2: b
+                            "v 0 0 0\n"   // 3: a
+                            "v 0 1 0\n"   // 4: c
+                            "v -0 0 0\n"  // 5: a again, at -0
+                            "v 0 1 0\n"   // 6: c again
+                            "v 1 0 0\n"   // 7: b again
+                            "v 0 0 1\n"   // 8: d again
+                            "f 3 4 2\n"   // a c b
+                            "f 5 2 1\n"   // a b d
+                            "f 3 8 6\n"   // a d c
+                            "f 7 4 8\n";  // b c d
+    const std::string path = file("soup.obj");
+    writeText(path, obj);
+    const TriangleMesh mesh = lsdem::readMesh(path);
+    // First used: a, c, b (face 1), then d (face 2).
+    ASSERT_EQ(mesh.vertices.size(), 4u);
+    EXPECT_EQ(mesh.vertices[0], Vec3(0, 0, 0));
+    EXPECT_EQ(mesh.vertices[1], Vec3(0, 1, 0));
+    EXPECT_EQ(mesh.vertices[2], Vec3(1, 0, 0));
+    EXPECT_EQ(mesh.vertices[3], Vec3(0, 0, 1));
+    const std::vector<std::array<int, 3>> expected = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {2, 1, 3}};
+    EXPECT_EQ(mesh.triangles, expected);
+}
+
 TEST_F(MeshIO, MissingFileIsAnError)
 {
     const std::string path = file("missing.obj");

@@ -90,6 +90,7 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
         return x4 * x4;  // Yuksel's exponent 8
     };
 
+    auto distance = [&](size_t i, int j) { return (candidates[size_t(j)] - candidates[i]).norm(); };
     const Vec3 none = candidates.front();  // (the bins widen their box to hold every point)
     // Each point's neighbours within reach, listed once (in parallel: each point's list is
     // its own) in the bins' order: the removals below read them a hundred thousand times,
@@ -100,7 +101,7 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
         const PointBins bins(candidates, none, none, reach);
         auto forNeighbours = [&](size_t i, auto&& visit) {
             bins.forEachWithin(candidates[i], reach, [&](int j) {
-                if (size_t(j) != i && (candidates[size_t(j)] - candidates[i]).norm() < reach) visit(j);
+                if (size_t(j) != i && distance(i, j) < reach) visit(j);
             });
         };
         tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
@@ -123,7 +124,6 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
             forNeighbours(i, [&](int j) { neighbours[k++] = j; });
         });
     }
-    auto distance = [&](size_t i, int j) { return (candidates[size_t(j)] - candidates[i]).norm(); };
     // Each point's weight, its neighbours' summed in the list's order.
     std::vector<double> weight(candidates.size(), 0.0);
     tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {

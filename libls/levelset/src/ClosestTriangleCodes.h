@@ -1,7 +1,8 @@
 /// @file ClosestTriangleCodes.h
 /// @brief How a mesh's level set is held while it is baked (private to lsdem_levelset): one
-///        32-bit code a voxel, its closest triangle and what is known of its side, in an Int32
-///        tree. The distances are made from these codes only as the bricks are written.
+///        32-bit code a voxel, its closest triangle and what is known of its side, held in a
+///        ClosestTriangleGrid.h grid. The distances are made from these codes only as the
+///        bricks are written.
 #pragma once
 
 #include <openvdb/openvdb.h>
@@ -11,8 +12,8 @@
 
 namespace lsdem::closest {
 
-/// An inactive voxel: outside the band and not reached by the interior fill (the tree's
-/// background).
+/// An inactive voxel: outside the band and not reached by the interior fill (what the grid
+/// reads for it).
 constexpr openvdb::Int32 kOutside = std::numeric_limits<openvdb::Int32>::max();
 /// Set on a band voxel's code: its distance is the exact one to its nearest triangle, on the
 /// side the sign bit says. Codes without it are the fill's, inside.

@@ -1,6 +1,6 @@
 #include "lsdem/ls/MeshLevelSet.h"
 
-#include "ClosestTriangleCodes.h"
+#include "ClosestTriangleGrid.h"
 #include "MeshNarrowBand.h"
 
 #include "lsdem/core/Error.h"
@@ -22,14 +22,15 @@ namespace lsdem {
 
 namespace {
 
-using IndexLeaf = openvdb::Int32Tree::LeafNodeType;
+using closest::CodeGrid;
+using closest::CodeLeaf;
 
 const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                   {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
 /// The inward propagation of closest triangles: each voxel inside the band takes the nearest
 /// of the triangles closest to its 26 neighbours, layer after layer inward from the band.
-/// Works in the caller's tree of codes (ClosestTriangleCodes.h), which holds the band: the
+/// Works in the caller's grid of codes (ClosestTriangleGrid.h), which holds the band: the
 /// distances are made from the codes only as the bricks are written, so no float tree of them
 /// all is ever held.
 ///
@@ -42,71 +43,73 @@ const openvdb::Coord kFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
 class InteriorFill
 {
 public:
-    InteriorFill(openvdb::Int32Tree& codes, const TriangleMesh& mesh, const Vec3& origin,
+    InteriorFill(CodeGrid& codes, const TriangleMesh& mesh, const Vec3& origin,
                  double voxelSize)
-        : mClosest(codes), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize)
+        : mClosest(codes), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize),
+          mBounds(codes.activeBox())
     {
-        codes.evalActiveVoxelBoundingBox(mBounds);
     }
 
     /// Find the closest triangle of every voxel inside beyond the band, layer after layer
     /// inward from the band's inside voxels that touch one.
     void run()
     {
-        std::vector<openvdb::Coord> layer = bandEdge();
+        // The layers' lists kept from one layer to the next: freed and made again each time,
+        // they left holes that the leaves made meanwhile split, and the heap grew past them
+        // (by 3 times the codes on a small grid, docs/assets.md).
+        std::vector<openvdb::Coord> layer = bandEdge(), next;
+        std::vector<openvdb::Int32> nearest;
         while (!layer.empty()) {
-            layer = nextLayer(layer);
-            solveLayer(layer);
+            nextLayer(layer, next);
+            std::swap(layer, next);
+            solveLayer(layer, nearest);
         }
     }
 
 private:
     /// Whether the voxel at @a c is yet to be reached: not in the band nor filled, and within
     /// the band's box.
-    bool isUnknown(const openvdb::tree::ValueAccessor<const openvdb::Int32Tree>& closest,
-                   const openvdb::Coord& c) const
+    bool isUnknown(const openvdb::Coord& c) const
     {
-        return !closest.isValueOn(c) && mBounds.isInside(c);
+        return mBounds.isInside(c) && !mClosest.isOn(c);
     }
 
-    /// The band's inside voxels with an unknown face neighbour, leaf by leaf in the tree's
+    /// The band's inside voxels with an unknown face neighbour, leaf by leaf in the table's
     /// order: the first layer (every solved face neighbour of an unknown voxel is among them).
     std::vector<openvdb::Coord> bandEdge() const
     {
-        std::vector<const IndexLeaf*> leaves;
-        leaves.reserve(mClosest.leafCount());
-        for (auto leaf = mClosest.cbeginLeaf(); leaf; ++leaf) leaves.push_back(leaf.getLeaf());
         auto touchingUnknown = [&](size_t begin, size_t end, std::vector<openvdb::Coord>& out) {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
-            for (size_t l = begin; l < end; ++l)
-                for (auto it = leaves[l]->cbeginValueOn(); it; ++it) {
-                    if (!closest::holdsTriangle(*it) || closest::isOutside(*it)) continue;
-                    const openvdb::Coord c = it.getCoord();
+            for (size_t slot = begin; slot < end; ++slot) {
+                const CodeLeaf* leaf = mClosest.leafAtSlot(slot);
+                if (!leaf) continue;
+                leaf->forEachOn([&](int n, openvdb::Int32 code) {
+                    if (!closest::holdsTriangle(code) || closest::isOutside(code)) return;
+                    const openvdb::Coord c = leaf->origin() + CodeLeaf::localCoord(n);
                     for (const openvdb::Coord& step : kFaces)
-                        if (isUnknown(closest, c + step)) {
+                        if (isUnknown(c + step)) {
                             out.push_back(c);
                             break;
                         }
-                }
+                });
+            }
         };
-        return collectInOrder<openvdb::Coord>(leaves.size(), 16, touchingUnknown);
+        return collectInOrder<openvdb::Coord>(mClosest.slotCount(), 64, touchingUnknown);
     }
 
-    /// The unknown voxels face-adjacent to @a layer, each once, in an order set by the layer's
+    /// Into @a next, the unknown voxels face-adjacent to @a layer, each once, in an order set by the layer's
     /// alone (the same on any thread count). Found in parallel without marking: an unknown
     /// voxel's solved face neighbours all belong to the last layer (each earlier layer's
     /// unknown neighbours went into the layer after it), and the first of them in kFaces order
     /// is the one that adds it.
-    std::vector<openvdb::Coord> nextLayer(const std::vector<openvdb::Coord>& layer) const
+    void nextLayer(const std::vector<openvdb::Coord>& layer, std::vector<openvdb::Coord>& next) const
     {
         auto unknownNeighbours = [&](size_t begin, size_t end, std::vector<openvdb::Coord>& out) {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
             // Whether @a c is the first solved face neighbour of @a n in kFaces order.
             auto addsIt = [&](const openvdb::Coord& c, const openvdb::Coord& n) {
                 for (const openvdb::Coord& back : kFaces) {
                     const openvdb::Coord m = n + back;
                     if (m == c) return true;
-                    if (closest.isValueOn(m)) return false;
+                    if (mClosest.isOn(m)) return false;
                 }
                 return true;
             };
@@ -114,38 +117,37 @@ private:
                 const openvdb::Coord& c = layer[i];
                 for (const openvdb::Coord& step : kFaces) {
                     const openvdb::Coord n = c + step;
-                    if (!isUnknown(closest, n)) continue;
+                    if (!isUnknown(n)) continue;
                     if (addsIt(c, n)) out.push_back(n);
                 }
             }
         };
-        return collectInOrder<openvdb::Coord>(layer.size(), 2048, unknownNeighbours);
+        collectInOrder<openvdb::Coord>(layer.size(), 2048, unknownNeighbours, next);
     }
 
     /// The codes of the 27 voxels around @a c (itself included).
-    static void neighbourhood(const openvdb::Coord& c,
-                              openvdb::tree::ValueAccessor<const openvdb::Int32Tree>& closest,
-                              openvdb::Int32 out[27])
+    void neighbourhood(const openvdb::Coord& c, openvdb::Int32 out[27]) const
     {
-        // Away from its leaf's faces a voxel's neighbours are all in its leaf: read them from
-        // the buffer (offsets x*64 + y*8 + z) instead of walking the tree 27 times.
-        constexpr int kLast = int(IndexLeaf::DIM) - 1;
+        // Away from its leaf's faces a voxel's neighbours are all in its leaf: read them there
+        // (offsets x*64 + y*8 + z) instead of finding the leaf 27 times.
+        constexpr int kLast = CodeLeaf::kDim - 1;
         const int x = c.x() & kLast, y = c.y() & kLast, z = c.z() & kLast;
         if (x > 0 && x < kLast && y > 0 && y < kLast && z > 0 && z < kLast) {
-            if (const IndexLeaf* leaf = closest.probeConstLeaf(c)) {
-                const openvdb::Int32* centre = leaf->buffer().data() + IndexLeaf::coordToOffset(c);
-                constexpr int dx = 1 << (2 * IndexLeaf::LOG2DIM), dy = 1 << IndexLeaf::LOG2DIM;
+            if (const CodeLeaf* leaf = mClosest.leaf(c)) {
+                const int centre = CodeLeaf::offset(c);
+                constexpr int dx = CodeLeaf::kDim * CodeLeaf::kDim, dy = CodeLeaf::kDim;
                 int k = 0;
                 for (int i = -1; i <= 1; ++i)
                     for (int j = -1; j <= 1; ++j)
-                        for (int l = -1; l <= 1; ++l) out[k++] = centre[i * dx + j * dy + l];
+                        for (int l = -1; l <= 1; ++l)
+                            out[k++] = leaf->code(centre + i * dx + j * dy + l);
                 return;
             }
         }
         int k = 0;
         for (int i = -1; i <= 1; ++i)
             for (int j = -1; j <= 1; ++j)
-                for (int l = -1; l <= 1; ++l) out[k++] = closest.getValue(c.offsetBy(i, j, l));
+                for (int l = -1; l <= 1; ++l) out[k++] = mClosest.code(c.offsetBy(i, j, l));
     }
 
     double squaredDistance(const Vec3& p, openvdb::Int32 t) const
@@ -160,16 +162,16 @@ private:
 
     /// Each voxel of @a layer takes the nearest of the triangles closest to itself and its 26
     /// neighbours (ties to the lower index); the voxels of one layer are independent.
-    void solveLayer(const std::vector<openvdb::Coord>& layer)
+    /// @a nearest: room for the results, kept from layer to layer.
+    void solveLayer(const std::vector<openvdb::Coord>& layer, std::vector<openvdb::Int32>& nearest)
     {
-        std::vector<openvdb::Int32> nearest(layer.size());
+        nearest.resize(layer.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 512),
                           [&](const tbb::blocked_range<size_t>& range) {
-            openvdb::tree::ValueAccessor<const openvdb::Int32Tree> closest(mClosest);
             for (size_t i = range.begin(); i != range.end(); ++i) {
                 const Vec3 p = centre(layer[i]);
                 openvdb::Int32 around[27];
-                neighbourhood(layer[i], closest, around);
+                neighbourhood(layer[i], around);
                 double best = std::numeric_limits<double>::infinity();
                 openvdb::Int32 bestTriangle = closest::kNoTriangle;
                 // The 27 hold a few distinct triangles, each many times: a triangle already
@@ -193,25 +195,12 @@ private:
                 nearest[i] = bestTriangle;  // (an inside code: no band bit)
             }
         });
-        // Written once the whole layer is solved (its voxels read each other's old values).
-        // The leaves the layer needs are made and its voxels made active first, on one thread
-        // (the tree changes shape, and a leaf's active states share 64-bit words); then the
-        // values, distinct ones of existing leaves, are written in parallel.
-        {
-            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-            for (const openvdb::Coord& c : layer)
-                closest.touchLeaf(c)->setActiveState(IndexLeaf::coordToOffset(c), true);
-        }
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, layer.size(), 4096),
-                          [&](const tbb::blocked_range<size_t>& range) {
-            openvdb::tree::ValueAccessor<openvdb::Int32Tree> closest(mClosest);
-            for (size_t i = range.begin(); i != range.end(); ++i)
-                closest.probeLeaf(layer[i])->setValueOnly(IndexLeaf::coordToOffset(layer[i]),
-                                                          nearest[i]);
-        });
+        // Written once the whole layer is solved (its voxels read each other's old values),
+        // on one thread: leaves are made, and a leaf's codes and active states are shared.
+        for (size_t i = 0; i < layer.size(); ++i) mClosest.set(layer[i], nearest[i]);
     }
 
-    openvdb::Int32Tree& mClosest;
+    CodeGrid& mClosest;
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
@@ -225,39 +214,27 @@ private:
 class ClosestTriangleSource : public LevelSetBricks::Source
 {
 public:
-    ClosestTriangleSource(openvdb::Int32Tree& codes, const TriangleMesh& mesh, const Vec3& origin,
+    ClosestTriangleSource(CodeGrid& codes, const TriangleMesh& mesh, const Vec3& origin,
                           double voxelSize, float background)
         : mCodes(codes), mMesh(mesh), mOrigin(origin), mVoxel(voxelSize), mBackground(background)
     {
-        for (auto leaf = codes.cbeginLeaf(); leaf; ++leaf) mLeaves.push_back(leaf->origin());
-        std::sort(mLeaves.begin(), mLeaves.end(),
-                  [](const openvdb::Coord& a, const openvdb::Coord& b) { return a.x() < b.x(); });
     }
 
     void releaseBelow(int x) override
     {
-        bool freed = false;
-        for (; mReleased < mLeaves.size() && mLeaves[mReleased].x() + int(IndexLeaf::DIM) <= x;
-             ++mReleased) {
-            mCodes.addTile(1, mLeaves[mReleased], closest::kOutside, false);  // the leaf goes
-            freed = true;
-        }
+        const size_t leaves = mCodes.leafCount();
+        mCodes.releaseBelow(x);
         // The leaves are small blocks inside malloc's heaps, which keeps them; the pages they
         // leave wholly free go back to the system, for the bricks' storage to take.
-        if (freed) releaseFreedMemory();
+        if (mCodes.leafCount() != leaves) releaseFreedMemory();
     }
 
-    openvdb::CoordBBox valueBox() const override
-    {
-        openvdb::CoordBBox box;  // empty if no voxel is active
-        mCodes.evalActiveVoxelBoundingBox(box);
-        return box;
-    }
+    openvdb::CoordBBox valueBox() const override { return mCodes.activeBox(); }
 
     class Reader : public LevelSetBricks::Source::Reader
     {
     public:
-        explicit Reader(const ClosestTriangleSource& source) : mSource(source), mCodes(source.mCodes) {}
+        explicit Reader(const ClosestTriangleSource& source) : mSource(source) {}
 
         void read(const openvdb::Coord& origin, LevelSetBricks::RawBrick& raw) override
         {
@@ -268,8 +245,8 @@ public:
                     for (int z = 0; z < kDim; ++z) {
                         const openvdb::Coord c = origin.offsetBy(x, y, z);
                         const int k = LevelSetBricks::offset(openvdb::Coord(x, y, z));
-                        openvdb::Int32 code = closest::kOutside;
-                        if (!mCodes.probeValue(c, code)) {
+                        const openvdb::Int32 code = mSource.mCodes.code(c);
+                        if (code == closest::kOutside) {  // (inactive)
                             raw.value[k] = mSource.mBackground;
                             continue;
                         }
@@ -280,7 +257,6 @@ public:
 
     private:
         const ClosestTriangleSource& mSource;
-        openvdb::tree::ValueAccessor<const openvdb::Int32Tree> mCodes;
     };
 
     std::unique_ptr<LevelSetBricks::Source::Reader> reader() const override
@@ -298,13 +274,11 @@ private:
         return closest::isOutside(code) ? depth : -depth;
     }
 
-    openvdb::Int32Tree& mCodes;
+    CodeGrid& mCodes;
     const TriangleMesh& mMesh;
     Vec3 mOrigin;
     double mVoxel;
     float mBackground;
-    std::vector<openvdb::Coord> mLeaves;  ///< the codes' leaves, by x
-    size_t mReleased = 0;                 ///< those freed: the first this many
 };
 
 } // namespace
@@ -330,7 +304,7 @@ std::shared_ptr<LevelSetGrid> meshLevelSet(const TriangleMesh& mesh, double voxe
 
     // 1. The narrow band: exact distances within the exterior band and two voxels inside, as
     //    each voxel's nearest triangle and side (MeshNarrowBand.h).
-    const std::unique_ptr<openvdb::Int32Tree> codes =
+    const std::unique_ptr<CodeGrid> codes =
         meshNarrowBand(mesh, origin, vox, exteriorBandVoxels);
     //    What the band's search freed (its bins and pseudo-normals) goes back for the fill.
     releaseFreedMemory();

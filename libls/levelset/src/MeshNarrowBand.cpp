@@ -1,6 +1,6 @@
 #include "MeshNarrowBand.h"
 
-#include "ClosestTriangleCodes.h"
+#include "ClosestTriangleGrid.h"
 
 #include "lsdem/mesh/MeshPseudoNormals.h"
 #include "lsdem/mesh/TriangleOffset.h"
@@ -19,9 +19,9 @@ namespace lsdem {
 
 namespace {
 
-using IndexLeaf = openvdb::Int32Tree::LeafNodeType;
-constexpr int kLeafDim = int(IndexLeaf::DIM);
-constexpr int kLeafLog2 = int(IndexLeaf::LOG2DIM);
+using closest::CodeLeaf;
+constexpr int kLeafDim = CodeLeaf::kDim;
+constexpr int kLeafLog2 = CodeLeaf::kLog2Dim;
 
 /// The voxels within a reach of each triangle's box, as index ranges [lo, hi] per axis.
 struct VoxelRange
@@ -89,6 +89,9 @@ public:
     }
 
     size_t leafCount() const { return mFirst.size() - 1; }
+    /// The table's first leaf (in leaves) and its size, x-major.
+    const openvdb::Coord& lowLeaf() const { return mLow; }
+    const std::array<size_t, 3>& leafCounts() const { return mDim; }
     /// The first voxel of leaf @a s.
     openvdb::Coord leafOrigin(size_t s) const
     {
@@ -107,14 +110,14 @@ private:
     }
 
     openvdb::Coord mLow;
-    size_t mDim[3] = {0, 0, 0};
+    std::array<size_t, 3> mDim{};
     std::vector<size_t> mFirst;
     std::vector<int> mTriangles;
 };
 
 } // namespace
 
-std::unique_ptr<openvdb::Int32Tree> meshNarrowBand(const TriangleMesh& mesh, const Vec3& origin,
+std::unique_ptr<closest::CodeGrid> meshNarrowBand(const TriangleMesh& mesh, const Vec3& origin,
                                                    double voxelSize, int exteriorBandVoxels)
 {
     using namespace closest;
@@ -126,11 +129,13 @@ std::unique_ptr<openvdb::Int32Tree> meshNarrowBand(const TriangleMesh& mesh, con
     const double insideReach2 = std::pow(kInteriorBandVoxels * voxelSize, 2);
     const double reach2 = std::max(outsideReach2, insideReach2);
 
-    std::vector<IndexLeaf*> leaves(bins.leafCount(), nullptr);
+    auto grid = std::make_unique<CodeGrid>(bins.lowLeaf(), bins.leafCounts());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, bins.leafCount(), 16),
                       [&](const tbb::blocked_range<size_t>& range) {
-        std::array<double, IndexLeaf::SIZE> best;
-        std::array<int, IndexLeaf::SIZE> nearest;
+        std::array<double, CodeLeaf::kSize> best;
+        std::array<int, CodeLeaf::kSize> nearest;
+        std::array<openvdb::Int32, CodeLeaf::kSize> codes;
+        std::array<bool, CodeLeaf::kSize> inBand;
         for (size_t s = range.begin(); s != range.end(); ++s) {
             if (bins.begin(s) == bins.end(s)) continue;
             const openvdb::Coord first = bins.leafOrigin(s);
@@ -161,24 +166,23 @@ std::unique_ptr<openvdb::Int32Tree> meshNarrowBand(const TriangleMesh& mesh, con
                             }
                         }
             }
-            IndexLeaf* leaf = nullptr;
-            for (int n = 0; n < int(IndexLeaf::SIZE); ++n) {
+            inBand.fill(false);
+            bool any = false;
+            for (int n = 0; n < CodeLeaf::kSize; ++n) {
                 const int t = nearest[size_t(n)];
                 if (t < 0 || !(best[size_t(n)] < reach2)) continue;  // in the band on no side
-                const openvdb::Coord c = first + IndexLeaf::offsetToLocalCoord(openvdb::Index(n));
+                const openvdb::Coord c = first + CodeLeaf::localCoord(n);
                 const bool outside =
                     sides.isOutside(origin + voxelSize * Vec3(c.x(), c.y(), c.z()), t);
                 if (!(best[size_t(n)] < (outside ? outsideReach2 : insideReach2))) continue;
-                if (!leaf) leaf = new IndexLeaf(first, kOutside, false);
-                leaf->setValueOn(openvdb::Index(n), bandCode(t, outside));
+                codes[size_t(n)] = bandCode(t, outside);
+                inBand[size_t(n)] = any = true;
             }
-            leaves[s] = leaf;
+            // Each thread fills slots of its own: the table does not change shape.
+            if (any) grid->adopt(s, std::make_unique<CodeLeaf>(first, codes, inBand));
         }
     });
-    auto tree = std::make_unique<openvdb::Int32Tree>(kOutside);
-    for (IndexLeaf* leaf : leaves)  // the tree changes shape: one thread, in leaf order
-        if (leaf) tree->addLeaf(leaf);
-    return tree;
+    return grid;
 }
 
 } // namespace lsdem

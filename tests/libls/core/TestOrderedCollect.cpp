@@ -1,5 +1,6 @@
 // Items gathered in parallel, in chunk order: the same sequence on any thread count, whether
-// joined at once (collectInOrder) or consumed a few chunks at a time (consumeInOrder).
+// joined at once (collectInOrder, returned or into a vector) or consumed a few chunks at a
+// time (consumeInOrder).
 
 #include "lsdem/core/OrderedCollect.h"
 
@@ -31,6 +32,20 @@ TEST(OrderedCollect, JoinsChunksInOrderOnAnyThreadCount)
     for (const int threads : {1, 2}) {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
         EXPECT_EQ(lsdem::collectInOrder<size_t>(1001, 17, copiesOf), expected(1001));
+    }
+}
+
+TEST(OrderedCollect, CollectsIntoAVectorReplacingItsItemsInItsOwnStorage)
+{
+    // Collected again and again into one vector (as the interior fill's layers are): each
+    // time the items are the new ones only, and storage large enough already is kept.
+    std::vector<size_t> into(5, 99);
+    into.reserve(2000);
+    const size_t* storage = into.data();
+    for (const size_t count : {size_t(1001), size_t(40), size_t(0), size_t(700)}) {
+        lsdem::collectInOrder<size_t>(count, 17, copiesOf, into);
+        EXPECT_EQ(into, expected(count)) << count;
+        EXPECT_EQ(into.data(), storage) << count;
     }
 }
 

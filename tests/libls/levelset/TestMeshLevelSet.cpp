@@ -17,6 +17,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 using lsdem::LevelSetGrid;
 using lsdem::TriangleMesh;
@@ -274,6 +275,63 @@ TEST(MeshLevelSet, SameValuesOnAnyThreadCount)
         ++compared;
     }
     EXPECT_GT(compared, 100000u);
+}
+
+TEST(MeshLevelSet, AnEightVoxelBlockNearHundredsOfTrianglesKeepsEachVoxelsNearest)
+{
+    // While it is baked, each 8³ block of voxels keeps the distinct codes of its voxels'
+    // nearest triangles and, per voxel, an index into them of one byte, of two beyond 256
+    // (ClosestTriangleGrid.h). A sphere of 81,920 triangles (edges about 0.014) in voxels of
+    // 0.1 puts hundreds of distinct nearest triangles in one block by the surface (the test's
+    // premise, counted by brute force); every band voxel of the block still holds its exact
+    // distance, and every voxel deeper is filled.
+    const TriangleMesh mesh = lsdem::test::makeIcosphere(6);
+    const double vox = 0.1;
+    const int band = 3;
+    const auto ls = lsdem::meshLevelSet(mesh, vox, band);
+    const openvdb::FloatGrid::Ptr stored = lsdem::toFloatGrid(*ls->grid);
+    auto accessor = stored->getConstAccessor();
+    // The block holding the surface point along (1, 2, 3).
+    const Vec3 onSurface = Vec3(1, 2, 3).normalized();
+    openvdb::Coord first;
+    for (int a = 0; a < 3; ++a)
+        first[a] = int(std::lround((onSurface[a] - ls->origin[a]) / vox)) & ~7;
+    std::vector<int> nearestInBand;
+    size_t checked = 0;
+    for (int n = 0; n < 512; ++n) {
+        const openvdb::Coord c = first.offsetBy(n >> 6, (n >> 3) & 7, n & 7);
+        const Vec3 p = voxelCentre(*ls, c);
+        double best = std::numeric_limits<double>::infinity();
+        int nearest = -1;
+        for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const auto& tri = mesh.triangles[t];
+            const double d = triangleDistance(p, mesh.vertices[tri[0]], mesh.vertices[tri[1]],
+                                              mesh.vertices[tri[2]]);
+            if (d < best) best = d, nearest = int(t);
+        }
+        const double exact = p.norm() < 1.0 ? -best : best;  // (the sphere's inside)
+        if (exact >= band * vox) {
+            EXPECT_FALSE(accessor.isValueOn(c)) << c;  // beyond the exterior band
+            continue;
+        }
+        ASSERT_TRUE(accessor.isValueOn(c)) << c;
+        ++checked;
+        if (exact < -2 * vox) {
+            // The fill's voxels: inside, and never shallower than the nearest triangle. (With
+            // triangles this much finer than the voxels, the fill's choice among its
+            // neighbours' triangles errs deeper by up to 0.102 voxel here, past the coarser
+            // meshes' kFillVoxels; the values are those of the Int32 tree's bake.)
+            EXPECT_LT(accessor.getValue(c), 0.0f) << c;
+            EXPECT_LE(accessor.getValue(c), exact + kBandVoxels * vox) << c;
+            continue;
+        }
+        EXPECT_NEAR(accessor.getValue(c), exact, kBandVoxels * vox) << c;
+        nearestInBand.push_back(nearest);
+    }
+    std::sort(nearestInBand.begin(), nearestInBand.end());
+    const auto distinct = std::unique(nearestInBand.begin(), nearestInBand.end()) - nearestInBand.begin();
+    ASSERT_GT(distinct, 256) << "the premise: more nearest triangles than one byte can index";
+    EXPECT_GT(checked, 200u);
 }
 
 // Contact reads φ and ∇φ only in cells with a corner inside; their corners are inside or

@@ -13,9 +13,12 @@ namespace lsdem {
 
 /// Calls @a collect(begin, end, out) for each chunk [begin, end) of [0, @a count), @a chunk
 /// indices long (the last may be shorter), in parallel; each call appends its items to its
-/// own @a out (a std::vector<T>&). Returns every chunk's items, joined in chunk order.
+/// own @a out (a std::vector<T>&). Puts every chunk's items, joined in chunk order, into
+/// @a all (its items replaced, its storage kept: a loop that collects again and again reuses
+/// one block instead of leaving a freed one behind each time, which smaller blocks allocated
+/// meanwhile would split).
 template <typename T, typename Collect>
-std::vector<T> collectInOrder(size_t count, size_t chunk, Collect&& collect)
+void collectInOrder(size_t count, size_t chunk, Collect&& collect, std::vector<T>& all)
 {
     std::vector<std::vector<T>> found((count + chunk - 1) / chunk);
     tbb::parallel_for(size_t(0), found.size(), [&](size_t c) {
@@ -23,9 +26,17 @@ std::vector<T> collectInOrder(size_t count, size_t chunk, Collect&& collect)
     });
     size_t total = 0;
     for (const std::vector<T>& part : found) total += part.size();
-    std::vector<T> all;
+    all.clear();
     all.reserve(total);
     for (const std::vector<T>& part : found) all.insert(all.end(), part.begin(), part.end());
+}
+
+/// The same, returned.
+template <typename T, typename Collect>
+std::vector<T> collectInOrder(size_t count, size_t chunk, Collect&& collect)
+{
+    std::vector<T> all;
+    collectInOrder(count, chunk, collect, all);
     return all;
 }
 

@@ -47,6 +47,13 @@ public:
     template <typename Visit>
     void forEachWithin(const Vec3& p, double radius, Visit&& visit) const
     {
+        forEachWithinPlaced(p, radius, [&](int s, int) { visit(s); });
+    }
+
+    /// The same, with each point's place in pointsByCell(): @a visit(s, place).
+    template <typename Visit>
+    void forEachWithinPlaced(const Vec3& p, double radius, Visit&& visit) const
+    {
         const Eigen::Vector3i lo = cellIndex(p - Vec3::Constant(radius));
         const Eigen::Vector3i hi = cellIndex(p + Vec3::Constant(radius));
         const double r2 = radius * radius;
@@ -56,10 +63,13 @@ public:
                     const int c = flat(x, y, z);
                     for (int k = mStart[size_t(c)]; k < mStart[size_t(c) + 1]; ++k) {
                         const int s = mItems[size_t(k)];
-                        if ((mPoints[size_t(s)] - p).squaredNorm() <= r2) visit(s);
+                        if ((mPoints[size_t(s)] - p).squaredNorm() <= r2) visit(s, k);
                     }
                 }
     }
+
+    /// The points cell by cell (x fastest, then y, then z), each cell's in the points' order.
+    const std::vector<int>& pointsByCell() const { return mItems; }
 
     /// The distance from @a p (inside the grid's box) to its nearest point: rings of cells
     /// around p's cell, until the next ring can hold nothing nearer.

@@ -67,6 +67,34 @@ TEST(SampleElimination, KeepsTheCountAskedForSpreadEvenly)
     EXPECT_LT(randomLeast, 0.1 * a);
 }
 
+TEST(SampleElimination, SpreadsEvenlyWhereNeighboursLieFarApartInTheBins)
+{
+    // The neighbour lists keep each neighbour as its step from the point in the bins' order
+    // (cell by cell, z slowest): 2 bytes unless some step needs more. Two layers of 35,000
+    // points over the unit square, a fiftieth of a cell apart in z but in two slices of cells
+    // (a point below the square sets where the cells start), put every point's neighbours in
+    // the other layer about 35,000 places away, beyond 2 bytes. The kept points must still
+    // spread as evenly as KeepsTheCountAskedForSpreadEvenly's (one surface, ten candidates a
+    // point here).
+    const int kept = 7000;
+    const double reach = 2.0 * std::sqrt(1.0 / (2.0 * std::sqrt(3.0) * kept));
+    const double cell = std::max(reach, 1.0 / 128.0);  // (PointBins: at most 128 cells a side)
+    std::vector<Vec3> candidates = squarePoints(35000, 7);
+    for (Vec3 p : squarePoints(35000, 8)) candidates.push_back(p + Vec3(0.0, 0.0, 0.02 * cell));
+    candidates.emplace_back(0.5, 0.5, -0.99 * cell);
+    const std::vector<int> chosen = lsdem::eliminateSamples(candidates, kept, 1.0);
+    ASSERT_EQ(chosen.size(), size_t(kept));
+    EXPECT_TRUE(std::is_sorted(chosen.begin(), chosen.end()));
+    EXPECT_EQ(std::adjacent_find(chosen.begin(), chosen.end()), chosen.end());
+    std::vector<Vec3> points;
+    for (int i : chosen) points.push_back(candidates[size_t(i)]);
+    const auto [least, mean] = nearestDistances(points);
+    const double a = 1.0 / std::sqrt(double(kept));
+    EXPECT_GT(mean, 0.8 * a);
+    EXPECT_LE(mean, 1.075 * a);
+    EXPECT_GT(least, 0.4 * a);
+}
+
 TEST(SampleElimination, RefusesACountItCannotKeep)
 {
     const std::vector<Vec3> candidates = squarePoints(10, 1);

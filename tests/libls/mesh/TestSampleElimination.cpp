@@ -39,28 +39,34 @@ std::pair<double, double> nearestDistances(const std::vector<Vec3>& points)
     return {least, sum / double(points.size())};
 }
 
-TEST(SampleElimination, KeepsTheCountAskedForSpreadEvenly)
+/// That @a chosen, of @a candidates on a unit area, are @a kept distinct indices in
+/// increasing order whose points spread evenly. References for N points on unit area
+/// (a = 1/√N): a random subset (a Poisson process) has a mean nearest distance of a/2 and a
+/// least one near zero; the hexagonal packing has both at a·√(2/√3) = 1.075a. Yuksel reports
+/// about 0.8 of the packing's spacing for five candidates a point; the square's edges (points
+/// there lack neighbours outside) add a little. So: well above random, at most the packing.
+void expectEvenlySpread(const std::vector<Vec3>& candidates, const std::vector<int>& chosen,
+                        int kept)
 {
-    const int kept = 1000;
-    const std::vector<Vec3> candidates = squarePoints(5 * kept, 5);
-    const std::vector<int> chosen = lsdem::eliminateSamples(candidates, kept, 1.0);
     ASSERT_EQ(chosen.size(), size_t(kept));
     EXPECT_TRUE(std::is_sorted(chosen.begin(), chosen.end()));
     EXPECT_EQ(std::adjacent_find(chosen.begin(), chosen.end()), chosen.end());
-
     std::vector<Vec3> points;
     for (int i : chosen) points.push_back(candidates[size_t(i)]);
     const auto [least, mean] = nearestDistances(points);
-    // References for N points on unit area (a = 1/√N): a random subset (a Poisson process)
-    // has a mean nearest distance of a/2 and a least one near zero; the hexagonal packing has
-    // both at a·√(2/√3) = 1.075a. Yuksel reports about 0.8 of the packing's spacing for five
-    // candidates a point; the square's edges (points there lack neighbours outside) add a
-    // little. So: well above random, at most the packing.
     const double a = 1.0 / std::sqrt(double(kept));
     EXPECT_GT(mean, 0.8 * a);
     EXPECT_LE(mean, 1.075 * a);
     EXPECT_GT(least, 0.4 * a);
+}
 
+TEST(SampleElimination, KeepsTheCountAskedForSpreadEvenly)
+{
+    const int kept = 1000;
+    const std::vector<Vec3> candidates = squarePoints(5 * kept, 5);
+    expectEvenlySpread(candidates, lsdem::eliminateSamples(candidates, kept, 1.0), kept);
+
+    const double a = 1.0 / std::sqrt(double(kept));
     const std::vector<Vec3> randomSubset(candidates.begin(), candidates.begin() + kept);
     const auto [randomLeast, randomMean] = nearestDistances(randomSubset);
     EXPECT_LT(randomMean, 0.6 * a);  // (the reference's own check: a random subset is not even)
@@ -82,17 +88,7 @@ TEST(SampleElimination, SpreadsEvenlyWhereNeighboursLieFarApartInTheBins)
     std::vector<Vec3> candidates = squarePoints(35000, 7);
     for (Vec3 p : squarePoints(35000, 8)) candidates.push_back(p + Vec3(0.0, 0.0, 0.02 * cell));
     candidates.emplace_back(0.5, 0.5, -0.99 * cell);
-    const std::vector<int> chosen = lsdem::eliminateSamples(candidates, kept, 1.0);
-    ASSERT_EQ(chosen.size(), size_t(kept));
-    EXPECT_TRUE(std::is_sorted(chosen.begin(), chosen.end()));
-    EXPECT_EQ(std::adjacent_find(chosen.begin(), chosen.end()), chosen.end());
-    std::vector<Vec3> points;
-    for (int i : chosen) points.push_back(candidates[size_t(i)]);
-    const auto [least, mean] = nearestDistances(points);
-    const double a = 1.0 / std::sqrt(double(kept));
-    EXPECT_GT(mean, 0.8 * a);
-    EXPECT_LE(mean, 1.075 * a);
-    EXPECT_GT(least, 0.4 * a);
+    expectEvenlySpread(candidates, lsdem::eliminateSamples(candidates, kept, 1.0), kept);
 }
 
 TEST(SampleElimination, RefusesACountItCannotKeep)

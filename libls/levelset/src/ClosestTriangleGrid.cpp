@@ -58,12 +58,6 @@ void CodeLeaf::set(int n, openvdb::Int32 code)
     mActive[size_t(n) >> 6] |= uint64_t(1) << (n & 63);
 }
 
-size_t CodeLeaf::memUsage() const
-{
-    return sizeof(*this) + mPalette.capacity() * sizeof(openvdb::Int32) + mNarrow.capacity() +
-           mWide.capacity() * sizeof(uint16_t);
-}
-
 CodeGrid::CodeGrid(const openvdb::Coord& lowLeaf, const std::array<size_t, 3>& counts)
     : mLow(lowLeaf), mCounts(counts), mLeaves(counts[0] * counts[1] * counts[2])
 {
@@ -83,14 +77,19 @@ void CodeGrid::set(const openvdb::Coord& c, openvdb::Int32 code)
 
 void CodeGrid::adopt(size_t slot, std::unique_ptr<CodeLeaf> leaf) { mLeaves.at(slot) = std::move(leaf); }
 
-void CodeGrid::releaseBelow(int x)
+size_t CodeGrid::releaseBelow(int x)
 {
     const size_t slab = mCounts[1] * mCounts[2];
+    size_t freed = 0;
     for (; mReleasedSlabs < mCounts[0] &&
            (mLow.x() + int(mReleasedSlabs) + 1) * CodeLeaf::kDim <= x;
          ++mReleasedSlabs)
         for (size_t s = mReleasedSlabs * slab; s < (mReleasedSlabs + 1) * slab; ++s)
-            mLeaves[s].reset();
+            if (mLeaves[s]) {
+                mLeaves[s].reset();
+                ++freed;
+            }
+    return freed;
 }
 
 openvdb::CoordBBox CodeGrid::activeBox() const
@@ -101,28 +100,6 @@ openvdb::CoordBBox CodeGrid::activeBox() const
             box.expand(leaf->origin() + CodeLeaf::localCoord(n));
         });
     return box;
-}
-
-size_t CodeGrid::leafCount() const
-{
-    return size_t(std::count_if(mLeaves.begin(), mLeaves.end(),
-                                [](const auto& leaf) { return leaf != nullptr; }));
-}
-
-size_t CodeGrid::activeVoxelCount() const
-{
-    size_t count = 0;
-    for (const auto& leaf : mLeaves)
-        if (leaf) leaf->forEachOn([&](int, openvdb::Int32) { ++count; });
-    return count;
-}
-
-size_t CodeGrid::memUsage() const
-{
-    size_t bytes = sizeof(*this) + mLeaves.capacity() * sizeof(mLeaves[0]);
-    for (const auto& leaf : mLeaves)
-        if (leaf) bytes += leaf->memUsage();
-    return bytes;
 }
 
 } // namespace lsdem::closest

@@ -69,8 +69,6 @@ public:
                 f(n, code(n));
             }
     }
-    size_t memUsage() const;
-
 private:
     /// @a code's place in the palette, added if new (the indices widened to 16 bits when
     /// it outgrows 8).
@@ -115,14 +113,12 @@ public:
     void set(const openvdb::Coord& c, openvdb::Int32 code);
     /// @a leaf put at table slot @a slot (the slot of its origin).
     void adopt(size_t slot, std::unique_ptr<CodeLeaf> leaf);
-    /// Every leaf whose voxels all lie below x = @a x freed (no voxel of them read again).
-    void releaseBelow(int x);
+    /// Every leaf whose voxels all lie below x = @a x freed (no voxel of them read again);
+    /// how many there were.
+    size_t releaseBelow(int x);
 
     /// The box of the active voxels (empty if there are none).
     openvdb::CoordBBox activeBox() const;
-    size_t leafCount() const;
-    size_t activeVoxelCount() const;
-    size_t memUsage() const;
 
 private:
     static constexpr size_t kNoSlot = ~size_t(0);

@@ -222,11 +222,9 @@ public:
 
     void releaseBelow(int x) override
     {
-        const size_t leaves = mCodes.leafCount();
-        mCodes.releaseBelow(x);
         // The leaves are small blocks inside malloc's heaps, which keeps them; the pages they
         // leave wholly free go back to the system, for the bricks' storage to take.
-        if (mCodes.leafCount() != leaves) releaseFreedMemory();
+        if (mCodes.releaseBelow(x) > 0) releaseFreedMemory();
     }
 
     openvdb::CoordBBox valueBox() const override { return mCodes.activeBox(); }

@@ -17,21 +17,24 @@ CodeLeaf::CodeLeaf(const openvdb::Coord& origin, const std::array<openvdb::Int32
     std::sort(mPalette.begin(), mPalette.end());
     mPalette.erase(std::unique(mPalette.begin(), mPalette.end()), mPalette.end());
     mPalette.shrink_to_fit();
-    const bool wide = mPalette.size() > 256;
-    if (wide)
+    if (mPalette.size() > 256)
         mWide.resize(kSize, 0);
     else
         mNarrow.resize(kSize, 0);
     for (int n = 0; n < kSize; ++n) {
         if (!active[size_t(n)]) continue;
-        mActive[size_t(n) >> 6] |= uint64_t(1) << (n & 63);
         const auto at = std::lower_bound(mPalette.begin(), mPalette.end(), codes[size_t(n)]);
-        const auto index = uint16_t(at - mPalette.begin());
-        if (wide)
-            mWide[size_t(n)] = index;
-        else
-            mNarrow[size_t(n)] = uint8_t(index);
+        store(n, uint16_t(at - mPalette.begin()));
     }
+}
+
+void CodeLeaf::store(int n, uint16_t index)
+{
+    if (mWide.empty())
+        mNarrow[size_t(n)] = uint8_t(index);
+    else
+        mWide[size_t(n)] = index;
+    mActive[size_t(n) >> 6] |= uint64_t(1) << (n & 63);
 }
 
 uint16_t CodeLeaf::paletteIndex(openvdb::Int32 code)
@@ -48,15 +51,7 @@ uint16_t CodeLeaf::paletteIndex(openvdb::Int32 code)
     return uint16_t(mPalette.size() - 1);
 }
 
-void CodeLeaf::set(int n, openvdb::Int32 code)
-{
-    const uint16_t index = paletteIndex(code);
-    if (mWide.empty())
-        mNarrow[size_t(n)] = uint8_t(index);
-    else
-        mWide[size_t(n)] = index;
-    mActive[size_t(n) >> 6] |= uint64_t(1) << (n & 63);
-}
+void CodeLeaf::set(int n, openvdb::Int32 code) { store(n, paletteIndex(code)); }
 
 CodeGrid::CodeGrid(const openvdb::Coord& lowLeaf, const std::array<size_t, 3>& counts)
     : mLow(lowLeaf), mCounts(counts), mLeaves(counts[0] * counts[1] * counts[2])

@@ -69,10 +69,13 @@ public:
                 f(n, code(n));
             }
     }
+
 private:
     /// @a code's place in the palette, added if new (the indices widened to 16 bits when
     /// it outgrows 8).
     uint16_t paletteIndex(openvdb::Int32 code);
+    /// Voxel @a n made active with the palette's code @a index.
+    void store(int n, uint16_t index);
 
     openvdb::Coord mOrigin;
     std::array<uint64_t, kSize / 64> mActive{};

@@ -120,7 +120,8 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
     std::vector<int> pointAt;
     std::vector<uint32_t> first(candidates.size() + 1, 0);
     NeighbourLists<int16_t> shortLists;
-    NeighbourLists<int32_t> longLists;
+    NeighbourLists<int32_t> longLists;  // (one of the two is filled)
+    bool shortSteps = true;
     {
         const PointBins bins(candidates, none, none, reach);
         pointAt = bins.pointsByCell();
@@ -165,7 +166,8 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
                 });
             });
         };
-        if (std::find(farStep.begin(), farStep.end(), 1) == farStep.end())
+        shortSteps = std::find(farStep.begin(), farStep.end(), 1) == farStep.end();
+        if (shortSteps)
             list(shortLists);
         else
             list(longLists);
@@ -197,10 +199,10 @@ std::vector<int> eliminateSamples(const std::vector<Vec3>& candidates, size_t co
             });
         }
     };
-    if (shortLists.first.empty())
-        eliminate(longLists);
-    else
+    if (shortSteps)
         eliminate(shortLists);
+    else
+        eliminate(longLists);
     std::vector<int> kept;
     kept.reserve(count);
     for (size_t a = 0; a < candidates.size(); ++a)

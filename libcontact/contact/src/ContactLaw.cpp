@@ -2,6 +2,7 @@
 
 #include "ContactDashpot.h"
 #include "ForceSums.h"
+#include "lsdem/contact/ShearSpringLanes.h"
 
 #include <algorithm>
 #include <array>
@@ -216,47 +217,43 @@ struct SidePass
     double dt;
 };
 
-/// The force a spring stored as @a previous carries into a step where its stiffness is
-/// @a stiffness and the contact slips by @a slip. Only patch quadrature's springs change
-/// stiffness (ks*·A_in, the patch's area in contact): the shear traction stays, so a spring
-/// whose area shrank lets go of the force the lost area carried, F·k/k_old (kept whole, its
-/// energy ½F²/k would grow without work), and one whose area grew keeps its force (the new
-/// area starts unloaded, as Mindlin's annulus). Friction's work (@a frictionWork) is the work
-/// of the force the bodies felt, less the spring's energy gained (updateShearForce): the
-/// energy ½F²/k the change took, and, as the bodies felt the force before it was let go of
-/// over this step's slip, half the let-go force's work along it.
-Vec3 springWithStiffness(const ShearHistory::Entry& previous, double stiffness, const Vec3& slip,
-                         double& frictionWork)
+/// A stored spring carried into a step where its stiffness is @a stiffness. Only patch
+/// quadrature's springs change stiffness (ks*·A_in, the patch's area in contact): the shear
+/// traction stays, so a spring whose area shrank lets go of the force the lost area carried,
+/// F·k/k_old (kept whole, its energy ½F²/k would grow without work), and one whose area grew
+/// keeps its force (the new area starts unloaded, as Mindlin's annulus). Friction's work is the
+/// work of the force the bodies felt, less the spring's energy gained (updateShearForce): the
+/// energy ½F²/k the change took, and, as the bodies felt the force before it was let go of over
+/// this step's slip, half the let-go force's work along it.
+struct CarriedSpring
 {
-    if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
-        return previous.force;
-    const bool shrank = stiffness < previous.stiffness;
-    const Vec3 kept = shrank ? Vec3(previous.force * (stiffness / previous.stiffness))
-                             : previous.force;
-    frictionWork += 0.5 * (previous.force.squaredNorm() / previous.stiffness -
-                           kept.squaredNorm() / stiffness);
-    if (shrank) frictionWork -= 0.5 * (previous.force - kept).dot(slip);
-    return kept;
-}
+    Vec3 force;              ///< the stored force as this step's spring holds it
+    bool changed = false;    ///< the stiffness changed: friction's work gains @a released
+    double released = 0.0;   ///< ½(F_old²/k_old − F²/k)
+    bool shrank = false;     ///< the stiffness fell: friction's work loses @a letGoWork
+    double letGoWork = 0.0;  ///< ½(F_old − F)·slip
 
-/// Node contact @a c's shear spring carried through the step: the new shear force on its
-/// point force @a f (normal size @a size along @a n, shear stiffness @a shearStiffness);
-/// friction's work is added to @a frictionWork. Coulomb's limit is μ times the node's normal
-/// force: its spring and its share of the dashpot (which the bodies feel as normal force too),
-/// in proportion to its spring, so that the limits add up to μ times the contact's normal force
-/// and none is cut to zero while the others keep theirs.
-Vec3 nodeShear(const ContactSide& side, const NodeContact& c, const PointForce& f, const Vec3& n,
-               double size, double shearStiffness, const SidePass& pass, StoredShear& stored,
-               double& frictionWork)
+    /// Both terms added to @a frictionWork, in the order the step's arithmetic has them.
+    void addWork(double& frictionWork) const
+    {
+        if (changed) frictionWork += released;
+        if (shrank) frictionWork -= letGoWork;
+    }
+};
+
+/// @a previous carried into a step of stiffness @a stiffness and slip @a slip (CarriedSpring).
+CarriedSpring carrySpring(const ShearHistory::Entry& previous, double stiffness, const Vec3& slip)
 {
-    const Vec3 slip =
-        (side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point)) * pass.dt;
-    const ShearHistory::Entry previous = stored.of(c.node);
-    return updateShearForce(
-        springWithStiffness(previous, shearStiffness, slip, frictionWork), c.normal, slip,
-        pass.meanTurn.dot(n), shearStiffness,
-        pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce)),
-        &frictionWork);
+    CarriedSpring carried{previous.force};
+    if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
+        return carried;
+    carried.changed = true;
+    carried.shrank = stiffness < previous.stiffness;
+    if (carried.shrank) carried.force = previous.force * (stiffness / previous.stiffness);
+    carried.released = 0.5 * (previous.force.squaredNorm() / previous.stiffness -
+                              carried.force.squaredNorm() / stiffness);
+    if (carried.shrank) carried.letGoWork = 0.5 * (previous.force - carried.force).dot(slip);
+    return carried;
 }
 
 /// Side @a side's new shear history @a nextHistory kept (sorted by node, as the history is,
@@ -270,9 +267,37 @@ void keepShearHistory(ContactSide& side, const StoredShear& stored,
     side.history->replaceWith(nextHistory);
 }
 
-/// Side @a side's point forces @a forces given their shear springs (its history renewed), and
-/// their elastic energy, friction's work and stiffness added to the sums, point force by point
-/// force. The energy is summed in a local (a register), as in addSideForces, in the same order.
+/// Side @a side's point forces @a forces without shear springs: their elastic energy and
+/// stiffness added to the sums, point force by point force (its history, if any, ends). The
+/// energy is summed in a local (a register), as in addSideForces, in the same order.
+void addSideSums(ContactSide& side, const std::vector<PointForce>& forces, const SidePass& pass,
+                 double& elasticEnergySum, StiffnessSum& stiffness)
+{
+    double elasticEnergy = elasticEnergySum;
+    for (size_t k = 0; k < forces.size(); ++k) {
+        const PointForce& f = forces[k];
+        const NodeContact* c = pass.perNodeForces ? &side.contacts[k] : nullptr;
+        const double size = normalForceSize(f, c);
+        if (size == 0.0 || f.stiffness <= 0.0) continue;
+        // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added
+        // once per side.
+        if (c)
+            elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
+                                          : 0.5 * size * c->depth;
+        stiffness.add(f.stiffness, 0.0, c ? c->normal : Vec3(f.force / size), f.point);
+    }
+    if (!pass.perNodeForces && !forces.empty())
+        elasticEnergy += pass.model.normal().elasticEnergy(
+            side.contacts, pass.model.normalStiffness, side.weight);
+    if (side.history) side.history->clear();
+    elasticEnergySum = elasticEnergy;
+}
+
+/// Side @a side's point forces @a forces (a per-node law's, with shear springs) given their
+/// shear springs, its history renewed (nodes that left contact lose theirs; nodes that entered
+/// start from zero), and their elastic energy, friction's work and stiffness added to the sums.
+/// The springs are computed kShearLanes contacts at a time (ShearSpringLanes.h); everything is
+/// then added to the sums contact by contact, in the order of the contacts.
 void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, const SidePass& pass,
                          std::vector<ShearHistory::Entry>& nextHistory, double& elasticEnergySum,
                          double& frictionWork, StiffnessSum& stiffness)
@@ -280,35 +305,69 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
     double elasticEnergy = elasticEnergySum;
     nextHistory.clear();
     StoredShear stored(side.history);
-    for (size_t k = 0; k < forces.size(); ++k) {
-        PointForce& f = forces[k];
-        const NodeContact* c = pass.perNodeForces ? &side.contacts[k] : nullptr;
-        const double size = normalForceSize(f, c);
-        if (size == 0.0 || f.stiffness <= 0.0) continue;
-        const Vec3 n = c ? c->normal : Vec3(f.force / size);
-        // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added
-        // once per side.
-        if (c)
-            elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
-                                          : 0.5 * size * c->depth;
-        double shearStiffness = 0.0;
-        if (pass.perNodeShear && side.history) {
-            // (perNodeShear implies a per-node law, so c is this force's contact.) Nodes
-            // that left contact lose their history; nodes that entered start from zero.
-            shearStiffness =
-                pass.shearSprings.nodeStiffness(pass.shearPerArea, c->area, side.weight);
-            const Vec3 shear =
-                nodeShear(side, *c, f, n, size, shearStiffness, pass, stored, frictionWork);
-            nextHistory.push_back({c->node, shear, shearStiffness});
-            f.force += shear;
-            elasticEnergy += 0.5 * shear.squaredNorm() / shearStiffness;
+    const LaneBodyMotion tester = LaneBodyMotion::of(
+        side.tester->velocity, side.tester->angularVelocity, side.tester->pose.position);
+    const LaneBodyMotion other = LaneBodyMotion::of(
+        side.other->velocity, side.other->angularVelocity, side.other->pose.position);
+    ShearSpringLanes lanes;
+    std::array<size_t, kShearLanes> forceOf{};  // the point force in each lane
+    std::array<CarriedSpring, kShearLanes> carried;
+    const size_t count = forces.size();
+    size_t next = 0;
+    while (next < count) {
+        // The next contacts that carry a force, one a lane.
+        int used = 0;
+        for (; next < count && used < kShearLanes; ++next) {
+            const PointForce& f = forces[next];
+            const NodeContact& c = side.contacts[next];
+            const double size = f.stiffness * c.depth;  // normalForceSize for a per-node law
+            if (size == 0.0 || f.stiffness <= 0.0) continue;
+            lanes.px[used] = f.point.x();
+            lanes.py[used] = f.point.y();
+            lanes.pz[used] = f.point.z();
+            lanes.nx[used] = c.normal.x();
+            lanes.ny[used] = c.normal.y();
+            lanes.nz[used] = c.normal.z();
+            lanes.stiffness[used] =
+                pass.shearSprings.nodeStiffness(pass.shearPerArea, c.area, side.weight);
+            // Coulomb's limit: μ times the node's normal force, its spring and its share of
+            // the dashpot (which the bodies feel as normal force too), in proportion to its
+            // spring, so that the limits add up to μ times the contact's normal force and
+            // none is cut to zero while the others keep theirs.
+            lanes.limit[used] =
+                pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce));
+            forceOf[static_cast<size_t>(used++)] = next;
         }
-        stiffness.add(f.stiffness, shearStiffness, n, f.point);
+        if (used == 0) break;
+        lanes.fill(used);
+        lanes.slips(tester, other, pass.dt);
+        for (int l = 0; l < used; ++l) {
+            const size_t lane = static_cast<size_t>(l);
+            const Vec3 slip(lanes.ux[l], lanes.uy[l], lanes.uz[l]);
+            carried[lane] =
+                carrySpring(stored.of(side.contacts[forceOf[lane]].node), lanes.stiffness[l], slip);
+            lanes.sx[l] = carried[lane].force.x();
+            lanes.sy[l] = carried[lane].force.y();
+            lanes.sz[l] = carried[lane].force.z();
+        }
+        lanes.update(pass.meanTurn);
+        for (int l = 0; l < used; ++l) {
+            const size_t lane = static_cast<size_t>(l);
+            PointForce& f = forces[forceOf[lane]];
+            const NodeContact& c = side.contacts[forceOf[lane]];
+            // ½·k·d² (its mean over a patch).
+            elasticEnergy += c.isPatch() ? 0.5 * f.stiffness * c.squareDepth
+                                         : 0.5 * (f.stiffness * c.depth) * c.depth;
+            carried[lane].addWork(frictionWork);
+            if (lanes.slid[l] != 0.0) frictionWork += lanes.dissipated[l];
+            const Vec3 shear(lanes.fx[l], lanes.fy[l], lanes.fz[l]);
+            nextHistory.push_back({c.node, shear, lanes.stiffness[l]});
+            f.force += shear;
+            elasticEnergy += lanes.energy[l];
+            stiffness.add(f.stiffness, lanes.stiffness[l], c.normal, f.point);
+        }
     }
-    if (!pass.perNodeForces && !forces.empty())
-        elasticEnergy += pass.model.normal().elasticEnergy(
-            side.contacts, pass.model.normalStiffness, side.weight);
-    if (side.history) keepShearHistory(side, stored, nextHistory);
+    keepShearHistory(side, stored, nextHistory);
     elasticEnergySum = elasticEnergy;
 }
 
@@ -357,8 +416,11 @@ PairForces resolveContact(ContactSide* sides, int sideCount, const ContactModel&
     for (int s = 0; s < sideCount; ++s) {
         ContactSide& side = sides[s];
         std::vector<PointForce>& forces = normal[s];
-        addSideShearAndSums(side, forces, pass, work.nextHistory, elasticEnergy, frictionWork,
-                            stiffness);
+        if (pass.perNodeShear && side.history)
+            addSideShearAndSums(side, forces, pass, work.nextHistory, elasticEnergy,
+                                frictionWork, stiffness);
+        else
+            addSideSums(side, forces, pass, elasticEnergy, stiffness);
         addSideForces(side, first, forces, result);
         if (allForces) allForces->insert(allForces->end(), forces.begin(), forces.end());
         if (s == 0 && result.dashpot > 0.0) {

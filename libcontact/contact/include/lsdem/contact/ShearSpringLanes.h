@@ -1,0 +1,68 @@
+/// @file ShearSpringLanes.h
+/// @brief The shear springs of several node contacts at once. The contacts' fields lie side
+///        by side in arrays, one "lane" per contact, so that the compiler computes several
+///        springs with each vector instruction, and the roots and divisions of different
+///        contacts overlap instead of each waiting on the one before (a spring's step is a
+///        chain of two divisions and up to three roots; one contact at a time, that chain was
+///        most of its cost). Each lane's arithmetic is updateShearForce's (TangentialModel.h),
+///        operation for operation, so a lane gives the same bits as that function. Sums over
+///        the contacts are not made here: the contact law adds the lanes' results in the
+///        order of its contacts, so no sum changes order.
+#pragma once
+
+#include "lsdem/core/Vec3.h"
+
+namespace lsdem {
+
+/// How many contacts' springs are computed together.
+inline constexpr int kShearLanes = 4;
+
+/// A body's motion over the step, as the slip of a material point needs it.
+struct LaneBodyMotion
+{
+    double vx, vy, vz;  ///< centroid velocity
+    double wx, wy, wz;  ///< angular velocity
+    double cx, cy, cz;  ///< centroid
+    /// From a body's velocity @a v, angular velocity @a w and centroid @a c.
+    static LaneBodyMotion of(const Vec3& v, const Vec3& w, const Vec3& c)
+    {
+        return {v.x(), v.y(), v.z(), w.x(), w.y(), w.z(), c.x(), c.y(), c.z()};
+    }
+};
+
+/// kShearLanes contacts' springs, field by field. Lanes a caller does not use must still hold
+/// finite numbers with a positive stiffness (fill() gives them such).
+struct ShearSpringLanes
+{
+    // In: where each contact acts and along which unit normal (pushing the tester out).
+    alignas(32) double px[kShearLanes], py[kShearLanes], pz[kShearLanes];
+    alignas(32) double nx[kShearLanes], ny[kShearLanes], nz[kShearLanes];
+    // Out of slips(), in for update(): the relative displacement of the contact point over the
+    // step, tester's minus other's.
+    alignas(32) double ux[kShearLanes], uy[kShearLanes], uz[kShearLanes];
+    // In for update(): the stored force carried into this step, its spring's stiffness k_t, and
+    // Coulomb's limit μ·|F_n|.
+    alignas(32) double sx[kShearLanes], sy[kShearLanes], sz[kShearLanes];
+    alignas(32) double stiffness[kShearLanes];
+    alignas(32) double limit[kShearLanes];
+    // Out of update(): the new shear force, whether it slid (Coulomb's cap applied: 1, else 0),
+    // what friction took if it slid, and the spring's energy ½|F_t|²/k_t.
+    alignas(32) double fx[kShearLanes], fy[kShearLanes], fz[kShearLanes];
+    alignas(32) double slid[kShearLanes];
+    alignas(32) double dissipated[kShearLanes];
+    alignas(32) double energy[kShearLanes];
+
+    /// Lanes [@a from, kShearLanes) set to a harmless contact (unit normal, unit stiffness and
+    /// limit, no force, at the origin), so that a part-filled batch computes nothing undefined.
+    void fill(int from);
+
+    /// The slips u = (v_t(p) − v_o(p))·dt of every lane, from the tester's and the other
+    /// body's motion (ContactGrain::pointVelocity's arithmetic).
+    void slips(const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt);
+
+    /// Every lane's spring carried through the step: updateShearForce(s, n, u, twist, k_t,
+    /// limit) with twist = @a meanTurn · n, the pair's mean turn over the step about the normal.
+    void update(const Vec3& meanTurn);
+};
+
+} // namespace lsdem

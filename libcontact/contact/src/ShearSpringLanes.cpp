@@ -1,0 +1,105 @@
+#include "lsdem/contact/ShearSpringLanes.h"
+
+#include <cmath>
+
+// Built with -fno-math-errno and -fno-trapping-math (CMakeLists.txt), without which GCC keeps
+// these loops scalar. The values do not change.
+
+namespace lsdem {
+
+void ShearSpringLanes::fill(int from)
+{
+    for (int l = from; l < kShearLanes; ++l) {
+        px[l] = py[l] = pz[l] = 0.0;
+        nx[l] = 1.0;
+        ny[l] = nz[l] = 0.0;
+        ux[l] = uy[l] = uz[l] = 0.0;
+        sx[l] = sy[l] = sz[l] = 0.0;
+        stiffness[l] = 1.0;
+        limit[l] = 1.0;
+    }
+}
+
+void ShearSpringLanes::slips(const LaneBodyMotion& a, const LaneBodyMotion& b, double dt)
+{
+    for (int l = 0; l < kShearLanes; ++l) {
+        // v + ω × (p − c) of each body, as ContactGrain::pointVelocity.
+        const double ax = px[l] - a.cx, ay = py[l] - a.cy, az = pz[l] - a.cz;
+        const double bx = px[l] - b.cx, by = py[l] - b.cy, bz = pz[l] - b.cz;
+        const double vax = a.vx + (a.wy * az - a.wz * ay), vay = a.vy + (a.wz * ax - a.wx * az),
+                     vaz = a.vz + (a.wx * ay - a.wy * ax);
+        const double vbx = b.vx + (b.wy * bz - b.wz * by), vby = b.vy + (b.wz * bx - b.wx * bz),
+                     vbz = b.vz + (b.wx * by - b.wy * bx);
+        ux[l] = (vax - vbx) * dt;
+        uy[l] = (vay - vby) * dt;
+        uz[l] = (vaz - vbz) * dt;
+    }
+}
+
+void ShearSpringLanes::update(const Vec3& meanTurn)
+{
+    const double mx = meanTurn.x(), my = meanTurn.y(), mz = meanTurn.z();
+    alignas(32) double storedSquare[kShearLanes], trialSquare[kShearLanes];
+    int anySliding = 0;
+    for (int l = 0; l < kShearLanes; ++l) {
+        const double n0 = nx[l], n1 = ny[l], n2 = nz[l];
+        const double s0 = sx[l], s1 = sy[l], s2 = sz[l];
+        const double k = stiffness[l], cap = limit[l];
+        // Onto the new tangent plane, then turned about the normal by the pair's mean spin,
+        // and brought back to the stored size.
+        const double twist = (mx * n0 + my * n1) + mz * n2;
+        const double along = (s0 * n0 + s1 * n1) + s2 * n2;
+        double h0 = s0 - along * n0, h1 = s1 - along * n1, h2 = s2 - along * n2;
+        const double c0 = n1 * h2 - n2 * h1, c1 = n2 * h0 - n0 * h2, c2 = n0 * h1 - n1 * h0;
+        h0 += twist * c0;
+        h1 += twist * c1;
+        h2 += twist * c2;
+        const double before2 = (s0 * s0 + s1 * s1) + s2 * s2;
+        const double after2 = (h0 * h0 + h1 * h1) + h2 * h2;
+        // Both sides of each choice are computed and one is picked, so that the loop has no
+        // branches; a value not picked may be NaN or infinite.
+        const double back = std::sqrt(before2 / after2);
+        const double keep = after2 > 0.0 ? back : 1.0;
+        h0 *= keep;
+        h1 *= keep;
+        h2 *= keep;
+        // Loaded by the tangential slip.
+        const double slipAlong = (ux[l] * n0 + uy[l] * n1) + uz[l] * n2;
+        h0 -= k * (ux[l] - slipAlong * n0);
+        h1 -= k * (uy[l] - slipAlong * n1);
+        h2 -= k * (uz[l] - slipAlong * n2);
+        const double size2 = (h0 * h0 + h1 * h1) + h2 * h2;
+        const bool sliding = (cap < 0.0) | (size2 > cap * cap);
+        anySliding |= sliding ? 1 : 0;
+        slid[l] = sliding ? 1.0 : 0.0;
+        storedSquare[l] = before2;
+        trialSquare[l] = size2;
+        fx[l] = h0;
+        fy[l] = h1;
+        fz[l] = h2;
+    }
+    // Coulomb's cap, where some spring slides (its roots and divisions are not needed where
+    // all stick, the common case of a contact at rest).
+    if (anySliding != 0) {
+        for (int l = 0; l < kShearLanes; ++l) {
+            const bool sliding = slid[l] != 0.0;
+            const double cap = limit[l];
+            const double trial = std::sqrt(trialSquare[l]), capped = cap > 0.0 ? cap : 0.0;
+            const double toCap = cap / trial;
+            const double scale = sliding ? (cap > 0.0 ? toCap : 0.0) : 1.0;
+            fx[l] *= scale;
+            fy[l] *= scale;
+            fz[l] *= scale;
+            const double stored = std::sqrt(storedSquare[l]);
+            const double least = trial < stored ? trial : stored;  // std::min(stored, trial)
+            const double lost = (trial - capped) * 0.5 * (capped + least) / stiffness[l];
+            dissipated[l] = sliding ? lost : 0.0;
+        }
+    } else {
+        for (int l = 0; l < kShearLanes; ++l) dissipated[l] = 0.0;
+    }
+    for (int l = 0; l < kShearLanes; ++l)
+        energy[l] = 0.5 * ((fx[l] * fx[l] + fy[l] * fy[l]) + fz[l] * fz[l]) / stiffness[l];
+}
+
+} // namespace lsdem

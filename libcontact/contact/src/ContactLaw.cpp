@@ -350,7 +350,10 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             lanes.sy[l] = carried[lane].force.y();
             lanes.sz[l] = carried[lane].force.z();
         }
-        lanes.update(pass.meanTurn);
+        if (used == kShearLanes)
+            lanes.update(pass.meanTurn);
+        else
+            lanes.updateFirst(used, pass.meanTurn);
         for (int l = 0; l < used; ++l) {
             const size_t lane = static_cast<size_t>(l);
             PointForce& f = forces[forceOf[lane]];

@@ -1,6 +1,7 @@
 #include "lsdem/contact/ShearSpringLanes.h"
 
 #include <cmath>
+#include <type_traits>
 
 // Built with -fno-math-errno and -fno-trapping-math (CMakeLists.txt), without which GCC keeps
 // these loops scalar. The values do not change.
@@ -36,15 +37,21 @@ void ShearSpringLanes::slips(const LaneBodyMotion& a, const LaneBodyMotion& b, d
     }
 }
 
-void ShearSpringLanes::update(const Vec3& meanTurn)
+namespace {
+
+/// The springs of lanes [0, @a count) of @a s (ShearSpringLanes::update). @a count is either a
+/// std::integral_constant, so that the loops have a trip count known at compile time and
+/// become vector instructions, or a plain int for a part-filled batch, lane after lane.
+template <typename Count>
+void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
 {
     const double mx = meanTurn.x(), my = meanTurn.y(), mz = meanTurn.z();
     alignas(32) double storedSquare[kShearLanes], trialSquare[kShearLanes];
     int anySliding = 0;
-    for (int l = 0; l < kShearLanes; ++l) {
-        const double n0 = nx[l], n1 = ny[l], n2 = nz[l];
-        const double s0 = sx[l], s1 = sy[l], s2 = sz[l];
-        const double k = stiffness[l], cap = limit[l];
+    for (int l = 0; l < count; ++l) {
+        const double n0 = s.nx[l], n1 = s.ny[l], n2 = s.nz[l];
+        const double s0 = s.sx[l], s1 = s.sy[l], s2 = s.sz[l];
+        const double k = s.stiffness[l], cap = s.limit[l];
         // Onto the new tangent plane, then turned about the normal by the pair's mean spin,
         // and brought back to the stored size.
         const double twist = (mx * n0 + my * n1) + mz * n2;
@@ -64,42 +71,56 @@ void ShearSpringLanes::update(const Vec3& meanTurn)
         h1 *= keep;
         h2 *= keep;
         // Loaded by the tangential slip.
-        const double slipAlong = (ux[l] * n0 + uy[l] * n1) + uz[l] * n2;
-        h0 -= k * (ux[l] - slipAlong * n0);
-        h1 -= k * (uy[l] - slipAlong * n1);
-        h2 -= k * (uz[l] - slipAlong * n2);
+        const double slipAlong = (s.ux[l] * n0 + s.uy[l] * n1) + s.uz[l] * n2;
+        h0 -= k * (s.ux[l] - slipAlong * n0);
+        h1 -= k * (s.uy[l] - slipAlong * n1);
+        h2 -= k * (s.uz[l] - slipAlong * n2);
         const double size2 = (h0 * h0 + h1 * h1) + h2 * h2;
         const bool sliding = (cap < 0.0) | (size2 > cap * cap);
         anySliding |= sliding ? 1 : 0;
-        slid[l] = sliding ? 1.0 : 0.0;
+        s.slid[l] = sliding ? 1.0 : 0.0;
         storedSquare[l] = before2;
         trialSquare[l] = size2;
-        fx[l] = h0;
-        fy[l] = h1;
-        fz[l] = h2;
+        s.fx[l] = h0;
+        s.fy[l] = h1;
+        s.fz[l] = h2;
     }
     // Coulomb's cap, where some spring slides (its roots and divisions are not needed where
     // all stick, the common case of a contact at rest).
     if (anySliding != 0) {
-        for (int l = 0; l < kShearLanes; ++l) {
-            const bool sliding = slid[l] != 0.0;
-            const double cap = limit[l];
+        for (int l = 0; l < count; ++l) {
+            const bool sliding = s.slid[l] != 0.0;
+            const double cap = s.limit[l];
             const double trial = std::sqrt(trialSquare[l]), capped = cap > 0.0 ? cap : 0.0;
             const double toCap = cap / trial;
             const double scale = sliding ? (cap > 0.0 ? toCap : 0.0) : 1.0;
-            fx[l] *= scale;
-            fy[l] *= scale;
-            fz[l] *= scale;
+            s.fx[l] *= scale;
+            s.fy[l] *= scale;
+            s.fz[l] *= scale;
             const double stored = std::sqrt(storedSquare[l]);
             const double least = trial < stored ? trial : stored;  // std::min(stored, trial)
-            const double lost = (trial - capped) * 0.5 * (capped + least) / stiffness[l];
-            dissipated[l] = sliding ? lost : 0.0;
+            const double lost = (trial - capped) * 0.5 * (capped + least) / s.stiffness[l];
+            s.dissipated[l] = sliding ? lost : 0.0;
         }
     } else {
-        for (int l = 0; l < kShearLanes; ++l) dissipated[l] = 0.0;
+        for (int l = 0; l < count; ++l) s.dissipated[l] = 0.0;
     }
-    for (int l = 0; l < kShearLanes; ++l)
-        energy[l] = 0.5 * ((fx[l] * fx[l] + fy[l] * fy[l]) + fz[l] * fz[l]) / stiffness[l];
+    for (int l = 0; l < count; ++l) {
+        const double size2 = (s.fx[l] * s.fx[l] + s.fy[l] * s.fy[l]) + s.fz[l] * s.fz[l];
+        s.energy[l] = 0.5 * size2 / s.stiffness[l];
+    }
+}
+
+} // namespace
+
+void ShearSpringLanes::update(const Vec3& meanTurn)
+{
+    updateSprings(*this, std::integral_constant<int, kShearLanes>(), meanTurn);
+}
+
+void ShearSpringLanes::updateFirst(int count, const Vec3& meanTurn)
+{
+    updateSprings(*this, count, meanTurn);
 }
 
 } // namespace lsdem

@@ -1,8 +1,9 @@
 // The shear springs computed several contacts at a time: each lane must give exactly the bits of
-// the scalar spring (updateShearForce) and of a material point's velocity
-// (ContactGrain::pointVelocity), whatever the other lanes hold, in every regime the spring has:
-// sticking, sliding (Coulomb's cap), no limit (zero or negative), no stored force, a stored
-// force along the normal (nothing left on the tangent plane), and a padded lane.
+// the scalar spring (updateShearForce), whether its batch is full or computed lane by lane, and
+// of a material point's velocity (ContactGrain::pointVelocity), whatever the other lanes hold,
+// in every regime the spring has: sticking, sliding (Coulomb's cap), no limit (zero or
+// negative), no stored force, a stored force along the normal (nothing left on the tangent
+// plane), and a padded lane.
 #include "lsdem/contact/ContactLaw.h"
 #include "lsdem/contact/ShearSpringLanes.h"
 #include "lsdem/contact/TangentialModel.h"
@@ -82,7 +83,17 @@ TEST(ShearSpringLanes, SameBitsAsUpdateShearForce)
             lanes.limit[l] = c.limit;
         }
         lanes.fill(used);
+        // A part-filled batch both ways: padded and all lanes computed, and only its own.
+        ShearSpringLanes own = lanes;
         lanes.update(meanTurn);
+        own.updateFirst(used, meanTurn);
+        for (int l = 0; l < used; ++l) {
+            ASSERT_TRUE(sameBits(own.fx[l], lanes.fx[l]) && sameBits(own.fy[l], lanes.fy[l]) &&
+                        sameBits(own.fz[l], lanes.fz[l]) && sameBits(own.slid[l], lanes.slid[l]) &&
+                        sameBits(own.dissipated[l], lanes.dissipated[l]) &&
+                        sameBits(own.energy[l], lanes.energy[l]))
+                << "case " << first + static_cast<size_t>(l);
+        }
         for (int l = 0; l < used; ++l) {
             const SpringCase& c = cases[first + static_cast<size_t>(l)];
             double dissipated = 0.0;

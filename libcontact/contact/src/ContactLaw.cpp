@@ -339,8 +339,11 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             forceOf[static_cast<size_t>(used++)] = next;
         }
         if (used == 0) break;
-        lanes.fill(used);
-        lanes.slips(tester, other, pass.dt);
+        const bool full = used == kShearLanes;
+        if (full)
+            lanes.slips(tester, other, pass.dt);
+        else
+            lanes.slipsFirst(used, tester, other, pass.dt);
         for (int l = 0; l < used; ++l) {
             const size_t lane = static_cast<size_t>(l);
             const Vec3 slip(lanes.ux[l], lanes.uy[l], lanes.uz[l]);
@@ -350,7 +353,7 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             lanes.sy[l] = carried[lane].force.y();
             lanes.sz[l] = carried[lane].force.z();
         }
-        if (used == kShearLanes)
+        if (full)
             lanes.update(pass.meanTurn);
         else
             lanes.updateFirst(used, pass.meanTurn);

@@ -8,36 +8,27 @@
 
 namespace lsdem {
 
-void ShearSpringLanes::fill(int from)
-{
-    for (int l = from; l < kShearLanes; ++l) {
-        px[l] = py[l] = pz[l] = 0.0;
-        nx[l] = 1.0;
-        ny[l] = nz[l] = 0.0;
-        ux[l] = uy[l] = uz[l] = 0.0;
-        sx[l] = sy[l] = sz[l] = 0.0;
-        stiffness[l] = 1.0;
-        limit[l] = 1.0;
-    }
-}
+namespace {
 
-void ShearSpringLanes::slips(const LaneBodyMotion& a, const LaneBodyMotion& b, double dt)
+/// The slips of lanes [0, @a count) of @a s (ShearSpringLanes::slips); @a count as in
+/// updateSprings.
+template <typename Count>
+void slipsOf(ShearSpringLanes& s, Count count, const LaneBodyMotion& a, const LaneBodyMotion& b,
+             double dt)
 {
-    for (int l = 0; l < kShearLanes; ++l) {
+    for (int l = 0; l < count; ++l) {
         // v + ω × (p − c) of each body, as ContactGrain::pointVelocity.
-        const double ax = px[l] - a.cx, ay = py[l] - a.cy, az = pz[l] - a.cz;
-        const double bx = px[l] - b.cx, by = py[l] - b.cy, bz = pz[l] - b.cz;
+        const double ax = s.px[l] - a.cx, ay = s.py[l] - a.cy, az = s.pz[l] - a.cz;
+        const double bx = s.px[l] - b.cx, by = s.py[l] - b.cy, bz = s.pz[l] - b.cz;
         const double vax = a.vx + (a.wy * az - a.wz * ay), vay = a.vy + (a.wz * ax - a.wx * az),
                      vaz = a.vz + (a.wx * ay - a.wy * ax);
         const double vbx = b.vx + (b.wy * bz - b.wz * by), vby = b.vy + (b.wz * bx - b.wx * bz),
                      vbz = b.vz + (b.wx * by - b.wy * bx);
-        ux[l] = (vax - vbx) * dt;
-        uy[l] = (vay - vby) * dt;
-        uz[l] = (vaz - vbz) * dt;
+        s.ux[l] = (vax - vbx) * dt;
+        s.uy[l] = (vay - vby) * dt;
+        s.uz[l] = (vaz - vbz) * dt;
     }
 }
-
-namespace {
 
 /// The springs of lanes [0, @a count) of @a s (ShearSpringLanes::update). @a count is either a
 /// std::integral_constant, so that the loops have a trip count known at compile time and
@@ -79,6 +70,7 @@ void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
         const bool sliding = (cap < 0.0) | (size2 > cap * cap);
         anySliding |= sliding ? 1 : 0;
         s.slid[l] = sliding ? 1.0 : 0.0;
+        s.dissipated[l] = 0.0;
         storedSquare[l] = before2;
         trialSquare[l] = size2;
         s.fx[l] = h0;
@@ -102,8 +94,6 @@ void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
             const double lost = (trial - capped) * 0.5 * (capped + least) / s.stiffness[l];
             s.dissipated[l] = sliding ? lost : 0.0;
         }
-    } else {
-        for (int l = 0; l < count; ++l) s.dissipated[l] = 0.0;
     }
     for (int l = 0; l < count; ++l) {
         const double size2 = (s.fx[l] * s.fx[l] + s.fy[l] * s.fy[l]) + s.fz[l] * s.fz[l];
@@ -112,6 +102,17 @@ void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
 }
 
 } // namespace
+
+void ShearSpringLanes::slips(const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt)
+{
+    slipsOf(*this, std::integral_constant<int, kShearLanes>(), tester, other, dt);
+}
+
+void ShearSpringLanes::slipsFirst(int count, const LaneBodyMotion& tester,
+                                  const LaneBodyMotion& other, double dt)
+{
+    slipsOf(*this, count, tester, other, dt);
+}
 
 void ShearSpringLanes::update(const Vec3& meanTurn)
 {

@@ -30,8 +30,9 @@ struct LaneBodyMotion
     }
 };
 
-/// kShearLanes contacts' springs, field by field. Lanes a caller does not use must still hold
-/// finite numbers with a positive stiffness (fill() gives them such).
+/// kShearLanes contacts' springs, field by field. A full batch is computed all lanes at once
+/// (slips(), update()); a part-filled one lane after lane (slipsFirst(), updateFirst()), where
+/// computing padding would cost more than the vector instructions save.
 struct ShearSpringLanes
 {
     // In: where each contact acts and along which unit normal (pushing the tester out).
@@ -52,21 +53,18 @@ struct ShearSpringLanes
     alignas(32) double dissipated[kShearLanes];
     alignas(32) double energy[kShearLanes];
 
-    /// Lanes [@a from, kShearLanes) set to a harmless contact (unit normal, unit stiffness and
-    /// limit, no force, at the origin), so that a part-filled batch computes nothing undefined.
-    void fill(int from);
-
     /// The slips u = (v_t(p) − v_o(p))·dt of every lane, from the tester's and the other
     /// body's motion (ContactGrain::pointVelocity's arithmetic).
     void slips(const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt);
+    /// The same for the first @a count lanes only (a part-filled batch), lane after lane.
+    void slipsFirst(int count, const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt);
 
     /// Every lane's spring carried through the step: updateShearForce(s, n, u, twist, k_t,
     /// limit) with twist = @a meanTurn · n, the pair's mean turn over the step about the normal.
     void update(const Vec3& meanTurn);
 
-    /// The same for the first @a count lanes only, lane after lane: for a part-filled batch
-    /// (most contacts of a sphere packing hold a few nodes), where computing the padding would
-    /// cost more than the vector instructions save. The same bits as update().
+    /// The same for the first @a count lanes only (a part-filled batch: most contacts of a
+    /// sphere packing hold a few nodes), lane after lane, with the same bits.
     void updateFirst(int count, const Vec3& meanTurn);
 };
 

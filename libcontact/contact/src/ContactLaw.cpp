@@ -3,6 +3,7 @@
 #include "ContactDashpot.h"
 #include "ForceSums.h"
 #include "lsdem/contact/ShearSpringLanes.h"
+#include "lsdem/contact/TangentialModel.h"
 
 #include <algorithm>
 #include <array>
@@ -241,12 +242,12 @@ struct CarriedSpring
     }
 };
 
-/// @a previous carried into a step of stiffness @a stiffness and slip @a slip (CarriedSpring).
-CarriedSpring carrySpring(const ShearHistory::Entry& previous, double stiffness, const Vec3& slip)
+/// @a previous, whose spring's stiffness changed, carried into a step of stiffness @a stiffness
+/// and slip @a slip (CarriedSpring). Out of line: only patch quadrature's springs come here.
+CarriedSpring carryChangedSpring(const ShearHistory::Entry& previous, double stiffness,
+                                 const Vec3& slip)
 {
     CarriedSpring carried{previous.force};
-    if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
-        return carried;
     carried.changed = true;
     carried.shrank = stiffness < previous.stiffness;
     if (carried.shrank) carried.force = previous.force * (stiffness / previous.stiffness);
@@ -254,6 +255,16 @@ CarriedSpring carrySpring(const ShearHistory::Entry& previous, double stiffness,
                               carried.force.squaredNorm() / stiffness);
     if (carried.shrank) carried.letGoWork = 0.5 * (previous.force - carried.force).dot(slip);
     return carried;
+}
+
+/// @a previous carried into a step of stiffness @a stiffness and slip @a slip (CarriedSpring).
+/// Inline: it runs for every node in contact, and nearly every spring keeps its stiffness.
+inline CarriedSpring carrySpring(const ShearHistory::Entry& previous, double stiffness,
+                                 const Vec3& slip)
+{
+    if (!(previous.stiffness > 0.0) || previous.stiffness == stiffness || !(stiffness > 0.0))
+        return CarriedSpring{previous.force};
+    return carryChangedSpring(previous, stiffness, slip);
 }
 
 /// Side @a side's new shear history @a nextHistory kept (sorted by node, as the history is,
@@ -293,18 +304,79 @@ void addSideSums(ContactSide& side, const std::vector<PointForce>& forces, const
     elasticEnergySum = elasticEnergy;
 }
 
-/// Side @a side's point forces @a forces (a per-node law's, with shear springs) given their
-/// shear springs, its history renewed (nodes that left contact lose theirs; nodes that entered
-/// start from zero), and their elastic energy, friction's work and stiffness added to the sums.
-/// The springs are computed kShearLanes contacts at a time (ShearSpringLanes.h); everything is
-/// then added to the sums contact by contact, in the order of the contacts.
-void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, const SidePass& pass,
-                         std::vector<ShearHistory::Entry>& nextHistory, double& elasticEnergySum,
-                         double& frictionWork, StiffnessSum& stiffness)
+/// Coulomb's limit of a node whose normal spring force is @a size: μ times the node's normal
+/// force, its spring and its share of the dashpot (which the bodies feel as normal force too),
+/// in proportion to its spring, so that the limits add up to μ times the contact's normal
+/// force and none is cut to zero while the others keep theirs.
+double coulombLimit(const SidePass& pass, double size)
 {
-    double elasticEnergy = elasticEnergySum;
-    nextHistory.clear();
-    StoredShear stored(side.history);
+    return pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce));
+}
+
+/// Contact @a c's point force @a f given its shear force @a shear (a spring of stiffness
+/// @a shearStiffness holding energy @a springEnergy), and its elastic energy, history and
+/// stiffness added to the side's sums, in the order of the contacts (both ways of computing the
+/// springs below add so). Friction's work is added where the spring is computed. Inline, with
+/// the energy in the caller's local: a sum kept in memory would be stored and loaded again at
+/// every contact.
+inline void addSpring(const NodeContact& c, PointForce& f, const Vec3& shear,
+                      double shearStiffness, double springEnergy, double& elasticEnergy,
+                      std::vector<ShearHistory::Entry>& nextHistory, StiffnessSum& stiffness)
+{
+    // ½·k·d² (its mean over a patch).
+    elasticEnergy += c.isPatch() ? 0.5 * f.stiffness * c.squareDepth
+                                 : 0.5 * (f.stiffness * c.depth) * c.depth;
+    nextHistory.push_back({c.node, shear, shearStiffness});
+    f.force += shear;
+    elasticEnergy += springEnergy;
+    stiffness.add(f.stiffness, shearStiffness, c.normal, f.point);
+}
+
+/// What a side's springs add to the contact's sums (addSideShearAndSums).
+struct SideSprings
+{
+    StoredShear& stored;
+    std::vector<ShearHistory::Entry>& nextHistory;
+    StiffnessSum& stiffness;
+    double elasticEnergy;
+    double frictionWork;
+};
+
+/// The shear springs of a side with fewer contacts than a batch of lanes, one contact after
+/// another (updateShearForce): for them the lanes' gathering would cost more than it saves.
+void addSpringsOneByOne(const ContactSide& side, std::vector<PointForce>& forces,
+                        const SidePass& pass, SideSprings& sums)
+{
+    double elasticEnergy = sums.elasticEnergy, frictionWork = sums.frictionWork;
+    for (size_t k = 0; k < forces.size(); ++k) {
+        PointForce& f = forces[k];
+        const NodeContact& c = side.contacts[k];
+        const double size = f.stiffness * c.depth;  // normalForceSize for a per-node law
+        if (size == 0.0 || f.stiffness <= 0.0) continue;
+        const double shearStiffness =
+            pass.shearSprings.nodeStiffness(pass.shearPerArea, c.area, side.weight);
+        const Vec3 slip =
+            (side.tester->pointVelocity(f.point) - side.other->pointVelocity(f.point)) * pass.dt;
+        const CarriedSpring carried = carrySpring(sums.stored.of(c.node), shearStiffness, slip);
+        carried.addWork(frictionWork);
+        const Vec3 shear =
+            updateShearForce(carried.force, c.normal, slip, pass.meanTurn.dot(c.normal),
+                             shearStiffness, coulombLimit(pass, size), &frictionWork);
+        addSpring(c, f, shear, shearStiffness, 0.5 * shear.squaredNorm() / shearStiffness,
+                  elasticEnergy, sums.nextHistory, sums.stiffness);
+    }
+    sums.elasticEnergy = elasticEnergy;
+    sums.frictionWork = frictionWork;
+}
+
+/// The shear springs of a side kShearLanes contacts at a time (ShearSpringLanes.h; a last
+/// batch that is not full lane by lane), each batch's results then added to the sums contact
+/// by contact. Not inlined: its lanes' aligned arrays would enlarge the frame of every
+/// contact's law, most of which (a packing's) are small enough to go one by one.
+[[gnu::noinline]] void addSpringsInLanes(const ContactSide& side, std::vector<PointForce>& forces,
+                       const SidePass& pass, SideSprings& sums)
+{
+    double elasticEnergy = sums.elasticEnergy, frictionWork = sums.frictionWork;
     const LaneBodyMotion tester = LaneBodyMotion::of(
         side.tester->velocity, side.tester->angularVelocity, side.tester->pose.position);
     const LaneBodyMotion other = LaneBodyMotion::of(
@@ -330,12 +402,7 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             lanes.nz[used] = c.normal.z();
             lanes.stiffness[used] =
                 pass.shearSprings.nodeStiffness(pass.shearPerArea, c.area, side.weight);
-            // Coulomb's limit: μ times the node's normal force, its spring and its share of
-            // the dashpot (which the bodies feel as normal force too), in proportion to its
-            // spring, so that the limits add up to μ times the contact's normal force and
-            // none is cut to zero while the others keep theirs.
-            lanes.limit[used] =
-                pass.shearSprings.friction * std::max(0.0, size * (1.0 + pass.viscousPerForce));
+            lanes.limit[used] = coulombLimit(pass, size);
             forceOf[static_cast<size_t>(used++)] = next;
         }
         if (used == 0) break;
@@ -348,7 +415,8 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             const size_t lane = static_cast<size_t>(l);
             const Vec3 slip(lanes.ux[l], lanes.uy[l], lanes.uz[l]);
             carried[lane] =
-                carrySpring(stored.of(side.contacts[forceOf[lane]].node), lanes.stiffness[l], slip);
+                carrySpring(sums.stored.of(side.contacts[forceOf[lane]].node), lanes.stiffness[l],
+                            slip);
             lanes.sx[l] = carried[lane].force.x();
             lanes.sy[l] = carried[lane].force.y();
             lanes.sz[l] = carried[lane].force.z();
@@ -359,22 +427,34 @@ void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, con
             lanes.updateFirst(used, pass.meanTurn);
         for (int l = 0; l < used; ++l) {
             const size_t lane = static_cast<size_t>(l);
-            PointForce& f = forces[forceOf[lane]];
-            const NodeContact& c = side.contacts[forceOf[lane]];
-            // ½·k·d² (its mean over a patch).
-            elasticEnergy += c.isPatch() ? 0.5 * f.stiffness * c.squareDepth
-                                         : 0.5 * (f.stiffness * c.depth) * c.depth;
             carried[lane].addWork(frictionWork);
             if (lanes.slid[l] != 0.0) frictionWork += lanes.dissipated[l];
-            const Vec3 shear(lanes.fx[l], lanes.fy[l], lanes.fz[l]);
-            nextHistory.push_back({c.node, shear, lanes.stiffness[l]});
-            f.force += shear;
-            elasticEnergy += lanes.energy[l];
-            stiffness.add(f.stiffness, lanes.stiffness[l], c.normal, f.point);
+            addSpring(side.contacts[forceOf[lane]], forces[forceOf[lane]],
+                      Vec3(lanes.fx[l], lanes.fy[l], lanes.fz[l]), lanes.stiffness[l],
+                      lanes.energy[l], elasticEnergy, sums.nextHistory, sums.stiffness);
         }
     }
+    sums.elasticEnergy = elasticEnergy;
+    sums.frictionWork = frictionWork;
+}
+
+/// Side @a side's point forces @a forces (a per-node law's, with shear springs) given their
+/// shear springs, its history renewed (nodes that left contact lose theirs; nodes that entered
+/// start from zero), and their elastic energy, friction's work and stiffness added to the sums.
+void addSideShearAndSums(ContactSide& side, std::vector<PointForce>& forces, const SidePass& pass,
+                         std::vector<ShearHistory::Entry>& nextHistory, double& elasticEnergySum,
+                         double& frictionWork, StiffnessSum& stiffness)
+{
+    nextHistory.clear();
+    StoredShear stored(side.history);
+    SideSprings sums{stored, nextHistory, stiffness, elasticEnergySum, frictionWork};
+    if (forces.size() < static_cast<size_t>(kShearLanes))
+        addSpringsOneByOne(side, forces, pass, sums);
+    else
+        addSpringsInLanes(side, forces, pass, sums);
     keepShearHistory(side, stored, nextHistory);
-    elasticEnergySum = elasticEnergy;
+    elasticEnergySum = sums.elasticEnergy;
+    frictionWork = sums.frictionWork;
 }
 
 } // namespace

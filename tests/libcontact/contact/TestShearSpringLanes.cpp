@@ -65,7 +65,7 @@ TEST(ShearSpringLanes, SameBitsAsUpdateShearForce)
     const Vec3 meanTurn(2e-3, -1e-3, 3e-3);
     int sliding = 0, sticking = 0;
     for (size_t first = 0; first < cases.size(); first += kShearLanes) {
-        // The last batch of each eight is filled partly (the others padded), as the law's last.
+        // The last batch of each eight is filled partly, as a side's last batch may be.
         const int used = (first / kShearLanes) % 8 == 7 ? 1 + static_cast<int>(first % 3) : kShearLanes;
         ShearSpringLanes lanes;
         for (int l = 0; l < used; ++l) {

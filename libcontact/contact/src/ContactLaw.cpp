@@ -373,8 +373,9 @@ void addSpringsOneByOne(const ContactSide& side, std::vector<PointForce>& forces
 /// batch that is not full lane by lane), each batch's results then added to the sums contact
 /// by contact. Not inlined: its lanes' aligned arrays would enlarge the frame of every
 /// contact's law, most of which (a packing's) are small enough to go one by one.
-[[gnu::noinline]] void addSpringsInLanes(const ContactSide& side, std::vector<PointForce>& forces,
-                       const SidePass& pass, SideSprings& sums)
+[[gnu::noinline]] void addSpringsInLanes(const ContactSide& side,
+                                         std::vector<PointForce>& forces, const SidePass& pass,
+                                         SideSprings& sums)
 {
     double elasticEnergy = sums.elasticEnergy, frictionWork = sums.frictionWork;
     const LaneBodyMotion tester = LaneBodyMotion::of(

@@ -63,8 +63,8 @@ struct ShearSpringLanes
     /// limit) with twist = @a meanTurn · n, the pair's mean turn over the step about the normal.
     void update(const Vec3& meanTurn);
 
-    /// The same for the first @a count lanes only (a part-filled batch: most contacts of a
-    /// sphere packing hold a few nodes), lane after lane, with the same bits.
+    /// The same for the first @a count lanes only (a side's last batch, if not full), lane
+    /// after lane, with the same bits.
     void updateFirst(int count, const Vec3& meanTurn);
 };
 

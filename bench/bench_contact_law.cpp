@@ -3,10 +3,10 @@
 // adapted law, shear springs, friction and a dashpot. One iteration is one step of the contact:
 // its shear history is carried to the next. Its working set is a few hundred KiB, so the
 // figure is the law's arithmetic rather than the host's memory (issue 35: "the normal law,
-// dashpot and shear springs over batches of nodes"). Args: nodes in contact (3: a contact of
-// a few nodes, as between two spheres of a packing, a part-filled batch); regime 0 = the face
-// sticks (the slip reverses every step, so no spring reaches Coulomb's cap), 1 = it slides (a
-// steady slip far past the cap).
+// dashpot and shear springs over batches of nodes"). Args: nodes in contact (3: a contact of a
+// few nodes, as between two spheres of a packing, which goes spring by spring); regime 0 = the
+// face sticks (the slip reverses every step, so no spring reaches Coulomb's cap), 1 = it
+// slides (a steady slip far past the cap).
 #include "lsdem/contact/ContactLaw.h"
 
 #include <benchmark/benchmark.h>

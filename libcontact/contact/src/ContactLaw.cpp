@@ -278,6 +278,14 @@ void keepShearHistory(ContactSide& side, const StoredShear& stored,
     side.history->replaceWith(nextHistory);
 }
 
+/// The normal spring's energy of contact @a c, whose per-node force is @a f: ½·k·d² (its mean
+/// over a patch). Written as (½·(k·d))·d, as the sums always had it.
+inline double nodeSpringEnergy(const NodeContact& c, const PointForce& f)
+{
+    return c.isPatch() ? 0.5 * f.stiffness * c.squareDepth
+                       : 0.5 * (f.stiffness * c.depth) * c.depth;
+}
+
 /// Side @a side's point forces @a forces without shear springs: their elastic energy and
 /// stiffness added to the sums, point force by point force (its history, if any, ends). The
 /// energy is summed in a local (a register), as in addSideForces, in the same order.
@@ -290,11 +298,8 @@ void addSideSums(ContactSide& side, const std::vector<PointForce>& forces, const
         const NodeContact* c = pass.perNodeForces ? &side.contacts[k] : nullptr;
         const double size = normalForceSize(f, c);
         if (size == 0.0 || f.stiffness <= 0.0) continue;
-        // ½·k·d² for a per-node force (its mean over a patch); the other laws' energy is added
-        // once per side.
-        if (c)
-            elasticEnergy += c->isPatch() ? 0.5 * f.stiffness * c->squareDepth
-                                          : 0.5 * size * c->depth;
+        // A per-node force's spring energy; the other laws' energy is added once per side.
+        if (c) elasticEnergy += nodeSpringEnergy(*c, f);
         stiffness.add(f.stiffness, 0.0, c ? c->normal : Vec3(f.force / size), f.point);
     }
     if (!pass.perNodeForces && !forces.empty())
@@ -323,9 +328,7 @@ inline void addSpring(const NodeContact& c, PointForce& f, const Vec3& shear,
                       double shearStiffness, double springEnergy, double& elasticEnergy,
                       std::vector<ShearHistory::Entry>& nextHistory, StiffnessSum& stiffness)
 {
-    // ½·k·d² (its mean over a patch).
-    elasticEnergy += c.isPatch() ? 0.5 * f.stiffness * c.squareDepth
-                                 : 0.5 * (f.stiffness * c.depth) * c.depth;
+    elasticEnergy += nodeSpringEnergy(c, f);
     nextHistory.push_back({c.node, shear, shearStiffness});
     f.force += shear;
     elasticEnergy += springEnergy;

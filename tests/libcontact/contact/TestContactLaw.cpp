@@ -9,8 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace lsdem;
@@ -540,4 +543,106 @@ TEST(ContactLaw, APairWithoutNodesGivesTheZeroResultAndEndsItsHistory)
     EXPECT_FALSE(all.empty());
     EXPECT_FALSE(onA.empty());
     EXPECT_FALSE(onB.empty());
+}
+
+// A face of 1 to 40 nodes with shear springs, both bodies moving and turning, over three steps
+// (stored shear carried, some springs at Coulomb's cap): whatever the count (a side of four or
+// more has its springs computed four lanes at a time, and one of 16 or more its sums as well,
+// SideLaneSums.h; a last batch may be part-filled),
+// the pair's force and torques are the sums of the listed point forces, the stiffness is
+// Σ k_n·n nᵀ + k_t·(I − n nᵀ) in translation and Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ about
+// each centroid (w = r × n), and the energy Σ ½k_n·d² + ½|F_t|²/k_t, with k_n = kn*·A and
+// k_t = ks*·A. Node 2 has no area (no force, no spring): it is skipped, not summed. On a
+// sparse face only every seventh node has an area, so that a side of 16 or more may fill no
+// batch at all.
+TEST(ContactLaw, AFaceSumsItsPointForcesStiffnessAndEnergyWhateverItsNodeCount)
+{
+    const double ks = 400.0, mu = 0.3, dt = 1e-3;
+    const std::pair<int, bool> faces[] = {{1, false},  {2, false},  {3, false},  {4, false},
+                                          {5, false},  {7, false},  {8, false},  {13, false},
+                                          {15, false}, {16, false}, {17, false}, {18, false},
+                                          {19, false}, {23, false}, {40, false}, {16, true},
+                                          {40, true}};
+    for (const auto& [count, sparse] : faces) {
+        SCOPED_TRACE("nodes: " + std::to_string(count) + (sparse ? ", sparse" : ""));
+        ContactGrain a, b;
+        a.pose.position = Vec3(0.1, -0.2, -1.0);
+        b.pose.position = Vec3(-0.3, 0.2, 1.2);
+        b.index = 1;
+        a.mass = 1.0;
+        b.mass = 3.0;
+        a.velocity = Vec3(2.0, -1.0, 0.5);
+        b.velocity = Vec3(-1.0, 0.5, 0.0);
+        a.angularVelocity = Vec3(0.5, 2.0, -3.0);
+        b.angularVelocity = Vec3(-1.0, 0.0, 4.0);
+        std::vector<NodeContact> face;
+        for (int i = 0; i < count; ++i) {
+            const double x = 0.1 * (i % 4), y = 0.1 * (i / 4);
+            const Vec3 n(0.05 * std::sin(1.0 + i), 0.04 * std::cos(2.0 * i), 1.0);
+            const bool bare = sparse ? i % 7 != 0 : i == 2;
+            face.push_back(node(i, 0.01 + 0.002 * (i % 3), n, Vec3(x, y, 0.0),
+                                bare ? 0.0 : 0.01 * (1.0 + 0.1 * i)));
+        }
+        ShearHistory history;
+        ContactSide side;
+        side.tester = &a;
+        side.other = &b;
+        side.contacts = face;
+        side.history = &history;
+        std::vector<PointForce> all;
+        PairForces r;
+        for (int step = 0; step < 3; ++step) {
+            all.clear();
+            r = resolveContact(&side, 1, adapted(ks, mu), dt, &all);
+        }
+        ASSERT_EQ(all.size(), face.size());
+        Vec3 force = Vec3::Zero(), torqueA = Vec3::Zero(), torqueB = Vec3::Zero();
+        Mat3 k = Mat3::Zero(), kA = Mat3::Zero(), kB = Mat3::Zero();
+        double energy = 0.0, scale = 0.0;
+        int capped = 0;
+        for (size_t i = 0; i < face.size(); ++i) {
+            const NodeContact& c = face[i];
+            const Vec3& f = all[i].force;
+            force += f;
+            torqueA += (c.point - a.pose.position).cross(f);
+            torqueB -= (c.point - b.pose.position).cross(f);
+            scale = std::max(scale, f.norm());
+            const double kn = kKnStar * c.area, kt = ks * c.area;
+            if (kn == 0.0) {
+                EXPECT_EQ(f, Vec3::Zero());
+                continue;
+            }
+            const Vec3 shear = f - adaptedForce(c, 1.0);
+            EXPECT_NEAR(shear.dot(c.normal), 0.0, 1e-12 * scale);
+            capped += shear.norm() > (1.0 - 1e-9) * mu * kn * c.depth ? 1 : 0;
+            const Mat3 tangent = Mat3::Identity() - c.normal * c.normal.transpose();
+            k += kn * c.normal * c.normal.transpose() + kt * tangent;
+            for (const auto& [centre, sum] : {std::pair{a.pose.position, &kA},
+                                              std::pair{b.pose.position, &kB}}) {
+                const Vec3 lever = c.point - centre;
+                Mat3 cross;
+                cross << 0, -lever.z(), lever.y(), lever.z(), 0, -lever.x(), -lever.y(),
+                    lever.x(), 0;
+                const Vec3 w = lever.cross(c.normal);
+                *sum += kn * w * w.transpose() + kt * cross * tangent * cross.transpose();
+            }
+            energy += 0.5 * kn * c.depth * c.depth + 0.5 * shear.squaredNorm() / kt;
+        }
+        if (count >= 8 && !sparse) {
+            EXPECT_GT(capped, 0);  // some springs slide (the lanes' cap)
+        }
+        const double tol = 1e-12 * scale;  // a few dozen sums of numbers of size ≤ scale
+        expectVecNear(r.forceOnFirst, force, tol);
+        expectVecNear(r.forceOnSecond, -force, tol);
+        expectVecNear(r.torqueOnFirst, torqueA, tol);
+        expectVecNear(r.torqueOnSecond, torqueB, tol);
+        EXPECT_EQ(r.contactNodes, count);
+        EXPECT_EQ(r.pointForcesOnFirst, count);
+        EXPECT_LT((r.translationalStiffness - k).norm(), 1e-12 * k.norm());
+        EXPECT_LT((r.rotationalStiffnessOfFirst - kA).norm(), 1e-12 * kA.norm());
+        EXPECT_LT((r.rotationalStiffnessOfSecond - kB).norm(), 1e-12 * kB.norm());
+        EXPECT_NEAR(r.elasticEnergy, energy, 1e-12 * energy);
+        const int bare = sparse ? count - (count + 6) / 7 : (count >= 3 ? 1 : 0);
+        EXPECT_EQ(history.size(), static_cast<size_t>(count - bare));
+    }
 }

@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cmath>
 #include <random>
 #include <thread>
 
@@ -37,6 +38,58 @@ TEST(LevelSetSampler, ReproducesTrilinearFunctionsAndTheirGradients)
         EXPECT_NEAR(s.phi, f(p), 1e-5);  // float storage of values up to ~20
         const Vec3 grad(2 + 0.25 * p.y(), -1 + 0.25 * p.x(), 3);
         EXPECT_NEAR((s.gradient - grad).norm(), 0.0, 1e-4);
+    }
+}
+
+// The cell of a point is found by ⌊index⌋ also where the index is negative or a whole number
+// (a point on a cell face): φ is the trilinear interpolant of that cell's stored corners,
+// computed here with std::floor, of a function that is not trilinear (so a neighbouring cell's
+// interpolant, extrapolated, would differ by about 0.05·(distance into it)²).
+TEST(LevelSetSampler, NegativeAndWholeIndicesFindTheirCell)
+{
+    initializeOpenVdb();
+    LevelSetGrid ls;
+    ls.voxelSize = 0.5;
+    ls.origin = Vec3(0.0, 0.0, 0.0);
+    const auto grid = openvdb::FloatGrid::create(100.0f);
+    auto f = [](const Vec3& p) {
+        return 0.5 + 0.3 * p.x() + 0.05 * (p.x() * p.x() - p.y() * p.y() + p.z() * p.z());
+    };
+    auto accessor = grid->getAccessor();
+    for (int i = -8; i < 8; ++i)
+        for (int j = -8; j < 8; ++j)
+            for (int k = -8; k < 8; ++k)
+                accessor.setValue(openvdb::Coord(i, j, k),
+                                  float(f(ls.origin + ls.voxelSize * Vec3(i, j, k))));
+    ls.grid = toLevelSetGrid(*grid);
+    LevelSetSampler sampler(ls);
+    auto trilinear = [&](const Vec3& p) {
+        const Vec3 index = (p - ls.origin) / ls.voxelSize;
+        const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
+        const Vec3 t = index - base;
+        double sum = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const Vec3 offset(corner & 1, (corner >> 1) & 1, corner >> 2);
+            const double weight = (offset.x() ? t.x() : 1.0 - t.x()) *
+                                  (offset.y() ? t.y() : 1.0 - t.y()) *
+                                  (offset.z() ? t.z() : 1.0 - t.z());
+            const openvdb::Coord c(int(base.x() + offset.x()), int(base.y() + offset.y()),
+                                   int(base.z() + offset.z()));
+            sum += weight * ls.grid->value(c);  // as stored (quantized): read back
+        }
+        return sum;
+    };
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(-3.4, 3.4);  // indices -6.8 to 6.8
+    std::uniform_int_distribution<int> whole(-6, 6);
+    for (int n = 0; n < 2000; ++n) {
+        Vec3 p(u(rng), u(rng), u(rng));
+        if (n % 4 == 0) p.x() = 0.5 * whole(rng);  // on a cell face along x
+        if (n % 8 == 0) p.y() = 0.5 * whole(rng);
+        const double expected = trilinear(p);
+        LevelSetCell cell;
+        EXPECT_NEAR(sampler.sample(p, cell).phi, expected, 1e-12) << p.transpose();
+        EXPECT_NEAR(sampler.phi(p), expected, 1e-12) << p.transpose();
     }
 }
 

@@ -47,9 +47,9 @@ public:
     {
         if (__builtin_expect(mExact != nullptr, 0)) return exactSample(p);
         const Vec3 index = (p - mOrigin) * mInvVoxel;
-        const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
-        const std::array<int, 3> lower = {static_cast<int>(base.x()), static_cast<int>(base.y()),
-                                          static_cast<int>(base.z())};
+        const std::array<int, 3> lower = {floorOf(index.x()), floorOf(index.y()),
+                                          floorOf(index.z())};
+        const Vec3 base(lower[0], lower[1], lower[2]);
         if (lower != cell.base) {
             fetch(openvdb::Coord(lower[0], lower[1], lower[2]), cell.value.data());
             cell.base = lower;
@@ -98,6 +98,15 @@ private:
     static constexpr double kFaceTolerance = 1e-9;
     static constexpr double kFaceOffset = 1e-6;
 
+    /// ⌊x⌋ of an index within int's range, as std::floor gives it: the truncation, less one for
+    /// a negative non-integer. Without SSE4.1 (the portable build) std::floor is a sequence of
+    /// a dozen instructions, three times a sample.
+    static int floorOf(double x)
+    {
+        const int truncated = static_cast<int>(x);
+        return truncated - (x < static_cast<double>(truncated) ? 1 : 0);
+    }
+
     /// The closed form's φ and ∇φ (kept out of line: the voxels' path is the hot one).
     [[gnu::noinline, gnu::cold]] LevelSetSample exactSample(const Vec3& p) const
     {
@@ -107,12 +116,10 @@ private:
     /// The trilinear interpolant and its gradient at an index-space point.
     LevelSetSample evaluate(const Vec3& index)
     {
-        const Vec3 base(std::floor(index.x()), std::floor(index.y()), std::floor(index.z()));
+        const openvdb::Coord lower(floorOf(index.x()), floorOf(index.y()), floorOf(index.z()));
         float value[8];
-        fetch(openvdb::Coord(static_cast<int>(base.x()), static_cast<int>(base.y()),
-                             static_cast<int>(base.z())),
-              value);
-        return interpolate(value, index - base);
+        fetch(lower, value);
+        return interpolate(value, index - Vec3(lower.x(), lower.y(), lower.z()));
     }
 
     /// The trilinear interpolant of the cell corners @a value and its gradient at @a fraction.

@@ -44,7 +44,8 @@ TEST(LevelSetSampler, ReproducesTrilinearFunctionsAndTheirGradients)
 // The cell of a point is found by ⌊index⌋ also where the index is negative or a whole number
 // (a point on a cell face): φ is the trilinear interpolant of that cell's stored corners,
 // computed here with std::floor, of a function that is not trilinear (so a neighbouring cell's
-// interpolant, extrapolated, would differ by about 0.05·(distance into it)²).
+// interpolant, extrapolated, would differ by about 0.05·(distance into it)²). On a face across
+// x, ∂φ/∂x is the mean of the two cells' derivatives there.
 TEST(LevelSetSampler, NegativeAndWholeIndicesFindTheirCell)
 {
     initializeOpenVdb();
@@ -79,6 +80,21 @@ TEST(LevelSetSampler, NegativeAndWholeIndicesFindTheirCell)
         }
         return sum;
     };
+    // ∂φ/∂x in the cell whose lower x index is @a cellX, at @a p's y and z.
+    auto xDerivative = [&](int cellX, const Vec3& p) {
+        const Vec3 index = (p - ls.origin) / ls.voxelSize;
+        const double by = std::floor(index.y()), bz = std::floor(index.z());
+        const double ty = index.y() - by, tz = index.z() - bz;
+        double sum = 0.0;
+        for (int corner = 0; corner < 4; ++corner) {
+            const int oy = corner & 1, oz = corner >> 1;
+            const double weight = (oy ? ty : 1.0 - ty) * (oz ? tz : 1.0 - tz);
+            const int y = int(by) + oy, z = int(bz) + oz;
+            sum += weight * (ls.grid->value(openvdb::Coord(cellX + 1, y, z)) -
+                             ls.grid->value(openvdb::Coord(cellX, y, z)));
+        }
+        return sum / ls.voxelSize;
+    };
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-3.4, 3.4);  // indices -6.8 to 6.8
     std::uniform_int_distribution<int> whole(-6, 6);
@@ -90,6 +106,11 @@ TEST(LevelSetSampler, NegativeAndWholeIndicesFindTheirCell)
         LevelSetCell cell;
         EXPECT_NEAR(sampler.sample(p, cell).phi, expected, 1e-12) << p.transpose();
         EXPECT_NEAR(sampler.phi(p), expected, 1e-12) << p.transpose();
+        if (n % 4 == 0) {
+            const int face = int(std::lround(p.x() / ls.voxelSize));
+            const double mean = 0.5 * (xDerivative(face - 1, p) + xDerivative(face, p));
+            EXPECT_NEAR(sampler.sample(p).gradient.x(), mean, 1e-9) << p.transpose();
+        }
     }
 }
 

@@ -19,7 +19,7 @@ namespace {
 using namespace contactlaw;
 
 /// The contact's stiffness for the stability check (PairForces, SimulationForces.cpp), summed point
-/// force by point force: the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ and
+/// force by point force (or a side's sums made elsewhere added whole, addSide): the lower triangles of k'·n nᵀ and, per movable body, of k'·w wᵀ and
 /// −k_t·r rᵀ (k' = k_n − k_t, w = r × n), with Σ k_t and Σ k_t·|r|² for the diagonal terms
 /// added at the end. Written out in plain numbers: it runs for every node in contact.
 class StiffnessSum
@@ -371,8 +371,8 @@ double coulombLimit(const SidePass& pass, double size)
 
 /// Contact @a c's point force @a f given its shear force @a shear (a spring of stiffness
 /// @a shearStiffness holding energy @a springEnergy), and its elastic energy, history and
-/// stiffness added to the side's sums, in the order of the contacts (both ways of computing the
-/// springs below add so). Friction's work is added where the spring is computed. Inline, with
+/// stiffness added to the side's sums, in the order of the contacts (a side below kLaneSumsFrom
+/// contacts adds so, its springs computed one by one or in lanes). Friction's work is added where the spring is computed. Inline, with
 /// the energy in the caller's local: a sum kept in memory would be stored and loaded again at
 /// every contact.
 inline void addSpring(const NodeContact& c, PointForce& f, const Vec3& shear,
@@ -426,8 +426,8 @@ void addSpringsOneByOne(const ContactSide& side, std::vector<PointForce>& forces
 /// From how many contacts a side's sums are made lane by lane (SideLaneSums.h). Below it they
 /// are made contact by contact: the partials' start and join cost more than they save on a
 /// small side (the law alone on a pressed face, old and new alternated, 2026-12-01: the lanes'
-/// sums 0.88× as fast at 5 contacts, 0.90× at 8, 0.97× at 12, 1.05× at 16, 1.07–1.09× at 32,
-/// 1.11–1.13× at 2048).
+/// sums 0.87–0.88× as fast at 5 contacts, 0.90–0.96× at 8, 0.97× at 12, 0.98–1.05× at 16,
+/// 1.03–1.09× at 32, 1.06–1.13× at 2048).
 constexpr size_t kLaneSumsFrom = 16;
 
 /// The shear springs of a side kShearLanes contacts at a time (ShearSpringLanes.h; a last

@@ -548,23 +548,34 @@ TEST(ContactLaw, APairWithoutNodesGivesTheZeroResultAndEndsItsHistory)
 // A face of 1 to 40 nodes with shear springs, both bodies moving and turning, over three steps
 // (stored shear carried, some springs at Coulomb's cap): whatever the count (a side of four or
 // more has its springs computed four lanes at a time, and one of 16 or more its sums as well,
-// SideLaneSums.h; a last batch may be part-filled),
-// the pair's force and torques are the sums of the listed point forces, the stiffness is
-// Σ k_n·n nᵀ + k_t·(I − n nᵀ) in translation and Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ about
-// each centroid (w = r × n), and the energy Σ ½k_n·d² + ½|F_t|²/k_t, with k_n = kn*·A and
-// k_t = ks*·A. Node 2 has no area (no force, no spring): it is skipped, not summed. On a
-// sparse face only every seventh node has an area, so that a side of 16 or more may fill no
-// batch at all.
+// SideLaneSums.h; a last batch may be part-filled), the pair's force and torques are the sums
+// of the listed point forces, the stiffness is Σ k_n·n nᵀ + k_t·(I − n nᵀ) in translation and
+// Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ about each centroid (w = r × n), and the energy
+// Σ ½k_n·d² + ½|F_t|²/k_t, with k_n = kn*·A·weight and k_t = ks*·A·weight. Node 2 has no area
+// (no force, no spring): it is skipped, not summed. Also: a sparse face (only every seventh
+// node has an area, so that a side of 16 may fill no full batch), a bare one (no node has an
+// area: nothing to sum) and symmetric testing (a second side, B's nodes in A, at half weight
+// each: its sums belong to the other body first).
 TEST(ContactLaw, AFaceSumsItsPointForcesStiffnessAndEnergyWhateverItsNodeCount)
 {
+    enum class Kind { Plain, Sparse, Bare, Symmetric };
+    struct Face
+    {
+        int count;
+        Kind kind;
+    };
     const double ks = 400.0, mu = 0.3, dt = 1e-3;
-    const std::pair<int, bool> faces[] = {{1, false},  {2, false},  {3, false},  {4, false},
-                                          {5, false},  {7, false},  {8, false},  {13, false},
-                                          {15, false}, {16, false}, {17, false}, {18, false},
-                                          {19, false}, {23, false}, {40, false}, {16, true},
-                                          {40, true}};
-    for (const auto& [count, sparse] : faces) {
-        SCOPED_TRACE("nodes: " + std::to_string(count) + (sparse ? ", sparse" : ""));
+    std::vector<Face> faces;
+    for (int count : {1, 2, 3, 4, 5, 7, 8, 13, 15, 16, 17, 18, 19, 23, 40})
+        faces.push_back({count, Kind::Plain});
+    faces.insert(faces.end(), {{16, Kind::Sparse}, {40, Kind::Sparse}, {16, Kind::Bare},
+                               {5, Kind::Symmetric}, {16, Kind::Symmetric},
+                               {23, Kind::Symmetric}});
+    for (const Face& face : faces) {
+        const int count = face.count;
+        const bool symmetric = face.kind == Kind::Symmetric;
+        SCOPED_TRACE("nodes: " + std::to_string(count) + ", kind " +
+                     std::to_string(static_cast<int>(face.kind)));
         ContactGrain a, b;
         a.pose.position = Vec3(0.1, -0.2, -1.0);
         b.pose.position = Vec3(-0.3, 0.2, 1.2);
@@ -575,60 +586,84 @@ TEST(ContactLaw, AFaceSumsItsPointForcesStiffnessAndEnergyWhateverItsNodeCount)
         b.velocity = Vec3(-1.0, 0.5, 0.0);
         a.angularVelocity = Vec3(0.5, 2.0, -3.0);
         b.angularVelocity = Vec3(-1.0, 0.0, 4.0);
-        std::vector<NodeContact> face;
-        for (int i = 0; i < count; ++i) {
-            const double x = 0.1 * (i % 4), y = 0.1 * (i / 4);
-            const Vec3 n(0.05 * std::sin(1.0 + i), 0.04 * std::cos(2.0 * i), 1.0);
-            const bool bare = sparse ? i % 7 != 0 : i == 2;
-            face.push_back(node(i, 0.01 + 0.002 * (i % 3), n, Vec3(x, y, 0.0),
-                                bare ? 0.0 : 0.01 * (1.0 + 0.1 * i)));
+        // Side 0: A's nodes in B (pushed along about +z); side 1: B's nodes in A (about −z).
+        const int sideCount = symmetric ? 2 : 1;
+        const double weight = symmetric ? 0.5 : 1.0;
+        std::vector<NodeContact> nodes[2];
+        for (int s = 0; s < sideCount; ++s)
+            for (int i = 0; i < count; ++i) {
+                const double x = 0.1 * (i % 4) + 0.03 * s, y = 0.1 * (i / 4);
+                const Vec3 n(0.05 * std::sin(1.0 + i + s), 0.04 * std::cos(2.0 * i),
+                             s == 0 ? 1.0 : -1.0);
+                const bool bare = face.kind == Kind::Bare ||
+                                  (face.kind == Kind::Sparse ? i % 7 != 0 : i == 2);
+                nodes[s].push_back(node(i, 0.01 + 0.002 * ((i + s) % 3), n, Vec3(x, y, 0.0),
+                                        bare ? 0.0 : 0.01 * (1.0 + 0.1 * i)));
+            }
+        ShearHistory histories[2];
+        ContactSide sides[2];
+        for (int s = 0; s < sideCount; ++s) {
+            sides[s].tester = s == 0 ? &a : &b;
+            sides[s].other = s == 0 ? &b : &a;
+            sides[s].contacts = nodes[s];
+            sides[s].history = &histories[s];
+            sides[s].weight = weight;
         }
-        ShearHistory history;
-        ContactSide side;
-        side.tester = &a;
-        side.other = &b;
-        side.contacts = face;
-        side.history = &history;
         std::vector<PointForce> all;
         PairForces r;
         for (int step = 0; step < 3; ++step) {
             all.clear();
-            r = resolveContact(&side, 1, adapted(ks, mu), dt, &all);
+            r = resolveContact(sides, sideCount, adapted(ks, mu), dt, &all);
         }
-        ASSERT_EQ(all.size(), face.size());
+        ASSERT_EQ(all.size(), static_cast<size_t>(sideCount * count));
         Vec3 force = Vec3::Zero(), torqueA = Vec3::Zero(), torqueB = Vec3::Zero();
         Mat3 k = Mat3::Zero(), kA = Mat3::Zero(), kB = Mat3::Zero();
         double energy = 0.0, scale = 0.0;
         int capped = 0;
-        for (size_t i = 0; i < face.size(); ++i) {
-            const NodeContact& c = face[i];
-            const Vec3& f = all[i].force;
-            force += f;
-            torqueA += (c.point - a.pose.position).cross(f);
-            torqueB -= (c.point - b.pose.position).cross(f);
-            scale = std::max(scale, f.norm());
-            const double kn = kKnStar * c.area, kt = ks * c.area;
-            if (kn == 0.0) {
-                EXPECT_EQ(f, Vec3::Zero());
-                continue;
+        size_t bearing = 0;  // nodes that carry a force, so hold a spring
+        for (int s = 0; s < sideCount; ++s)
+            for (int i = 0; i < count; ++i) {
+                const NodeContact& c = nodes[s][static_cast<size_t>(i)];
+                const Vec3& f = all[static_cast<size_t>(s * count + i)].force;  // on the tester
+                const Vec3 onA = s == 0 ? f : Vec3(-f);
+                force += onA;
+                torqueA += (c.point - a.pose.position).cross(onA);
+                torqueB -= (c.point - b.pose.position).cross(onA);
+                scale = std::max(scale, f.norm());
+                const double kn = weight * kKnStar * c.area, kt = weight * ks * c.area;
+                if (kn == 0.0) {
+                    EXPECT_EQ(f, Vec3::Zero());
+                    continue;
+                }
+                ++bearing;
+                const Vec3 shear = f - adaptedForce(c, weight);
+                EXPECT_NEAR(shear.dot(c.normal), 0.0, 1e-12 * scale);
+                capped += shear.norm() > (1.0 - 1e-9) * mu * kn * c.depth ? 1 : 0;
+                const Mat3 tangent = Mat3::Identity() - c.normal * c.normal.transpose();
+                k += kn * c.normal * c.normal.transpose() + kt * tangent;
+                for (const auto& [centre, sum] : {std::pair{a.pose.position, &kA},
+                                                  std::pair{b.pose.position, &kB}}) {
+                    const Vec3 lever = c.point - centre;
+                    Mat3 cross;
+                    cross << 0, -lever.z(), lever.y(), lever.z(), 0, -lever.x(), -lever.y(),
+                        lever.x(), 0;
+                    const Vec3 w = lever.cross(c.normal);
+                    *sum += kn * w * w.transpose() + kt * cross * tangent * cross.transpose();
+                }
+                energy += 0.5 * kn * c.depth * c.depth + 0.5 * shear.squaredNorm() / kt;
             }
-            const Vec3 shear = f - adaptedForce(c, 1.0);
-            EXPECT_NEAR(shear.dot(c.normal), 0.0, 1e-12 * scale);
-            capped += shear.norm() > (1.0 - 1e-9) * mu * kn * c.depth ? 1 : 0;
-            const Mat3 tangent = Mat3::Identity() - c.normal * c.normal.transpose();
-            k += kn * c.normal * c.normal.transpose() + kt * tangent;
-            for (const auto& [centre, sum] : {std::pair{a.pose.position, &kA},
-                                              std::pair{b.pose.position, &kB}}) {
-                const Vec3 lever = c.point - centre;
-                Mat3 cross;
-                cross << 0, -lever.z(), lever.y(), lever.z(), 0, -lever.x(), -lever.y(),
-                    lever.x(), 0;
-                const Vec3 w = lever.cross(c.normal);
-                *sum += kn * w * w.transpose() + kt * cross * tangent * cross.transpose();
-            }
-            energy += 0.5 * kn * c.depth * c.depth + 0.5 * shear.squaredNorm() / kt;
+        EXPECT_EQ(r.contactNodes, sideCount * count);
+        EXPECT_EQ(r.pointForcesOnFirst, count);
+        EXPECT_EQ(histories[0].size() + histories[1].size(), bearing);
+        if (face.kind == Kind::Bare) {  // nothing carries a force: every sum is zero
+            EXPECT_EQ(r.forceOnFirst, Vec3::Zero());
+            EXPECT_EQ(r.torqueOnSecond, Vec3::Zero());
+            EXPECT_EQ(r.elasticEnergy, 0.0);
+            EXPECT_TRUE(r.translationalStiffness.isZero(0.0));
+            EXPECT_TRUE(r.rotationalStiffnessOfFirst.isZero(0.0));
+            continue;
         }
-        if (count >= 8 && !sparse) {
+        if (count >= 8 && face.kind == Kind::Plain) {
             EXPECT_GT(capped, 0);  // some springs slide (the lanes' cap)
         }
         const double tol = 1e-12 * scale;  // a few dozen sums of numbers of size ≤ scale
@@ -636,13 +671,9 @@ TEST(ContactLaw, AFaceSumsItsPointForcesStiffnessAndEnergyWhateverItsNodeCount)
         expectVecNear(r.forceOnSecond, -force, tol);
         expectVecNear(r.torqueOnFirst, torqueA, tol);
         expectVecNear(r.torqueOnSecond, torqueB, tol);
-        EXPECT_EQ(r.contactNodes, count);
-        EXPECT_EQ(r.pointForcesOnFirst, count);
         EXPECT_LT((r.translationalStiffness - k).norm(), 1e-12 * k.norm());
         EXPECT_LT((r.rotationalStiffnessOfFirst - kA).norm(), 1e-12 * kA.norm());
         EXPECT_LT((r.rotationalStiffnessOfSecond - kB).norm(), 1e-12 * kB.norm());
         EXPECT_NEAR(r.elasticEnergy, energy, 1e-12 * energy);
-        const int bare = sparse ? count - (count + 6) / 7 : (count >= 3 ? 1 : 0);
-        EXPECT_EQ(history.size(), static_cast<size_t>(count - bare));
     }
 }

@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -105,6 +106,11 @@ TEST(LevelSetSampler, NegativeAndWholeIndicesFindTheirCell)
         const double expected = trilinear(p);
         LevelSetCell cell;
         EXPECT_NEAR(sampler.sample(p, cell).phi, expected, 1e-12) << p.transpose();
+        // On a face both cells give the same φ: the cell kept must still be ⌊index⌋'s.
+        const Vec3 index = (p - ls.origin) / ls.voxelSize;
+        const std::array<int, 3> lower = {int(std::floor(index.x())), int(std::floor(index.y())),
+                                          int(std::floor(index.z()))};
+        EXPECT_EQ(cell.base, lower) << p.transpose();
         EXPECT_NEAR(sampler.phi(p), expected, 1e-12) << p.transpose();
         if (n % 4 == 0) {
             const int face = int(std::lround(p.x() / ls.voxelSize));

@@ -6,8 +6,9 @@
 ///        chain of two divisions and up to three roots; one contact at a time, that chain was
 ///        most of its cost). Each lane's arithmetic is updateShearForce's (TangentialModel.h),
 ///        operation for operation, so a lane gives the same bits as that function. Sums over
-///        the contacts are not made here: the contact law keeps one partial sum a lane
-///        (SideLaneSums.h, private to the library) and joins them in a fixed order.
+///        the contacts are not made here: for a side of 16 contacts or more the contact law
+///        keeps one partial sum a lane (SideLaneSums.h, private to the library) and joins them
+///        in a fixed order; for a smaller side it sums contact by contact.
 #pragma once
 
 #include "lsdem/core/Vec3.h"

@@ -169,21 +169,50 @@ private:
                 outsideBox = std::min(outsideBox, outside);
                 continue;
             }
-            ++mStats.nodesSampled;
-            const LevelSetSample s = sampleNode(i, inB);
+            mBatch.node[mBatch.count] = i;
+            mBatch.inB[mBatch.count] = inB;
+            if (++mBatch.count == SampleBatch::kSize) sampleBatch();
+        }
+        sampleBatch();
+        mStats.nodesCulled += culled;
+        mNearestOutsideSphere2 = outsideSphere2;
+        mNearestOutsideBox = outsideBox;
+    }
+
+    /// The nodes let through the culls, waiting to be sampled. Sampling a batch in one loop,
+    /// and only then acting on the samples, lets the CPU overlap one node's sample (a chain of
+    /// dependent loads and arithmetic) with the next node's; node by node, each waited for the
+    /// one before it. The order, and so every result, is the same.
+    struct SampleBatch
+    {
+        static constexpr int kSize = 16;
+        int count = 0;
+        int node[kSize];
+        Vec3 inB[kSize];  ///< the node in B's frame
+        LevelSetSample sample[kSize];
+    };
+
+    /// Sample the batch's nodes, then keep those inside B as contacts (in node order).
+    void sampleBatch()
+    {
+        const int count = mBatch.count;
+        if (count == 0) return;
+        mBatch.count = 0;
+        mStats.nodesSampled += count;
+        for (int k = 0; k < count; ++k) mBatch.sample[k] = sampleNode(mBatch.node[k], mBatch.inB[k]);
+        for (int k = 0; k < count; ++k) {
+            const LevelSetSample& s = mBatch.sample[k];
+            const int i = mBatch.node[k];
             if (!(s.phi < mReach)) {
                 noteClearNode(i, s.phi);
                 continue;
             }
             mAnyInside = true;
             if (mPatches)
-                addPatchContact(i, inB, s);
+                addPatchContact(i, mBatch.inB[k], s);
             else
-                addPointContact(i, inB, s);
+                addPointContact(i, mBatch.inB[k], s);
         }
-        mStats.nodesCulled += culled;
-        mNearestOutsideSphere2 = outsideSphere2;
-        mNearestOutsideBox = outsideBox;
     }
 
     /// A node of the band just outside B's bounding sphere (@a sphereGap from it, @a inB in B's
@@ -361,6 +390,7 @@ private:
     Eigen::Matrix3d mRotation, mBToWorld;
     Vec3 mCenterOfB = Vec3::Zero();
     std::optional<LevelSetSampler> mSampler;
+    SampleBatch mBatch;
     // Remembered candidates: the last step's sampled cells, this step's (this thread's buffer)
     // and where the walk alongside them has got.
     const std::vector<CandidateBlocks::SampledCell>* mLastCells = nullptr;

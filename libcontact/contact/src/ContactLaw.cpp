@@ -431,7 +431,7 @@ void addSpringsOneByOne(const ContactSide& side, std::vector<PointForce>& forces
 constexpr size_t kLaneSumsFrom = 16;
 
 /// The shear springs of a side kShearLanes contacts at a time (ShearSpringLanes.h; a last
-/// batch that is not full lane by lane), and the side's sums: those of a large side lane by
+/// batch that is not full four at a time where it can, the rest lane by lane), and the side's sums: those of a large side lane by
 /// lane as well (SideLaneSums.h), then added to the pair's, those of a smaller one contact by
 /// contact (addSpring, addSideForces). @a kSumInLanes tells which, so that neither version
 /// asks at every contact. Friction's work and the new history are added contact by contact.
@@ -544,7 +544,7 @@ void addSideWithSprings(ContactSide& side, const ContactGrain& first,
     nextHistory.clear();
     StoredShear stored(side.history);
     SideSprings sums{stored, nextHistory, stiffness, elasticEnergySum, frictionWork};
-    if (forces.size() < static_cast<size_t>(kShearLanes)) {
+    if (forces.size() < static_cast<size_t>(kShearLanesLeast)) {
         addSpringsOneByOne(side, forces, pass, sums);
         addSideForces(side, first, forces, result);
     } else if (forces.size() < kLaneSumsFrom) {

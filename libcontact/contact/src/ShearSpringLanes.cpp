@@ -10,13 +10,13 @@ namespace lsdem {
 
 namespace {
 
-/// The slips of lanes [0, @a count) of @a s (ShearSpringLanes::slips); @a count as in
+/// The slips of lanes [@a begin, @a end) of @a s (ShearSpringLanes::slips); the bounds as in
 /// updateSprings.
-template <typename Count>
-void slipsOf(ShearSpringLanes& s, Count count, const LaneBodyMotion& a, const LaneBodyMotion& b,
-             double dt)
+template <typename Begin, typename End>
+void slipsOf(ShearSpringLanes& s, Begin begin, End end, const LaneBodyMotion& a,
+             const LaneBodyMotion& b, double dt)
 {
-    for (int l = 0; l < count; ++l) {
+    for (int l = begin; l < end; ++l) {
         // v + ω × (p − c) of each body, as ContactGrain::pointVelocity.
         const double ax = s.px[l] - a.cx, ay = s.py[l] - a.cy, az = s.pz[l] - a.cz;
         const double bx = s.px[l] - b.cx, by = s.py[l] - b.cy, bz = s.pz[l] - b.cz;
@@ -30,16 +30,17 @@ void slipsOf(ShearSpringLanes& s, Count count, const LaneBodyMotion& a, const La
     }
 }
 
-/// The springs of lanes [0, @a count) of @a s (ShearSpringLanes::update). @a count is either a
-/// std::integral_constant, so that the loops have a trip count known at compile time and
-/// become vector instructions, or a plain int for a part-filled batch, lane after lane.
-template <typename Count>
-void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
+/// The springs of lanes [@a begin, @a end) of @a s (ShearSpringLanes::update). The bounds are
+/// either std::integral_constants, so that the loops have a trip count known at compile time
+/// and become vector instructions, or plain ints for the rest of a part-filled batch, lane
+/// after lane.
+template <typename Begin, typename End>
+void updateSprings(ShearSpringLanes& s, Begin begin, End end, const Vec3& meanTurn)
 {
     const double mx = meanTurn.x(), my = meanTurn.y(), mz = meanTurn.z();
     alignas(32) double storedSquare[kShearLanes], trialSquare[kShearLanes];
     int anySliding = 0;
-    for (int l = 0; l < count; ++l) {
+    for (int l = begin; l < end; ++l) {
         const double n0 = s.nx[l], n1 = s.ny[l], n2 = s.nz[l];
         const double s0 = s.sx[l], s1 = s.sy[l], s2 = s.sz[l];
         const double k = s.stiffness[l], cap = s.limit[l];
@@ -80,7 +81,7 @@ void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
     // Coulomb's cap, where some spring slides (its roots and divisions are not needed where
     // all stick, the common case of a contact at rest).
     if (anySliding != 0) {
-        for (int l = 0; l < count; ++l) {
+        for (int l = begin; l < end; ++l) {
             const bool sliding = s.slid[l] != 0.0;
             const double cap = s.limit[l];
             const double trial = std::sqrt(trialSquare[l]), capped = cap > 0.0 ? cap : 0.0;
@@ -95,33 +96,46 @@ void updateSprings(ShearSpringLanes& s, Count count, const Vec3& meanTurn)
             s.dissipated[l] = sliding ? lost : 0.0;
         }
     }
-    for (int l = 0; l < count; ++l) {
+    for (int l = begin; l < end; ++l) {
         const double size2 = (s.fx[l] * s.fx[l] + s.fy[l] * s.fy[l]) + s.fz[l] * s.fz[l];
         s.energy[l] = 0.5 * size2 / s.stiffness[l];
     }
 }
 
+template <int kLanes>
+using Lanes = std::integral_constant<int, kLanes>;
+
 } // namespace
 
 void ShearSpringLanes::slips(const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt)
 {
-    slipsOf(*this, std::integral_constant<int, kShearLanes>(), tester, other, dt);
+    slipsOf(*this, Lanes<0>(), Lanes<kShearLanes>(), tester, other, dt);
 }
 
 void ShearSpringLanes::slipsFirst(int count, const LaneBodyMotion& tester,
                                   const LaneBodyMotion& other, double dt)
 {
-    slipsOf(*this, count, tester, other, dt);
+    if (count < kShearLanesLeast) {
+        slipsOf(*this, 0, count, tester, other, dt);
+        return;
+    }
+    slipsOf(*this, Lanes<0>(), Lanes<kShearLanesLeast>(), tester, other, dt);
+    slipsOf(*this, kShearLanesLeast, count, tester, other, dt);
 }
 
 void ShearSpringLanes::update(const Vec3& meanTurn)
 {
-    updateSprings(*this, std::integral_constant<int, kShearLanes>(), meanTurn);
+    updateSprings(*this, Lanes<0>(), Lanes<kShearLanes>(), meanTurn);
 }
 
 void ShearSpringLanes::updateFirst(int count, const Vec3& meanTurn)
 {
-    updateSprings(*this, count, meanTurn);
+    if (count < kShearLanesLeast) {
+        updateSprings(*this, 0, count, meanTurn);
+        return;
+    }
+    updateSprings(*this, Lanes<0>(), Lanes<kShearLanesLeast>(), meanTurn);
+    updateSprings(*this, kShearLanesLeast, count, meanTurn);
 }
 
 } // namespace lsdem

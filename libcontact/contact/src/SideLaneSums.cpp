@@ -109,10 +109,11 @@ void SideLaneSums::addFirst(int count, const ShearSpringLanes& springs,
 
 SideTotals SideLaneSums::totals() const
 {
-    static_assert(kShearLanes == 4, "the partials are joined pairwise, for four lanes");
+    static_assert(kShearLanes == 8, "the partials are joined pairwise, for eight lanes");
     if (!mStarted) return SideTotals();  // no contact carried a force
     const auto joined = [&](int sum) {
-        return (mSum[sum][0] + mSum[sum][1]) + (mSum[sum][2] + mSum[sum][3]);
+        const double* lane = mSum[sum];
+        return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
     };
     const auto vector = [&](int first) {
         return Vec3(joined(first), joined(first + 1), joined(first + 2));

@@ -547,8 +547,9 @@ TEST(ContactLaw, APairWithoutNodesGivesTheZeroResultAndEndsItsHistory)
 
 // A face of 1 to 40 nodes with shear springs, both bodies moving and turning, over three steps
 // (stored shear carried, some springs at Coulomb's cap): whatever the count (a side of four or
-// more has its springs computed four lanes at a time, and one of 16 or more its sums as well,
-// SideLaneSums.h; a last batch may be part-filled), the pair's force and torques are the sums
+// more has its springs computed eight lanes at a time, and one of 16 or more its sums as well,
+// SideLaneSums.h; a last batch may be part-filled, four lanes at once and the rest one by one,
+// or all one by one), the pair's force and torques are the sums
 // of the listed point forces, the stiffness is Σ k_n·n nᵀ + k_t·(I − n nᵀ) in translation and
 // Σ k_n·w wᵀ + k_t·[r×](I − n nᵀ)[r×]ᵀ about each centroid (w = r × n), and the energy
 // Σ ½k_n·d² + ½|F_t|²/k_t, with k_n = kn*·A·weight and k_t = ks*·A·weight. Node 2 has no area
@@ -566,7 +567,7 @@ TEST(ContactLaw, AFaceSumsItsPointForcesStiffnessAndEnergyWhateverItsNodeCount)
     };
     const double ks = 400.0, mu = 0.3, dt = 1e-3;
     std::vector<Face> faces;
-    for (int count : {1, 2, 3, 4, 5, 7, 8, 13, 15, 16, 17, 18, 19, 23, 40})
+    for (int count : {1, 2, 3, 4, 5, 7, 8, 9, 12, 13, 15, 16, 17, 18, 19, 20, 23, 24, 28, 40})
         faces.push_back({count, Kind::Plain});
     faces.insert(faces.end(), {{16, Kind::Sparse}, {40, Kind::Sparse}, {16, Kind::Bare},
                                {5, Kind::Symmetric}, {16, Kind::Symmetric},

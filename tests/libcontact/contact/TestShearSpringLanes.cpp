@@ -65,8 +65,12 @@ TEST(ShearSpringLanes, SameBitsAsUpdateShearForce)
     const Vec3 meanTurn(2e-3, -1e-3, 3e-3);
     int sliding = 0, sticking = 0;
     for (size_t first = 0; first < cases.size(); first += kShearLanes) {
-        // The last batch of each eight is filled partly, as a side's last batch may be.
-        const int used = (first / kShearLanes) % 8 == 7 ? 1 + static_cast<int>(first % 3) : kShearLanes;
+        // Every fourth batch is filled partly, as a side's last batch may be, with 1 to
+        // kShearLanes - 1 lanes in turn: below kShearLanesLeast lane by lane, from it that many
+        // lanes at once and the rest lane by lane.
+        const size_t batch = first / kShearLanes;
+        const int used = batch % 4 == 3 ? 1 + static_cast<int>((batch / 4) % (kShearLanes - 1))
+                                        : kShearLanes;
         ShearSpringLanes lanes;
         for (int l = 0; l < used; ++l) {
             const SpringCase& c = cases[first + static_cast<size_t>(l)];
@@ -82,9 +86,9 @@ TEST(ShearSpringLanes, SameBitsAsUpdateShearForce)
             lanes.stiffness[l] = c.stiffness;
             lanes.limit[l] = c.limit;
         }
-        // A part-filled batch lane by lane, as the law computes it; and, for comparison, all
-        // four lanes at once with whatever the unused lanes hold (the results of the lanes in
-        // use must not depend on them).
+        // A part-filled batch as the law computes it; and, for comparison, all lanes at once
+        // with whatever the unused lanes hold (the results of the lanes in use must not depend
+        // on them).
         ShearSpringLanes whole = lanes;
         if (used == kShearLanes) {
             lanes.update(meanTurn);
@@ -150,12 +154,22 @@ TEST(ShearSpringLanes, SlipsAreThePointVelocitiesDifferenceTimesTheStep)
             lanes.py[l] = points.back().y();
             lanes.pz[l] = points.back().z();
         }
-        ShearSpringLanes firstTwo = lanes;
+        // A part-filled batch below kShearLanesLeast (lane by lane) and above it (that many at
+        // once, the rest lane by lane) gives the full batch's bits.
+        ShearSpringLanes firstTwo = lanes, firstSix = lanes;
         lanes.slips(a, b, dt);
         firstTwo.slipsFirst(2, a, b, dt);
-        for (int l = 0; l < 2; ++l)
-            ASSERT_TRUE(sameBits(firstTwo.ux[l], lanes.ux[l]) && sameBits(firstTwo.uy[l], lanes.uy[l]) &&
-                        sameBits(firstTwo.uz[l], lanes.uz[l]));
+        firstSix.slipsFirst(6, a, b, dt);
+        auto sameSlips = [&](const ShearSpringLanes& part, int l) {
+            return sameBits(part.ux[l], lanes.ux[l]) && sameBits(part.uy[l], lanes.uy[l]) &&
+                   sameBits(part.uz[l], lanes.uz[l]);
+        };
+        for (int l = 0; l < 6; ++l) {
+            ASSERT_TRUE(sameSlips(firstSix, l)) << "lane " << l << " of six";
+            if (l < 2) {
+                ASSERT_TRUE(sameSlips(firstTwo, l)) << "lane " << l << " of two";
+            }
+        }
         for (int l = 0; l < kShearLanes; ++l) {
             const Vec3 expected = (tester.pointVelocity(points[static_cast<size_t>(l)]) -
                                    other.pointVelocity(points[static_cast<size_t>(l)])) *

@@ -164,6 +164,7 @@ std::string partRecord(const TwoSpheresResult& part, const std::string& log)
             .number(r.forceExact);
     const NodeCheckStats& s = part.stats;
     out.integer(s.nodesConsidered).integer(s.nodesCulled).integer(s.nodesSampled).integer(s.nodesInContact);
+    out.integer(s.nodesPassedOver);
     out.number(part.bakeSeconds).number(part.contactSeconds).text(log);
     return out.bytes();
 }
@@ -191,6 +192,7 @@ std::string readPartRecord(const std::string& record, TwoSpheresResult& part)
     s.nodesCulled = in.integer();
     s.nodesSampled = in.integer();
     s.nodesInContact = in.integer();
+    s.nodesPassedOver = in.integer();
     part.bakeSeconds = in.number();
     part.contactSeconds = in.number();
     return in.text();

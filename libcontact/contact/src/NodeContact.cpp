@@ -68,7 +68,11 @@ public:
                 [&](int begin, int end) { visit(begin, end); }, mStats);
             return;
         }
-        if (!runsHold) rememberRuns(*candidates);
+        if (runsHold)
+            mMove = CandidateBlocks::largestMove(candidates->rotation, candidates->translation,
+                                                 mToB, mTranslation, mA.boundingRadius);
+        else
+            rememberRuns(*candidates);  // its map is this one: A has not moved from it
         visitRemembered(*candidates, runsHold);
         keepClearGap(*candidates);
     }
@@ -106,18 +110,49 @@ private:
         return *mSampler;
     }
 
-    /// φ_B and its gradient at @a inB. With remembered candidates, the node's cell from the
-    /// last step is looked up by walking the last step's cells alongside the nodes (both
-    /// ascending); this step's are gathered in this thread's buffer.
-    LevelSetSample sampleNode(int i, const Vec3& inB)
+    /// Node @a i's entry among the last step's cells, if it has one: found by walking them
+    /// alongside the nodes (both ascending).
+    const CandidateBlocks::SampledCell* lastCellOf(int i)
     {
-        if (!mLastCells) return sampler().sample(inB);
-        while (mCursor < mLastCells->size() && (*mLastCells)[mCursor].node < i) ++mCursor;
+        const std::vector<CandidateBlocks::SampledCell>& last = *mLastCells;
+        while (mCursor < last.size() && last[mCursor].node < i) ++mCursor;
+        return mCursor < last.size() && last[mCursor].node == i ? &last[mCursor] : nullptr;
+    }
+
+    /// This step's entry for node @a i, about to be sampled, in this thread's buffer: its last
+    /// cell (@a last's, if any), its clearUntil set once it is sampled. Its index, not its
+    /// address: the buffer may grow before the node's batch is sampled.
+    size_t keepCell(int i, const CandidateBlocks::SampledCell* last)
+    {
+        const size_t index = mNextCells->size();
         CandidateBlocks::SampledCell& next = mNextCells->emplace_back();
         next.node = i;
-        if (mCursor < mLastCells->size() && (*mLastCells)[mCursor].node == i)
-            next.cell = (*mLastCells)[mCursor].cell;
-        return sampler().sample(inB, next.cell);
+        if (last) next.cell = last->cell;
+        return index;
+    }
+
+    /// A remembered node that cannot have reached B since it was sampled clear (its entry
+    /// @a last): kept for the next step as it is, and how near it may now be to contact noted
+    /// for keepClearGap, a bound: φ_B − reach ≥ slope·(clearUntil − move).
+    void passOver(const CandidateBlocks::SampledCell& last)
+    {
+        mNextCells->push_back(last);
+        ++mStats.nodesPassedOver;
+        mSmallestPhi = std::min(mSmallestPhi, mB.levelSetSlope * (last.clearUntil - mMove));
+    }
+
+    /// The clearUntil of a node sampled clear of B at φ_B = @a phi (CandidateBlocks.h), with the
+    /// slack for round-off that the runs' margin has, and rounded down to a float; −1 (never
+    /// passed over) when it is not positive, or when B's slope is unbounded.
+    float clearUntilOf(double phi) const
+    {
+        const double slope = mB.levelSetSlope;
+        if (!(slope > 0.0) || !std::isfinite(slope)) return -1.0f;
+        const double until = (phi - mReach - 1e-9 * mB.levelSet->voxelSize) / (slope * (1.0 + 1e-6)) - mMove;
+        if (!(until > 0.0)) return -1.0f;  // NaN too
+        float rounded = static_cast<float>(until);
+        if (static_cast<double>(rounded) > until) rounded = std::nextafter(rounded, 0.0f);
+        return rounded;
     }
 
     /// The nodes [begin, end): culled, sampled, and those with φ_B < 0 appended as contacts;
@@ -169,8 +204,19 @@ private:
                 outsideBox = std::min(outsideBox, outside);
                 continue;
             }
+            size_t cell = SampleBatch::kNoCell;
+            if (mLastCells) {
+                const CandidateBlocks::SampledCell* last = lastCellOf(i);
+                if (last && mPassOver && mMove < last->clearUntil) {
+                    ++culled;
+                    passOver(*last);
+                    continue;
+                }
+                cell = keepCell(i, last);
+            }
             mBatch.node[mBatch.count] = i;
             mBatch.inB[mBatch.count] = inB;
+            mBatch.cell[mBatch.count] = cell;
             if (++mBatch.count == SampleBatch::kSize) sampleBatch();
         }
         sampleBatch();
@@ -186,9 +232,11 @@ private:
     struct SampleBatch
     {
         static constexpr int kSize = 16;
+        static constexpr size_t kNoCell = ~size_t(0);
         int count = 0;
         int node[kSize];
-        Vec3 inB[kSize];  ///< the node in B's frame
+        Vec3 inB[kSize];    ///< the node in B's frame
+        size_t cell[kSize];  ///< its entry in this step's cells (keepCell), or kNoCell
         LevelSetSample sample[kSize];
     };
 
@@ -199,12 +247,19 @@ private:
         if (count == 0) return;
         mBatch.count = 0;
         mStats.nodesSampled += count;
-        for (int k = 0; k < count; ++k) mBatch.sample[k] = sampleNode(mBatch.node[k], mBatch.inB[k]);
+        for (int k = 0; k < count; ++k) {
+            const size_t cell = mBatch.cell[k];
+            mBatch.sample[k] = cell == SampleBatch::kNoCell
+                                   ? sampler().sample(mBatch.inB[k])
+                                   : sampler().sample(mBatch.inB[k], (*mNextCells)[cell].cell);
+        }
         for (int k = 0; k < count; ++k) {
             const LevelSetSample& s = mBatch.sample[k];
             const int i = mBatch.node[k];
             if (!(s.phi < mReach)) {
                 noteClearNode(i, s.phi);
+                if (mBatch.cell[k] != SampleBatch::kNoCell)
+                    (*mNextCells)[mBatch.cell[k]].clearUntil = clearUntilOf(s.phi);
                 continue;
             }
             mAnyInside = true;
@@ -327,6 +382,9 @@ private:
         // would say it is a hair from contact: within this of the sphere, the gap takes φ_B
         // there too (sampled for the gap only; such a node is still culled).
         mSphereBand = c.wasClear ? c.margin : 0.0;
+        // Nodes sampled clear at an earlier step are passed over only while the runs hold: the
+        // runs' map is what their clearUntil is measured from.
+        mPassOver = runsHold;
         thread_local std::vector<CandidateBlocks::SampledCell> nextCells;
         nextCells.clear();
         mNextCells = &nextCells;
@@ -396,6 +454,8 @@ private:
     const std::vector<CandidateBlocks::SampledCell>* mLastCells = nullptr;
     std::vector<CandidateBlocks::SampledCell>* mNextCells = nullptr;
     size_t mCursor = 0;
+    bool mPassOver = false;  ///< pass over nodes by their clearUntil (the runs hold)
+    double mMove = 0.0;      ///< how far A's nodes may have moved since the runs' map, at most
     // How near the visited nodes came to contact (keepClearGap): the smallest squared distance
     // to B's centre of those outside its sphere, the smallest distance outside the inside box
     // along an axis, the smallest φ_B ≥ 0 sampled, the gaps of nodes in the band just outside

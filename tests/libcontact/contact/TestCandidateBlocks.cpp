@@ -116,7 +116,9 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
         // The list samples no node that a full walk does not, and nodes left out for φ_B only
         // at the steps that found it afresh; each sampled node it keeps leaves its cell.
         EXPECT_LE(listStats.nodesSampled, fullStats.nodesSampled);
-        EXPECT_LE(static_cast<long long>(remembered.cells.size()), listStats.nodesSampled);
+        EXPECT_LE(static_cast<long long>(remembered.cells.size()),
+                  listStats.nodesSampled + listStats.nodesPassedOver);
+        EXPECT_LE(listStats.nodesPassedOver, listStats.nodesCulled);
         for (const CandidateBlocks::SampledCell& c : remembered.cells)
             ASSERT_TRUE(kept[static_cast<size_t>(c.node)]) << "cell of node " << c.node;
         sampledByList += listStats.nodesSampled;
@@ -130,6 +132,49 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
     EXPECT_LT(sampledByList, sampledByWalk);
     std::cout << "[ measured ] nodes sampled along the trajectory: " << sampledByList
               << " with the list, " << sampledByWalk << " by full walks\n";
+}
+
+// A pressed into B and moved to and fro along the line of their centres by 0.4 of the list's
+// margin (so the list holds throughout), with a slight wobble: a node sampled clear of B is
+// passed over while it cannot have reached B, which must allow for the way A has moved since
+// it was sampled (to and fro: the node may have come back towards B by twice the amplitude).
+// The contacts equal a full walk's at every step, and nodes are passed over.
+TEST(CandidateBlocks, PassesOverANodeSampledClearOnlyWhileItCannotHaveReachedB)
+{
+    const GrainAsset& a = grain(1.4);
+    const GrainAsset& b = grain(1.0);
+    RigidPose poseA, poseB;
+    const Vec3 centre(2.25, 0.05, 0.0);  // A overlaps B by about 0.15 along x
+    poseB.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
+    CandidateBlocks remembered;
+    const double margin = CandidateBlocks::kMarginFraction * a.boundingRadius;
+    long long passedOver = 0, sampledByList = 0, sampledByWalk = 0, contactNodes = 0;
+    for (int step = 0; step < 240; ++step) {
+        const double phase = 2.0 * M_PI * step / 37.0;
+        poseA.position = centre - 0.4 * margin * std::sin(phase) * Vec3::UnitX();
+        poseA.orientation = Quat(Eigen::AngleAxisd(1e-3 * std::sin(1.7 * phase), Vec3::UnitY()));
+        std::vector<NodeContact> full, withList;
+        NodeCheckStats fullStats, listStats;
+        findNodeContacts(a, poseA, b, poseB, full, fullStats);
+        findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
+        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
+        for (size_t k = 0; k < full.size(); ++k) {
+            ASSERT_EQ(full[k].node, withList[k].node) << "step " << step;
+            ASSERT_EQ(full[k].depth, withList[k].depth);
+            ASSERT_EQ(full[k].normal, withList[k].normal);
+        }
+        EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
+                  fullStats.nodesCulled + fullStats.nodesSampled);
+        passedOver += listStats.nodesPassedOver;
+        sampledByList += listStats.nodesSampled;
+        sampledByWalk += fullStats.nodesSampled;
+        contactNodes += static_cast<long long>(full.size());
+    }
+    EXPECT_GT(contactNodes, 0);
+    EXPECT_GT(passedOver, 0);  // the to and fro is what is tested
+    EXPECT_LT(sampledByList, sampledByWalk);
+    std::cout << "[ measured ] to and fro: " << sampledByList << " nodes sampled with the list ("
+              << passedOver << " passed over), " << sampledByWalk << " by full walks\n";
 }
 
 // A flat box A held just above a flat box B, its bottom face outside the box of B's inside by
@@ -205,6 +250,7 @@ TEST(CandidateBlocks, SkipsAClearPairOnlyUntilANodeCouldReachContact)
     poseA.position = 1.742 * u;
     std::mt19937_64 rng(3);
     CandidateBlocks remembered;
+    LevelSetSampler sampler(*b.levelSet);
     int skipped = 0, sampledWhileClear = 0, stepsInContact = 0, firstContact = -1;
     for (int step = 0; step < 1200; ++step) {
         poseA.position -= 0.00015 * u;
@@ -220,6 +266,23 @@ TEST(CandidateBlocks, SkipsAClearPairOnlyUntilANodeCouldReachContact)
             ASSERT_EQ(full[k].node, withList[k].node);
             ASSERT_EQ(full[k].depth, withList[k].depth);
             ASSERT_EQ(full[k].normal, withList[k].normal);
+        }
+        // The gap kept at this step's map is a lower bound on every remembered node's distance
+        // to contact: for a node inside B's sphere and its inside box, φ_B over the slope bound
+        // (also for nodes passed over rather than sampled, whose φ_B the walk bounded from an
+        // earlier sample).
+        const Quat toB = poseB.orientation.conjugate() * poseA.orientation;
+        const Vec3 shift = poseB.orientation.conjugate() * (poseA.position - poseB.position);
+        if (remembered.clearGap > 0.0 && remembered.clearTranslation == shift) {
+            for (const auto& [begin, end] : remembered.runs)
+                for (int i = begin; i < end; ++i) {
+                    const Vec3 inB = toB * a.nodes.positions[static_cast<size_t>(i)] + shift;
+                    const Vec3 outside = (b.insideBoxMin - inB).cwiseMax(0.0) +
+                                         (inB - b.insideBoxMax).cwiseMax(0.0);
+                    if (inB.norm() > b.boundingRadius || outside.squaredNorm() > 0.0) continue;
+                    ASSERT_GE(sampler.phi(inB) / b.levelSetSlope, remembered.clearGap * (1.0 - 1e-9))
+                        << "node " << i << ", step " << step;
+                }
         }
         if (!full.empty()) {
             ++stepsInContact;

@@ -18,6 +18,11 @@
 /// and that cell's corner values: contacts last thousands of steps and a node moves a tiny
 /// fraction of a voxel per step, so most samples are interpolated from these (read in order,
 /// one stream) instead of from the grid's leaves (scattered), with the same result.
+///
+/// And a node sampled clear of B is passed over at the next steps, not sampled, while A cannot
+/// have moved far enough since to bring it into contact (SampledCell::clearUntil): the nodes
+/// just outside a contact patch are about half of those sampled in a pressed slab, and most of
+/// them stay clear for many steps. The contacts are the same.
 #pragma once
 
 #include "lsdem/contact/RigidPose.h"
@@ -51,10 +56,18 @@ struct CandidateBlocks
     /// would pay for it at every step and never use it).
     bool wasClear = false;
 
-    /// A node of A sampled in B at the last step, and the cell of B it was in.
+    /// A node of A sampled in B at the last step, or passed over then, and the cell of B it was
+    /// last sampled in.
     struct SampledCell
     {
         int node = 0;
+        /// While A has moved less than this (largestMove from the runs' map, length) the node
+        /// cannot have reached B, and is passed over instead of sampled. A node sampled at φ_B
+        /// = φ when A had moved m_s has moved at most m + m_s since, where m is A's move now,
+        /// and φ_B changes by at most levelSetSlope a unit of distance, so this is (φ − reach)/
+        /// slope − m_s, rounded down (with the same slack for round-off as the runs' margin).
+        /// Negative for a node in contact; made anew when the runs are.
+        float clearUntil = -1.0f;
         LevelSetCell cell;
     };
     std::vector<SampledCell> cells;  ///< ascending by node

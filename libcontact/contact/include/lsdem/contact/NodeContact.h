@@ -43,6 +43,9 @@ struct NodeCheckStats
     long long nodesCulled = 0;      ///< rejected by bounds before sampling φ_B
     long long nodesSampled = 0;     ///< φ_B evaluated
     long long nodesInContact = 0;   ///< φ_B < 0
+    /// Of the culled: remembered nodes passed over because they were sampled clear of B at an
+    /// earlier step and have not moved far enough since to reach it (CandidateBlocks.h).
+    long long nodesPassedOver = 0;
 
     NodeCheckStats& operator+=(const NodeCheckStats& o)
     {
@@ -50,6 +53,7 @@ struct NodeCheckStats
         nodesCulled += o.nodesCulled;
         nodesSampled += o.nodesSampled;
         nodesInContact += o.nodesInContact;
+        nodesPassedOver += o.nodesPassedOver;
         return *this;
     }
 };

@@ -28,7 +28,7 @@ public:
                       bool patches)
         : mA(a), mB(b), mPoseA(poseA), mPoseB(poseB), mOut(out), mStats(stats),
           mPatches(patches), mReach(patches ? patchReach(a, b) : 0.0),
-          mReachB(b.boundingRadius + mReach)
+          mReachB(b.boundingRadius + mReach), mPerSlope(perSlope(b.levelSetSlope))
     {
         if (patches && a.nodeShapes.size() != a.nodes.size())
             throw std::logic_error("findNodeContacts: patch quadrature on an asset without node shapes");
@@ -54,7 +54,11 @@ public:
         }
         // A near pair found clear a few steps ago, and not moved enough since, is done here:
         // most near pairs of a settled heap, so this check comes before anything else.
-        const bool runsHold = candidates && candidates->holds(mToB, mTranslation, mA.boundingRadius);
+        // (CandidateBlocks::holds, with A's move since the runs' map kept: passing over uses it.)
+        if (candidates && candidates->valid)
+            mMove = CandidateBlocks::largestMove(candidates->rotation, candidates->translation,
+                                                 mToB, mTranslation, mA.boundingRadius);
+        const bool runsHold = candidates && candidates->valid && mMove < candidates->margin;
         if (runsHold && candidates->clearOfContact(mToB, mTranslation, mA.boundingRadius)) {
             mStats.nodesCulled += count;  // no node can have come into contact since it was clear
             return;
@@ -68,16 +72,23 @@ public:
                 [&](int begin, int end) { visit(begin, end); }, mStats);
             return;
         }
-        if (runsHold)
-            mMove = CandidateBlocks::largestMove(candidates->rotation, candidates->translation,
-                                                 mToB, mTranslation, mA.boundingRadius);
-        else
-            rememberRuns(*candidates);  // its map is this one: A has not moved from it
+        if (!runsHold) {
+            rememberRuns(*candidates);
+            mMove = 0.0;  // the runs' map is this one
+        }
         visitRemembered(*candidates, runsHold);
         keepClearGap(*candidates);
     }
 
 private:
+    /// 1 / B's slope bound with a slack of 2e-6 for round-off (a product then stands for a
+    /// division: the slack covers its rounding many times over); 0 for an unbounded slope, so
+    /// that no node is passed over.
+    static double perSlope(double slope)
+    {
+        return slope > 0.0 && std::isfinite(slope) ? 1.0 / (slope * (1.0 + 2e-6)) : 0.0;
+    }
+
     /// How far from B a node of A may be and still have its patch touch B: A's patches' own
     /// reach (NodeShape.h) at B's steepest slope, and B's surface bending toward the patch by
     /// at most B's largest concavity at its nodes (twice it, for the bends between them).
@@ -146,9 +157,7 @@ private:
     /// passed over) when it is not positive, or when B's slope is unbounded.
     float clearUntilOf(double phi) const
     {
-        const double slope = mB.levelSetSlope;
-        if (!(slope > 0.0) || !std::isfinite(slope)) return -1.0f;
-        const double until = (phi - mReach - 1e-9 * mB.levelSet->voxelSize) / (slope * (1.0 + 1e-6)) - mMove;
+        const double until = (phi - mReach - 1e-9 * mB.levelSet->voxelSize) * mPerSlope - mMove;
         if (!(until > 0.0)) return -1.0f;  // NaN too
         float rounded = static_cast<float>(until);
         if (static_cast<double>(rounded) > until) rounded = std::nextafter(rounded, 0.0f);
@@ -237,7 +246,10 @@ private:
         int node[kSize];
         Vec3 inB[kSize];    ///< the node in B's frame
         size_t cell[kSize];  ///< its entry in this step's cells (keepCell), or kNoCell
-        LevelSetSample sample[kSize];
+        // The samples, as plain arrays: an array of LevelSetSample would be zeroed every time
+        // a search is made (once a pair and direction a step).
+        double phi[kSize];
+        Vec3 gradient[kSize];
     };
 
     /// Sample the batch's nodes, then keep those inside B as contacts (in node order).
@@ -249,12 +261,14 @@ private:
         mStats.nodesSampled += count;
         for (int k = 0; k < count; ++k) {
             const size_t cell = mBatch.cell[k];
-            mBatch.sample[k] = cell == SampleBatch::kNoCell
-                                   ? sampler().sample(mBatch.inB[k])
-                                   : sampler().sample(mBatch.inB[k], (*mNextCells)[cell].cell);
+            const LevelSetSample s = cell == SampleBatch::kNoCell
+                                         ? sampler().sample(mBatch.inB[k])
+                                         : sampler().sample(mBatch.inB[k], (*mNextCells)[cell].cell);
+            mBatch.phi[k] = s.phi;
+            mBatch.gradient[k] = s.gradient;
         }
         for (int k = 0; k < count; ++k) {
-            const LevelSetSample& s = mBatch.sample[k];
+            const LevelSetSample s{mBatch.phi[k], mBatch.gradient[k]};
             const int i = mBatch.node[k];
             if (!(s.phi < mReach)) {
                 noteClearNode(i, s.phi);
@@ -443,6 +457,7 @@ private:
     const bool mPatches;   ///< integrate over each node's patch (PatchQuadrature.h)
     const double mReach;   ///< how far from B a node may touch it: 0, or its patch's reach
     const double mReachB;  ///< B's bounding radius and that
+    const double mPerSlope;  ///< for clearUntilOf (perSlope)
     Quat mToB = Quat::Identity();
     Vec3 mTranslation = Vec3::Zero();
     Eigen::Matrix3d mRotation, mBToWorld;

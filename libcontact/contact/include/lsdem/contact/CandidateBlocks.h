@@ -65,7 +65,7 @@ struct CandidateBlocks
         /// cannot have reached B, and is passed over instead of sampled. A node sampled at φ_B
         /// = φ when A had moved m_s has moved at most m + m_s since, where m is A's move now,
         /// and φ_B changes by at most levelSetSlope a unit of distance, so this is (φ − reach)/
-        /// slope − m_s, rounded down (with the same slack for round-off as the runs' margin).
+        /// slope − m_s, rounded down (with a slack for round-off, as the runs' margin has).
         /// Negative for a node in contact; made anew when the runs are.
         float clearUntil = -1.0f;
         LevelSetCell cell;

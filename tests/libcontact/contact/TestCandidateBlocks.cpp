@@ -37,6 +37,22 @@ const GrainAsset& grain(double halfLength)
 
 double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53 - 0.5; }
 
+/// Whether the remembered list found the full walk's contacts: the same nodes in the same
+/// order, bit for bit in depth, normal and point.
+::testing::AssertionResult sameContacts(const std::vector<NodeContact>& full,
+                                        const std::vector<NodeContact>& withList)
+{
+    if (full.size() != withList.size())
+        return ::testing::AssertionFailure()
+               << full.size() << " contacts by a full walk, " << withList.size() << " with the list";
+    for (size_t k = 0; k < full.size(); ++k)
+        if (full[k].node != withList[k].node || full[k].depth != withList[k].depth ||
+            full[k].normal != withList[k].normal || full[k].point != withList[k].point)
+            return ::testing::AssertionFailure() << "contact " << k << " (node " << full[k].node
+                                                 << ") differs";
+    return ::testing::AssertionSuccess();
+}
+
 } // namespace
 
 TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
@@ -68,13 +84,7 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
         findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
         if (!wasValid || !remembered.rotation.coeffs().isApprox(before.coeffs(), 0.0)) ++refreshes;
         stepsInContact += full.empty() ? 0 : 1;
-        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
-        for (size_t k = 0; k < full.size(); ++k) {
-            ASSERT_EQ(full[k].node, withList[k].node);
-            ASSERT_EQ(full[k].depth, withList[k].depth);
-            ASSERT_EQ(full[k].normal, withList[k].normal);
-            ASSERT_EQ(full[k].point, withList[k].point);
-        }
+        ASSERT_TRUE(sameContacts(full, withList)) << "step " << step;
         // The counters add up the same way: every node is either culled or sampled (and the
         // list samples the same nodes, unless it knows A clear of B and samples none).
         EXPECT_EQ(listStats.nodesConsidered, fullStats.nodesConsidered);
@@ -157,12 +167,7 @@ TEST(CandidateBlocks, PassesOverANodeSampledClearOnlyWhileItCannotHaveReachedB)
         NodeCheckStats fullStats, listStats;
         findNodeContacts(a, poseA, b, poseB, full, fullStats);
         findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
-        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
-        for (size_t k = 0; k < full.size(); ++k) {
-            ASSERT_EQ(full[k].node, withList[k].node) << "step " << step;
-            ASSERT_EQ(full[k].depth, withList[k].depth);
-            ASSERT_EQ(full[k].normal, withList[k].normal);
-        }
+        ASSERT_TRUE(sameContacts(full, withList)) << "step " << step;
         EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
                   fullStats.nodesCulled + fullStats.nodesSampled);
         passedOver += listStats.nodesPassedOver;
@@ -261,12 +266,7 @@ TEST(CandidateBlocks, SkipsAClearPairOnlyUntilANodeCouldReachContact)
         NodeCheckStats fullStats, listStats;
         findNodeContacts(a, poseA, b, poseB, full, fullStats);
         findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
-        ASSERT_EQ(full.size(), withList.size()) << "step " << step;
-        for (size_t k = 0; k < full.size(); ++k) {
-            ASSERT_EQ(full[k].node, withList[k].node);
-            ASSERT_EQ(full[k].depth, withList[k].depth);
-            ASSERT_EQ(full[k].normal, withList[k].normal);
-        }
+        ASSERT_TRUE(sameContacts(full, withList)) << "step " << step;
         // The gap kept at this step's map is a lower bound on every remembered node's distance
         // to contact: for a node inside B's sphere and its inside box, φ_B over the slope bound
         // (also for nodes passed over rather than sampled, whose φ_B the walk bounded from an

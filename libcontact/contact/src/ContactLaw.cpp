@@ -431,9 +431,9 @@ void addSpringsOneByOne(const ContactSide& side, std::vector<PointForce>& forces
 constexpr size_t kLaneSumsFrom = 16;
 
 /// The shear springs of a side kShearLanes contacts at a time (ShearSpringLanes.h; a last
-/// batch that is not full four at a time where it can, the rest lane by lane), and the side's sums: those of a large side lane by
-/// lane as well (SideLaneSums.h), then added to the pair's, those of a smaller one contact by
-/// contact (addSpring, addSideForces). @a kSumInLanes tells which, so that neither version
+/// batch that is not full four at a time where it can, the rest lane by lane), and the side's
+/// sums: those of a large side lane by lane as well (SideLaneSums.h), then added to the pair's,
+/// those of a smaller one contact by contact (addSpring, addSideForces). @a kSumInLanes tells which, so that neither version
 /// asks at every contact. Friction's work and the new history are added contact by contact.
 /// Not inlined: its lanes' aligned arrays would enlarge the frame of every contact's law, most
 /// of which (a packing's) are small enough to go one by one.

@@ -113,7 +113,8 @@ SideTotals SideLaneSums::totals() const
     if (!mStarted) return SideTotals();  // no contact carried a force
     const auto joined = [&](int sum) {
         const double* lane = mSum[sum];
-        return ((lane[0] + lane[1]) + (lane[2] + lane[3])) + ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+        return ((lane[0] + lane[1]) + (lane[2] + lane[3])) +
+               ((lane[4] + lane[5]) + (lane[6] + lane[7]));
     };
     const auto vector = [&](int first) {
         return Vec3(joined(first), joined(first + 1), joined(first + 2));

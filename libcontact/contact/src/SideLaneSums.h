@@ -5,10 +5,10 @@
 // Each sum is kept as kShearLanes partial sums, one a lane: the batch's lanes add into them
 // side by side, so the compiler makes vector instructions of the additions, and each partial
 // waits only on its own last addition rather than on every contact before it. The partials are
-// joined once, at the side's end, always pairwise: ((0 + 1) + (2 + 3)) + ((4 + 5) + (6 + 7)), lanes
-// numbered. The order is
-// fixed by the contacts' order alone, so the result is the same on any number of threads; it
-// differs from a sum made contact by contact in rounding only (a few ulps of the sum).
+// joined once, at the side's end, always pairwise by lane number: ((0 + 1) + (2 + 3)) + ((4 + 5)
+// + (6 + 7)). The order is fixed by the contacts' order alone, so the result is the same on any
+// number of threads; it differs from a sum made contact by contact in rounding only (a few ulps
+// of the sum).
 #pragma once
 
 #include "lsdem/contact/ShearSpringLanes.h"

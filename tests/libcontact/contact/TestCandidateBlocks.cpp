@@ -6,6 +6,7 @@
 #include "lsdem/contact/NodeContact.h"
 #include "lsdem/ls/Bake.h"
 #include "lsdem/ls/LevelSetSampler.h"
+#include "lsdem/ls/NodeShape.h"
 
 #include <gtest/gtest.h>
 
@@ -148,38 +149,65 @@ TEST(CandidateBlocks, SameContactsAsAFullWalkAlongARandomTrajectory)
 // margin (so the list holds throughout), with a slight wobble: a node sampled clear of B is
 // passed over while it cannot have reached B, which must allow for the way A has moved since
 // it was sampled (to and fro: the node may have come back towards B by twice the amplitude).
-// The contacts equal a full walk's at every step, and nodes are passed over.
+// The contacts equal a full walk's at every step, and nodes are passed over; with points and
+// with patch quadrature (whose nodes touch B from a reach away).
 TEST(CandidateBlocks, PassesOverANodeSampledClearOnlyWhileItCannotHaveReachedB)
 {
-    const GrainAsset& a = grain(1.4);
-    const GrainAsset& b = grain(1.0);
-    RigidPose poseA, poseB;
-    const Vec3 centre(2.25, 0.05, 0.0);  // A overlaps B by about 0.15 along x
-    poseB.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
-    CandidateBlocks remembered;
-    const double margin = CandidateBlocks::kMarginFraction * a.boundingRadius;
-    long long passedOver = 0, sampledByList = 0, sampledByWalk = 0, contactNodes = 0;
-    for (int step = 0; step < 240; ++step) {
-        const double phase = 2.0 * M_PI * step / 37.0;
-        poseA.position = centre - 0.4 * margin * std::sin(phase) * Vec3::UnitX();
-        poseA.orientation = Quat(Eigen::AngleAxisd(1e-3 * std::sin(1.7 * phase), Vec3::UnitY()));
-        std::vector<NodeContact> full, withList;
-        NodeCheckStats fullStats, listStats;
-        findNodeContacts(a, poseA, b, poseB, full, fullStats);
-        findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered);
-        ASSERT_TRUE(sameContacts(full, withList)) << "step " << step;
-        EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
-                  fullStats.nodesCulled + fullStats.nodesSampled);
-        passedOver += listStats.nodesPassedOver;
-        sampledByList += listStats.nodesSampled;
-        sampledByWalk += fullStats.nodesSampled;
-        contactNodes += static_cast<long long>(full.size());
+    // Point contacts, and patch quadrature (a node reaches B from its patch's reach away).
+    for (const bool patches : {false, true}) {
+        SCOPED_TRACE(patches ? "patches" : "points");
+        static const GrainAsset shapedA = withNodeShapes(grain(1.4));
+        static const GrainAsset shapedB = withNodeShapes(grain(1.0));
+        const GrainAsset& a = patches ? shapedA : grain(1.4);
+        const GrainAsset& b = patches ? shapedB : grain(1.0);
+        RigidPose poseA, poseB;
+        const Vec3 centre(2.25, 0.05, 0.0);  // A overlaps B by about 0.15 along x
+        poseB.orientation = Quat(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
+        CandidateBlocks remembered;
+        const double margin = CandidateBlocks::kMarginFraction * a.boundingRadius;
+        // How far from B a node's patch may reach into it (NodeContact.cpp): its own reach at
+        // B's steepest slope, and B's surface bending towards it.
+        const double slope = std::max(1.0, b.levelSetSlope);
+        const double reach = patches ? a.patchReach * slope + a.patchReach * a.patchReach *
+                                                                  slope * b.patchConcavity
+                                     : 0.0;
+        LevelSetSampler sampler(*b.levelSet);
+        long long passedOver = 0, sampledByList = 0, sampledByWalk = 0, contactNodes = 0;
+        for (int step = 0; step < 240; ++step) {
+            const double phase = 2.0 * M_PI * step / 37.0;
+            poseA.position = centre - 0.4 * margin * std::sin(phase) * Vec3::UnitX();
+            poseA.orientation = Quat(Eigen::AngleAxisd(1e-3 * std::sin(1.7 * phase), Vec3::UnitY()));
+            // Every remembered node the list is about to pass over is at least its reach from
+            // B at this pose: it could not have touched B.
+            const Quat toB = poseB.orientation.conjugate() * poseA.orientation;
+            const Vec3 shift = poseB.orientation.conjugate() * (poseA.position - poseB.position);
+            const double move = CandidateBlocks::largestMove(
+                remembered.rotation, remembered.translation, toB, shift, a.boundingRadius);
+            if (remembered.valid && move < remembered.margin)
+                for (const CandidateBlocks::SampledCell& c : remembered.cells) {
+                    if (!(move < c.clearUntil)) continue;
+                    const Vec3 inB = toB * a.nodes.positions[static_cast<size_t>(c.node)] + shift;
+                    ASSERT_GE(sampler.phi(inB), reach) << "node " << c.node << ", step " << step;
+                }
+            std::vector<NodeContact> full, withList;
+            NodeCheckStats fullStats, listStats;
+            findNodeContacts(a, poseA, b, poseB, full, fullStats, nullptr, patches);
+            findNodeContacts(a, poseA, b, poseB, withList, listStats, &remembered, patches);
+            ASSERT_TRUE(sameContacts(full, withList)) << "step " << step;
+            EXPECT_EQ(listStats.nodesCulled + listStats.nodesSampled,
+                      fullStats.nodesCulled + fullStats.nodesSampled);
+            passedOver += listStats.nodesPassedOver;
+            sampledByList += listStats.nodesSampled;
+            sampledByWalk += fullStats.nodesSampled;
+            contactNodes += static_cast<long long>(full.size());
+        }
+        EXPECT_GT(contactNodes, 0);
+        EXPECT_GT(passedOver, 0);  // the to and fro is what is tested
+        EXPECT_LT(sampledByList, sampledByWalk);
+        std::cout << "[ measured ] to and fro (" << (patches ? "patches" : "points") << "): "
+                  << sampledByList << " nodes sampled with the list (" << passedOver
+                  << " passed over), " << sampledByWalk << " by full walks\n";
     }
-    EXPECT_GT(contactNodes, 0);
-    EXPECT_GT(passedOver, 0);  // the to and fro is what is tested
-    EXPECT_LT(sampledByList, sampledByWalk);
-    std::cout << "[ measured ] to and fro: " << sampledByList << " nodes sampled with the list ("
-              << passedOver << " passed over), " << sampledByWalk << " by full walks\n";
 }
 
 // A flat box A held just above a flat box B, its bottom face outside the box of B's inside by

@@ -1,5 +1,6 @@
 // The shear springs computed several contacts at a time: each lane must give exactly the bits of
-// the scalar spring (updateShearForce), whether its batch is full or computed lane by lane, and
+// the scalar spring (updateShearForce), whether its batch is full or part-filled (the first
+// kShearLanesLeast lanes at once and the rest lane by lane, or all lane by lane), and
 // of a material point's velocity (ContactGrain::pointVelocity), whatever the other lanes hold,
 // in every regime the spring has: sticking, sliding (Coulomb's cap), no limit (zero or
 // negative), no stored force, and a stored force along the normal (nothing left on the tangent
@@ -44,6 +45,13 @@ std::vector<SpringCase> springCases(int count, unsigned seed)
         c.slip = 1e-3 * scale(random) * Vec3(unit(random), unit(random), unit(random));
         c.stiffness = 100.0 * scale(random);
         c.limit = 1.5 * scale(random);
+        if ((i / 8) % 5 == 4) {
+            // Every fifth run of eight: a far cap, so that a whole batch sticks and the
+            // spring's vector path without Coulomb's cap is taken too.
+            c.limit = 1e9;
+            cases.push_back(c);
+            continue;
+        }
         switch (i % 8) {
         case 1: c.limit = 0.0; break;                     // no normal force: no shear
         case 2: c.limit = -1.0; break;                    // a pulling node: no shear either

@@ -14,10 +14,11 @@
 /// |Δt| + 2 sin(θ/2)·|x|, where Δt and θ are the change of the map's translation and the angle
 /// of its change of rotation, and |x| is at most A's bounding radius.
 ///
-/// It also keeps, for each listed node sampled in B at the last step, the voxel cell it fell in
-/// and that cell's corner values: contacts last thousands of steps and a node moves a tiny
-/// fraction of a voxel per step, so most samples are interpolated from these (read in order,
-/// one stream) instead of from the grid's leaves (scattered), with the same result.
+/// It also keeps, for each listed node sampled in B at the last step (or passed over, below),
+/// the voxel cell it was last sampled in and that cell's corner values: contacts last thousands
+/// of steps and a node moves a tiny fraction of a voxel per step, so most samples are
+/// interpolated from these (read in order, one stream) instead of from the grid's leaves
+/// (scattered), with the same result.
 ///
 /// And a node sampled clear of B is passed over at the next steps, not sampled, while A cannot
 /// have moved far enough since to bring it into contact (SampledCell::clearUntil): the nodes

@@ -54,11 +54,10 @@ public:
         }
         // A near pair found clear a few steps ago, and not moved enough since, is done here:
         // most near pairs of a settled heap, so this check comes before anything else.
-        // (CandidateBlocks::holds, with A's move since the runs' map kept: passing over uses it.)
+        // (A's move since the runs' map is kept: passing over nodes uses it.)
         if (candidates && candidates->valid)
-            mMove = CandidateBlocks::largestMove(candidates->rotation, candidates->translation,
-                                                 mToB, mTranslation, mA.boundingRadius);
-        const bool runsHold = candidates && candidates->valid && mMove < candidates->margin;
+            mMove = candidates->moveSinceRuns(mToB, mTranslation, mA.boundingRadius);
+        const bool runsHold = candidates && candidates->holdsAfter(mMove);
         if (runsHold && candidates->clearOfContact(mToB, mTranslation, mA.boundingRadius)) {
             mStats.nodesCulled += count;  // no node can have come into contact since it was clear
             return;
@@ -152,9 +151,9 @@ private:
         mSmallestPhi = std::min(mSmallestPhi, mB.levelSetSlope * (last.clearUntil - mMove));
     }
 
-    /// The clearUntil of a node sampled clear of B at φ_B = @a phi (CandidateBlocks.h), with the
-    /// slack for round-off that the runs' margin has, and rounded down to a float; −1 (never
-    /// passed over) when it is not positive, or when B's slope is unbounded.
+    /// The clearUntil of a node sampled clear of B at φ_B = @a phi (CandidateBlocks.h), with a
+    /// slack for round-off (perSlope), and rounded down to a float; −1 (never passed over) when
+    /// it is not positive, as when B's slope is unbounded.
     float clearUntilOf(double phi) const
     {
         const double until = (phi - mReach - 1e-9 * mB.levelSet->voxelSize) * mPerSlope - mMove;

@@ -105,6 +105,20 @@ void updateSprings(ShearSpringLanes& s, Begin begin, End end, const Vec3& meanTu
 template <int kLanes>
 using Lanes = std::integral_constant<int, kLanes>;
 
+/// A part-filled batch of @a count lanes through @a kernel(begin, end): the first
+/// kShearLanesLeast lanes at once and the rest lane after lane, or all lane after lane if it
+/// has fewer.
+template <typename Kernel>
+void firstLanes(int count, Kernel kernel)
+{
+    if (count < kShearLanesLeast) {
+        kernel(0, count);
+        return;
+    }
+    kernel(Lanes<0>(), Lanes<kShearLanesLeast>());
+    kernel(kShearLanesLeast, count);
+}
+
 } // namespace
 
 void ShearSpringLanes::slips(const LaneBodyMotion& tester, const LaneBodyMotion& other, double dt)
@@ -115,12 +129,7 @@ void ShearSpringLanes::slips(const LaneBodyMotion& tester, const LaneBodyMotion&
 void ShearSpringLanes::slipsFirst(int count, const LaneBodyMotion& tester,
                                   const LaneBodyMotion& other, double dt)
 {
-    if (count < kShearLanesLeast) {
-        slipsOf(*this, 0, count, tester, other, dt);
-        return;
-    }
-    slipsOf(*this, Lanes<0>(), Lanes<kShearLanesLeast>(), tester, other, dt);
-    slipsOf(*this, kShearLanesLeast, count, tester, other, dt);
+    firstLanes(count, [&](auto begin, auto end) { slipsOf(*this, begin, end, tester, other, dt); });
 }
 
 void ShearSpringLanes::update(const Vec3& meanTurn)
@@ -130,12 +139,7 @@ void ShearSpringLanes::update(const Vec3& meanTurn)
 
 void ShearSpringLanes::updateFirst(int count, const Vec3& meanTurn)
 {
-    if (count < kShearLanesLeast) {
-        updateSprings(*this, 0, count, meanTurn);
-        return;
-    }
-    updateSprings(*this, Lanes<0>(), Lanes<kShearLanesLeast>(), meanTurn);
-    updateSprings(*this, kShearLanesLeast, count, meanTurn);
+    firstLanes(count, [&](auto begin, auto end) { updateSprings(*this, begin, end, meanTurn); });
 }
 
 } // namespace lsdem

@@ -77,8 +77,17 @@ struct CandidateBlocks
     /// @a translation) for a grain A whose nodes lie within @a reachA of its origin.
     bool holds(const Quat& rotationNow, const Vec3& translationNow, double reachA) const
     {
-        return valid && largestMove(rotation, translation, rotationNow, translationNow, reachA) <
-                            margin;
+        return holdsAfter(moveSinceRuns(rotationNow, translationNow, reachA));
+    }
+
+    /// The same for a move of A's nodes since the runs' map of @a move at most.
+    bool holdsAfter(double move) const { return valid && move < margin; }
+
+    /// How far a node of A within @a reachA of its origin has moved relative to B since the
+    /// runs' map, at most (largestMove).
+    double moveSinceRuns(const Quat& rotationNow, const Vec3& translationNow, double reachA) const
+    {
+        return largestMove(rotation, translation, rotationNow, translationNow, reachA);
     }
 
     /// Whether A's runs are still sure to be clear of B: A found none of their nodes in contact

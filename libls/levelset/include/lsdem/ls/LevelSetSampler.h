@@ -51,19 +51,15 @@ public:
         const Vec3 base(lx, ly, lz);
         // Compared one by one, not as arrays: an array's comparison is a memcmp, which stores
         // the three indices and reads 8 bytes across two of those stores, a load the CPU cannot
-        // forward from them (it stalled a third of every sample).
+        // forward from them (about 1 % of the slab's step, 2026-12-01).
         if (lx != cell.base[0] || ly != cell.base[1] || lz != cell.base[2]) {
             fetch(openvdb::Coord(lx, ly, lz), cell.value.data());
             cell.base = {lx, ly, lz};
         }
         const Vec3 fraction = index - base;
         LevelSetSample s = interpolate(cell.value.data(), fraction);
-        // On a face when the fraction within the cell is within the tolerance of 0 or 1 (the
-        // subtractions are exact, so this is |index - round(index)| <= tolerance).
-        const auto onFace = [](double f) {
-            return !(f > kFaceTolerance && 1.0 - f > kFaceTolerance);
-        };
-        if (__builtin_expect(onFace(fraction.x()) | onFace(fraction.y()) | onFace(fraction.z()), 0))
+        if (__builtin_expect(
+                onFace(fraction.x()) | onFace(fraction.y()) | onFace(fraction.z()), 0))
             averageAcrossFaces(index, base, fraction, s);
         return s;
     }
@@ -95,6 +91,11 @@ private:
     static constexpr double kFaceTolerance = 1e-9;
     static constexpr double kFaceOffset = 1e-6;
 
+    /// Whether a point whose fraction within its cell along an axis is @a f lies on a cell face:
+    /// within the tolerance of 0 or 1 (the subtractions are exact, so this is |index −
+    /// round(index)| ≤ tolerance).
+    static bool onFace(double f) { return !(f > kFaceTolerance && 1.0 - f > kFaceTolerance); }
+
     /// ⌊x⌋ of an index within int's range, as std::floor gives it: the truncation, less one for
     /// a negative non-integer. Without SSE4.1 (the portable build) std::floor is a sequence of
     /// a dozen instructions, three times a sample.
@@ -113,7 +114,7 @@ private:
     {
         for (int axis = 0; axis < 3; ++axis) {
             const double f = fraction[axis];
-            if (f > kFaceTolerance && 1.0 - f > kFaceTolerance) continue;
+            if (!onFace(f)) continue;
             const double face = f <= 0.5 ? base[axis] : base[axis] + 1.0;
             Vec3 before = index, after = index;
             before[axis] = face - kFaceOffset;

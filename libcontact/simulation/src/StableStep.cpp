@@ -34,6 +34,24 @@ double largestEigenvalueBound(const Mat3& m)
     return std::max(0.0, std::min(m.norm(), m.cwiseAbs().rowwise().sum().maxCoeff()));
 }
 
+/// An upper bound on the largest eigenvalue of a symmetric 3×3 matrix, also without its
+/// eigenvalues but close to it where the eigenvalues are close (a grain held by several
+/// contacts, each with shear springs: there the Frobenius norm is up to √3 times over): the
+/// least of largestEigenvalueBound and the traces' bound of Wolkowicz & Styan (Linear Algebra
+/// Appl. 29, 1980) for n = 3, λ_max ≤ m + √2·s with m = tr A/3 and s² = tr A²/3 − m², which is
+/// exact where the two smaller eigenvalues are equal. Round-off must not take it below the
+/// eigenvalue as largestEigenvalue computes it: the 1e-12·tr A²/3 added to s² covers s²'s
+/// (about 1e-16 of tr A², which its root makes 1e-8), and the factor 1 + 1e-12 the ties where
+/// a bound is exact (Gershgorin's for a diagonal matrix, Frobenius's for one contact).
+double largestEigenvalueTraceBound(const Mat3& m)
+{
+    const double mean = m.trace() / 3.0;
+    const double meanSquare = m.squaredNorm() / 3.0;  // tr A²/3, A symmetric
+    const double spread2 = std::max(0.0, meanSquare - mean * mean) + 1e-12 * meanSquare;
+    const double traces = std::max(0.0, mean + std::sqrt(2.0 * spread2));
+    return (1.0 + 1e-12) * std::min(largestEigenvalueBound(m), traces);
+}
+
 /// The nodes of a grain that a flat wall square to @a direction (asset frame, outward) meets
 /// first: those within @a band of its support plane.
 std::vector<int> bandNodes(const SurfaceNodes& nodes, const Vec3& direction, double band)
@@ -154,6 +172,14 @@ double massScaledBound(const Mat3& translation, const Mat3& rotation, const Rigi
     return bound;
 }
 
+/// The same bound without eigenvalues, from the traces (largestEigenvalueTraceBound), and
+/// lambda_max(I^-1/2 R^T K R I^-1/2) <= lambda_max(K) / I_min.
+double massScaledTraceBound(const Mat3& translation, const Mat3& rotation, const RigidBody& body)
+{
+    return largestEigenvalueTraceBound(translation) / body.mass +
+           largestEigenvalueTraceBound(rotation) / body.principalInertia.minCoeff();
+}
+
 /// The same bound from Frobenius norms: lambda_max(K) <= |K|_F, and
 /// lambda_max(I^-1/2 R^T K R I^-1/2) <= lambda_max(K) / I_min.
 double massScaledFrobeniusBound(const Mat3& translation, const Mat3& rotation,
@@ -188,7 +214,7 @@ double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
                             double dampingRatio, double globalDamping)
 {
-    const double omega2 = massScaledFrobeniusBound(stiffness.translation, stiffness.rotation, body);
+    const double omega2 = massScaledTraceBound(stiffness.translation, stiffness.rotation, body);
     const double summedRate = massScaledFrobeniusBound(stiffness.translationDamping,
                                                        stiffness.rotationDamping, body);
     return dampedLimit(omega2, dampingRate(omega2, dampingRatio, summedRate), globalDamping);

@@ -70,6 +70,59 @@ TEST(StableStep, LowerBoundIsExactForOneFrictionlessContactOnASphere)
                 2.0 / std::sqrt(50.0 / 3.0) * (std::sqrt(1.04) - 0.2), 1e-12);
 }
 
+TEST(StableStep, LowerBoundIsCloseForAGrainHeldAlikeOnEverySide)
+{
+    // A ball pressed by six like contacts (±x, ±y, ±z, each with shear springs) has one
+    // stiffness along every axis, and Frobenius's norm is √3 times it: a lower bound from that
+    // norm is 3^(-1/4) = 0.76 of the step, below the least limit of a packing of like grains,
+    // so every grain's eigenvalues were needed at every step. The traces' bound is exact there,
+    // and within a hair of it for a ball whose contacts differ slightly.
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> spread(0.99, 1.01);
+    RigidBody ball;
+    ball.mass = 2.0;
+    ball.principalInertia = Vec3::Constant(0.8);
+    for (int trial = 0; trial < 50; ++trial) {
+        GrainStiffness k;
+        for (int axis = 0; axis < 3; ++axis)
+            for (double side : {1.0, -1.0}) {
+                const Vec3 n = side * Vec3::Unit(axis);
+                const double kn = 100.0 * spread(random), ks = 50.0 * spread(random);
+                const Vec3 r = -n;  // the contact at the ball's surface, radius 1
+                Mat3 lever;
+                lever << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+                const Mat3 spring = (kn - ks) * n * n.transpose() + ks * Mat3::Identity();
+                k.translation += spring;
+                k.rotation += lever.transpose() * spring * lever;
+            }
+        const double exact = stableStep(k, ball, 0.3);
+        EXPECT_LE(stableStepLowerBound(k, ball, 0.3), exact);
+        EXPECT_GT(stableStepLowerBound(k, ball, 0.3), 0.99 * exact) << "trial " << trial;
+    }
+}
+
+TEST(StableStep, LowerBoundStaysBelowTheEigenvalueStepWhereTheEigenvaluesNearlyMeet)
+{
+    // Where the traces' bound is tight, round-off decides which side of the eigenvalue it
+    // falls: stiffnesses c·I + ε·(a random contact), with ε from 1e-14 to 1e-2 of c, in random
+    // frames. A bound above the exact step would let the screen pass a grain the exact limit
+    // fails.
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    RigidBody ball;
+    ball.mass = 1.7;
+    ball.principalInertia = Vec3::Constant(0.6);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const double epsilon = std::pow(10.0, -14.0 + 12.0 * unit(random));
+        const double c = std::pow(10.0, -3.0 + 9.0 * unit(random));
+        GrainStiffness k = randomContacts(random, 1 + trial % 3);
+        k.translation = c * (Mat3::Identity() + epsilon * k.translation / k.translation.norm());
+        k.rotation = c * (Mat3::Identity() + epsilon * k.rotation / k.rotation.norm());
+        ASSERT_LE(stableStepLowerBound(k, ball, 0.0), stableStep(k, ball, 0.0))
+            << "trial " << trial << ", epsilon " << epsilon;
+    }
+}
+
 TEST(StableStep, NoStiffnessAllowsAnyStep)
 {
     RigidBody body;

@@ -78,12 +78,15 @@ inline double dampedStableStep(double omegaSquared, double dampingRate, double g
 double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double dampingRatio,
                   double globalDamping = 0.0);
 
-/// A cheap lower bound on stableStep (no eigenvalues: the Frobenius norm bounds the largest
-/// eigenvalue, and the smallest principal moment the rotation's scaling), within a factor
-/// f = 3^(1/4)·sqrt(I_max/I_min) of it for the springs (f² where the summed dashpots' rate
-/// sets the step) and exact for one frictionless contact on a sphere. The simulation checks
-/// every grain at every step; where this bound already clears the step and the least limit
-/// seen, the exact one cannot change the outcome and is not computed.
+/// A cheap lower bound on stableStep (no eigenvalues: the springs' largest eigenvalue bounded
+/// from the traces, Frobenius's norm and Gershgorin's row sums, whichever is least; the
+/// dashpots' by Frobenius's norm; the smallest principal moment for the rotation's scaling),
+/// within a factor f = 3^(1/4)·sqrt(I_max/I_min) of it for the springs (f² where the summed
+/// dashpots' rate sets the step), exact for one frictionless contact on a sphere, and within a
+/// hair of it for a sphere held alike on every side (as the grains of a packing are, where
+/// Frobenius's norm alone was 3^(1/4) off). The simulation checks every grain at every step;
+/// where this bound already clears the step and the least limit seen, the exact one cannot
+/// change the outcome and is not computed.
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
                             double dampingRatio, double globalDamping = 0.0);
 

@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -234,11 +235,23 @@ std::vector<double> stiffestContactSteps(const World& world)
     const double beta = largestDampingRatio(world);
     // Per asset, the stiffness of each wall under each model (in its principal frame).
     std::map<const GrainAsset*, std::vector<GrainStiffness>> walls;
+    // A grain's steps depend on its asset, mass and principal moments alone: grains of one
+    // asset and material (most of a scene's) share one result, computed once. Each is a few
+    // hundred walls' eigenvalues: grain by grain, 1000 spheres took 32 ms, 100,000 would take
+    // seconds (and `time_step = "auto"` forecasts twice).
+    using Body = std::tuple<const GrainAsset*, double, double, double, double>;
+    std::map<Body, double> stepOf;
     std::vector<double> steps(world.grains.size(), std::numeric_limits<double>::infinity());
     for (size_t i = 0; i < world.grains.size(); ++i) {
         const Grain& g = world.grains[i];
         if (!g.isFree()) continue;
         const GrainAsset& asset = *g.asset;
+        const Vec3& moments = g.body.principalInertia;
+        const Body body{&asset, g.body.mass, moments.x(), moments.y(), moments.z()};
+        if (const auto known = stepOf.find(body); known != stepOf.end()) {
+            steps[i] = known->second;
+            continue;
+        }
         auto found = walls.find(&asset);
         if (found == walls.end()) {
             std::vector<GrainStiffness> stiffnesses;
@@ -257,6 +270,7 @@ std::vector<double> stiffestContactSteps(const World& world)
             const GrainStiffness doubled{2.0 * k.translation, 2.0 * k.rotation};
             steps[i] = std::min(steps[i], stableStep(doubled, principal, beta, world.globalDamping));
         }
+        stepOf.emplace(body, steps[i]);
     }
     return steps;
 }

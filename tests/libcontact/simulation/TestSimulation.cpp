@@ -1052,6 +1052,34 @@ TEST(Simulation, AutomaticTimeStepIsSetByTheStiffestFaceAGrainCanPresent)
                 std::sqrt(1.0 + beta * beta) - beta, 1e-12);
 }
 
+// Grains of one asset and material share one forecast, computed once (StableStep.cpp); one of
+// the same asset four times as dense (heavier and with four times the moments) bears a step
+// twice as long: its result is not its lighter twin's.
+TEST(Simulation, ContactStepForecastIsEachGrainsOwn)
+{
+    Scene scene = oneMaterialScene("box", adapted(kKnStar), 0.6);
+    MaterialSpec dense;
+    dense.name = "dense";
+    dense.density = 4.0 * kSteel;
+    scene.materials.push_back(dense);
+    for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 1}}) {
+        ContactSpec c = scene.contacts[0];
+        c.materialA = a;
+        c.materialB = b;
+        scene.contacts.push_back(c);
+    }
+    for (int i = 0; i < 4; ++i) {
+        GrainSpec g = grainAt(Vec3(20.0 * i, 0, 10));
+        g.material = i % 2;
+        scene.grains.push_back(g);
+    }
+    const std::vector<double> steps = stiffestContactSteps(build(scene));
+    ASSERT_EQ(steps.size(), 4u);
+    EXPECT_EQ(steps[2], steps[0]);
+    EXPECT_EQ(steps[3], steps[1]);
+    EXPECT_NEAR(steps[1] / steps[0], 2.0, 1e-9);
+}
+
 // The issue that made the step above what it is: a box dropped flat onto a wall with
 // time_step = "auto" stopped at its fifth step, when its face met the wall, because the step
 // was made for one node. Now it lands and leaves again, with the stability check passing at

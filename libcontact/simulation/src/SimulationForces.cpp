@@ -195,6 +195,9 @@ void Simulation::sumGrainForces(double dt)
              r != mContacts.grainSlotsBegin(size_t(i) + 1); ++r) {
             const ContactSlot& s = slots[size_t(r->slot)];
             const PairForces& f = s.result;
+            // A slot without contact nodes holds resolveContact's empty result: every term
+            // below is +0, which changes no sum (they start at +0). Most slots of a packing.
+            if (f.contactNodes == 0) continue;
             force += r->first ? f.forceOnFirst : f.forceOnSecond;
             torque += r->first ? f.torqueOnFirst : f.torqueOnSecond;
             if (r->first) {  // each contact's dissipation counts once, with its first grain

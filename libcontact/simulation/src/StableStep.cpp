@@ -215,6 +215,9 @@ double stableStep(const GrainStiffness& stiffness, const RigidBody& body, double
 double stableStepLowerBound(const GrainStiffness& stiffness, const RigidBody& body,
                             double dampingRatio, double globalDamping)
 {
+    // No springs: any step (as below, where ω² = 0), for most grains of a loose packing.
+    if (stiffness.translation.isZero(0.0) && stiffness.rotation.isZero(0.0))
+        return std::numeric_limits<double>::infinity();
     const double omega2 = massScaledTraceBound(stiffness.translation, stiffness.rotation, body);
     const double summedRate = massScaledFrobeniusBound(stiffness.translationDamping,
                                                        stiffness.rotationDamping, body);

@@ -163,7 +163,9 @@ double massScaledBound(const Mat3& translation, const Mat3& rotation, const Rigi
                        Largest largest)
 {
     double bound = largest(translation) / body.mass;
-    if (!rotation.isZero()) {
+    // Exactly zero: Eigen's isZero() would compare each entry with 1e-12, which in small units
+    // (fine grains in SI) drops a rotational stiffness that sets the step.
+    if (!rotation.isZero(0.0)) {
         // In the principal frame, scaled by 1/sqrt(I_k) on both sides.
         const Mat3 turn = body.pose.orientation.toRotationMatrix();
         const Vec3 scale = body.principalInertia.cwiseSqrt().cwiseInverse();

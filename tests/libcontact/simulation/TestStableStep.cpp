@@ -72,21 +72,25 @@ TEST(StableStep, LowerBoundIsExactForOneFrictionlessContactOnASphere)
 
 TEST(StableStep, LowerBoundIsCloseForAGrainHeldAlikeOnEverySide)
 {
-    // A ball pressed by six like contacts (±x, ±y, ±z, each with shear springs) has one
-    // stiffness along every axis, and Frobenius's norm is √3 times it: a lower bound from that
-    // norm is 3^(-1/4) = 0.76 of the step, below the least limit of a packing of like grains,
-    // so every grain's eigenvalues were needed at every step. The traces' bound is exact there,
-    // and within a hair of it for a ball whose contacts differ slightly.
+    // A ball pressed by six like contacts (±x, ±y, ±z of a frame turned at random, each with
+    // shear springs) has one stiffness along every axis, and Frobenius's norm is √3 times it:
+    // a lower bound from that norm is 3^(-1/4) = 0.76 of the step, below the least limit of a
+    // packing of like grains, so every grain's eigenvalues were needed at every step.
+    // Gershgorin's row sums (and the traces' bound) are exact for a multiple of the identity
+    // in any frame, and within a hair of it for a ball whose contacts differ slightly.
     std::mt19937 random(3);
-    std::uniform_real_distribution<double> spread(0.99, 1.01);
+    std::uniform_real_distribution<double> spread(0.99, 1.01), angle(0.0, 6.283185307179586);
     RigidBody ball;
     ball.mass = 2.0;
     ball.principalInertia = Vec3::Constant(0.8);
     for (int trial = 0; trial < 50; ++trial) {
+        const Mat3 turn =
+            Eigen::AngleAxisd(angle(random), Vec3(1.0, angle(random), -2.0).normalized())
+                .toRotationMatrix();
         GrainStiffness k;
         for (int axis = 0; axis < 3; ++axis)
             for (double side : {1.0, -1.0}) {
-                const Vec3 n = side * Vec3::Unit(axis);
+                const Vec3 n = side * (turn * Vec3::Unit(axis));
                 const double kn = 100.0 * spread(random), ks = 50.0 * spread(random);
                 const Vec3 r = -n;  // the contact at the ball's surface, radius 1
                 Mat3 lever;
@@ -98,6 +102,30 @@ TEST(StableStep, LowerBoundIsCloseForAGrainHeldAlikeOnEverySide)
         const double exact = stableStep(k, ball, 0.3);
         EXPECT_LE(stableStepLowerBound(k, ball, 0.3), exact);
         EXPECT_GT(stableStepLowerBound(k, ball, 0.3), 0.99 * exact) << "trial " << trial;
+    }
+}
+
+TEST(StableStep, LowerBoundIsExactWhereTheTwoSmallerEigenvaluesMeet)
+{
+    // A stiffness of eigenvalues (2, 1, 1)·c in a frame turned at random (as a grain whose
+    // contacts are stiffer along one direction): Frobenius's norm is √6·c and Gershgorin's row
+    // sums up to about 1.2 times the eigenvalue, but the traces' bound is exact.
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> angle(0.0, 6.283185307179586);
+    RigidBody ball;
+    ball.mass = 1.5;
+    ball.principalInertia = Vec3::Constant(0.7);
+    for (int trial = 0; trial < 50; ++trial) {
+        const Mat3 turn =
+            Eigen::AngleAxisd(angle(random), Vec3(angle(random), 1.0, -1.0).normalized())
+                .toRotationMatrix();
+        const Mat3 stiffness = 40.0 * turn * Vec3(2.0, 1.0, 1.0).asDiagonal() * turn.transpose();
+        GrainStiffness k;
+        k.translation = stiffness;
+        k.rotation = 0.3 * stiffness;
+        const double exact = stableStep(k, ball, 0.2);
+        EXPECT_LE(stableStepLowerBound(k, ball, 0.2), exact);
+        EXPECT_GT(stableStepLowerBound(k, ball, 0.2), 0.9999 * exact) << "trial " << trial;
     }
 }
 
@@ -121,6 +149,21 @@ TEST(StableStep, LowerBoundStaysBelowTheEigenvalueStepWhereTheEigenvaluesNearlyM
         ASSERT_LE(stableStepLowerBound(k, ball, 0.0), stableStep(k, ball, 0.0))
             << "trial " << trial << ", epsilon " << epsilon;
     }
+}
+
+TEST(StableStep, RotationCountsInAnyUnits)
+{
+    // A grain a tenth of a millimetre across in SI units: its rotational stiffness, 1e-13
+    // N·m/rad, is tiny as a number but sets the step (ω² = 1e-13/1e-21 = 1e8 against the
+    // translation's 1e-5/1e-12 = 1e7). Undamped, the step is Verlet's 2/ω with ω² their sum.
+    RigidBody grain;
+    grain.mass = 1e-12;
+    grain.principalInertia = Vec3::Constant(1e-21);
+    GrainStiffness k;
+    k.translation = 1e-5 * Mat3::Identity();
+    k.rotation = 1e-13 * Mat3::Identity();
+    EXPECT_NEAR(stableStep(k, grain, 0.0) * std::sqrt(1.1e8), 2.0, 1e-9);
+    EXPECT_LE(stableStepLowerBound(k, grain, 0.0), stableStep(k, grain, 0.0));
 }
 
 TEST(StableStep, NoStiffnessAllowsAnyStep)
